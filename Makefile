@@ -1,0 +1,49 @@
+# The two commands a new user needs (see README.md):
+#   make lab    set up .venv, install the course, open JupyterLab on the start page
+#   make test   the same set-up, then every unit test and every notebook (pytest + nbval)
+SHELL := /bin/bash
+PYTHON ?= python3
+VENV ?= .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed-stamp
+LAB_ARGS ?=
+PYTEST_ARGS ?=
+
+.PHONY: setup lab test exercises workspace bench clean help
+
+help:
+	@echo "make lab        set up and open JupyterLab on the course (book/00-start-here.ipynb)"
+	@echo "make test       set up and run every test and every notebook"
+	@echo "make exercises  regenerate exercises/ from solutions/"
+	@echo "make bench      print the benchmark tables"
+
+$(PY):
+	$(PYTHON) -m venv $(VENV)
+
+# Re-install whenever pyproject.toml changes.
+$(STAMP): pyproject.toml | $(PY)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e ".[test]"
+	@touch $(STAMP)
+
+setup: $(STAMP)
+
+# Copy new exercises into the student's git-ignored workspace/; never overwrites a file.
+workspace: setup
+	$(PY) tools/sync_workspace.py
+
+lab: setup workspace
+	$(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir="$(CURDIR)" $(LAB_ARGS) book/00-start-here.ipynb
+
+test: setup
+	$(PY) -m pytest $(PYTEST_ARGS)
+
+exercises: setup
+	$(PY) tools/make_exercises.py
+
+bench: setup
+	$(PY) benchmarks/se2_batched.py
+	$(PY) benchmarks/widget_latency.py
+
+clean:
+	rm -rf $(VENV) .hypothesis

@@ -1,0 +1,157 @@
+"""Shared drawing primitives: SE(2) frames, rigid bodies, trails, animations.
+
+Every artist here is built once and then updated with ``set(...)`` (``set_data``, ``set_xy``,
+``set_UVC``), so a slider callback only moves existing artists and never builds a new figure.
+"""
+from __future__ import annotations
+
+import os
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.animation import FuncAnimation
+from matplotlib.patches import Polygon
+
+from ..groups import SE2
+
+__all__ = ["testing", "n_frames", "new_figure", "FrameArtist", "BodyArtist", "TrailArtist",
+           "SingularFlag", "animate", "jshtml"]
+
+
+def testing() -> bool:
+    """True when running under the test suite (GM_COURSE_TESTING=1): animations get shorter."""
+    return os.environ.get("GM_COURSE_TESTING", "") == "1"
+
+
+def n_frames(n: int, under_test: int = 6) -> int:
+    """Number of animation frames to render: ``n`` normally, ``under_test`` under the test suite."""
+    return min(n, under_test) if testing() else n
+
+
+def new_figure(nrows=1, ncols=1, *, figsize=(6, 4), subplot_kw=None, **kw):
+    """Create a figure without auto-displaying it (so a panel can place ``fig.canvas`` itself).
+
+    Under ipympl (``%matplotlib widget``) the canvas is a widget; its toolbar header is hidden.
+    """
+    with plt.ioff():
+        fig, ax = plt.subplots(nrows, ncols, figsize=figsize, subplot_kw=subplot_kw, **kw)
+    canvas = fig.canvas
+    if hasattr(canvas, "header_visible"):
+        canvas.header_visible = False
+        canvas.footer_visible = False
+        canvas.resizable = False
+    return fig, ax
+
+
+class FrameArtist:
+    """An SE(2) coordinate frame drawn as two arrows (x axis red, y axis green) at g = (x, y, theta)."""
+
+    def __init__(self, ax, g=(0.0, 0.0, 0.0), length=0.4, colors=("tab:red", "tab:green"), zorder=5, **kw):
+        self.ax = ax
+        self.length = float(length)
+        self.quiver = ax.quiver([0, 0], [0, 0], [1, 0], [0, 1], color=list(colors), angles="xy",
+                                scale_units="xy", scale=1.0, width=0.006, zorder=zorder, **kw)
+        self.set(g)
+
+    def set(self, g):
+        x, y, t = np.asarray(g, dtype=float)
+        L = self.length
+        c, s = np.cos(t), np.sin(t)
+        self.quiver.set_offsets([[x, y], [x, y]])
+        self.quiver.set_UVC([L * c, -L * s], [L * s, L * c])
+        self.g = np.array([x, y, t])
+
+    def remove(self):
+        self.quiver.remove()
+
+
+class BodyArtist:
+    """A rigid body: a polygon given in body-frame coordinates, placed at g by (1.11)-(1.12)."""
+
+    def __init__(self, ax, outline, g=(0.0, 0.0, 0.0), **style):
+        self.outline = np.asarray(outline, dtype=float)
+        style.setdefault("facecolor", "tab:blue")
+        style.setdefault("alpha", 0.5)
+        style.setdefault("edgecolor", "k")
+        self.patch = Polygon(self.outline, closed=True, **style)
+        ax.add_patch(self.patch)
+        self.set(g)
+
+    def set(self, g):
+        self.g = np.asarray(g, dtype=float)
+        self.patch.set_xy(SE2.act_on_points(self.g, self.outline))
+
+    @staticmethod
+    def triangle(size=0.3):
+        """Outline of an isosceles triangle pointing along the body x axis (the book's robot)."""
+        return size * np.array([[1.0, 0.0], [-0.6, 0.55], [-0.6, -0.55]])
+
+    @staticmethod
+    def rectangle(length, width):
+        """Outline of a length x width rectangle centred on the body frame."""
+        a, b = length / 2, width / 2
+        return np.array([[-a, -b], [a, -b], [a, b], [-a, b]])
+
+
+class TrailArtist:
+    """A path drawn as one Line2D; ``set(points)`` replaces its data, ``append(p)`` extends it."""
+
+    def __init__(self, ax, points=None, **style):
+        style.setdefault("lw", 1.5)
+        (self.line,) = ax.plot([], [], **style)
+        self._pts = np.zeros((0, 2))
+        if points is not None:
+            self.set(points)
+
+    def set(self, points):
+        self._pts = np.asarray(points, dtype=float).reshape(-1, 2)
+        self.line.set_data(self._pts[:, 0], self._pts[:, 1])
+
+    def append(self, p):
+        self.set(np.vstack([self._pts, np.asarray(p, dtype=float)[:2]]))
+
+
+class SingularFlag:
+    """A text banner shown on an axes when a configuration is singular, hidden otherwise.
+
+    Drawing code must never pass inf or NaN silently to the plot: it calls ``flag.show(msg)``
+    instead and hides the affected artists.
+    """
+
+    def __init__(self, ax, loc=(0.5, 0.95)):
+        self.text = ax.text(*loc, "", transform=ax.transAxes, ha="center", va="top", color="darkred",
+                            fontsize=10, fontweight="bold",
+                            bbox=dict(facecolor="mistyrose", edgecolor="darkred", alpha=0.9))
+        self.text.set_visible(False)
+
+    def show(self, message):
+        self.text.set_text(message)
+        self.text.set_visible(True)
+
+    def hide(self):
+        self.text.set_visible(False)
+
+    @property
+    def visible(self):
+        return self.text.get_visible()
+
+
+def animate(fig, update, frames, interval=50, **kw):
+    """A FuncAnimation calling ``update(frame)``; shortened under the test suite (see n_frames)."""
+    if np.isscalar(frames):
+        frames = n_frames(int(frames))
+    else:
+        frames = list(frames)
+        if testing():
+            idx = np.linspace(0, len(frames) - 1, n_frames(len(frames))).round().astype(int)
+            frames = [frames[i] for i in idx]
+    return FuncAnimation(fig, update, frames=frames, interval=interval, blit=False, **kw)
+
+
+def jshtml(anim, default_mode="loop"):
+    """An IPython HTML object that plays ``anim`` in the page, with no live kernel (to_jshtml)."""
+    from IPython.display import HTML
+
+    html = anim.to_jshtml(default_mode=default_mode)
+    plt.close(anim._fig)
+    return HTML(html)

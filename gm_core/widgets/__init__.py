@@ -1,0 +1,9 @@
+"""Widget layer (ipywidgets): panels that pair controls with a drawing.
+
+A panel's ``update(**values)`` only moves artists and calls ``canvas.draw_idle()``. Every panel
+class registers itself with :func:`register` so ``benchmarks/widget_latency.py`` and the
+headless tests can find all interactive figures of the course.
+"""
+from .base import PANELS, Panel, all_panels, register
+
+__all__ = ["Panel", "PANELS", "register", "all_panels"]
