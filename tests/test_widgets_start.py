@@ -1,0 +1,38 @@
+"""Headless test of the start page's demo panel: sliders move the artists by the SE(2) amount."""
+import numpy as np
+
+from gm_core import SE2
+from gm_core.drawing.base import BodyArtist
+from gm_core.widgets.base import all_panels
+from gm_core.widgets.start import FrameDemo
+
+
+def test_sliders_move_body_and_frame():
+    p = FrameDemo()
+    p.controls["x"].value = -1.0
+    p.controls["theta"].value = np.pi / 2
+    g = np.array([-1.0, p.controls["y"].value, np.pi / 2])
+    expected = SE2.act_on_points(g, BodyArtist.triangle(0.5))
+    np.testing.assert_allclose(p.body.patch.get_xy()[:3], expected, atol=1e-12)
+    np.testing.assert_allclose(p.frame.quiver.get_offsets()[0], g[:2])
+    # The x axis arrow of the frame points along +y after a quarter turn.
+    np.testing.assert_allclose([p.frame.quiver.U[0], p.frame.quiver.V[0]], [0.0, 0.6], atol=1e-12)
+
+
+def test_set_updates_once_and_rejects_unknown_controls():
+    p = FrameDemo()
+    p.set(x=0.0, y=2.0, theta=np.pi)
+    np.testing.assert_allclose(p.frame.g, [0.0, 2.0, np.pi])
+    try:
+        p.set(z=1.0)
+    except ValueError as e:
+        assert "unknown control 'z'" in str(e)
+    else:
+        raise AssertionError("set() accepted an unknown control")
+
+
+def test_naive_update_draws_the_same_pose():
+    p = FrameDemo()
+    p.naive_update(x=0.5, y=0.5, theta=0.3)
+    assert len(p.ax.patches) == 1
+    assert "FrameDemo" in all_panels()
