@@ -7,6 +7,8 @@ VENV ?= .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed-stamp
 LAB_ARGS ?=
+# Jupyter refuses to start as root unless told; only then (containers, CI) is the flag added.
+ROOT_FLAG := $(if $(filter 0,$(shell id -u)),--ServerApp.allow_root=True,)
 PYTEST_ARGS ?=
 
 .PHONY: setup lab test exercises workspace bench clean help
@@ -33,7 +35,7 @@ workspace: setup
 	$(PY) tools/sync_workspace.py
 
 lab: setup workspace
-	$(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir="$(CURDIR)" $(LAB_ARGS) book/00-start-here.ipynb
+	$(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir="$(CURDIR)" $(ROOT_FLAG) $(LAB_ARGS) book/00-start-here.ipynb
 
 test: setup
 	$(PY) -m pytest $(PYTEST_ARGS)
