@@ -1,0 +1,677 @@
+"""Drive the course's notebooks in a real JupyterLab with headless Chromium (playwright, sync API).
+
+Used by ``tests/browser/`` (pytest fixtures in conftest.py) and by ``benchmarks/browser_latency.py``.
+
+* :class:`LabServer` copies the course (book/, exercises/, solutions/) to a temporary folder and
+  starts ``python -m jupyterlab`` on 127.0.0.1 (free port, random token, fresh runtime/config/data
+  dirs, news and update checks off, a user-settings dir that turns off notebook windowing and the
+  news toast). The kernel imports ``gm_core`` from the tree these tests live in (PYTHONPATH), so a
+  scratch copy of the repository tests its own code. Stop it with :meth:`LabServer.stop`
+  (sessions deleted over the REST API, then terminate/kill of the server's process group by its PID).
+* :func:`launch_chromium` starts /usr/bin/chromium headless with a fresh, empty profile and the
+  flags that keep it off the network.
+* :class:`NotebookPage` opens one notebook, waits for an idle kernel, runs all cells, checks that
+  every code cell ran and nothing failed, and moves the first slider of an interactive panel,
+  reporting whether the ipympl canvas pixels changed.
+
+Every wait polls (no fixed long sleeps) and fails with a message that says what was seen last and
+where a screenshot was written.
+"""
+from __future__ import annotations
+
+import json
+import os
+import secrets
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.error
+import urllib.request
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+CHROMIUM = os.environ.get("GM_CHROMIUM", "/usr/bin/chromium")
+CHROMIUM_MISSING = f"chromium not found at {CHROMIUM}: apt-get install chromium"
+CHROMIUM_ARGS = [
+    "--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+    "--disable-component-update", "--no-first-run", "--disable-sync", "--disable-dev-shm-usage",
+    "--disable-default-apps", "--disable-extensions", "--no-default-browser-check",
+    "--metrics-recording-only", "--disable-breakpad", "--disable-domain-reliability",
+]
+COURSE_DIRS = ("book", "exercises", "solutions")
+#: where failure screenshots go (kept after the run; the path is in the failure message)
+FAILURE_DIR = Path(tempfile.gettempdir()) / "gm-browser-failures"
+
+
+class BrowserTestError(AssertionError):
+    """A browser check failed; the message says what was seen and where the screenshot is."""
+
+
+def chromium_available() -> bool:
+    return os.path.isfile(CHROMIUM) and os.access(CHROMIUM, os.X_OK)
+
+
+def interactive_notebooks(root: Path = ROOT) -> list[Path]:
+    """Every book/*.ipynb with ``%matplotlib widget`` in a code cell (found at collection time)."""
+    out = []
+    for path in sorted((root / "book").glob("*.ipynb")):
+        try:
+            nb = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            continue
+        for cell in nb.get("cells", []):
+            src = cell.get("source", "")
+            src = "".join(src) if isinstance(src, list) else src
+            if cell.get("cell_type") == "code" and "%matplotlib widget" in src:
+                out.append(path)
+                break
+    return out
+
+
+# --------------------------------------------------------------------------------------------
+# The server
+# --------------------------------------------------------------------------------------------
+
+# Per-user settings for the test server (JupyterLab reads <user_settings_dir>/<ext>/<plugin>.jupyterlab-settings).
+LAB_SETTINGS = {
+    # render every cell (windowing would detach off-screen outputs, canvases included)
+    ("@jupyterlab/notebook-extension", "tracker"): {"windowingMode": "none"},
+    # no "Would you like to get notified about official Jupyter news?" toast
+    ("@jupyterlab/apputils-extension", "notification"): {"fetchNews": "false", "checkForUpdates": False},
+}
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class LabServer:
+    """A JupyterLab server on a temporary copy of the course."""
+
+    def __init__(self, workdir: Path, source_root: Path = ROOT, extra_notebooks: dict | None = None,
+                 start_timeout: float = 90.0):
+        self.workdir = Path(workdir)
+        self.source_root = Path(source_root)
+        self.course = self.workdir / "course"
+        self.token = secrets.token_hex(24)
+        self.port = None
+        self.proc = None
+        self.log_path = self.workdir / "jupyterlab.log"
+        self.extra_notebooks = extra_notebooks or {}
+        self.start_timeout = start_timeout
+
+    # -- set-up ---------------------------------------------------------------------------
+    def _copy_course(self):
+        ignore = shutil.ignore_patterns(".ipynb_checkpoints", "__pycache__")
+        self.course.mkdir(parents=True, exist_ok=True)
+        for d in COURSE_DIRS:
+            src = self.source_root / d
+            if src.is_dir():
+                shutil.copytree(src, self.course / d, ignore=ignore, dirs_exist_ok=True)
+        for rel, nb in self.extra_notebooks.items():
+            target = self.course / rel
+            target.parent.mkdir(parents=True, exist_ok=True)
+            target.write_text(json.dumps(nb, indent=1), encoding="utf-8")
+
+    def _write_settings(self) -> Path:
+        settings = self.workdir / "lab-user-settings"
+        for (ext, plugin), values in LAB_SETTINGS.items():
+            if values:
+                p = settings / ext / f"{plugin}.jupyterlab-settings"
+                p.parent.mkdir(parents=True, exist_ok=True)
+                p.write_text(json.dumps(values), encoding="utf-8")
+        return settings
+
+    def env(self) -> dict:
+        env = dict(os.environ)
+        for name, sub in (("JUPYTER_RUNTIME_DIR", "runtime"), ("JUPYTER_CONFIG_DIR", "config"),
+                          ("JUPYTER_DATA_DIR", "data"), ("IPYTHONDIR", "ipython")):
+            (self.workdir / sub).mkdir(parents=True, exist_ok=True)
+            env[name] = str(self.workdir / sub)
+        env.pop("JUPYTER_PATH", None)
+        env.pop("JUPYTER_CONFIG_PATH", None)
+        env["JUPYTER_PLATFORM_DIRS"] = "1"
+        # the kernel imports gm_core from the tree under test (also when that tree is a scratch copy)
+        env["PYTHONPATH"] = os.pathsep.join([str(self.source_root)] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
+        env["GM_COURSE_TESTING"] = "1"
+        env.pop("MPLBACKEND", None)  # notebooks choose %matplotlib widget themselves
+        env["PYTHONUNBUFFERED"] = "1"
+        return env
+
+    def command(self, settings: Path) -> list[str]:
+        return [
+            sys.executable, "-m", "jupyterlab", "--no-browser",
+            "--ServerApp.ip=127.0.0.1", f"--ServerApp.port={self.port}", "--ServerApp.port_retries=0",
+            f"--IdentityProvider.token={self.token}",
+            f"--ServerApp.root_dir={self.course}",
+            "--ServerApp.open_browser=False",
+            "--LabApp.news_url=None",
+            "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
+            f"--LabApp.user_settings_dir={settings}",
+            f"--LabApp.workspaces_dir={self.workdir / 'workspaces'}",
+            "--LabApp.expose_app_in_browser=True",
+            "--ServerApp.terminals_enabled=False",
+            "--MappingKernelManager.cull_idle_timeout=0",
+        ] + (["--allow-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else [])
+
+    def start(self):
+        self._copy_course()
+        settings = self._write_settings()
+        (self.workdir / "workspaces").mkdir(exist_ok=True)
+        last_err = None
+        for _attempt in range(3):  # a port can be taken between free_port() and bind: retry
+            self.port = free_port()
+            self._log = open(self.log_path, "ab")
+            self.proc = subprocess.Popen(self.command(settings), cwd=self.course, env=self.env(),
+                                         stdout=self._log, stderr=subprocess.STDOUT,
+                                         stdin=subprocess.DEVNULL, start_new_session=True)
+            try:
+                self._wait_ready()
+                return self
+            except BrowserTestError as e:
+                last_err = e
+                self.stop()
+                if "exited" not in str(e):
+                    break
+        raise last_err
+
+    def _wait_ready(self):
+        deadline = time.monotonic() + self.start_timeout
+        while time.monotonic() < deadline:
+            if self.proc.poll() is not None:
+                raise BrowserTestError(f"jupyter lab exited with code {self.proc.returncode}; "
+                                       f"log {self.log_path}:\n{self.log_tail()}")
+            try:
+                self.api("GET", "/api/status", timeout=2)
+                # the lab page itself must be served too (extension assets resolved)
+                self.api("GET", "/lab/api/settings", timeout=5)
+                return
+            except (OSError, urllib.error.URLError):
+                time.sleep(0.2)
+        raise BrowserTestError(f"jupyter lab did not answer on port {self.port} within "
+                               f"{self.start_timeout:.0f} s; log {self.log_path}:\n{self.log_tail()}")
+
+    # -- use --------------------------------------------------------------------------------
+    @property
+    def url(self) -> str:
+        return f"http://127.0.0.1:{self.port}"
+
+    def lab_url(self, relpath: str) -> str:
+        return f"{self.url}/lab/tree/{relpath}?reset&token={self.token}"
+
+    def api(self, method: str, path: str, timeout: float = 10.0):
+        req = urllib.request.Request(self.url + path, method=method,
+                                     headers={"Authorization": f"token {self.token}"})
+        with urllib.request.urlopen(req, timeout=timeout) as r:
+            body = r.read()
+        return json.loads(body) if body else None
+
+    def delete_sessions(self):
+        """Shut down every session and kernel (after each notebook; CPU is shared)."""
+        try:
+            for s in self.api("GET", "/api/sessions") or []:
+                try:
+                    self.api("DELETE", f"/api/sessions/{s['id']}", timeout=20)
+                except (OSError, urllib.error.URLError):
+                    pass
+            for k in self.api("GET", "/api/kernels") or []:
+                try:
+                    self.api("DELETE", f"/api/kernels/{k['id']}", timeout=20)
+                except (OSError, urllib.error.URLError):
+                    pass
+        except (OSError, urllib.error.URLError, ValueError):
+            pass
+
+    def log_tail(self, n: int = 40) -> str:
+        try:
+            lines = self.log_path.read_text(errors="replace").splitlines()
+        except OSError:
+            return ""
+        return "\n".join(lines[-n:])
+
+    def stop(self):
+        if self.proc is None:
+            return
+        if self.proc.poll() is None:
+            self.delete_sessions()
+            pid = self.proc.pid  # the server leads its own session: its PID is its process group id
+            for sig, wait in ((signal.SIGTERM, 15), (signal.SIGKILL, 5)):
+                try:
+                    os.killpg(pid, sig)
+                except ProcessLookupError:
+                    break
+                try:
+                    self.proc.wait(timeout=wait)
+                    break
+                except subprocess.TimeoutExpired:
+                    continue
+            # kernels started by the server share its process group; make sure none outlive it
+            try:
+                os.killpg(pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
+        try:
+            self._log.close()
+        except Exception:
+            pass
+        self.proc = None
+
+    def __enter__(self):
+        return self.start()
+
+    def __exit__(self, *exc):
+        self.stop()
+
+
+# --------------------------------------------------------------------------------------------
+# The browser
+# --------------------------------------------------------------------------------------------
+
+def launch_chromium(playwright, profile_dir: Path, viewport=(1400, 1000)):
+    """A persistent context on a fresh, empty profile (one browser for the whole session)."""
+    profile_dir = Path(profile_dir)
+    profile_dir.mkdir(parents=True, exist_ok=True)
+    if any(profile_dir.iterdir()):
+        raise RuntimeError(f"browser profile dir {profile_dir} is not empty")
+    return playwright.chromium.launch_persistent_context(
+        str(profile_dir), executable_path=CHROMIUM, headless=True, args=CHROMIUM_ARGS,
+        viewport={"width": viewport[0], "height": viewport[1]}, accept_downloads=False,
+        service_workers="block", timeout=60_000)
+
+
+# -- JavaScript run in the page ------------------------------------------------------------
+
+_STATUS_JS = r"""
+(path) => {
+  const out = {phase: 'loading', dialogs: [], errors: [], tracebacks: [], widgetErrors: []};
+  for (const d of document.querySelectorAll('.jp-Dialog')) out.dialogs.push(d.innerText.slice(0, 400));
+  const app = window.jupyterapp;
+  if (!app || !app.shell) return out;
+  let panel = null;
+  for (const w of app.shell.widgets('main')) {
+    if (w.context && w.context.path === path && w.content && w.sessionContext) { panel = w; break; }
+  }
+  if (!panel) { out.phase = 'nopanel'; return out; }
+  out.phase = 'panel';
+  out.panelId = panel.id;
+  const sc = panel.sessionContext;
+  out.ready = !!(panel.context.isReady && sc.isReady);
+  const k = sc.session && sc.session.kernel;
+  out.kernel = k ? k.status : null;
+  out.kernelName = k ? k.name : null;
+  out.connection = k ? k.connectionStatus : null;
+  out.ncode = 0; out.executed = 0; out.running = 0; out.counts = [];
+  panel.content.widgets.forEach((cell, i) => {
+    if (cell.model.type !== 'code') return;
+    out.ncode++;
+    const n = cell.model.executionCount;
+    if (n !== null && n !== undefined) { out.executed++; out.counts.push(n); }
+    if (cell.model.executionState === 'running' || (cell.promptNode && cell.promptNode.textContent.includes('*'))) out.running++;
+    const outs = cell.model.outputs.toJSON();
+    for (const o of outs) {
+      if (o.output_type === 'error') out.errors.push(`cell ${i}: ${o.ename}: ${o.evalue}`);
+      if (o.output_type === 'stream' && o.name === 'stderr') {
+        const t = Array.isArray(o.text) ? o.text.join('') : String(o.text);
+        if (t.includes('Traceback')) out.tracebacks.push(`cell ${i}: ${t.slice(0, 600)}`);
+      }
+    }
+  });
+  for (const el of panel.node.querySelectorAll('.jp-OutputArea-output')) {
+    const t = el.innerText || '';
+    if (t.includes('Error displaying widget')) out.widgetErrors.push(t.slice(0, 300));
+    else if (el.matches('[data-mime-type="application/vnd.jupyter.stderr"]') && t.includes('Traceback'))
+      out.tracebacks.push(t.slice(0, 600));
+    else if (t.includes('Traceback')) out.tracebacks.push(t.slice(0, 600));
+  }
+  for (const el of panel.node.querySelectorAll('.jupyter-widgets-error-widget, .jupyter-widgets .widget-error'))
+    out.widgetErrors.push((el.innerText || 'widget error').slice(0, 300));
+  return out;
+}
+"""
+
+# Tag the first panel (an output area holding an ipywidgets slider and an ipympl canvas).
+_FIND_PANEL_JS = r"""
+(args) => {
+  const [panelId, index] = args;
+  const root = document.getElementById(panelId);
+  if (!root) return {found: false, why: 'notebook panel not in the DOM'};
+  for (const el of root.querySelectorAll('[data-gm-panel]')) el.removeAttribute('data-gm-panel');
+  const areas = [...root.querySelectorAll('.jp-Cell .jp-OutputArea')];
+  let k = 0, nSliders = 0, nCanvas = 0;
+  for (const a of areas) {
+    const s = a.querySelector('.widget-slider .noUi-handle');
+    const c = a.querySelector('.jupyter-matplotlib canvas, .jupyter-matplotlib-canvas-div canvas');
+    if (s) nSliders++;
+    if (c) nCanvas++;
+    if (s && c) {
+      if (k === index) {
+        a.setAttribute('data-gm-panel', String(index));
+        const cell = a.closest('.jp-Cell');
+        const cells = [...root.querySelectorAll('.jp-Cell')];
+        return {found: true, cellIndex: cells.indexOf(cell)};
+      }
+      k++;
+    }
+  }
+  return {found: false, why: `no output area with both a slider and an ipympl canvas (${areas.length} output areas, ${nSliders} with sliders, ${nCanvas} with canvases)`, npanels: k};
+}
+"""
+
+_SNAPSHOT_JS = r"""
+(sel) => {
+  const area = document.querySelector(sel);
+  if (!area) return null;
+  const cs = [...area.querySelectorAll('.jupyter-matplotlib canvas, .jupyter-matplotlib-canvas-div canvas')];
+  return cs.map(c => c.width + 'x' + c.height + ':' + c.toDataURL()).join('|');
+}
+"""
+
+_CANVAS_READY_JS = r"""
+(sel) => {
+  const area = document.querySelector(sel);
+  if (!area) return false;
+  const c = area.querySelector('.jupyter-matplotlib canvas, .jupyter-matplotlib-canvas-div canvas');
+  if (!c || c.width === 0 || c.height === 0) return false;
+  // something has been drawn: the canvas is not uniformly transparent
+  const ctx = c.getContext('2d');
+  const d = ctx.getImageData(0, 0, c.width, c.height).data;
+  for (let i = 3; i < d.length; i += 4 * 97) if (d[i] !== 0) return true;
+  return false;
+}
+"""
+
+
+@dataclass
+class SliderResult:
+    changed: bool
+    readout_before: str
+    readout_after: str
+    value_before: str | None
+    value_after: str | None
+    seconds: float
+    presses: int
+    detail: str = ""
+
+    @property
+    def slider_moved(self) -> bool:
+        return (self.readout_before != self.readout_after) or (self.value_before != self.value_after)
+
+
+@dataclass
+class Timings:
+    phases: dict = field(default_factory=dict)
+
+    def mark(self, name, t0):
+        self.phases[name] = round(time.monotonic() - t0, 2)
+        return time.monotonic()
+
+
+class NotebookPage:
+    """One notebook open in its own page of the shared browser context."""
+
+    def __init__(self, context, server: LabServer, relpath: str, poll: float = 0.15):
+        self.context = context
+        self.server = server
+        self.relpath = relpath
+        self.poll = poll
+        self.page = None
+        self.status = {}
+        self.dialogs_dismissed: list[str] = []
+        self.console_errors: list[str] = []
+        self.timings = Timings()
+
+    # -- plumbing ----------------------------------------------------------------------------
+    def fail(self, what: str):
+        shot = self.screenshot()
+        extra = ""
+        if self.console_errors:
+            extra += "\nbrowser console errors (last 5):\n  " + "\n  ".join(self.console_errors[-5:])
+        if self.dialogs_dismissed:
+            extra += "\ndialogs dismissed: " + "; ".join(d[:120] for d in self.dialogs_dismissed)
+        raise BrowserTestError(
+            f"{self.relpath}: {what}\nlast status: {json.dumps(self.status)[:1500]}"
+            f"\nscreenshot: {shot}\nserver log: {self.server.log_path}{extra}")
+
+    def screenshot(self) -> str:
+        if self.page is None:
+            return "(no page)"
+        FAILURE_DIR.mkdir(parents=True, exist_ok=True)
+        name = self.relpath.replace("/", "_").replace(".ipynb", "")
+        path = FAILURE_DIR / f"{name}-{time.strftime('%Y%m%d-%H%M%S')}-{os.getpid()}.png"
+        try:
+            self.page.screenshot(path=str(path), full_page=True, timeout=15_000)
+            return str(path)
+        except Exception as e:  # the page may be gone
+            return f"(screenshot failed: {e})"
+
+    def read_status(self) -> dict:
+        self.status = self.page.evaluate(_STATUS_JS, self.relpath)
+        return self.status
+
+    def dismiss_dialogs(self):
+        """Accept JupyterLab dialogs (kernel selection keeps the notebook's/ default kernel)."""
+        for text in self.status.get("dialogs", []):
+            low = text.lower()
+            if "kernel restarting" in low or "dead kernel" in low or "kernel died" in low:
+                self.fail(f"the kernel died or restarted: {text!r}")
+            self.dialogs_dismissed.append(text)
+        dialog = self.page.locator(".jp-Dialog").first
+        try:
+            btn = dialog.locator("button.jp-mod-accept").first
+            if btn.count():
+                btn.click(timeout=5_000)
+            else:
+                dialog.press("Escape", timeout=5_000)
+        except Exception:
+            pass
+
+    def wait_until(self, predicate, what: str, timeout: float):
+        """Poll the page status until ``predicate(status)`` is true; fail fast on errors."""
+        deadline = time.monotonic() + timeout
+        while True:
+            st = self.read_status()
+            if st.get("dialogs"):
+                self.dismiss_dialogs()
+            if st.get("errors") or st.get("tracebacks") or st.get("widgetErrors"):
+                self.fail("error output while waiting for " + what + ":\n  " + "\n  ".join(
+                    st.get("errors", []) + st.get("tracebacks", []) + st.get("widgetErrors", [])))
+            if predicate(st):
+                return st
+            if time.monotonic() > deadline:
+                self.fail(f"timed out after {timeout:.0f} s waiting for {what}")
+            self.page.wait_for_timeout(self.poll * 1000)
+
+    # -- steps ---------------------------------------------------------------------------
+    def open(self, timeout: float = 90.0):
+        t0 = time.monotonic()
+        self.page = self.context.new_page()
+        self.page.on("console", lambda m: m.type == "error" and self.console_errors.append(m.text[:300]))
+        self.page.on("pageerror", lambda e: self.console_errors.append(f"pageerror: {e}"[:300]))
+        self.page.on("dialog", lambda d: d.accept())  # beforeunload etc.
+        self.page.set_default_timeout(30_000)
+        self.page.goto(self.server.lab_url(self.relpath), wait_until="domcontentloaded",
+                       timeout=timeout * 1000)
+        t0 = self.timings.mark("load page", t0)
+        self.wait_until(lambda s: s["phase"] == "panel" and s.get("ready") and s.get("kernel") == "idle"
+                        and s.get("connection") == "connected",
+                        "the notebook to open with an idle kernel", timeout)
+        self.timings.mark("kernel idle", t0)
+        return self
+
+    def run_all(self, timeout: float = 240.0):
+        t0 = time.monotonic()
+        before = self.read_status()
+        if before.get("executed"):
+            self.fail(f"{before['executed']} code cells already have an execution count before Run All "
+                      "(notebooks are committed without outputs)")
+        self.page.evaluate("""(id) => { const app = window.jupyterapp; app.shell.activateById(id);
+                               return app.commands.execute('notebook:run-all-cells'); }""", before["panelId"])
+        # started: at least one cell got queued/ran; finished: every code cell has a count and the
+        # kernel is idle with nothing running (checked twice in a row, so a between-cells idle
+        # does not count).
+        self.wait_until(lambda s: s.get("executed", 0) > 0 or s.get("running", 0) > 0 or s.get("kernel") == "busy",
+                        "Run All to start", 30)
+        stable = [0]
+
+        def done(s):
+            ok = (s.get("executed") == s.get("ncode") and s.get("running") == 0 and s.get("kernel") == "idle")
+            stable[0] = stable[0] + 1 if ok else 0
+            return stable[0] >= 2
+
+        st = self.wait_until(done, "Run All to finish (every code cell executed, kernel idle)", timeout)
+        counts = st["counts"]
+        if len(set(counts)) != len(counts):
+            self.fail(f"execution counts are not distinct: {counts}")
+        self.timings.mark("run all", t0)
+        return st
+
+    def check_no_errors(self):
+        st = self.read_status()
+        problems = st.get("errors", []) + st.get("tracebacks", []) + st.get("widgetErrors", [])
+        if problems:
+            self.fail("error output:\n  " + "\n  ".join(problems))
+        return st
+
+    def find_panel(self, index: int = 0, timeout: float = 30.0) -> str:
+        """CSS selector of the ``index``-th output area with a slider and an ipympl canvas."""
+        deadline = time.monotonic() + timeout
+        panel_id = self.read_status().get("panelId")
+        while True:
+            res = self.page.evaluate(_FIND_PANEL_JS, [panel_id, index])
+            sel = f'[data-gm-panel="{index}"]'
+            if res.get("found") and self.page.evaluate(_CANVAS_READY_JS, sel):
+                return sel
+            if time.monotonic() > deadline:
+                why = res.get("why") if not res.get("found") else "the ipympl canvas stayed blank"
+                self.fail(f"no interactive panel #{index} after {timeout:.0f} s: {why}")
+            self.page.wait_for_timeout(self.poll * 1000)
+
+    def _slider_state(self, sel):
+        handle = self.page.locator(f"{sel} .widget-slider .noUi-handle").first
+        readout = self.page.locator(f"{sel} .widget-slider .widget-readout").first
+        r = readout.inner_text() if readout.count() else ""
+        return handle, r, handle.get_attribute("aria-valuenow")
+
+    def snapshot(self, sel) -> str:
+        return self.page.evaluate(_SNAPSHOT_JS, sel)
+
+    def move_slider(self, sel: str, fraction: float = 0.12, max_presses: int = 40,
+                    change_timeout: float = 20.0) -> SliderResult:
+        """Focus the panel's first slider handle, press ArrowRight (ArrowLeft when in the upper
+        half) until the value moved by ~``fraction`` of its range, and wait for the canvas to change."""
+        t0 = time.monotonic()
+        handle, r0, v0 = self._slider_state(sel)
+        handle.scroll_into_view_if_needed()
+        before = self.snapshot(sel)
+        lo = float(handle.get_attribute("aria-valuemin") or 0)
+        hi = float(handle.get_attribute("aria-valuemax") or 1)
+        try:
+            v = float(v0)
+        except (TypeError, ValueError):
+            v = lo
+        key = "ArrowRight" if v <= (lo + hi) / 2 else "ArrowLeft"
+        target = abs(hi - lo) * fraction
+        handle.focus()
+        presses = 0
+        while presses < max_presses:
+            handle.press(key)
+            presses += 1
+            try:
+                now = float(handle.get_attribute("aria-valuenow"))
+            except (TypeError, ValueError):
+                break
+            if abs(now - v) >= target:
+                break
+        _, r1, v1 = self._slider_state(sel)
+        changed = False
+        deadline = time.monotonic() + change_timeout
+        while time.monotonic() < deadline:
+            if self.snapshot(sel) != before:
+                changed = True
+                break
+            st = self.read_status()
+            if st.get("errors") or st.get("tracebacks") or st.get("widgetErrors"):
+                break
+            self.page.wait_for_timeout(self.poll * 1000)
+        res = SliderResult(changed, r0, r1, v0, v1, round(time.monotonic() - t0, 2), presses,
+                           detail=f"{presses} x {key}")
+        self.timings.mark("slider", t0)
+        return res
+
+    def close(self):
+        if self.page is not None:
+            try:
+                self.page.close()
+            except Exception:
+                pass
+        self.server.delete_sessions()
+
+
+def check_interactive_notebook(context, server: LabServer, relpath: str, change_timeout: float = 20.0):
+    """The whole browser check of one chapter notebook; returns (SliderResult, timings dict)."""
+    nbp = NotebookPage(context, server, relpath)
+    try:
+        nbp.open()
+        nbp.run_all()
+        nbp.check_no_errors()
+        sel = nbp.find_panel(0)
+        res = nbp.move_slider(sel, change_timeout=change_timeout)
+        if not res.slider_moved:
+            nbp.fail(f"the slider did not move ({res.detail}; readout {res.readout_before!r})")
+        if not res.changed:
+            nbp.fail(f"the figure did not change within {change_timeout:.0f} s after moving the first "
+                     f"slider ({res.detail}: readout {res.readout_before!r} -> {res.readout_after!r})")
+        nbp.check_no_errors()
+        return res, nbp.timings.phases
+    finally:
+        nbp.close()
+
+
+# --------------------------------------------------------------------------------------------
+# Self-check notebook: one working panel and one whose update does nothing
+# --------------------------------------------------------------------------------------------
+
+def _code(src, n=[0]):
+    n[0] += 1
+    return {"cell_type": "code", "execution_count": None, "id": f"selfcheck-{n[0]}", "metadata": {},
+            "outputs": [], "source": src}
+
+
+def selfcheck_notebook() -> dict:
+    """A notebook with two ipympl panels: ``Working`` moves a line, ``Broken``'s update does nothing."""
+    cells = [
+        _code("%matplotlib widget\n"
+              "import numpy as np\n"
+              "from gm_core.widgets.base import Panel, slider\n"
+              "from gm_core.drawing import new_figure\n"),
+        _code("class Working(Panel):\n"
+              "    def build(self):\n"
+              "        self.fig, self.ax = new_figure(figsize=(4, 3))\n"
+              "        self.ax.set(xlim=(-1.2, 1.2), ylim=(-1.2, 1.2))\n"
+              "        (self.line,) = self.ax.plot([0, 1], [0, 0], lw=3)\n"
+              "        self.controls = {'theta': slider(0.3, -3.14, 3.14, description='theta')}\n"
+              "    def update(self, theta):\n"
+              "        self.line.set_data([0, np.cos(theta)], [0, np.sin(theta)])\n"
+              "        self.fig.canvas.draw_idle()\n"
+              "    def naive_update(self, theta):\n"
+              "        self.update(theta)\n"
+              "\n"
+              "class Broken(Working):\n"
+              "    def update(self, theta):\n"
+              "        pass  # the bug the browser test must catch: the picture never follows the slider\n"),
+        _code("Working()"),
+        _code("Broken()"),
+    ]
+    return {"cells": cells, "metadata": {"kernelspec": {"display_name": "Python 3", "language": "python",
+                                                        "name": "python3"}},
+            "nbformat": 4, "nbformat_minor": 5}
+
+
+SELFCHECK_PATH = "_browser_selfcheck/selfcheck.ipynb"

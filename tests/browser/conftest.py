@@ -1,0 +1,83 @@
+"""Fixtures for the real-browser tests: ONE JupyterLab server and ONE headless Chromium per session.
+
+Everything here is marked ``browser`` (``pytest -m browser`` runs only these; ``-m "not browser"``
+leaves them out). Without /usr/bin/chromium the tests are skipped with the install hint; the
+playwright PyPI package is used with that system Chromium (never ``playwright install``).
+"""
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import browserlab  # noqa: E402
+
+HERE = Path(__file__).resolve().parent
+TIMINGS_KEY = pytest.StashKey[dict]()
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        if HERE in Path(str(item.path)).resolve().parents:
+            item.add_marker(pytest.mark.browser)
+
+
+def pytest_configure(config):
+    config.stash[TIMINGS_KEY] = {}
+
+
+@pytest.fixture(scope="session")
+def chromium():
+    if not browserlab.chromium_available():
+        pytest.skip(browserlab.CHROMIUM_MISSING)
+    pytest.importorskip("playwright.sync_api", reason="the playwright package is missing: pip install -e '.[test]'")
+    return browserlab.CHROMIUM
+
+
+@pytest.fixture(scope="session")
+def lab_server(chromium, tmp_path_factory, request):
+    """JupyterLab on a temporary copy of the course (plus the self-check notebook)."""
+    t0 = time.monotonic()
+    server = browserlab.LabServer(tmp_path_factory.mktemp("lab"),
+                                  extra_notebooks={browserlab.SELFCHECK_PATH: browserlab.selfcheck_notebook()})
+    request.addfinalizer(server.stop)
+    server.start()
+    request.config.stash[TIMINGS_KEY]["(server start)"] = {"total": round(time.monotonic() - t0, 2)}
+    return server
+
+
+@pytest.fixture(scope="session")
+def browser_context(chromium, tmp_path_factory, request):
+    """One headless Chromium (fresh empty profile) shared by every page of the session."""
+    from playwright.sync_api import sync_playwright
+
+    t0 = time.monotonic()
+    pw = sync_playwright().start()
+    request.addfinalizer(pw.stop)
+    context = browserlab.launch_chromium(pw, tmp_path_factory.mktemp("chromium-profile"))
+    request.addfinalizer(context.close)
+    request.config.stash[TIMINGS_KEY]["(browser start)"] = {"total": round(time.monotonic() - t0, 2)}
+    return context
+
+
+@pytest.fixture
+def record_timing(request):
+    """Store per-notebook phase timings; printed in the terminal summary."""
+    def record(name, phases):
+        request.config.stash[TIMINGS_KEY][name] = phases
+    return record
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    timings = config.stash.get(TIMINGS_KEY, {})
+    if not timings:
+        return
+    tr = terminalreporter
+    tr.section("browser timings (s)")
+    for name, phases in timings.items():
+        total = phases.get("total", round(sum(v for k, v in phases.items() if k != "total"), 2))
+        detail = ", ".join(f"{k} {v}" for k, v in phases.items() if k != "total")
+        tr.write_line(f"{name:<40} {total:7.2f}  {detail}")

@@ -1,0 +1,45 @@
+"""Every interactive chapter notebook, opened in a real JupyterLab in headless Chromium.
+
+For each ``book/*.ipynb`` containing ``%matplotlib widget`` (found when pytest collects, so new
+chapters are covered automatically): wait for an idle kernel, Run All, check that every code cell
+ran and that no output shows a traceback or "Error displaying widget", then move the first slider
+of the first interactive panel with the keyboard and check that the ipympl canvas pixels changed.
+
+``test_detector_*`` keeps the proof that the check can fail inside the suite: a generated notebook
+has a working panel and one whose ``update`` does nothing; the same helper must say "changed" for
+the first and "did not change" for the second.
+"""
+from __future__ import annotations
+
+import pytest
+
+import browserlab
+
+pytestmark = pytest.mark.browser
+
+NOTEBOOKS = browserlab.interactive_notebooks()
+
+
+def test_detector_tells_a_live_panel_from_a_dead_one(lab_server, browser_context, record_timing):
+    page = browserlab.NotebookPage(browser_context, lab_server, browserlab.SELFCHECK_PATH)
+    try:
+        page.open()
+        page.run_all()
+        page.check_no_errors()
+        live = page.move_slider(page.find_panel(0), change_timeout=20)
+        dead = page.move_slider(page.find_panel(1), change_timeout=4)
+        page.check_no_errors()
+    finally:
+        page.close()
+    record_timing("(self-check notebook)", page.timings.phases)
+    assert live.slider_moved and live.changed, f"working panel not detected as changing: {live}"
+    assert dead.slider_moved, f"the broken panel's slider did not move, so the check proves nothing: {dead}"
+    assert not dead.changed, f"a panel whose update does nothing was reported as changing: {dead}"
+
+
+@pytest.mark.parametrize("notebook", NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])
+def test_interactive_notebook_runs_and_responds(notebook, lab_server, browser_context, record_timing):
+    relpath = notebook.relative_to(browserlab.ROOT).as_posix()
+    result, phases = browserlab.check_interactive_notebook(browser_context, lab_server, relpath)
+    record_timing(relpath, phases)
+    assert result.changed and result.slider_moved, result
