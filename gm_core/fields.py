@@ -110,8 +110,11 @@ class VectorField:
     def _eval(self, q, t):
         if self.vectorized:
             out = np.asarray(self.func(q, t), dtype=float)
-            if out.shape != q.shape:
-                out = np.broadcast_to(out, q.shape) if out.ndim <= q.ndim else out
+            if out.shape != q.shape and out.ndim and out.shape[-1] == self.dim:
+                try:  # e.g. a constant field returning one (dim,) vector for every q
+                    out = np.broadcast_to(out, q.shape)
+                except ValueError:
+                    pass
         else:
             flat = q.reshape(-1, self.dim)
             out = np.stack([np.asarray(self.func(p, t), dtype=float) for p in flat]).reshape(q.shape)
@@ -270,8 +273,8 @@ def group_geodesic(group, xi, t, side="left", g0=None, *, method="exp", **solve_
     ``side="left"``: flow of the left-invariant field (1.46) of the body velocity ``xi``,
     g(t) = g0 o exp(t xi). ``side="right"``: flow of the right-invariant field (1.47) of the spatial
     velocity ``xi``, g(t) = exp(t xi) o g0. ``method="exp"`` uses these closed forms;
-    ``method="integrate"`` solves the flow numerically with :func:`integral_curve` instead (t must
-    then be 1-D and sorted, starting at 0 is not required: the flow is anchored at t = 0).
+    ``method="integrate"`` solves the flow numerically with :func:`integral_curve` instead
+    (forwards from t = 0 for positive times, backwards for negative ones; ``t`` in any order).
 
     Returns elements of shape ``t.shape + (dim,)`` (angles are not wrapped; compare with
     ``group.isclose``). ``xi`` must be a single vector ``(dim,)``; ``g0`` an element ``(dim,)``.
@@ -290,20 +293,21 @@ def group_geodesic(group, xi, t, side="left", g0=None, *, method="exp", **solve_
         return group.compose(g0, steps) if side == "left" else group.compose(steps, g0)
     if method != "integrate":
         raise ValueError(f"method must be 'exp' or 'integrate'; got {method!r}")
-    if t.ndim != 1 or t.size == 0:
-        raise ValueError(f"t must be a non-empty 1-D array of times for method='integrate'; got shape {t.shape}")
     field = left_invariant_field(group, xi) if side == "left" else right_invariant_field(group, xi)
-    out = np.empty(t.shape + (group.dim,))
-    # Integrate forward from 0 for t >= 0 and backward for t < 0, so g(0) = g0 exactly.
-    for mask, end in ((t >= 0, t.max(initial=0.0)), (t < 0, t.min(initial=0.0))):
+    flat = t.ravel()
+    out = np.empty(flat.shape + (group.dim,))
+    out[flat == 0] = g0
+    # Integrate forward from 0 for t > 0 and backward for t < 0, so g(0) = g0 exactly; solve_ivp
+    # needs strictly monotone output times, so solve at the sorted unique times and scatter back.
+    for mask, backward in ((flat > 0, False), (flat < 0, True)):
         if not mask.any():
             continue
-        if end == 0.0:
-            out[mask] = g0
-            continue
-        curve = integral_curve(field, g0, (0.0, end), t_eval=t[mask], **solve_ivp_kw)
-        out[mask] = curve.q
-    return out
+        vals, inv = np.unique(flat[mask], return_inverse=True)
+        if backward:
+            vals, inv = vals[::-1], len(vals) - 1 - inv
+        curve = integral_curve(field, g0, (0.0, float(vals[-1])), t_eval=vals, **solve_ivp_kw)
+        out[mask] = curve.q[inv]
+    return out.reshape(t.shape + (group.dim,))
 
 
 # ---------------------------------------------------------------------------------- SE(2) helices
