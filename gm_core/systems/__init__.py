@@ -1,0 +1,26 @@
+"""The locomotion systems of chapter 3, one small module each (numpy only).
+
+Every system has ``connection(r)`` (..., 3, n) with ``xi = -A(r) r_dot`` (3.10), ``pfaffian(r)``
+(..., 3, 3 + n), ``body_velocity(r, r_dot)``, ``singularity(r)`` / ``is_singular(r)``, and
+``parts()`` / ``part_poses(r)`` for drawing. Three-link systems also have ``link_poses(r)`` and
+``link_jacobians(r)``; the momentum-conserving ones have ``mass_matrix(r)``.
+"""
+from .ackerman import Ackerman
+from .base import LocomotionSystem, Part
+from .diff_drive import DifferentialDrive
+from .floating_snake import FloatingSnake
+from .high_re import HighReSwimmer, ellipse_added_mass
+from .kinematic_snake import KinematicSnake
+from .low_re import LowReSwimmer
+from .three_link import ThreeLinkSystem
+
+__all__ = ["LocomotionSystem", "Part", "ThreeLinkSystem", "DifferentialDrive", "Ackerman",
+           "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer", "ellipse_added_mass",
+           "ALL_SYSTEMS"]
+
+
+def ALL_SYSTEMS():
+    """One default instance of each system, keyed by class name (for tests, benchmarks, demos)."""
+    return {"DifferentialDrive": DifferentialDrive(), "Ackerman": Ackerman(),
+            "KinematicSnake": KinematicSnake(), "FloatingSnake": FloatingSnake(),
+            "LowReSwimmer": LowReSwimmer(), "HighReSwimmer": HighReSwimmer()}

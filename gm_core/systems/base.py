@@ -1,0 +1,93 @@
+"""The interface shared by every locomotion system of chapter 3 (numpy only).
+
+A system knows its Pfaffian ``omega(r)`` (..., 3, 3 + n) (3.11)-(3.13) and so its local
+connection ``A(r) = omega_xi^-1 omega_r`` (3.17), with body velocity ``xi = -A(r) r_dot`` (3.10).
+For the drawing layer it also lists its rigid parts (:class:`Part`, an outline in the part's own
+frame) and where they sit in the system's body frame at a shape (:meth:`part_poses`).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validate import as_array
+from ..groups import matvec
+from ..locomotion import SINGULAR_TOL, connection_from_pfaffian, pfaffian_determinant
+
+__all__ = ["LocomotionSystem", "Part", "ellipse_outline", "rectangle_outline"]
+
+
+@dataclass(frozen=True)
+class Part:
+    """A rigid part for drawing: ``outline (k, 2)`` in its own frame; ``kind`` is a style hint."""
+
+    name: str
+    outline: np.ndarray
+    kind: str = "link"
+
+
+def rectangle_outline(length, width):
+    """Outline (4, 2) of a length x width rectangle centred on its frame, long side along x."""
+    a, b = length / 2, width / 2
+    return np.array([[-a, -b], [a, -b], [a, b], [-a, b]], dtype=float)
+
+
+def ellipse_outline(a, b, n=48):
+    """Outline (n, 2) of an ellipse with semi-axes a (along x) and b, centred on its frame."""
+    s = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    return np.stack([a * np.cos(s), b * np.sin(s)], -1)
+
+
+class LocomotionSystem:
+    """A symmetric linear-kinematic locomotor on SE(2) with an n-dimensional shape space."""
+
+    name = "system"
+    n_shape = 2
+    shape_names: tuple = ("alpha1", "alpha2")
+    #: True when det(omega_xi) can vanish, so gaits must be checked for singular shapes.
+    may_be_singular = False
+    singular_description = "never singular"
+    #: Suggested shape-space window for plots, ((lo1, hi1), (lo2, hi2)).
+    shape_limits = ((-np.pi, np.pi), (-np.pi, np.pi))
+    #: Row labels of the connection: body x (longitudinal), y (lateral), theta (rotation).
+    row_names = ("x", "y", "theta")
+
+    # -- to implement -----------------------------------------------------------------------
+    def pfaffian(self, r):
+        """Pfaffian ``omega(r)`` (..., 3, 3 + n): ``omega [xi; r_dot] = 0`` on allowed motions."""
+        raise NotImplementedError
+
+    def parts(self):
+        """The rigid parts to draw (list of :class:`Part`)."""
+        raise NotImplementedError
+
+    def part_poses(self, r):
+        """Poses (..., P, 3) of the parts relative to the system body frame at shape r."""
+        raise NotImplementedError
+
+    # -- shared -----------------------------------------------------------------------------
+    def _shape(self, r, name="r"):
+        names = ", ".join(self.shape_names)
+        return as_array(r, name, (self.n_shape,), what=f" (the shape ({names}) of {self.name})")
+
+    def connection(self, r):
+        """Local connection A(r) (..., 3, n) with xi = -A r_dot, (3.10), (3.17); NaN at singular shapes."""
+        return connection_from_pfaffian(self.pfaffian(r))
+
+    def body_velocity(self, r, r_dot):
+        """Body velocity xi = -A(r) r_dot (..., 3), book (3.10)."""
+        r = self._shape(r)
+        r_dot = self._shape(r_dot, "r_dot")
+        return -matvec(self.connection(r), r_dot)
+
+    def singularity(self, r):
+        """Scaled det(omega_xi) (...,) in [-1, 1]; zero exactly at singular shapes."""
+        return pfaffian_determinant(self.pfaffian(r)[..., :3])
+
+    def is_singular(self, r):
+        """Boolean (...,): True where the local connection does not exist (det omega_xi = 0)."""
+        return ~(np.abs(self.singularity(r)) > SINGULAR_TOL)
+
+    def __repr__(self):
+        return f"{type(self).__name__}()"

@@ -1,0 +1,57 @@
+"""Differential-drive car, book section 3.2, (3.18)-(3.29) and fig. 3.3."""
+from __future__ import annotations
+
+import numpy as np
+
+from .._validate import check_positive
+from .base import LocomotionSystem, Part, rectangle_outline
+
+__all__ = ["DifferentialDrive"]
+
+
+class DifferentialDrive(LocomotionSystem):
+    """Two independently driven wheels on one axle; shape r = (alpha1, alpha2), the wheel angles.
+
+    Body frame at the centre of the axle, x forward. Wheel 1 is at +half_width (left of the
+    heading), wheel 2 at -half_width, as in (3.20). Rolling without slipping or sliding (3.18)
+    gives the Pfaffian (3.26) and the constant connection (3.29):
+    ``xi = R/2 (a1' + a2', 0, (a2' - a1') / w)``.
+    """
+
+    name = "differential-drive car"
+    shape_names = ("alpha1", "alpha2")
+
+    def __init__(self, wheel_radius=1.0, half_width=1.0):
+        self.wheel_radius = float(check_positive(wheel_radius, "wheel_radius"))
+        self.half_width = float(check_positive(half_width, "half_width"))
+
+    def pfaffian(self, r):
+        """Pfaffian (..., 3, 5) of (3.26): no slip at each wheel, no sideways slide."""
+        r = self._shape(r)
+        R, w = self.wheel_radius, self.half_width
+        om = np.array([[1.0, 0.0, -w, -R, 0.0],
+                       [1.0, 0.0, w, 0.0, -R],
+                       [0.0, 1.0, 0.0, 0.0, 0.0]])
+        return np.broadcast_to(om, r.shape[:-1] + (3, 5)).copy()
+
+    def connection(self, r):
+        """Constant local connection (..., 3, 2), (3.29): [[-R/2, -R/2], [0, 0], [R/2w, -R/2w]]."""
+        r = self._shape(r)
+        R, w = self.wheel_radius, self.half_width
+        A = np.array([[-R / 2, -R / 2], [0.0, 0.0], [R / (2 * w), -R / (2 * w)]])
+        return np.broadcast_to(A, r.shape[:-1] + (3, 2)).copy()
+
+    def parts(self):
+        R, w = self.wheel_radius, self.half_width
+        return [Part("chassis", rectangle_outline(1.6 * w, 1.4 * w), "chassis"),
+                Part("wheel 1", rectangle_outline(2 * R, 0.25 * w), "wheel"),
+                Part("wheel 2", rectangle_outline(2 * R, 0.25 * w), "wheel")]
+
+    def part_poses(self, r):
+        r = self._shape(r)
+        w = self.half_width
+        P = np.array([[-0.3 * w, 0.0, 0.0], [0.0, w, 0.0], [0.0, -w, 0.0]])
+        return np.broadcast_to(P, r.shape[:-1] + (3, 3)).copy()
+
+    def __repr__(self):
+        return f"DifferentialDrive(wheel_radius={self.wheel_radius:g}, half_width={self.half_width:g})"

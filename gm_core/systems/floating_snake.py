@@ -1,0 +1,120 @@
+"""Floating snake: a three-link chain in free space conserving zero momentum, book section 3.4.3."""
+from __future__ import annotations
+
+import numpy as np
+
+from .._validate import as_array, check_positive
+from ..locomotion import connection_from_pfaffian, metric_from_jacobians
+from .three_link import ThreeLinkSystem, three_link_link_poses
+
+__all__ = ["FloatingSnake"]
+
+
+class FloatingSnake(ThreeLinkSystem):
+    """Three rigid links in free space (e.g. an astronaut or a falling cat), total momentum zero.
+
+    The kinetic energy is ``1/2 sum xi_i^T diag(m_i, m_i, I_i) xi_i`` with link body velocities
+    ``xi_i = J_i [xi; r_dot]``; its mass matrix has the block form (3.39)-(3.40), so
+    ``A = I_locked^-1 (I A)`` (the corrected (3.38)). The Pfaffian is the momentum map, the top
+    three rows of the mass matrix.
+
+    ``inertias=None`` means uniform slender rods, ``I_i = m_i l_i^2 / 12``. ``frame="com"`` puts
+    the body frame at the system's centre of mass, oriented with the middle link (then the first
+    two rows of A vanish: the centre of mass does not move); ``frame="middle"`` uses the middle
+    link's own frame.
+    """
+
+    name = "floating snake"
+
+    def __init__(self, lengths=(1.0, 1.0, 1.0), masses=(1.0, 1.0, 1.0), inertias=None, frame="com"):
+        super().__init__(lengths)
+        masses = as_array(masses, "masses", (3,), what=" (the three link masses)")
+        if masses.ndim != 1:
+            raise ValueError(f"masses must have shape (3,); got shape {masses.shape}")
+        check_positive(masses, "masses")
+        self.masses = tuple(float(m) for m in masses)
+        if inertias is None:
+            self.inertias = tuple(m * l ** 2 / 12 for m, l in zip(self.masses, self.lengths))
+        else:
+            inertias = as_array(inertias, "inertias", (3,), what=" (the links' moments of inertia about their centres)")
+            if inertias.ndim != 1:
+                raise ValueError(f"inertias must have shape (3,); got shape {inertias.shape}")
+            check_positive(inertias, "inertias")
+            self.inertias = tuple(float(i) for i in inertias)
+        if frame not in ("com", "middle"):
+            raise ValueError(f"frame must be 'com' or 'middle'; got {frame!r}")
+        self.frame = frame
+
+    # -- centre of mass ----------------------------------------------------------------------
+    def _com(self, r):
+        """Centre of mass (..., 2) in the middle link's frame and its derivative (..., 2, 2) wrt r."""
+        P = three_link_link_poses(r, self.lengths)
+        m = np.array(self.masses)
+        c = np.einsum("i,...ij->...j", m, P[..., :2]) / m.sum()
+        l1, _, l3 = self.lengths
+        a1, a2 = r[..., 0], r[..., 1]
+        dc = np.zeros(r.shape[:-1] + (2, 2))
+        dc[..., 0, 0] = m[0] * l1 / 2 * np.sin(a1)
+        dc[..., 1, 0] = m[0] * l1 / 2 * np.cos(a1)
+        dc[..., 0, 1] = -m[2] * l3 / 2 * np.sin(a2)
+        dc[..., 1, 1] = m[2] * l3 / 2 * np.cos(a2)
+        return c, dc / m.sum()
+
+    def frame_offset(self, r):
+        r = self._shape(r)
+        off = np.zeros(r.shape[:-1] + (3,))
+        if self.frame == "com":
+            off[..., :2] = -self._com(r)[0]
+        return off
+
+    def _frame_change(self, r):
+        if self.frame != "com":
+            return None
+        c, dc = self._com(r)
+        T = np.zeros(r.shape[:-1] + (5, 5))
+        T[..., 0, 0] = T[..., 1, 1] = T[..., 2, 2] = T[..., 3, 3] = T[..., 4, 4] = 1.0
+        # middle link at -c in the COM frame: xi_mid = Ad_{h^-1} xi_com - dc/dr r_dot
+        T[..., 0, 2] = c[..., 1]
+        T[..., 1, 2] = -c[..., 0]
+        T[..., 0:2, 3:5] = -dc
+        return T
+
+    def link_matrices(self):
+        """Link mass matrices diag(m_i, m_i, I_i), each (3, 3), in the links' centre frames."""
+        return [np.diag([m, m, i]) for m, i in zip(self.masses, self.inertias)]
+
+    def mass_matrix(self, r):
+        """Mass matrix (..., 5, 5) of (3.39): sum of J_i^T diag(m_i, m_i, I_i) J_i."""
+        return metric_from_jacobians(self.link_jacobians(r), self.link_matrices())
+
+    def pfaffian(self, r):
+        """Momentum map (..., 3, 5): the top three rows of the mass matrix (body momentum = 0)."""
+        return metric_from_jacobians(self.link_jacobians(r), self.link_matrices(), rows=3)
+
+    def connection(self, r):
+        """Local connection (..., 3, 2) from the mass matrix, (3.40).
+
+        Computed in the middle link's frame and then moved to the centre-of-mass frame: with
+        the middle link at -c(r) in the COM frame, ``xi_mid = B xi_com - (dc/dr) r_dot`` where
+        ``B = [[1, 0, c_y], [0, 1, -c_x], [0, 0, 1]]``, so ``A_com = B^-1 (A_mid - [dc/dr; 0])``.
+        """
+        r = self._shape(r)
+        J = super().link_jacobians(r) if self.frame == "middle" else self._middle_jacobians(r)
+        A = connection_from_pfaffian(metric_from_jacobians(J, self.link_matrices(), rows=3))
+        if self.frame == "com":
+            c, dc = self._com(r)
+            A[..., :2, :] -= dc
+            A[..., 0, :] -= c[..., 1, None] * A[..., 2, :]
+            A[..., 1, :] += c[..., 0, None] * A[..., 2, :]
+        return A
+
+    def _middle_jacobians(self, r):
+        frame, self.frame = self.frame, "middle"
+        try:
+            return super().link_jacobians(r)
+        finally:
+            self.frame = frame
+
+    def __repr__(self):
+        return (f"FloatingSnake(lengths={self.lengths}, masses={self.masses}, "
+                f"inertias={self.inertias}, frame={self.frame!r})")

@@ -1,0 +1,61 @@
+"""Kinematic snake: three links on wheels that cannot slide sideways, book section 3.4.2."""
+from __future__ import annotations
+
+import numpy as np
+
+from .three_link import ThreeLinkSystem
+
+__all__ = ["KinematicSnake"]
+
+
+class KinematicSnake(ThreeLinkSystem):
+    """Three links whose centres cannot move sideways (a passive wheel under each link).
+
+    The Pfaffian stacks the lateral rows of the three link Jacobians: ``xi_{g_i}^y = 0`` for
+    i = 1, 2, 3 (the corrected (3.33)-(3.34)). Its body block has
+    ``det omega_xi = (l3 sin a1 - l1 sin a2 + l2 sin(a1 - a2)) / 2``, which vanishes where the
+    three link centres lie on one circle (for equal links, on the line a1 = a2): there the
+    connection is NaN. Away from it (the corrected (3.36)-(3.37))::
+
+        A = 1/D [[l1 (l3 + l2 cos a2) / 2,  l3 (l1 + l2 cos a1) / 2],
+                 [0,                        0                      ],
+                 [l1 sin a2,                l3 sin a1              ]],
+        D = l3 sin a1 - l1 sin a2 + l2 sin(a1 - a2).
+    """
+
+    name = "kinematic snake"
+    may_be_singular = True
+    singular_description = ("the three link centres lie on one circle, so the three no-slide "
+                            "lines meet in a point; for equal links this is the line alpha1 = alpha2")
+
+    def pfaffian(self, r):
+        """Pfaffian (..., 3, 5): the lateral (y) rows of J1, J2, J3, i.e. no link slides sideways."""
+        J1, J2, J3 = self.link_jacobians(r)
+        return np.stack([J1[..., 1, :], J2[..., 1, :], J3[..., 1, :]], -2)
+
+    def connection_closed_form(self, r):
+        """The closed form of the class docstring, (..., 3, 2) (an independent check of the solve)."""
+        r = self._shape(r)
+        a1, a2 = r[..., 0], r[..., 1]
+        l1, l2, l3 = self.lengths
+        D = l3 * np.sin(a1) - l1 * np.sin(a2) + l2 * np.sin(a1 - a2)
+        A = np.zeros(r.shape[:-1] + (3, 2))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            A[..., 0, 0] = l1 * (l3 + l2 * np.cos(a2)) / 2 / D
+            A[..., 0, 1] = l3 * (l1 + l2 * np.cos(a1)) / 2 / D
+            A[..., 2, 0] = l1 * np.sin(a2) / D
+            A[..., 2, 1] = l3 * np.sin(a1) / D
+        return A
+
+    def parts(self):
+        from .base import Part, rectangle_outline
+
+        out = super().parts()
+        w = self._link_width()
+        # A wheel (drawn across the link) under each link centre: it rolls along the link only.
+        out += [Part(f"wheel {i + 1}", rectangle_outline(2.5 * w, 0.8 * w), "wheel") for i in range(3)]
+        return out
+
+    def part_poses(self, r):
+        P = self.link_poses(r)
+        return np.concatenate([P, P], axis=-2)
