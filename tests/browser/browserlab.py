@@ -364,6 +364,21 @@ _FIND_PANEL_JS = r"""
 }
 """
 
+_SLIDER_VALUE_JS = r"""
+(sel) => {
+  const t = document.querySelector(sel + ' .widget-slider .noUi-target');
+  const num = (x) => { const v = Number(Array.isArray(x) ? x[0] : x); return Number.isFinite(v) ? v : null; };
+  if (t && t.noUiSlider) {
+    const r = t.noUiSlider.options.range;
+    return {value: num(t.noUiSlider.get()), min: num(r.min), max: num(r.max)};
+  }
+  const h = document.querySelector(sel + ' .widget-slider .noUi-handle');
+  if (!h) return {};
+  return {value: num(h.getAttribute('aria-valuenow')), min: num(h.getAttribute('aria-valuemin')),
+          max: num(h.getAttribute('aria-valuemax'))};
+}
+"""
+
 _SNAPSHOT_JS = r"""
 (sel) => {
   const area = document.querySelector(sel);
@@ -393,8 +408,8 @@ class SliderResult:
     changed: bool
     readout_before: str
     readout_after: str
-    value_before: str | None
-    value_after: str | None
+    value_before: float | None
+    value_after: float | None
     seconds: float
     presses: int
     detail: str = ""
@@ -553,11 +568,15 @@ class NotebookPage:
                 self.fail(f"no interactive panel #{index} after {timeout:.0f} s: {why}")
             self.page.wait_for_timeout(self.poll * 1000)
 
+    def slider_value(self, sel) -> dict:
+        """Exact value and range of the panel's first slider (noUiSlider API; aria-* are rounded)."""
+        return self.page.evaluate(_SLIDER_VALUE_JS, sel)
+
     def _slider_state(self, sel):
         handle = self.page.locator(f"{sel} .widget-slider .noUi-handle").first
         readout = self.page.locator(f"{sel} .widget-slider .widget-readout").first
         r = readout.inner_text() if readout.count() else ""
-        return handle, r, handle.get_attribute("aria-valuenow")
+        return handle, r, self.slider_value(sel).get("value")
 
     def snapshot(self, sel) -> str:
         return self.page.evaluate(_SNAPSHOT_JS, sel)
@@ -570,12 +589,10 @@ class NotebookPage:
         handle, r0, v0 = self._slider_state(sel)
         handle.scroll_into_view_if_needed()
         before = self.snapshot(sel)
-        lo = float(handle.get_attribute("aria-valuemin") or 0)
-        hi = float(handle.get_attribute("aria-valuemax") or 1)
-        try:
-            v = float(v0)
-        except (TypeError, ValueError):
-            v = lo
+        info = self.slider_value(sel)
+        lo, hi, v = info.get("min"), info.get("max"), info.get("value")
+        if None in (lo, hi, v):
+            self.fail(f"cannot read the first slider of the panel: {info}")
         key = "ArrowRight" if v <= (lo + hi) / 2 else "ArrowLeft"
         target = abs(hi - lo) * fraction
         handle.focus()
@@ -583,11 +600,8 @@ class NotebookPage:
         while presses < max_presses:
             handle.press(key)
             presses += 1
-            try:
-                now = float(handle.get_attribute("aria-valuenow"))
-            except (TypeError, ValueError):
-                break
-            if abs(now - v) >= target:
+            now = self.slider_value(sel).get("value")
+            if now is None or abs(now - v) >= target:
                 break
         _, r1, v1 = self._slider_state(sel)
         changed = False
