@@ -1,0 +1,501 @@
+"""Checkers for the chapter 1 exercises (1.1-1.5): configuration spaces, lifted actions, exp."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..groups import SE2, wrap_angle
+from ._core import ChoicePart, CustomPart, Exercise, FunctionPart, TuplePart, Unattempted, Wrong, \
+    call_student, is_starter, match_shape, rng_inputs, to_array
+
+# ============================================================================ 1.1
+ex1_1 = Exercise("1.1", "Configuration spaces of a universal joint and an offset universal joint", [
+    ChoicePart(
+        "a", "Configuration space of a universal joint (two intersecting revolute axes)",
+        {"a": "R^2, the plane",
+         "b": "T^2 = S^1 x S^1, the torus",
+         "c": "S^2, the sphere",
+         "d": "SO(3), all rotations in space",
+         "e": "S^1, the circle"},
+        "b",
+        feedback={
+            "b": "Correct: two independent angles, each cyclic when the joint can turn all the way "
+                 "round, so the space is the direct product S^1 x S^1 (section 1.1, Figure 1.5).",
+            "a": "Two numbers are right, but each one is an angle that comes back to itself after a "
+                 "full turn (section 1.1: the cyclic nature decides S^1 versus R^1). R^2 would only "
+                 "fit if joint limits stopped both rotations short of a full turn.",
+            "c": "Two coordinates, yes, but the sphere is not a product of two circles: on a sphere "
+                 "every loop can be shrunk to a point, and the two joint angles give two loops that "
+                 "cannot (Figure 1.6).",
+            "d": "Count the degrees of freedom: the output shaft's orientation has only two free "
+                 "parameters relative to the input, while SO(3) is three-dimensional.",
+            "e": "One angle is not enough: the two yokes turn about two different axes.",
+        },
+        hints=["Count the independent ways the output shaft can move relative to the input shaft.",
+               "Each of those motions is a rotation. Section 1.1 says what decides whether a "
+               "rotation's space is R^1 or S^1.",
+               "A space of two independent cyclic coordinates is a direct product of two circles."],
+        solution_text="(b) T^2 = S^1 x S^1: two independent, unrestricted rotations."),
+    ChoicePart(
+        "b", "Configuration space when the two rotation axes do not intersect",
+        {"a": "The same space, T^2: only the forward kinematics (where the output link is) changes",
+         "b": "R^2 x S^1, because the offset adds a translation",
+         "c": "SE(2), because the output now translates and rotates",
+         "d": "T^2 x R, one extra dimension for the offset"},
+        "a",
+        feedback={
+            "a": "Correct: the offset is a fixed length, not a degree of freedom. The two joint "
+                 "angles still describe every configuration, so the space is still T^2; what "
+                 "changes is the map from (angle 1, angle 2) to the output link's pose.",
+            "b": "The offset moves the output link, but by an amount fixed by the two angles: it "
+                 "adds no new independent coordinate.",
+            "c": "The output link's pose does change, but it is determined by the two angles: the "
+                 "configuration space counts independent coordinates, not the pose's dimension.",
+            "d": "A fixed offset is a constant of the mechanism, not a coordinate that can vary.",
+        },
+        hints=["Does the offset between the axes change while the joint moves?",
+               "The configuration space is set by the independent coordinates and their character "
+               "(line or circle), not by where the parts end up in space."],
+        solution_text="(a) Still T^2; the offset only changes the forward kinematics."),
+])
+
+
+# ============================================================================ 1.2
+def _diag(h, g):
+    h = np.asarray(h, dtype=float)
+    return np.diag(h)
+
+
+def _pos_pair(rng):
+    return np.exp(rng.uniform(-1.5, 1.5, 2)), np.exp(rng.uniform(-1.5, 1.5, 2))
+
+
+_ONE = np.ones(2)
+_scaling_inputs = rng_inputs(12, 6, _pos_pair,
+                             edges=[(_ONE, np.array([2.0, 3.0])), (np.array([0.5, 4.0]), _ONE)])
+
+
+def _diag_params(out, args):
+    """Accept the two diagonal entries or the full 2x2 matrix (which must be diagonal)."""
+    arr = to_array(out, "the value your function returned")
+    if arr.shape == (2, 2):
+        if abs(arr[0, 1]) > 1e-9 or abs(arr[1, 0]) > 1e-9:
+            raise Wrong("your product matrix has non-zero off-diagonal entries, so it is not a "
+                        "scaling matrix: the set is not closed under your operation.")
+        return np.diag(arr).copy()
+    return arr
+
+
+_hg_names = ("h1", "h2", "g1", "g2")
+
+
+def _hg_flat(h, g):
+    return (h[0], h[1], g[0], g[1])
+
+
+def _lifted_part(name, side):
+    which = "T_g L_h = d(h g)/d g" if side == "left" else "T_g R_h = d(g h)/d g"
+    return FunctionPart(
+        name, f"The {side} lifted action {which} for the scaling group",
+        ref=_diag, inputs=_scaling_inputs, arg_names=("h", "g"), shape=(2, 2),
+        sympy_names=_hg_names, sympy_args=_hg_flat,
+        mistakes=[(lambda h, g: np.diag(g), "you differentiated with respect to h (your matrix "
+                   "depends on g); the lifted action is the derivative with respect to g."),
+                  (lambda h, g: np.eye(2), "the identity is the lifted action of an additive group "
+                   "(1.22); here elements combine by multiplication, compare (1.24)."),
+                  (lambda h, g: np.diag(np.asarray(h) * np.asarray(g)), "that is the product h g "
+                   "itself, not its derivative with respect to g.")],
+        hints=["Write the action in the two parameters, (g1, g2) -> (h1 g1, h2 g2), then take the "
+               "2x2 Jacobian with respect to (g1, g2), as in (1.20)-(1.22).",
+               "Each output depends on one input only, so the Jacobian is diagonal; compare the "
+               "one-dimensional result (1.24)."],
+        solution_text="T_g L_h = T_g R_h = diag(h1, h2): each axis scales velocities by its factor "
+                      "of h, as (1.24)-(1.25) do on (R+, x).",
+        reference=lambda h, g: np.diag(h), wrong=[lambda h, g: np.eye(2)],
+        starter=None)
+
+
+ex1_2 = Exercise("1.2", "Group and lifted actions of the scaling matrices diag(R+, R+)", [
+    FunctionPart(
+        "a", "The group action: parameters (h1 g1, h2 g2) of h g for h = diag(h1, h2), g = diag(g1, g2)",
+        ref=lambda h, g: np.asarray(h) * np.asarray(g), inputs=_scaling_inputs,
+        arg_names=("h", "g"), shape=(2,), postprocess=_diag_params,
+        sympy_names=_hg_names, sympy_args=_hg_flat,
+        mistakes=[(lambda h, g: np.asarray(h) + np.asarray(g), "you added the parameters; the group "
+                   "operation here is matrix multiplication."),
+                  (lambda h, g: np.asarray(h) / np.asarray(g), "that is h g^-1, not h g.")],
+        hints=["Multiply the two diagonal matrices.",
+               "The product of diagonal matrices is diagonal; read off its two entries."],
+        solution_text="h g = diag(h1 g1, h2 g2); the group is commutative, so L_h g = R_h g.",
+        reference=lambda h, g: np.asarray(h) * np.asarray(g),
+        wrong=[lambda h, g: np.asarray(h) + np.asarray(g)]),
+    _lifted_part("b", "left"),
+    _lifted_part("c", "right"),
+])
+
+
+# ============================================================================ 1.3
+def _rplus_inputs():
+    rng = np.random.default_rng(13)
+    yield (1.0,)
+    yield (0.05,)
+    yield (20.0,)
+    for _ in range(4):
+        yield (float(np.exp(rng.uniform(-2, 2))),)
+
+
+def _se2_inputs():
+    yield (np.zeros(3),)
+    yield (np.array([1.0, 2.0, 0.0]),)
+    yield (np.array([0.0, 0.0, np.pi]),)
+    rng = np.random.default_rng(31)
+    for _ in range(4):
+        yield (SE2.random(rng),)
+
+
+def _rp(ref, label, mistakes=()):
+    return label, FunctionPart(label, label, ref=lambda g: np.array([[ref(g)]]), inputs=_rplus_inputs,
+                               arg_names=("g",), shape=(1, 1), mistakes=mistakes)
+
+
+def _se(ref, label, mistakes=()):
+    return label, FunctionPart(label, label, ref=ref, inputs=_se2_inputs, arg_names=("g",),
+                               shape=(3, 3), sympy_names=("x", "y", "theta"),
+                               sympy_args=lambda g: (g[0], g[1], g[2]), mistakes=mistakes)
+
+
+def _TgL_ginv(g):
+    return SE2.left_lifted_action(SE2.inverse(g), g)
+
+
+def _TeL_g(g):
+    return SE2.left_lifted_action(g, SE2.identity())
+
+
+def _TgR_ginv(g):
+    return SE2.right_lifted_action(SE2.inverse(g), g)
+
+
+def _TeR_g(g):
+    return SE2.right_lifted_action(g, SE2.identity())
+
+
+_LABELS = ("T_g L_{g^-1}", "T_e L_g", "T_g R_{g^-1}", "T_e R_g")
+
+
+def _swap_msg(a, b):
+    return f"this is {b}, not {a}: the two are inverses of each other, so check which one you meant."
+
+
+ex1_3 = Exercise("1.3", "T_g L_{g^-1} = (T_e L_g)^-1 and T_g R_{g^-1} = (T_e R_g)^-1", [
+    TuplePart(
+        "a", "On (R+, x): the four lifted actions as functions of g",
+        [_rp(lambda g: 1.0 / g, _LABELS[0], [(lambda g: np.array([[g]]), _swap_msg(_LABELS[0], _LABELS[1]))]),
+         _rp(lambda g: g, _LABELS[1], [(lambda g: np.array([[1.0 / g]]), _swap_msg(_LABELS[1], _LABELS[0]))]),
+         _rp(lambda g: 1.0 / g, _LABELS[2], [(lambda g: np.array([[g]]), _swap_msg(_LABELS[2], _LABELS[3]))]),
+         _rp(lambda g: g, _LABELS[3], [(lambda g: np.array([[1.0 / g]]), _swap_msg(_LABELS[3], _LABELS[2]))])],
+        hints=["On (R+, x) the lifted actions of h are multiplication by h, (1.24)-(1.25).",
+               "Put h = g^-1 (acting at g) and h = g (acting at e = 1)."],
+        solution_text="T_g L_{g^-1} = T_g R_{g^-1} = 1/g and T_e L_g = T_e R_g = g; their product is 1.",
+        reference=(lambda g: 1 / g, lambda g: g, lambda g: 1 / g, lambda g: g),
+        wrong=[(lambda g: g, lambda g: g, lambda g: g, lambda g: g)],
+        starter=(None, None, None, None)),
+    TuplePart(
+        "b", "On SE(2): the four lifted actions as 3x3 matrices, functions of g = (x, y, theta)",
+        [_se(_TgL_ginv, _LABELS[0], [(_TeL_g, _swap_msg(_LABELS[0], _LABELS[1]))]),
+         _se(_TeL_g, _LABELS[1], [(_TgL_ginv, _swap_msg(_LABELS[1], _LABELS[0]))]),
+         _se(_TgR_ginv, _LABELS[2], [(_TeR_g, _swap_msg(_LABELS[2], _LABELS[3]))]),
+         _se(_TeR_g, _LABELS[3], [(_TgR_ginv, _swap_msg(_LABELS[3], _LABELS[2]))])],
+        hints=["Use (1.31) for T_g L_h and (1.37) for T_g R_h: they depend only on h (left) or on "
+               "h and the angle of g (right).",
+               "For the right actions, put h = g^-1 = (-x cos t - y sin t, x sin t - y cos t, -t) "
+               "into (1.37) at the point g, and h = g into (1.37) at the point e = (0, 0, 0).",
+               "Compare your T_g R_{g^-1} with the first factor of (1.42)."],
+        solution_text="T_g L_{g^-1} = [[c, s, 0], [-s, c, 0], [0, 0, 1]], T_e L_g = its transpose; "
+                      "T_g R_{g^-1} = [[1, 0, y], [0, 1, -x], [0, 0, 1]], T_e R_g = [[1, 0, -y], "
+                      "[0, 1, x], [0, 0, 1]]. The products are the identity for every g.",
+        reference=(_TgL_ginv, _TeL_g, _TgR_ginv, _TeR_g),
+        wrong=[(_TeL_g, _TeL_g, _TgR_ginv, _TeR_g)],
+        starter=(None, None, None, None)),
+])
+
+
+# ============================================================================ 1.4
+def _se2_vec(out, args):
+    """Accept (x, y, theta) or a 3x3 homogeneous matrix; wrap the angle to (-pi, pi]."""
+    arr = to_array(out, "the value your function returned")
+    if arr.shape == (3, 3):
+        arr = np.array([arr[0, 2], arr[1, 2], np.arctan2(arr[1, 0], arr[0, 0])])
+    arr = match_shape(arr, (3,), "the value your function returned")
+    return np.array([arr[0], arr[1], wrap_angle(arr[2])])
+
+
+def _exp_ref(xi):
+    e = SE2.exp(np.asarray(xi, dtype=float))
+    return np.array([e[0], e[1], wrap_angle(e[2])])
+
+
+_XI_EDGES = [(np.array(v, dtype=float),) for v in (
+    [1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [1.0, 0.0, 1e-9], [0.0, 1.0, np.pi], [1.0, 0.0, 2 * np.pi],
+    [0.3, -0.2, -1.5], [1.0, 0.0, 1e-5], [0.0, 0.0, 2.0])]
+_xi_inputs = rng_inputs(14, 6, lambda rng: (rng.uniform(-3, 3, 3),), edges=_XI_EDGES)
+
+
+def _exp_wrong_sign(xi):
+    vx, vy, w = xi
+    return _exp_ref([vx, vy, w]) * np.array([1, 1, 1]) if w == 0 else _exp_ref(
+        [vx, vy, -w]) * np.array([1, 1, -1])
+
+
+_EXP_MISTAKES = [
+    (lambda xi: np.array([xi[0], xi[1], wrap_angle(xi[2])]),
+     "your function returns xi itself: that is the exponential of the additive group (R^2 x S^1, +), "
+     "the straight-line 'hockey puck' path of Figure 1.19, not the SE(2) arc."),
+    (_exp_wrong_sign, "the arc bends the wrong way: with a positive rotational velocity the path "
+     "curves to the left of its initial direction."),
+]
+
+
+def _exp_part(name, side):
+    field = "left-invariant field X_L(g) = T_e L_g xi, (1.46)" if side == "left" else \
+        "right-invariant field X_R(g) = T_e R_g xi, (1.47)"
+    return FunctionPart(
+        name, f"Closed-form {side} exponential exp(xi) as a function of xi = (vx, vy, w)",
+        ref=_exp_ref, inputs=_xi_inputs, arg_names=("xi",), shape=(3,), postprocess=_se2_vec,
+        rtol=1e-6, atol=1e-7, sympy_names=("vx", "vy", "w"),
+        sympy_args=lambda xi: (xi[0], xi[1], xi[2]), sympy_ok=lambda xi: abs(xi[2]) > 1e-3,
+        mistakes=_EXP_MISTAKES,
+        hints=[f"Write the flow of the {field} as three ODEs for x, y and theta, starting at e.",
+               "theta(t) = w t comes first; the other two equations then have explicit right-hand "
+               "sides (left field) or form a linear system x' = vx - w y, y' = vy + w x (right field).",
+               "Integrate to t = 1. Your formula divides by w: treat w = 0 (a straight line) "
+               "separately, or use sin(w)/w and (1 - cos w)/w written to avoid 0/0."],
+        solution_text="exp(vx, vy, w) = ((vx sin w - vy (1 - cos w))/w, (vx (1 - cos w) + vy sin w)/w, "
+                      "w), with the limit (vx, vy, 0) at w = 0. Both fields give the same point.",
+        reference=lambda xi: SE2.exp(np.asarray(xi, dtype=float)), wrong=[lambda xi: np.asarray(xi)])
+
+
+def _helix_ref(xi):
+    vx, vy, w = np.asarray(xi, dtype=float)
+    v = np.hypot(vx, vy)
+    return np.array([2 * np.pi * np.sign(w), 2 * v / abs(w), v])
+
+
+def _helix_inputs():
+    yield (np.array([1.0, 0.0, 1.0]),)
+    yield (np.array([0.0, 0.0, 2.0]),)
+    yield (np.array([1.0, 1.0, -0.5]),)
+    rng = np.random.default_rng(15)
+    for _ in range(5):
+        w = rng.choice([-1, 1]) * rng.uniform(0.2, 4)
+        yield (np.array([rng.uniform(-2, 2), rng.uniform(-2, 2), w]),)
+
+
+def _d_methods_judge(answer):
+    keys = ("euler_left", "euler_right", "product", "taylor")
+    if not isinstance(answer, dict):
+        raise Wrong("give a dict {'euler_left': f, 'euler_right': f, 'product': f, 'taylor': f} of "
+                    "functions f(xi, n).")
+    if all(is_starter(answer.get(k)) for k in keys):
+        raise Unattempted()
+    for k in keys:
+        if k not in answer or is_starter(answer[k]):
+            raise Wrong(f"the entry {k!r} is missing or still None.")
+        if not callable(answer[k]):
+            raise Wrong(f"answer[{k!r}] is not a function f(xi, n).")
+    for xi in (np.array([1.0, 0.0, 0.5]), np.array([1.0, 0.0, 2.0]), np.array([1.0, 0.0, -4.0])):
+        exact = _exp_ref(xi)
+        errs = {}
+        for k in keys:
+            ns = (40, 80) if k != "taylor" else (10, 30)
+            es = []
+            for n in ns:
+                out = call_student(answer[k], (xi, n), f"answer[{k!r}]")
+                if is_starter(out):
+                    raise Unattempted(f"answer[{k!r}] still returns None.")
+                got = _se2_vec(out, None)
+                d = got - exact
+                d[2] = wrap_angle(d[2])
+                es.append(float(np.linalg.norm(d)))
+            errs[k] = es
+            if k == "taylor":
+                if es[1] > 1e-7:
+                    raise Wrong(f"with 30 terms your Taylor sum is still {es[1]:.1e} away from the "
+                                f"closed form for xi = {tuple(xi)}; the series should have converged.")
+            else:
+                if es[0] < 1e-12 and es[1] < 1e-12:
+                    raise Wrong(f"answer[{k!r}] returns the exact exponential for every n; implement "
+                                "the n-step method itself so that its convergence can be seen.")
+                ratio = es[1] / es[0] if es[0] > 0 else 0.0
+                if not (es[1] < 0.2 * max(1.0, abs(xi[2])) and 0.35 < ratio < 0.65):
+                    raise Wrong(f"answer[{k!r}] does not converge to the closed form at first order "
+                                f"for xi = {tuple(xi)} (errors {es[0]:.2e} at n=40, {es[1]:.2e} at "
+                                "n=80): check the step size 1/n and that you take n steps.")
+    return "Correct: both Euler flows and the cumulative product converge at first order (error ~ 1/n), " \
+           "the Taylor sum factorially fast."
+
+
+def _euler(xi, n, side):
+    xi = np.asarray(xi, dtype=float)
+    g = np.zeros(3)
+    for _ in range(int(n)):
+        if side == "left":
+            g = g + SE2.body_to_world(g, xi) / n
+        else:
+            g = g + SE2.spatial_to_world(g, xi) / n
+    return g
+
+
+def _product(xi, n):
+    return np.linalg.matrix_power(np.eye(3) + SE2.hat(np.asarray(xi, dtype=float)) / n, int(n))
+
+
+def _taylor(xi, n):
+    X = SE2.hat(np.asarray(xi, dtype=float))
+    total, term = np.zeros((3, 3)), np.eye(3)
+    for k in range(int(n)):
+        total = total + term
+        term = term @ X / (k + 1)
+    return total
+
+
+#: Reference implementations of the four routes of exercise 1.4d (also used by the tests).
+EXP_METHODS = {"euler_left": lambda xi, n: _euler(xi, n, "left"),
+               "euler_right": lambda xi, n: _euler(xi, n, "right"),
+               "product": _product, "taylor": _taylor}
+
+
+ex1_4 = Exercise("1.4", "The exponential map on SE(2)", [
+    _exp_part("a", "left"),
+    _exp_part("b", "right"),
+    FunctionPart(
+        "c", "helix(xi) -> (pitch, diameter, arclength) of the exponential's helix",
+        ref=_helix_ref, inputs=_helix_inputs, arg_names=("xi",), shape=(3,),
+        mistakes=[(lambda xi: _helix_ref(xi) * np.array([1, 0.5, 1]),
+                   "your second entry is the radius of the projected circle, not its diameter."),
+                  (lambda xi: np.array([_helix_ref(xi)[0], _helix_ref(xi)[1],
+                                        np.linalg.norm(np.asarray(xi, dtype=float))]),
+                   "your arclength includes the rotational component: that is the length of the "
+                   "helix in (x, y, theta) space, not of its projection onto the xy plane."),
+                  (lambda xi: np.array([abs(_helix_ref(xi)[0]), *_helix_ref(xi)[1:]]),
+                   "the pitch is signed: a negative w makes theta go down by 2 pi per turn.")],
+        hints=["Project the flow onto the xy plane: its speed |(vx, vy)| is constant and its "
+               "heading turns at the constant rate w. What curve is that?",
+               "A curve of constant speed v and constant turning rate w is a circle of radius "
+               "v/|w|. The pitch is the rise in theta during one full trip round that circle.",
+               "In unit time the projected point travels the distance |(vx, vy)|."],
+        solution_text="pitch = 2 pi sign(w) (theta rises one full turn per loop), diameter = "
+                      "2 |(vx, vy)| / |w|, xy arclength in unit time = |(vx, vy)|.",
+        reference=_helix_ref, wrong=[lambda xi: _helix_ref(xi) * np.array([1, 0.5, 1])]),
+    CustomPart(
+        "d", "Four numerical routes to exp: dict of functions f(xi, n)", _d_methods_judge,
+        hints=["Euler on the left field: g <- g + (1/n) T_e L_g xi, n times. On the right field use "
+               "T_e R_g instead.",
+               "Cumulative product: multiply n copies of (I + xi_hat / n). Taylor: sum xi_hat^k / k! "
+               "for k < n.",
+               "Return either (x, y, theta) or the 3x3 matrix; theta is read with arctan2 from a "
+               "matrix."],
+        solution_text="Euler (both fields) and the product converge like 1/n; the Taylor sum "
+                      "converges factorially. See the plot in the worked solution.",
+        reference=EXP_METHODS, wrong=[{"euler_left": lambda xi, n: SE2.exp(xi),
+                                "euler_right": lambda xi, n: SE2.exp(xi),
+                                "product": lambda xi, n: SE2.exp(xi),
+                                "taylor": lambda xi, n: SE2.exp(xi)}],
+        starter={"euler_left": None, "euler_right": None, "product": None, "taylor": None}),
+    ChoicePart(
+        "d_rates", "How fast do the methods converge?",
+        {"a": "All four converge at the same rate, like 1/n",
+         "b": "Euler (left and right) and the cumulative product: error ~ 1/n; Taylor: faster than "
+              "any power of 1/n",
+         "c": "Taylor: error ~ 1/n; the others converge factorially",
+         "d": "Euler on the right field is exact for every n"},
+        "b",
+        feedback={"b": "Correct: the first three are first-order methods; the Taylor tail is bounded "
+                       "by |xi|^n/n!.",
+                  "a": "Look at the Taylor curve on a log scale: it drops off a cliff.",
+                  "c": "Swap them: the Taylor remainder shrinks like |xi|^n / n!.",
+                  "d": "Its error halves when n doubles, like the left field's."},
+        hints=["Plot the error against n on log-log axes: a straight line of slope -1 is first order."]),
+    ChoicePart(
+        "d_meaning", "What are the intermediate values of the cumulative product?",
+        {"a": "After k of n factors, (I + xi_hat/n)^k approximates exp((k/n) xi_hat): a point on the "
+              "geodesic at time k/n, so the partial products trace the path",
+         "b": "The partial Taylor sums are points on the geodesic at intermediate times",
+         "c": "The partial products mean nothing until all n factors are in",
+         "d": "They are the body velocities at each step"},
+        "a",
+        feedback={"a": "Correct: each factor is a small step 'from where we are', so the running "
+                       "product is the discretised trajectory (compare (1.xxvii)).",
+                  "b": "A partial Taylor sum is not even a rigid motion: its 2x2 block is not a "
+                       "rotation. It has no meaning as a point on the path.",
+                  "c": "Look at what k factors of a unit-time step of length 1/n add up to.",
+                  "d": "The body velocity is the same xi at every step; the products are positions."},
+        hints=["What does the product of the first k factors approximate, if all n give exp(xi_hat)?"]),
+])
+
+
+# ============================================================================ 1.5
+ex1_5 = Exercise("1.5", "The slide rule and the isomorphism log: (R+, x) -> (R, +)", [
+    ChoicePart(
+        "a", "How does a slide rule compute products?",
+        {"a": "Each scale marks the number x at the distance log(x) from its index; sliding one "
+              "scale along the other adds distances, and log a + log b = log(ab), so the product is "
+              "read off where the added distances end",
+         "b": "The scales are uniform; sliding adds a + b and a printed table converts sums to products",
+         "c": "Each scale marks x at the distance exp(x); sliding multiplies the distances",
+         "d": "It multiplies by repeated addition: the slide is moved b times by a"},
+        "a",
+        feedback={"a": "Correct: the log map is an isomorphism (1.xii), so adding lengths in (R, +) "
+                       "is multiplying numbers in (R+, x).",
+                  "b": "Look at a real C/D scale: the gap from 1 to 2 is much larger than from 9 to 10.",
+                  "c": "Exp would turn products into sums the other way round; distances on the rule "
+                       "are added, not multiplied.",
+                  "d": "One slide, one reading: no repetition involved."},
+        hints=["Try the slide rule widget: ex1_5.slide_rule().",
+               "Where is the mark '2' on the scale, as a fraction of the distance from 1 to 10?"]),
+    FunctionPart(
+        "b", "offset(a): how far (as a fraction of the 1-to-10 scale length) to slide the C scale to "
+             "multiply by a, for 1 <= a <= 10",
+        ref=lambda a: np.log10(a), arg_names=("a",), shape=(),
+        inputs=rng_inputs(16, 6, lambda rng: (float(rng.uniform(1, 10)),), edges=[(1.0,), (10.0,), (2.0,)]),
+        sympy_names=("a",),
+        mistakes=[(lambda a: np.log(a), "you used the natural logarithm; the scale runs one decade "
+                   "(1 to 10), so the fraction is a base-10 logarithm."),
+                  (lambda a: (a - 1) / 9, "that is a uniform (linear) scale; slide rule scales are "
+                   "logarithmic."),
+                  (lambda a: a / 10, "that is a uniform (linear) scale; slide rule scales are "
+                   "logarithmic.")],
+        hints=["The whole scale, from 1 to 10, has length 1. Where is the mark for a?",
+               "The mark for 10 is at 1 and the mark for 1 is at 0, and equal ratios are equal "
+               "distances."],
+        solution_text="offset(a) = log10(a).",
+        reference=lambda a: np.log10(a), wrong=[lambda a: np.log(a)]),
+    ChoicePart(
+        "c", "Why is it interesting that the isomorphism is exp/log?",
+        {"a": "Because log is the inverse of the group exponential of (R+, x): the rule computes in "
+              "the Lie algebra (R, +), and exp(a + b) = exp(a) exp(b) holds because the group is "
+              "commutative; on SE(2) exp(a) exp(b) differs from exp(a + b), so no such rule exists there",
+         "b": "Any bijection would work equally well; exp and log are only familiar choices",
+         "c": "Because exp(a + b) = exp(a) exp(b) on every Lie group, so slide rules exist for all of them",
+         "d": "Because log is a linear function"},
+        "a",
+        feedback={"a": "Correct: the slide rule works in exponential coordinates of a commutative "
+                       "group. For non-commuting elements the product exp(a) exp(b) picks up "
+                       "correction terms (the Lie bracket), a theme the book returns to.",
+                  "b": "A bijection must also turn the group operation into addition, (1.x); that "
+                       "singles out log up to a constant factor (the base).",
+                  "c": "Try it on SE(2): exp of (1, 0, 0) then (0, 0, pi/2) is not exp of their sum.",
+                  "d": "log is far from linear; it turns multiplication into addition."},
+        hints=["Compare the unit-time flow on (R+, x) in section 1.6.4 with the slide rule's scales.",
+               "Is exp(a) exp(b) = exp(a + b) true on SE(2)? Try a = (1, 0, 0), b = (0, 0, pi/2)."]),
+])
+
+
+def _slide_rule(a=2.0, b=3.0):
+    """An interactive slide rule: two log scales that slide past each other (ipywidgets)."""
+    from ._widgets import slide_rule
+    return slide_rule(a, b)
+
+
+ex1_5.slide_rule = _slide_rule
+
+__all__ = ["ex1_1", "ex1_2", "ex1_3", "ex1_4", "ex1_5"]

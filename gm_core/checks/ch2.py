@@ -1,0 +1,354 @@
+"""Checkers for the chapter 2 exercises (2.1-2.4): constraints, Jacobians, body frames.
+
+The reference answers are computed here from the group layer alone (gm_core.groups), so they are
+an independent route to the chain code in gm_core.chains; tests compare the two.
+"""
+from __future__ import annotations
+
+import inspect
+
+import numpy as np
+
+from ..groups import SE2
+from ._core import (ChoicePart, CustomPart, Exercise, FunctionPart, Unattempted, Wrong, call_student,
+                    describe, is_starter, is_sympy, rng_inputs, sympy_callable, to_array)
+
+# ============================================================================ 2.1
+_R2 = np.sqrt(2.0)
+
+
+def _scalar_fn(f, label):
+    """Wrap a constraint given as f(p), f(x, y, z) or a sympy expression in x, y, z."""
+    if is_starter(f):
+        raise Unattempted()
+    if is_sympy(f) and hasattr(f, "free_symbols"):
+        g = sympy_callable(f, ("x", "y", "z"), label)
+        return lambda p: g(p[0], p[1], p[2])
+    if not callable(f):
+        raise Wrong(f"{label} is {describe(f)}; a function of the point p = (x, y, z) (or a sympy "
+                    "expression in x, y, z) was expected.")
+    try:
+        n = len([q for q in inspect.signature(f).parameters.values()
+                 if q.default is q.empty and q.kind in (q.POSITIONAL_ONLY, q.POSITIONAL_OR_KEYWORD)])
+    except (TypeError, ValueError):
+        n = 1
+    if n == 3:
+        return lambda p: f(p[0], p[1], p[2])
+    return f
+
+
+def _value(f, p, label):
+    out = call_student(f, (p,), label)
+    if is_starter(out):
+        raise Unattempted(f"{label} still returns None.")
+    arr = to_array(out, f"the value of {label} at p = {tuple(np.round(p, 3))}")
+    if arr.size != 1:
+        raise Wrong(f"{label} should return one number (a constraint function is scalar); it "
+                    f"returned shape {arr.shape}.")
+    return float(arr.reshape(()))
+
+
+def _judge_2_1(answer):
+    if is_starter(answer):
+        raise Unattempted()
+    if not isinstance(answer, (tuple, list)) or len(answer) != 2:
+        raise Wrong(f"your answer is {describe(answer)}; give a pair (f1, f2) of constraint functions.")
+    if all(is_starter(a) for a in answer):
+        raise Unattempted()
+    f1 = _scalar_fn(answer[0], "f1")
+    f2 = _scalar_fn(answer[1], "f2")
+    rng = np.random.default_rng(21)
+    # f1: its zero set must be a sphere about the origin; it must contain the circle, radius sqrt 2.
+    for _ in range(12):
+        u = rng.normal(size=3)
+        u /= np.linalg.norm(u)
+        if abs(_value(f1, _R2 * u, "f1")) > 1e-7:
+            for r in (1.0, 2.0):
+                if abs(_value(f1, r * u, "f1")) < 1e-9:
+                    raise Wrong(f"f1 vanishes on a sphere of radius {r:g}; the circle x^2 + y^2 = 1, "
+                                "z = 1 is not on that sphere, so the two constraints would have no "
+                                "common solutions there.")
+            raise Wrong("f1 does not vanish everywhere on one sphere centred at (0, 0, 0); the "
+                        "exercise asks for a first constraint that fixes the distance from the origin.")
+        for r in (0.5, 1.0, 1.3, 1.5, 2.0):
+            if abs(_value(f1, r * u, "f1")) < 1e-7:
+                raise Wrong(f"f1 also vanishes at distance {r:g} from the origin, so its zero set is "
+                            "more than one sphere.")
+    # f2 must vanish on the circle and nowhere else on the sphere.
+    for t in rng.uniform(0, 2 * np.pi, 8):
+        p = np.array([np.cos(t), np.sin(t), 1.0])
+        if abs(_value(f2, p, "f2")) > 1e-7:
+            raise Wrong(f"f2 does not vanish at the circle point {tuple(np.round(p, 3))}, so the "
+                        "accessible manifold misses part of the circle.")
+        q = np.array([np.cos(t), np.sin(t), -1.0])
+        if abs(_value(f2, q, "f2")) < 1e-7:
+            raise Wrong("f2 also vanishes on the circle z = -1 of the same sphere, so the accessible "
+                        "manifold would be two circles, not one.")
+    for _ in range(20):
+        u = rng.normal(size=3)
+        u /= np.linalg.norm(u)
+        p = _R2 * u
+        if abs(p[2] - 1.0) < 1e-3:
+            continue
+        if abs(_value(f2, p, "f2")) < 1e-7:
+            raise Wrong(f"f2 also vanishes at {tuple(np.round(p, 3))}, a point of the sphere off the "
+                        "circle, so the accessible manifold is larger than the circle.")
+    return ("Correct: f1 = 0 is the sphere of radius sqrt(2) about the origin, and on it f2 = 0 cuts "
+            "out exactly the circle x^2 + y^2 = 1, z = 1.")
+
+
+ex2_1 = Exercise("2.1", "Holonomic constraints: the circle as a sphere cut by a second constraint", [
+    CustomPart(
+        "a", "A pair (f1, f2): f1 fixes the distance from the origin, f1 = f2 = 0 is the circle "
+             "x^2 + y^2 = 1 on the plane z = 1", _judge_2_1,
+        hints=["Which sphere about the origin contains the circle? Compute the distance from the "
+               "origin of the point (1, 0, 1).",
+               "On that sphere, which second condition keeps the circle and throws away everything "
+               "else? Beware of conditions that also hold on a second circle.",
+               "x^2 + y^2 = 1 holds on the sphere at z = +1 and at z = -1."],
+        solution_text="f1 = x^2 + y^2 + z^2 - 2 (the sphere of radius sqrt 2) and f2 = z - 1.",
+        reference=(lambda p: p[0] ** 2 + p[1] ** 2 + p[2] ** 2 - 2.0, lambda p: p[2] - 1.0),
+        wrong=[(lambda p: p[0] ** 2 + p[1] ** 2 + p[2] ** 2 - 2.0, lambda p: p[0] ** 2 + p[1] ** 2 - 1.0)],
+        starter=(None, None)),
+])
+
+
+# ============================================================================ 2.2
+def _rp_world(alpha, delta, l1, l2, a):
+    L = l1 + delta + l2
+    c, s = np.cos(alpha), np.sin(alpha)
+    return np.array([[-L * s - a * c, c], [L * c - a * s, s], [1.0, 0.0]])
+
+
+def _rp_body(alpha, delta, l1, l2, a):
+    L = l1 + delta + l2
+    return np.array([[-a, 1.0], [L, 0.0], [1.0, 0.0]])
+
+
+def _rp_make(rng):
+    return (float(rng.uniform(-np.pi, np.pi)), float(rng.uniform(0, 1)), float(rng.uniform(0.5, 2)),
+            float(rng.uniform(0.5, 2)), float(rng.uniform(-0.6, 0.6)))
+
+
+_rp_inputs = rng_inputs(22, 6, _rp_make, edges=[(0.3, 0.4, 1.0, 1.0, 0.0), (0.0, 0.0, 1.0, 1.0, 0.5),
+                                                (2.5, 0.7, 1.5, 0.5, -0.3)])
+_RP_NAMES = ("alpha", "delta", "l1", "l2", "a")
+
+
+def _swapcols(f):
+    return lambda *args: f(*args)[:, ::-1]
+
+
+def _no_offset(f):
+    return lambda alpha, delta, l1, l2, a: f(alpha, delta, l1, l2, 0.0)
+
+
+def _flip_offset(f):
+    return lambda alpha, delta, l1, l2, a: f(alpha, delta, l1, l2, -a)
+
+
+ex2_2 = Exercise("2.2", "Jacobian of the offset rotary-prismatic arm", [
+    FunctionPart(
+        "a", "J(alpha, delta, l1, l2, a): world-velocity Jacobian of the end effector h2 (absolute "
+             "positions, iterating (2.31)); columns (alpha_dot, delta_dot)",
+        ref=_rp_world, inputs=_rp_inputs, arg_names=_RP_NAMES, shape=(3, 2),
+        mistakes=[(_rp_body, "that is the body-velocity Jacobian (part b); part a asks for the world "
+                   "velocity h2_dot."),
+                  (_no_offset(_rp_world), "your Jacobian ignores the lateral offset a."),
+                  (_flip_offset(_rp_world), "the offset terms have the wrong sign: the offset is along "
+                   "+y of link 1's distal frame."),
+                  (_swapcols(_rp_world), "your columns are in the order (delta_dot, alpha_dot); use "
+                   "(alpha_dot, delta_dot).")],
+        hints=["Start from g1_dot = (0, 0, alpha_dot) and carry the velocity to the end of link 1 "
+               "with the right lifted action, (2.24).",
+               "The prismatic joint adds (delta_dot cos alpha, delta_dot sin alpha, 0) in world "
+               "coordinates, since it slides along link 1's x axis.",
+               "Check: with a = 0 your answer must reduce to the world form of (2.45)."],
+        solution_text="With L = l1 + delta + l2: J = [[-L sin(alpha) - a cos(alpha), cos(alpha)], "
+                      "[L cos(alpha) - a sin(alpha), sin(alpha)], [1, 0]].",
+        reference=_rp_world, wrong=[_rp_body]),
+    FunctionPart(
+        "b", "J_b(alpha, delta, l1, l2, a): body-velocity Jacobian of h2 (relative positions, "
+             "(2.37)); columns (alpha_dot, delta_dot)",
+        ref=_rp_body, inputs=_rp_inputs, arg_names=_RP_NAMES, shape=(3, 2),
+        mistakes=[(_rp_world, "that is the world-velocity Jacobian (part a); part b asks for the body "
+                   "velocity of h2, expressed in h2's own frame."),
+                  (_no_offset(_rp_body), "your Jacobian ignores the lateral offset a."),
+                  (_flip_offset(_rp_body), "the offset term has the wrong sign: a point offset by +a "
+                   "to the left moves backwards (-x) when the arm turns counterclockwise."),
+                  (_swapcols(_rp_body), "your columns are in the order (delta_dot, alpha_dot); use "
+                   "(alpha_dot, delta_dot).")],
+        hints=["Follow (2.38)-(2.45): body velocities, with Ad^-1 of each frame relative to the "
+               "previous one.",
+               "The only new ingredient is the offset: h2 sits at (delta + l2, a, 0) relative to "
+               "the frame g2' aligned with h1.",
+               "Ad^-1 of (x, y, 0) is [[1, 0, -y], [0, 1, x], [0, 0, 1]]."],
+        solution_text="J_b = [[-a, 1], [l1 + delta + l2, 0], [1, 0]]; it equals T_{h2} L_{h2^-1} "
+                      "times the world Jacobian of part a.",
+        reference=_rp_body, wrong=[_rp_world]),
+])
+
+
+# ============================================================================ 2.3
+def _lengths(lengths):
+    return np.asarray(lengths, dtype=float).reshape(3)
+
+
+def link_poses(alpha, lengths):
+    """Poses of the three link centres relative to the middle link, (3, 3), (2.12)-style chains."""
+    a1, a2 = np.asarray(alpha, dtype=float)
+    l1, l2, l3 = _lengths(lengths)
+    p1 = np.array([-l2 / 2 - l1 / 2 * np.cos(a1), l1 / 2 * np.sin(a1), -a1])
+    p3 = np.array([l2 / 2 + l3 / 2 * np.cos(a2), l3 / 2 * np.sin(a2), a2])
+    return np.stack([p1, np.zeros(3), p3])
+
+
+def link_pose_derivatives(alpha, lengths):
+    """d(link pose)/d(alpha), (3 links, 3, 2)."""
+    a1, a2 = np.asarray(alpha, dtype=float)
+    l1, l2, l3 = _lengths(lengths)
+    D = np.zeros((3, 3, 2))
+    D[0, :, 0] = [l1 / 2 * np.sin(a1), l1 / 2 * np.cos(a1), -1.0]
+    D[2, :, 1] = [-l3 / 2 * np.sin(a2), l3 / 2 * np.cos(a2), 1.0]
+    return D
+
+
+def com_beta(alpha, lengths, weights=None):
+    """beta(alpha): length-weighted mean link-centre position and orientation, (3,); ex. 2.3a."""
+    w = _lengths(lengths) if weights is None else np.asarray(weights, dtype=float)
+    return (w[:, None] * link_poses(alpha, lengths)).sum(0) / w.sum()
+
+
+def com_dbeta(alpha, lengths):
+    w = _lengths(lengths)
+    return (w[:, None, None] * link_pose_derivatives(alpha, lengths)).sum(0) / w.sum()
+
+
+def frame_jacobian(beta, dbeta):
+    """Body Jacobian (3, 3 + m) of a frame at beta(r) from the reference link, (2.62)."""
+    beta = np.asarray(beta, dtype=float)
+    TR = SE2.right_lifted_action(SE2.inverse(beta), beta)
+    return SE2.Ad_inv(beta) @ np.hstack([np.eye(3), TR @ dbeta])
+
+
+def three_link_body_jacobians(alpha, lengths):
+    """Body Jacobians (3, 3, 5) of the link centres, middle link as body frame; (2.57)-(2.59) corrected."""
+    poses = link_poses(alpha, lengths)
+    D = link_pose_derivatives(alpha, lengths)
+    return np.stack([frame_jacobian(poses[i], D[i]) for i in range(3)])
+
+
+def com_jacobian(alpha, lengths):
+    return frame_jacobian(com_beta(alpha, lengths), com_dbeta(alpha, lengths))
+
+
+def links_from_com(alpha, lengths):
+    """Link body Jacobians (3, 3, 5) with the CoM frame as body frame, via (2.68)."""
+    beta = com_beta(alpha, lengths)
+    TR = SE2.right_lifted_action(SE2.inverse(beta), beta)
+    P = np.eye(5)
+    P[:3, :3] = SE2.Ad(beta)
+    P[:3, 3:] = -TR @ com_dbeta(alpha, lengths)
+    return three_link_body_jacobians(alpha, lengths) @ P
+
+
+def _tl_make(rng):
+    lengths = rng.uniform(0.5, 2.0, 3) if rng.uniform() < 0.6 else np.ones(3)
+    return (rng.uniform(-1.6, 1.6, 2), lengths)
+
+
+_tl_inputs = rng_inputs(23, 6, _tl_make, edges=[(np.zeros(2), np.ones(3)),
+                                                (np.array([0.7, -0.4]), np.array([1.0, 2.0, 0.5]))])
+
+
+def _links_post(out, args):
+    """Accept a (3, 3, 5) array or a sequence of three (3, 5) matrices."""
+    if isinstance(out, (list, tuple)) and len(out) == 3:
+        return np.stack([to_array(o, "each link Jacobian") for o in out])
+    return out
+
+
+ex2_3 = Exercise("2.3", "Three-link system: the centre-of-mass / mean-orientation body frame", [
+    FunctionPart(
+        "a", "beta(alpha, lengths): the CoM frame relative to the middle link, (x, y, theta)",
+        ref=com_beta, inputs=_tl_inputs, arg_names=("alpha", "lengths"), shape=(3,),
+        mistakes=[(lambda al, le: com_beta(al, le, np.ones(3)),
+                   "you used the plain (unweighted) mean; with uniform mass per unit length each "
+                   "link's weight is its length (the prompt fixes this convention)."),
+                  (lambda al, le: com_beta(al, le) * np.array([1, 1, 0]),
+                   "your orientation is 0: the frame's angle is the weighted mean of the link "
+                   "angles (-alpha1, 0, alpha2).")],
+        hints=["Write the pose of each link's centre relative to the middle link, e.g. link 3 is "
+               "(l2/2, 0, 0) then a turn by alpha2 then (l3/2, 0, 0).",
+               "Link 1 is turned by -alpha1 relative to link 2 (the sign convention of Figure 2.6).",
+               "Average positions and angles with weights l1, l2, l3."],
+        solution_text="beta = (sum_i l_i p_i) / (l1 + l2 + l3) with p1 = (-l2/2 - l1/2 cos a1, "
+                      "l1/2 sin a1, -a1), p2 = 0, p3 = (l2/2 + l3/2 cos a2, l3/2 sin a2, a2).",
+        reference=com_beta, wrong=[lambda al, le: com_beta(al, le, np.ones(3))]),
+    FunctionPart(
+        "b", "J_com(alpha, lengths): body Jacobian (3 x 5) of the CoM frame, columns (xi, alpha_dot) "
+             "of the middle link",
+        ref=com_jacobian, inputs=_tl_inputs, arg_names=("alpha", "lengths"), shape=(3, 5),
+        mistakes=[(lambda al, le: np.hstack([SE2.Ad_inv(com_beta(al, le)), com_dbeta(al, le)]),
+                   "your shape columns are d beta / d alpha itself; the velocity of the frame "
+                   "relative to the middle link must be carried to the frame with T_beta R_beta^-1 "
+                   "and Ad_beta^-1, (2.61)-(2.62)."),
+                  (lambda al, le: np.hstack([SE2.Ad(com_beta(al, le)), com_jacobian(al, le)[:, 3:]]),
+                   "your first three columns use Ad_beta where Ad_beta^-1 belongs (2.60).")],
+        hints=["Use (2.62): xi_g = Ad_beta^-1 (xi + T_beta R_beta^-1 (d beta / d alpha) alpha_dot).",
+               "Or the compact form (2.66): rotate by T_beta L_beta^-1 the sum T_e R_beta xi + "
+               "(d beta / d alpha) alpha_dot.",
+               "A finite-difference check: move the middle link along exp(t xi), change alpha by "
+               "t alpha_dot, and differentiate the pose of the CoM frame."],
+        solution_text="J_com = Ad_beta^-1 [ I_3 | T_beta R_beta^-1 d beta/d alpha ].",
+        reference=com_jacobian,
+        wrong=[lambda al, le: np.hstack([SE2.Ad_inv(com_beta(al, le)), com_dbeta(al, le)])]),
+    FunctionPart(
+        "c", "links(alpha, lengths): the three link body Jacobians (3, 3, 5) with the CoM frame as "
+             "system body frame, columns (xi_com, alpha_dot)",
+        ref=links_from_com, inputs=_tl_inputs, arg_names=("alpha", "lengths"), shape=(3, 3, 5),
+        postprocess=_links_post,
+        mistakes=[(three_link_body_jacobians, "these are the link Jacobians with the middle link as "
+                   "body frame, (2.57)-(2.59); re-express them with xi_middle = Ad_beta xi_com - v_beta "
+                   "(2.68).")],
+        hints=["Invert (2.60): the middle link's body velocity is Ad_beta xi_com - v_beta, (2.68).",
+               "Substitute it into the middle-link Jacobians: J_i_new = J_i_old P with "
+               "P = [[Ad_beta, -T_beta R_beta^-1 d beta/d alpha], [0, I_2]].",
+               "Self-test: with the same P, J_com P must be [I_3 | 0], since the CoM frame's body "
+               "velocity is then xi_com itself."],
+        solution_text="J_i_new = J_i P with P = [[Ad_beta, -T_beta R_beta^-1 dbeta], [0, I]] and J_i "
+                      "the middle-link Jacobians (2.57)-(2.59), whose printed third row of (2.59) "
+                      "should read (0, 0, 1, 0, 1).",
+        reference=links_from_com, wrong=[three_link_body_jacobians]),
+])
+
+
+# ============================================================================ 2.4
+def _cob(x, y, tg, th):
+    d = th - tg
+    c, s = np.cos(d), np.sin(d)
+    return np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+ex2_4 = Exercise("2.4", "Ad_h^-1 Ad_g with equal positions is a rotation (change of basis)", [
+    FunctionPart(
+        "a", "The product Ad_h^-1 Ad_g for g = (x, y, theta_g), h = (x, y, theta_h), as a sympy matrix "
+             "in x, y, theta_g, theta_h (or a function of those four numbers)",
+        ref=_cob, arg_names=("x", "y", "theta_g", "theta_h"), shape=(3, 3),
+        inputs=rng_inputs(24, 6, lambda rng: tuple(rng.uniform(-3, 3, 4)),
+                          edges=[(0.0, 0.0, 0.0, 0.0), (2.0, -1.0, 0.3, 0.3), (1.0, 1.0, 0.0, np.pi)]),
+        mistakes=[(lambda x, y, tg, th: _cob(x, y, tg, th).T,
+                   "your rotation goes the wrong way: components in h's frame are those in g's frame "
+                   "turned by -(theta_h - theta_g), compare (2.vi)."),
+                  (lambda x, y, tg, th: SE2.Ad([x, y, tg]) @ SE2.Ad_inv([x, y, th]),
+                   "you multiplied in the other order, Ad_g Ad_h^-1; the change of basis is "
+                   "Ad_h^-1 Ad_g (2.viii).")],
+        hints=["Write Ad_g from (1.43) and Ad_h^-1 from (1.45) with the same x and y.",
+               "Multiply and simplify with trigonometric identities (sympy: simplify or trigsimp).",
+               "The translation entries cancel; the 2x2 block is a rotation by theta_g - theta_h."],
+        solution_text="Ad_h^-1 Ad_g = [[cos d, sin d, 0], [-sin d, cos d, 0], [0, 0, 1]] with d = "
+                      "theta_h - theta_g: the rotation (2.vi), independent of x and y.",
+        reference=_cob, wrong=[lambda x, y, tg, th: _cob(x, y, tg, th).T]),
+])
+
+__all__ = ["ex2_1", "ex2_2", "ex2_3", "ex2_4"]
