@@ -119,10 +119,6 @@ def _config(alpha, n, name="alpha"):
 # ("joint", parent, (j, sign, axis)) and its pose is compose(pose[parent], factor). Node 0 is the
 # root: the fixed base for an arm, the base link's medial frame for a mobile system.
 
-def _hat_axis(axis):
-    return SE2.hat(axis)
-
-
 class _FrameGraph:
     def __init__(self, n_joints, mobile):
         self.n_joints = n_joints
@@ -171,7 +167,7 @@ class _FrameGraph:
             d = dGp @ F[..., None, :, :]
             if kind == "joint":
                 j, sign, axis = data
-                dF = F @ (sign * _hat_axis(axis))  # d/dq exp(s q X) = exp(s q X) s X^
+                dF = F @ SE2.hat(sign * axis)  # d/dq exp(s q X) = exp(s q X) s X^
                 d[..., off + j, :, :] += Gp @ dF
             G.append(Gp @ F)
             dG.append(d)
@@ -240,9 +236,6 @@ def _body_to_world_jacobian(g, J):
 class _ChainBase:
     """Shared machinery: frame names, forward kinematics, Jacobians by the three methods."""
 
-    def _init_graph(self):
-        raise NotImplementedError
-
     @property
     def n_links(self):
         return len(self.lengths)
@@ -250,15 +243,30 @@ class _ChainBase:
     def _root(self, g):
         raise NotImplementedError
 
+    @property
+    def links(self):
+        """The links as :class:`Link` (length, lateral offset of the distal frame)."""
+        offsets = getattr(self, "offsets", np.zeros(self.n_links))
+        return [Link(float(L), float(a)) for L, a in zip(self.lengths, offsets)]
+
     def _stack(self, values, jac):
         axis = -3 if jac else -2
         return {name: np.stack([values[self._index[(name, i)]] for i in range(self.n_links)], axis=axis)
                 for name in ("f", "g", "h")}
 
-    def frames(self, alpha, g=None):
-        """Poses of every link's proximal f, medial g and distal h frames: dict of ``(..., n_links, 3)``; book (2.4)-(2.13)."""
+    def _prepare(self, alpha, g):
         alpha = _config(alpha, self.n_joints)
-        return self._stack(self._graph.poses(alpha, self._root(g, alpha)), jac=False)
+        root = self._root(g)
+        batch = np.broadcast_shapes(alpha.shape[:-1], root.shape[:-1])
+        return np.broadcast_to(alpha, batch + alpha.shape[-1:]), np.broadcast_to(root, batch + (3,))
+
+    def frames(self, alpha, g=None):
+        """Poses of every link's proximal f, medial g and distal h frames: dict of ``(..., n_links, 3)``; book (2.4)-(2.13).
+
+        alpha: ``(..., n_joints)``; g: pose ``(..., 3)`` of the base link's centre (mobile chains only).
+        """
+        alpha, root = self._prepare(alpha, g)
+        return self._stack(self._graph.poses(alpha, root), jac=False)
 
     def jacobians(self, alpha, g=None, method="body", velocity="world"):
         """Jacobians of every frame: dict f/g/h of ``(..., n_links, 3, m)``; book (2.16)-(2.37).
@@ -266,12 +274,11 @@ class _ChainBase:
         ``method`` is one of ``METHODS`` ("direct", "world", "body"); ``velocity`` is "world"
         (g_dot, as in (2.17)-(2.30)) or "body" (xi = T_g L_{g^-1} g_dot, as in (2.40)-(2.59)).
         """
-        alpha = _config(alpha, self.n_joints)
         if method not in METHODS:
             raise ValueError(f"method must be one of {METHODS}; got {method!r}")
         if velocity not in ("world", "body"):
             raise ValueError(f"velocity must be 'world' or 'body'; got {velocity!r}")
-        root = self._root(g, alpha)
+        alpha, root = self._prepare(alpha, g)
         jac = getattr(self._graph, f"jac_{method}")(alpha, root)
         poses = self._graph.poses(alpha, root)
         if method == "body" and velocity == "world":
@@ -311,7 +318,7 @@ class Chain(_ChainBase):
             self._index[("h", i)] = parent = gr.add_fixed(f, [L, a, 0.0])
         self._graph = gr
 
-    def _root(self, g, alpha):
+    def _root(self, g):
         if g is not None:
             raise ValueError("g: a fixed-base chain has no free base pose; set base= in the constructor")
         return self.base
@@ -370,18 +377,10 @@ class MobileChain(_ChainBase):
         self._index = idx
         self._graph = gr
 
-    def _root(self, g, alpha):
+    def _root(self, g):
         if g is None:
             return SE2.identity()
         return as_array(g, "g", (3,), what=" (pose of the base link's medial frame)")
-
-    def frames(self, alpha, g=None):
-        """Poses of every link's f, g, h frames with the base link's centre at g: dict of ``(..., n_links, 3)``; book (2.12)-(2.13)."""
-        alpha = _config(alpha, self.n_joints)
-        root = self._root(g, alpha)
-        batch = np.broadcast_shapes(alpha.shape[:-1], root.shape[:-1])
-        alpha = np.broadcast_to(alpha, batch + alpha.shape[-1:])
-        return self._stack(self._graph.poses(alpha, np.broadcast_to(root, batch + (3,))), jac=False)
 
     def body_jacobians(self, alpha, method="body"):
         """Body-velocity Jacobians of the link centres, ``(..., n_links, 3, 3 + n_joints)``; book (2.46)-(2.59)."""
@@ -397,7 +396,7 @@ def finite_difference_jacobians(fk, alpha, eps=1e-6):
 
     An independent route to (2.16): angles are differenced modulo 2 pi. ``alpha: (..., n)``.
     """
-    alpha = as_array(alpha, "alpha", (np.shape(alpha)[-1],) if np.ndim(alpha) else (1,))
+    alpha = np.atleast_1d(as_array(alpha, "alpha"))
     cols = []
     for j in range(alpha.shape[-1]):
         d = np.zeros(alpha.shape)
