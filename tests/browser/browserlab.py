@@ -514,6 +514,8 @@ class NotebookPage:
         self.page.goto(self.server.lab_url(self.relpath), wait_until="domcontentloaded",
                        timeout=timeout * 1000)
         t0 = self.timings.mark("load page", t0)
+        self.wait_until(lambda s: s["phase"] == "panel", "JupyterLab to show the notebook", timeout)
+        t0 = self.timings.mark("lab ready", t0)
         self.wait_until(lambda s: s["phase"] == "panel" and s.get("ready") and s.get("kernel") == "idle"
                         and s.get("connection") == "connected",
                         "the notebook to open with an idle kernel", timeout)
@@ -581,7 +583,7 @@ class NotebookPage:
     def snapshot(self, sel) -> str:
         return self.page.evaluate(_SNAPSHOT_JS, sel)
 
-    def move_slider(self, sel: str, fraction: float = 0.12, max_presses: int = 40,
+    def move_slider(self, sel: str, fraction: float = 0.06, max_presses: int = 25,
                     change_timeout: float = 20.0) -> SliderResult:
         """Focus the panel's first slider handle, press ArrowRight (ArrowLeft when in the upper
         half) until the value moved by ~``fraction`` of its range, and wait for the canvas to change."""
