@@ -287,3 +287,40 @@ def test_accessible_manifold_samples():
     circ = C.accessible_circle(50)
     np.testing.assert_allclose(C.circle_constraints(circ), 0.0, atol=1e-14)
     np.testing.assert_allclose(C.sphere_plane_constraints(circ), 0.0, atol=1e-14)
+
+
+# ----------------------------------------------------------------- the matrices printed in section 2.5
+def test_world_iterative_matrices_of_225_and_229():
+    a1, a2, l1, l2 = 0.4, 1.3, 1.2, 0.9
+    fr = C.rr_arm_frames([a1, a2], (l1, l2))
+    g1, h1, g2, h2 = fr
+    # (2.24)-(2.25): h1_dot = (T_e R_h1)(T_g1 R_g1^-1) g1_dot, with g1_dot = (0, 0, a1_dot)
+    M = SE2.right_lifted_action(h1, SE2.identity()) @ SE2.right_lifted_action(SE2.inverse(g1), g1)
+    np.testing.assert_allclose(M, [[1, 0, -l1 * np.sin(a1)], [0, 1, l1 * np.cos(a1)], [0, 0, 1]], atol=1e-15)
+    # (2.29): the two factors printed for the second link
+    A = SE2.right_lifted_action(h2, SE2.identity())
+    B = SE2.right_lifted_action(SE2.inverse(g2), g2)
+    np.testing.assert_allclose(A[:2, 2], [-(l1 * np.sin(a1) + l2 * np.sin(a1 + a2)), l1 * np.cos(a1) + l2 * np.cos(a1 + a2)])
+    np.testing.assert_allclose(B[:2, 2], [l1 * np.sin(a1), -l1 * np.cos(a1)])
+    J_g2 = np.array([[-l1 * np.sin(a1), 0], [l1 * np.cos(a1), 0], [1, 1]])   # (2.28)
+    np.testing.assert_allclose(A @ B @ J_g2, C.rr_arm_jacobian([a1, a2], (l1, l2)), atol=1e-14)   # (2.30)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(-3, 3), st.floats(-3, 3), st.floats(-3, 3), st.floats(-3, 3))
+def test_change_of_basis_box_and_exercise_2_4(x, y, tg, th):
+    # Ad_h^-1 Ad_g is a pure rotation by -(th - tg) when g and h share x and y, (2.vi)-(2.viii)
+    g, h = np.array([x, y, tg]), np.array([x, y, th])
+    d = th - tg
+    R = np.array([[np.cos(d), np.sin(d), 0], [-np.sin(d), np.cos(d), 0], [0, 0, 1]])
+    np.testing.assert_allclose(SE2.Ad_inv(h) @ SE2.Ad(g), R, atol=1e-12)
+    np.testing.assert_allclose(SE2.Ad_inv(SE2.compose(SE2.inverse(g), h)), R, atol=1e-12)
+
+
+def test_joint_elements():
+    assert C.Joint("R") == C.Joint("revolute") and C.Joint("p").kind == "prismatic"
+    np.testing.assert_allclose(C.Joint("R").element(0.3), [0, 0, 0.3])
+    np.testing.assert_allclose(C.Joint("P").element([0.3, 0.5]), [[0.3, 0, 0], [0.5, 0, 0]])
+    # a joint element is exp(q X): the one-parameter subgroup of its axis
+    for j in (C.Joint("R"), C.Joint("P")):
+        np.testing.assert_allclose(SE2.exp(0.7 * j.axis), j.element(0.7), atol=1e-15)

@@ -83,6 +83,7 @@ class ChainArtist:
             patch.set_xy(link_outline(f[i, :2], ends[i], self.width))
         pts = [f[i, :2] for i in range(1, self.n_links)]
         if self.pivot:
+            self.pivot_mark.set_data([f[0, 0]], [f[0, 1]])
             pts = [f[0, :2]] + pts
         pts = np.array(pts).reshape(-1, 2)
         self.joint_dots.set_data(pts[:, 0], pts[:, 1])
@@ -93,7 +94,7 @@ class ChainArtist:
         return True
 
     def all_artists(self):
-        arts = list(self.links) + [self.joint_dots]
+        arts = list(self.links) + [self.joint_dots] + ([self.pivot_mark] if self.pivot else [])
         if self.elbows is not None:
             arts.append(self.elbows)
         for v in self.frames.values():

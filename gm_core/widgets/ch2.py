@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import chains as C
 from ..groups import SE2
-from ..drawing.base import FrameArtist, SingularFlag, new_figure
+from ..drawing.base import FrameArtist, new_figure
 from ..drawing.ch2 import ArrowsArtist, ChainArtist, draw_chain_naive
 from .base import Panel, register, slider
 
@@ -51,7 +51,6 @@ class _ArmPanel(Panel):
                                lengths=self.chain.lengths, offsets=self.chain.offsets)
         (self.sleeves,) = self.ax.plot([], [], "--", color="0.3", lw=2, zorder=1)
         self.vel = ArrowsArtist(self.ax, 1, label="end-effector velocity")
-        self.flag = SingularFlag(self.ax)
         self.controls = {}
         for name, (lo, hi), v in zip(self.names, self.ranges, self.start):
             self.controls[name] = slider(v, lo, hi, description=name)
@@ -145,9 +144,11 @@ class OffsetRPArmPanel(RPArmPanel):
 
 
 # ======================================================================= mobile chains
-@register
 class MobileChainPanel(Panel):
     """A free-floating chain: pose sliders place the base link's centre, joint sliders set the shape.
+
+    The shared base of the two- and three-link panels (not registered itself; pass ``lengths=...``
+    for other chains).
 
     Options: ``lengths`` (2 or more links). Controls: x, y, theta of the base link's medial frame,
     one joint angle per joint, the base link index, and for three links the shape symmetry
