@@ -357,27 +357,28 @@ def se2_helix(xi, side="left", g0=None):
     xi = as_array(xi, "xi", (3,), what=", an se(2) velocity (vx, vy, w)")
     side = _check_side(side)
     vx, vy, w = xi[..., 0], xi[..., 1], xi[..., 2]
-    speed = np.hypot(vx, vy)
-    straight = w == 0
-    wsafe = np.where(straight, 1.0, w)
-    c = np.stack([-vy / wsafe, vx / wsafe], -1) + 0.0  # + 0.0 turns -0.0 into 0.0
-    c = np.where(straight[..., None], np.nan, c)
-    radius = np.where(straight, np.inf, speed / np.abs(wsafe))
-    if g0 is not None:
-        g0 = SE2._element(g0, "g0")
-        if side == "left":
-            c = SE2.act_on_points(g0, c)
-        else:
-            radius = np.where(straight, np.inf, np.linalg.norm(g0[..., :2] - c, axis=-1))
-    with np.errstate(divide="ignore", invalid="ignore"):
+    # |w| tiny but nonzero overflows to radius = inf, which is the right limit: silence it
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        speed = np.hypot(vx, vy)
+        straight = w == 0
+        wsafe = np.where(straight, 1.0, w)
+        c = np.stack([-vy / wsafe, vx / wsafe], -1) + 0.0  # + 0.0 turns -0.0 into 0.0
+        c = np.where(straight[..., None], np.nan, c)
+        radius = np.where(straight, np.inf, speed / np.abs(wsafe))
+        if g0 is not None:
+            g0 = SE2._element(g0, "g0")
+            if side == "left":
+                c = SE2.act_on_points(g0, c)
+            else:
+                radius = np.where(straight, np.inf, np.linalg.norm(g0[..., :2] - c, axis=-1))
         period = np.where(straight, np.inf, 2 * np.pi / np.abs(wsafe))
         slope = np.where(speed > 0, w / np.where(speed > 0, speed, 1.0), np.copysign(np.inf, w))
         per_turn = np.where(straight, np.inf, 2 * np.pi * speed / np.abs(wsafe))
-    return HelixGeometry(
-        xi=xi, centre=c, radius=radius, diameter=2 * radius, speed=speed, arclength=speed,
-        period=period, pitch=2 * np.pi * np.sign(w), slope=slope, turns=w / (2 * np.pi),
-        arclength_per_turn=per_turn, straight=straight,
-    )
+        return HelixGeometry(
+            xi=xi, centre=c, radius=radius, diameter=2 * radius, speed=speed, arclength=speed,
+            period=period, pitch=2 * np.pi * np.sign(w), slope=slope, turns=w / (2 * np.pi),
+            arclength_per_turn=per_turn, straight=straight,
+        )
 
 
 def se2_helices(thetadot, t, speed=1.0):
