@@ -1,0 +1,281 @@
+"""Chapter 3 drawing: locomoting bodies at a shape, connection vector fields, gaits and trails.
+
+All artists are created once and moved in place (``set_xy``, ``set_data``, ``set_UVC``). Values
+that are undefined (the local connection at a singular shape) are masked or hidden, never passed
+to matplotlib as NaN.
+
+Sign convention of the fields: row i of the local connection is drawn as the vector field
+``-A^i(r)`` over shape space, so that ``xi^i = <-A^i, r_dot>`` (3.10): moving the shape along an
+arrow gives positive body velocity component i, across it gives none.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..groups import SE2
+from ..locomotion import as_gait, trajectory
+from .base import BodyArtist, FrameArtist, SingularFlag, TrailArtist, animate, new_figure
+
+__all__ = ["PART_STYLES", "SystemArtist", "ConnectionFieldArtist", "ShapeCursorArtist", "VelocityArtist",
+           "shape_grid", "connection_field", "system_extent", "draw_singular_set", "draw_system_naive",
+           "connection_fields_figure", "regimes_figure", "animate_gait", "ROW_LABELS"]
+
+PART_STYLES = {
+    "chassis": dict(facecolor="tab:blue", alpha=0.35, edgecolor="k"),
+    "wheel": dict(facecolor="0.15", alpha=0.9, edgecolor="k"),
+    "link": dict(facecolor="tab:orange", alpha=0.6, edgecolor="k"),
+}
+ROW_LABELS = (r"$\xi^x$ (forward)", r"$\xi^y$ (sideways)", r"$\xi^\theta$ (turning)")
+
+
+# ------------------------------------------------------------------------------ bodies
+class SystemArtist:
+    """A locomotor drawn at position g and shape r: one polygon per rigid part plus its body frame."""
+
+    def __init__(self, ax, system, g=(0.0, 0.0, 0.0), r=(0.0, 0.0), frame_length=None, styles=None, zorder=3):
+        self.system = system
+        self.parts = system.parts()
+        styles = dict(PART_STYLES, **(styles or {}))
+        self.bodies = [BodyArtist(ax, p.outline, **dict(styles.get(p.kind, {}), zorder=zorder)) for p in self.parts]
+        size = max(np.ptp(np.vstack([p.outline for p in self.parts]), axis=0))
+        self.frame = FrameArtist(ax, length=frame_length or 0.3 * size)
+        self.set(g, r)
+
+    def set(self, g, r):
+        """Place the body: part i at g o pose_i(r)."""
+        self.g = np.asarray(g, dtype=float)
+        self.r = np.asarray(r, dtype=float)
+        poses = SE2.compose(self.g, self.system.part_poses(self.r))
+        for b, pose in zip(self.bodies, poses):
+            b.set(pose)
+        self.frame.set(self.g)
+
+    def set_visible(self, visible):
+        for b in self.bodies:
+            b.patch.set_visible(visible)
+        self.frame.quiver.set_visible(visible)
+
+    def world_outlines(self):
+        """Current world outlines (list of (k, 2)) of the parts (for tests)."""
+        return [np.asarray(b.patch.get_xy()) for b in self.bodies]
+
+
+def system_extent(system, r=None):
+    """Half-size of a square (centred on the body frame) that holds the body at shape r (default 0)."""
+    r = np.zeros(system.n_shape) if r is None else np.asarray(r, float)
+    pts = np.vstack([SE2.act_on_points(pose, p.outline)
+                     for p, pose in zip(system.parts(), system.part_poses(r))])
+    return float(np.abs(pts).max())
+
+
+def draw_system_naive(ax, system, g, r):
+    """Plot the body from scratch with ax.fill (the clear-and-replot baseline)."""
+    poses = SE2.compose(np.asarray(g, float), system.part_poses(np.asarray(r, float)))
+    for p, pose in zip(system.parts(), poses):
+        xy = SE2.act_on_points(pose, p.outline)
+        ax.fill(xy[:, 0], xy[:, 1], **PART_STYLES.get(p.kind, {}))
+
+
+class VelocityArtist:
+    """The body velocity xi drawn at the body frame: an arrow for (xi^x, xi^y) and an arc for xi^theta."""
+
+    def __init__(self, ax, scale=1.0, color="tab:purple", zorder=6):
+        self.scale = float(scale)
+        self.quiver = ax.quiver([0.0], [0.0], [0.0], [0.0], color=color, angles="xy", scale_units="xy",
+                                scale=1.0, width=0.012, zorder=zorder)
+        (self.arc,) = ax.plot([], [], color=color, lw=2, zorder=zorder)
+        (self.tip,) = ax.plot([], [], marker=(3, 0, 0), color=color, ms=8, ls="none", zorder=zorder)
+        self.xi = np.zeros(3)
+
+    def set(self, g, xi):
+        """Show xi (body velocity) at pose g; hidden (returns False) if xi is not finite."""
+        xi = np.asarray(xi, dtype=float)
+        ok = bool(np.all(np.isfinite(xi)))
+        for a in (self.quiver, self.arc, self.tip):
+            a.set_visible(ok)
+        if not ok:
+            return False
+        self.xi = xi
+        g = np.asarray(g, dtype=float)
+        v = SE2.body_to_world(g, xi)[:2] * self.scale
+        self.quiver.set_offsets([g[:2]])
+        self.quiver.set_UVC([v[0]], [v[1]])
+        w = float(np.clip(xi[2] * self.scale, -1.9 * np.pi, 1.9 * np.pi))
+        rad = 0.25
+        s = np.linspace(0.0, w, 30) + g[2] + np.pi / 2
+        self.arc.set_data(g[0] + rad * np.cos(s), g[1] + rad * np.sin(s))
+        self.tip.set_data([g[0] + rad * np.cos(s[-1])], [g[1] + rad * np.sin(s[-1])])
+        self.tip.set_marker((3, 0, np.degrees(s[-1]) + (0 if w >= 0 else 180)))
+        return True
+
+    def world_vector(self):
+        """The drawn linear-velocity arrow (2,) in world coordinates (for tests)."""
+        return np.array([self.quiver.U[0], self.quiver.V[0]])
+
+
+# ------------------------------------------------------------------------------ fields
+def shape_grid(system, n=21, limits=None):
+    """(a1, a2, r): a n x n grid over the system's shape window; r has shape (n, n, 2)."""
+    (lo1, hi1), (lo2, hi2) = limits or system.shape_limits
+    a1, a2 = np.meshgrid(np.linspace(lo1, hi1, n), np.linspace(lo2, hi2, n), indexing="xy")
+    return a1, a2, np.stack([a1, a2], -1)
+
+
+def connection_field(system, row, n=21, limits=None):
+    """(a1, a2, U, V): the field -A^row over a shape grid, U and V masked where A is undefined."""
+    a1, a2, r = shape_grid(system, n, limits)
+    A = system.connection(r)
+    U = np.ma.masked_invalid(-A[..., row, 0])
+    V = np.ma.masked_invalid(-A[..., row, 1])
+    mask = np.ma.getmaskarray(U) | np.ma.getmaskarray(V)
+    return a1, a2, np.ma.array(U, mask=mask), np.ma.array(V, mask=mask)
+
+
+class ConnectionFieldArtist:
+    """Quiver of one connection row, -A^row(r), over shape space; arrows are clipped for readability.
+
+    Arrows longer than ``clip`` x the median length are shortened to that length (near singular
+    shapes the connection grows without bound); undefined arrows are masked. ``factor`` is the
+    data-to-arrow scale in use, so the drawn arrow is ``factor * (-A^row)`` unless clipped.
+    """
+
+    def __init__(self, ax, system, row, n=17, limits=None, clip=3.0, color="k", **kw):
+        self.ax, self.n, self.limits, self.clip, self.row = ax, n, limits, float(clip), row
+        self.system = system
+        a1, a2, U, V = connection_field(system, row, n, limits)
+        self.quiver = ax.quiver(a1, a2, np.zeros_like(a1), np.zeros_like(a1), color=color, angles="xy",
+                                scale_units="xy", scale=1.0, width=0.005, pivot="mid", **kw)
+        self.set(system, row)
+
+    def set(self, system=None, row=None):
+        """Recompute the field for (system, row) and move the arrows in place (set_UVC)."""
+        if system is not None:
+            self.system = system
+        if row is not None:
+            self.row = row
+        a1, a2, U, V = connection_field(self.system, self.row, self.n, self.limits)
+        self.quiver.set_offsets(np.column_stack([a1.ravel(), a2.ravel()]))
+        mag = np.ma.sqrt(U ** 2 + V ** 2)
+        spacing = min(np.ptp(a1) / (self.n - 1), np.ptp(a2) / (self.n - 1))
+        med = float(np.ma.median(mag)) if mag.count() else 0.0
+        cap = self.clip * med if med > 0 else (float(mag.max()) if mag.count() else 1.0)
+        cap = cap if cap > 0 else 1.0
+        self.factor = 0.9 * spacing / cap
+        shrink = np.ma.where(mag > cap, cap / np.ma.where(mag > 0, mag, 1.0), 1.0)
+        self.U, self.V = U, V
+        self.quiver.set_UVC(U * shrink * self.factor, V * shrink * self.factor)
+        self.clipped = np.ma.filled(mag > cap, False)
+        return self
+
+
+def draw_singular_set(ax, system, n=241, limits=None, **style):
+    """Draw the singular shapes (det omega_xi = 0) as red lines; returns the contour set or None."""
+    if not system.may_be_singular:
+        return None
+    a1, a2, r = shape_grid(system, n, limits)
+    d = system.singularity(r)
+    if not (np.nanmin(d) < 0 < np.nanmax(d)):
+        return None
+    style.setdefault("colors", "crimson")
+    style.setdefault("linewidths", 2.0)
+    return ax.contour(a1, a2, d, levels=[0.0], **style)
+
+
+class ShapeCursorArtist:
+    """A marker at shape r on a shape-space axes and an arrow for the shape velocity r_dot."""
+
+    def __init__(self, ax, color="tab:green", arrow_scale=0.5):
+        (self.marker,) = ax.plot([0.0], [0.0], "o", color=color, ms=8, zorder=7)
+        self.arrow = ax.quiver([0.0], [0.0], [0.0], [0.0], color=color, angles="xy", scale_units="xy",
+                               scale=1.0, width=0.01, zorder=7)
+        self.arrow_scale = arrow_scale
+
+    def set(self, r, r_dot=(0.0, 0.0)):
+        r = np.asarray(r, float)
+        d = np.asarray(r_dot, float) * self.arrow_scale
+        self.marker.set_data([r[0]], [r[1]])
+        self.arrow.set_offsets([r])
+        self.arrow.set_UVC([d[0]], [d[1]])
+
+
+def _style_shape_axes(ax, system, title=None):
+    (lo1, hi1), (lo2, hi2) = system.shape_limits
+    ax.set_xlim(lo1, hi1)
+    ax.set_ylim(lo2, hi2)
+    ax.set_aspect("equal")
+    ax.set_xlabel(r"$\alpha_1$")
+    ax.set_ylabel(r"$\alpha_2$")
+    if title:
+        ax.set_title(title, fontsize=9)
+
+
+def connection_fields_figure(system, n=17, figsize=(10, 3.4)):
+    """A static figure: the three connection rows of ``system`` as vector fields, singular set in red."""
+    fig, axes = new_figure(1, 3, figsize=figsize)
+    arts = []
+    for i, ax in enumerate(axes):
+        _style_shape_axes(ax, system, ROW_LABELS[i])
+        arts.append(ConnectionFieldArtist(ax, system, i, n=n))
+        draw_singular_set(ax, system)
+    fig.suptitle(f"{system.name}: fields $-A^i(r)$", fontsize=10)
+    fig.tight_layout()
+    return fig, axes, arts
+
+
+def regimes_figure(systems, n=13, figsize=(9, 11)):
+    """Static grid: one row per system, one column per connection row (x, y, theta)."""
+    systems = list(systems)
+    fig, axes = new_figure(len(systems), 3, figsize=figsize, squeeze=False)
+    for k, s in enumerate(systems):
+        for i in range(3):
+            ax = axes[k, i]
+            _style_shape_axes(ax, s, f"{s.name}: {ROW_LABELS[i]}")
+            ConnectionFieldArtist(ax, s, i, n=n)
+            draw_singular_set(ax, s)
+    fig.tight_layout()
+    return fig, axes
+
+
+# ------------------------------------------------------------------------------ gaits
+def animate_gait(system, gait, n_frames=60, row=2, cycles=1, world_lim=None, interval=60):
+    """An animation (FuncAnimation): the gait on connection row ``row`` and the body moving in the plane.
+
+    Left: shape space with the field -A^row, the gait and a cursor at the current shape. Right: the
+    body at g(t) with its trail. Returns (anim, fig, traj). Use ``drawing.base.jshtml(anim)``.
+    """
+    gait = as_gait(gait)
+    traj = trajectory(system, gait, n_frames, cycles=cycles)
+    fig, (axs, axw) = new_figure(1, 2, figsize=(9, 4))
+    _style_shape_axes(axs, system, f"gait on {ROW_LABELS[row]}")
+    ConnectionFieldArtist(axs, system, row, n=15, color="0.5")
+    draw_singular_set(axs, system)
+    path = gait(np.linspace(0, gait.period, 200))
+    axs.plot(path[:, 0], path[:, 1], color="tab:blue", lw=2)
+    cursor = ShapeCursorArtist(axs)
+    body = SystemArtist(axw, system, traj.g[0], traj.r[0])
+    trail = TrailArtist(axw, color="tab:green")
+    size = system_extent(system)
+    lo = traj.g[:, :2].min(0) - 1.1 * size
+    hi = traj.g[:, :2].max(0) + 1.1 * size
+    c, half = (lo + hi) / 2, max(hi - lo) / 2
+    if world_lim is not None:
+        half = world_lim
+    axw.set_xlim(c[0] - half, c[0] + half)
+    axw.set_ylim(c[1] - half, c[1] + half)
+    axw.set_aspect("equal")
+    axw.grid(True, alpha=0.3)
+    axw.set_title(system.name, fontsize=9)
+    fig.tight_layout()
+
+    def update(k):
+        k = int(k)
+        body.set(traj.g[k], traj.r[k])
+        trail.set(traj.g[: k + 1, :2])
+        cursor.set(traj.r[k], gait.velocity(np.array([traj.t[k]]))[0] * 0.05)
+        return []
+
+    anim = animate(fig, update, range(n_frames), interval=interval)
+    return anim, fig, traj
+
+
+__all__ += ["SingularFlag"]

@@ -1,0 +1,336 @@
+"""Chapter 3 panels: cars driven by sliders, connection vector fields with a shape cursor, gaits.
+
+Every panel takes its numbers from ``gm_core.locomotion`` / ``gm_core.systems`` and draws with
+the in-place artists of ``gm_core.drawing.ch3``; ``naive_update`` is the clear-and-replot
+baseline for the latency benchmark. Singular shapes raise a SingularFlag and hide what cannot
+be drawn.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .._validate import SingularShapeError
+from ..drawing.base import SingularFlag, TrailArtist, new_figure
+from ..drawing.ch3 import (ROW_LABELS, ConnectionFieldArtist, ShapeCursorArtist, SystemArtist, VelocityArtist,
+                           _style_shape_axes, draw_singular_set, draw_system_naive, system_extent)
+from ..locomotion import Gait, circle_gait, net_displacement, trajectory
+from ..systems import Ackerman, DifferentialDrive, KinematicSnake
+from .base import Panel, register, slider
+
+__all__ = ["drive", "DiffDriveCarPanel", "AckermanCarPanel", "ConnectionFieldPanel", "GaitPanel"]
+
+PI = float(np.pi)
+
+
+def drive(system, r0, r_dot, duration, n_frames=81):
+    """Trajectory of ``system`` when its shape moves at the constant rate r_dot from r0 for ``duration``.
+
+    Returns a :class:`gm_core.locomotion.Trajectory` starting at the identity; raises
+    SingularShapeError if the shape path reaches a singular shape.
+    """
+    r0 = np.asarray(r0, dtype=float)
+    rd = np.asarray(r_dot, dtype=float)
+    gait = Gait(lambda t: r0 + np.asarray(t, float)[..., None] * rd, float(duration),
+                lambda t: np.broadcast_to(rd, np.shape(t) + rd.shape), name="constant rate")
+    return trajectory(system, gait, n_frames, substeps=16)
+
+
+def _square(ax, lim, center=(0.0, 0.0)):
+    ax.set_xlim(center[0] - lim, center[0] + lim)
+    ax.set_ylim(center[1] - lim, center[1] + lim)
+    ax.set_aspect("equal")
+    ax.grid(True, alpha=0.3)
+
+
+def _fmt(xi):
+    return f"xi = ({xi[0]:+.3f}, {xi[1]:+.3f}, {xi[2]:+.3f})"
+
+
+# ======================================================================= cars
+class _CarPanel(Panel):
+    """A car whose wheels (and steering) turn at slider-set rates; the trail shows where it went."""
+
+    lim = 4.0
+
+    def make_system(self):
+        raise NotImplementedError
+
+    def shape_path(self, v):
+        """(r0, r_dot, duration) from the control values."""
+        raise NotImplementedError
+
+    def build(self):
+        self.system = self.options.get("system") or self.make_system()
+        self.fig, self.ax = new_figure(figsize=(5.5, 5.0))
+        _square(self.ax, self.options.get("lim", self.lim))
+        self.trail = TrailArtist(self.ax, color="tab:green", lw=2)
+        self.start = SystemArtist(self.ax, self.system, styles={"chassis": dict(facecolor="0.8", alpha=0.4,
+                                                                             edgecolor="0.5")})
+        self.body = SystemArtist(self.ax, self.system)
+        self.vel = VelocityArtist(self.ax, scale=1.0)
+        self.flag = SingularFlag(self.ax)
+        self.text = self.ax.text(0.02, 0.02, "", transform=self.ax.transAxes, family="monospace", fontsize=8)
+        self.add_controls()
+
+    def compute(self, v):
+        r0, rd, T = self.shape_path(v)
+        traj = drive(self.system, r0, rd, T)
+        xi_end = self.system.body_velocity(traj.r[-1], rd)
+        return traj, rd, xi_end
+
+    def update(self, **v):
+        try:
+            self.traj, rd, self.xi = self.compute(v)
+        except SingularShapeError as e:
+            self.traj = None
+            self.flag.show("singular shape reached")
+            self.message = str(e)
+            for a in (self.trail.line,):
+                a.set_visible(False)
+            self.body.set_visible(False)
+            self.vel.set(np.zeros(3), np.full(3, np.nan))
+            self.text.set_text("")
+            self.fig.canvas.draw_idle()
+            return
+        self.flag.hide()
+        self.trail.line.set_visible(True)
+        self.body.set_visible(True)
+        self.start.set(self.traj.g[0], self.traj.r[0])
+        self.trail.set(self.traj.g[:, :2])
+        self.body.set(self.traj.g[-1], self.traj.r[-1])
+        self.vel.set(self.traj.g[-1], self.xi)
+        g = self.traj.g[-1]
+        self.text.set_text(f"{_fmt(self.xi)}\ng(T) = ({g[0]:+.2f}, {g[1]:+.2f}, {g[2]:+.2f})")
+        self.fig.canvas.draw_idle()
+
+    def naive_update(self, **v):
+        self.ax.clear()
+        _square(self.ax, self.options.get("lim", self.lim))
+        try:
+            traj, rd, xi = self.compute(v)
+        except SingularShapeError:
+            self.ax.set_title("singular shape reached")
+            self.fig.canvas.draw_idle()
+            return
+        self.ax.plot(traj.g[:, 0], traj.g[:, 1], color="tab:green", lw=2)
+        draw_system_naive(self.ax, self.system, traj.g[-1], traj.r[-1])
+        self.fig.canvas.draw_idle()
+
+
+@register
+class DiffDriveCarPanel(_CarPanel):
+    """Differential-drive car (3.8), (3.29): two wheel-speed sliders and a duration."""
+
+    title = "Differential-drive car: wheel speeds in, motion out"
+
+    def make_system(self):
+        return DifferentialDrive(wheel_radius=0.3, half_width=0.5)
+
+    def add_controls(self):
+        self.controls = {
+            "wheel1_speed": slider(2.0, -4.0, 4.0, description="wheel 1 (left) rate"),
+            "wheel2_speed": slider(3.0, -4.0, 4.0, description="wheel 2 (right) rate"),
+            "duration": slider(3.0, 0.1, 6.0, description="duration T"),
+        }
+
+    def shape_path(self, v):
+        return np.zeros(2), np.array([v["wheel1_speed"], v["wheel2_speed"]]), v["duration"]
+
+
+@register
+class AckermanCarPanel(_CarPanel):
+    """Kinematic-bicycle car (3.9): drive-wheel rate, starting steering angle and steering rate."""
+
+    title = "Ackerman car: drive and steering in, motion out"
+
+    def make_system(self):
+        return Ackerman(wheel_radius=0.3, wheelbase=1.0)
+
+    def add_controls(self):
+        self.controls = {
+            "wheel_speed": slider(3.0, -4.0, 4.0, description="drive wheel rate"),
+            "steering": slider(0.3, -1.4, 1.4, description="steering angle at t=0"),
+            "steering_speed": slider(0.0, -1.0, 1.0, description="steering rate"),
+            "duration": slider(3.0, 0.1, 6.0, description="duration T"),
+        }
+
+    def shape_path(self, v):
+        return (np.array([0.0, v["steering"]]), np.array([v["wheel_speed"], v["steering_speed"]]),
+                v["duration"])
+
+
+# ======================================================================= connection fields
+@register
+class ConnectionFieldPanel(Panel):
+    """The three rows of A as vector fields over shape space, a shape cursor, and the body there.
+
+    Sliders set the shape (alpha1, alpha2) and the shape velocity; the fourth axes draws the body
+    at that shape with its body velocity xi = -A(r) r_dot (3.10). For the kinematic snake the
+    singular set is drawn in red and the velocity is hidden (with a flag) on it.
+    """
+
+    title = "Connection vector fields and a shape cursor"
+
+    def build(self):
+        self.system = self.options.get("system") or KinematicSnake()
+        s = self.system
+        self.title = f"Connection vector fields: {s.name}"
+        self.fig, axes = new_figure(2, 2, figsize=(8, 7.5))
+        self.field_axes = [axes[0, 0], axes[0, 1], axes[1, 0]]
+        self.ax = axes[1, 1]
+        self.fields, self.cursors = [], []
+        for i, ax in enumerate(self.field_axes):
+            _style_shape_axes(ax, s, f"row {i + 1}: {ROW_LABELS[i]}")
+            self.fields.append(ConnectionFieldArtist(ax, s, i, n=self.options.get("n", 15), color="0.35"))
+            draw_singular_set(ax, s)
+            self.cursors.append(ShapeCursorArtist(ax))
+        _square(self.ax, 1.15 * system_extent(s))
+        self.ax.set_title("body at this shape; arrow: body velocity", fontsize=9)
+        self.body = SystemArtist(self.ax, s)
+        self.vel = VelocityArtist(self.ax, scale=self.options.get("velocity_scale", 1.0))
+        self.flag = SingularFlag(self.ax)
+        self.text = self.ax.text(0.02, 0.02, "", transform=self.ax.transAxes, family="monospace", fontsize=8)
+        (lo1, hi1), (lo2, hi2) = s.shape_limits
+        self.controls = {
+            "alpha1": slider(self.options.get("alpha1", 0.8), lo1, hi1, description="alpha1"),
+            "alpha2": slider(self.options.get("alpha2", -0.6), lo2, hi2, description="alpha2"),
+            "alpha1_dot": slider(1.0, -1.0, 1.0, description="alpha1 rate"),
+            "alpha2_dot": slider(0.0, -1.0, 1.0, description="alpha2 rate"),
+        }
+        self.fig.tight_layout()
+
+    def update(self, **v):
+        r = np.array([v["alpha1"], v["alpha2"]])
+        rd = np.array([v["alpha1_dot"], v["alpha2_dot"]])
+        for c in self.cursors:
+            c.set(r, rd)
+        self.body.set(np.zeros(3), r)
+        if self.system.is_singular(r):
+            self.xi = np.full(3, np.nan)
+            self.vel.set(np.zeros(3), self.xi)
+            self.flag.show("singular shape: A undefined")
+            self.text.set_text("xi undefined")
+        else:
+            self.xi = self.system.body_velocity(r, rd)
+            self.flag.hide()
+            self.vel.set(np.zeros(3), self.xi)
+            self.text.set_text(_fmt(self.xi))
+        self.fig.canvas.draw_idle()
+
+    def naive_update(self, **v):
+        r = np.array([v["alpha1"], v["alpha2"]])
+        rd = np.array([v["alpha1_dot"], v["alpha2_dot"]])
+        for i, ax in enumerate(self.field_axes):
+            ax.clear()
+            _style_shape_axes(ax, self.system, ROW_LABELS[i])
+            ConnectionFieldArtist(ax, self.system, i, n=self.options.get("n", 15))
+            draw_singular_set(ax, self.system)
+            ax.plot([r[0]], [r[1]], "o", color="tab:green")
+        self.ax.clear()
+        _square(self.ax, 2.0)
+        draw_system_naive(self.ax, self.system, np.zeros(3), r)
+        if not self.system.is_singular(r):
+            xi = self.system.body_velocity(r, rd)
+            self.ax.quiver([0], [0], [xi[0]], [xi[1]], angles="xy", scale_units="xy", scale=1.0)
+        self.fig.canvas.draw_idle()
+
+
+# ======================================================================= gaits
+@register
+class GaitPanel(Panel):
+    """A circular gait drawn on the three connection fields and the motion it produces over one cycle.
+
+    Sliders: the gait's radius and centre in shape space. The world axes show the trail of the
+    body frame over one period, the body at start and at g(T), and the net displacement. A gait
+    that meets a singular shape raises the flag and hides the motion.
+    """
+
+    title = "Gaits on the connection fields"
+
+    def build(self):
+        self.system = self.options.get("system") or KinematicSnake()
+        s = self.system
+        self.title = f"Gaits: {s.name}"
+        self.fig, axes = new_figure(2, 2, figsize=(8, 7.5))
+        self.field_axes = [axes[0, 0], axes[0, 1], axes[1, 0]]
+        self.ax = axes[1, 1]
+        self.paths = []
+        for i, ax in enumerate(self.field_axes):
+            _style_shape_axes(ax, s, ROW_LABELS[i])
+            ConnectionFieldArtist(ax, s, i, n=self.options.get("n", 13), color="0.5")
+            draw_singular_set(ax, s)
+            (line,) = ax.plot([], [], color="tab:blue", lw=2)
+            (start,) = ax.plot([], [], "o", color="tab:blue", ms=5)
+            self.paths.append((line, start))
+        self.lim = self.options.get("lim", 1.3 * system_extent(s))
+        _square(self.ax, self.lim)
+        self.ax.set_title("motion over one cycle", fontsize=9)
+        self.trail = TrailArtist(self.ax, color="tab:green", lw=2)
+        self.start = SystemArtist(self.ax, s, styles={"link": dict(facecolor="0.8", alpha=0.5, edgecolor="0.5"),
+                                                       "chassis": dict(facecolor="0.8", alpha=0.5, edgecolor="0.5")})
+        self.body = SystemArtist(self.ax, s)
+        self.flag = SingularFlag(self.ax)
+        self.text = self.ax.text(0.02, 0.02, "", transform=self.ax.transAxes, family="monospace", fontsize=8)
+        (lo1, hi1), (lo2, hi2) = s.shape_limits
+        c = self.options.get("center", (0.0, 0.0))
+        self.controls = {
+            "amplitude": slider(self.options.get("amplitude", 1.0), 0.05, 2.0, description="radius"),
+            "center1": slider(c[0], lo1 / 2, hi1 / 2, description="centre alpha1"),
+            "center2": slider(c[1], lo2 / 2, hi2 / 2, description="centre alpha2"),
+        }
+        self.fig.tight_layout()
+
+    def gait(self, v):
+        return circle_gait(v["amplitude"], (v["center1"], v["center2"]))
+
+    def update(self, **v):
+        gait = self.gait(v)
+        path = gait(np.linspace(0.0, 1.0, 121))
+        for line, start in self.paths:
+            line.set_data(path[:, 0], path[:, 1])
+            start.set_data([path[0, 0]], [path[0, 1]])
+        try:
+            self.traj = trajectory(self.system, gait, 61)
+        except SingularShapeError as e:
+            self.traj = None
+            self.net = None
+            self.flag.show("gait meets a singular shape")
+            self.message = str(e)
+            self.trail.line.set_visible(False)
+            self.body.set_visible(False)
+            self.text.set_text("no motion: the connection is\nundefined on the red line")
+            self.fig.canvas.draw_idle()
+            return
+        self.flag.hide()
+        self.trail.line.set_visible(True)
+        self.body.set_visible(True)
+        self.net = self.traj.g[-1]
+        lo, hi = self.traj.g[:, :2].min(0), self.traj.g[:, :2].max(0)
+        half = max(self.lim, 0.5 * float(np.max(hi - lo)) + 0.9 * self.lim)
+        _square(self.ax, half, center=(lo + hi) / 2)
+        self.start.set(self.traj.g[0], self.traj.r[0])
+        self.trail.set(self.traj.g[:, :2])
+        self.body.set(self.traj.g[-1], self.traj.r[-1])
+        d = self.net
+        self.text.set_text(f"net displacement g(T) =\n({d[0]:+.4f}, {d[1]:+.4f}, {d[2]:+.4f})")
+        self.fig.canvas.draw_idle()
+
+    def naive_update(self, **v):
+        gait = self.gait(v)
+        path = gait(np.linspace(0.0, 1.0, 121))
+        for i, ax in enumerate(self.field_axes):
+            ax.clear()
+            _style_shape_axes(ax, self.system, ROW_LABELS[i])
+            ConnectionFieldArtist(ax, self.system, i, n=self.options.get("n", 13))
+            draw_singular_set(ax, self.system)
+            ax.plot(path[:, 0], path[:, 1], color="tab:blue")
+        self.ax.clear()
+        _square(self.ax, self.lim)
+        try:
+            g = net_displacement(self.system, gait)
+            tr = trajectory(self.system, gait, 61)
+            self.ax.plot(tr.g[:, 0], tr.g[:, 1], color="tab:green")
+            draw_system_naive(self.ax, self.system, g, tr.r[-1])
+        except SingularShapeError:
+            self.ax.set_title("singular")
+        self.fig.canvas.draw_idle()

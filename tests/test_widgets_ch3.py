@@ -1,0 +1,158 @@
+"""Headless (Agg) tests of the chapter-3 panels: set controls, check the artists moved as gm_core says."""
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+os.environ.setdefault("GM_COURSE_TESTING", "1")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+from gm_core import SE2  # noqa: E402
+from gm_core.drawing import ch3 as D  # noqa: E402
+from gm_core.locomotion import circle_gait, net_displacement  # noqa: E402
+from gm_core.systems import ALL_SYSTEMS, FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer  # noqa: E402
+from gm_core.widgets import ch3  # noqa: E402
+from gm_core.widgets.base import PANELS, all_panels  # noqa: E402
+
+CH3_PANELS = [name for name, cls in all_panels().items() if cls.__module__ == ch3.__name__]
+
+
+def outlines_at(system, g, r):
+    poses = SE2.compose(np.asarray(g, float), system.part_poses(np.asarray(r, float)))
+    return [SE2.act_on_points(pose, p.outline) for p, pose in zip(system.parts(), poses)]
+
+
+def assert_body_at(art, system, g, r, atol=1e-9):
+    for got, want in zip(art.world_outlines(), outlines_at(system, g, r)):
+        np.testing.assert_allclose(got[: len(want)], want, atol=atol)
+
+
+def test_ch3_panels_registered():
+    assert {"DiffDriveCarPanel", "AckermanCarPanel", "ConnectionFieldPanel", "GaitPanel"} <= set(CH3_PANELS)
+
+
+@pytest.mark.parametrize("name", CH3_PANELS)
+def test_update_keeps_figure_and_naive_update_runs(name):
+    p = PANELS[name]()
+    fig = p.fig
+    n_children = [len(ax.get_children()) for ax in fig.axes]
+    rng = np.random.default_rng(1)
+    for _ in range(2):
+        p.update(**p.sample_values(rng))
+    assert p.fig is fig
+    assert [len(ax.get_children()) for ax in fig.axes] == n_children  # moved in place, nothing added
+    p.naive_update(**p.values())
+
+
+def test_diff_drive_car_follows_the_exponential():
+    p = ch3.DiffDriveCarPanel()
+    p.set(wheel1_speed=1.0, wheel2_speed=2.5, duration=2.0)
+    s = p.system
+    xi = s.body_velocity([0, 0], [1.0, 2.5])
+    R, w = s.wheel_radius, s.half_width
+    np.testing.assert_allclose(xi, [R / 2 * 3.5, 0.0, R / (2 * w) * 1.5])  # (3.29)
+    g_end = SE2.exp(2.0 * xi)  # constant body velocity: g(T) = exp(T xi)
+    np.testing.assert_allclose(p.traj.g[-1], g_end, atol=1e-9)
+    assert_body_at(p.body, s, g_end, p.traj.r[-1])
+    trail = np.column_stack(p.trail.line.get_data())
+    np.testing.assert_allclose(trail[-1], g_end[:2], atol=1e-9)
+    np.testing.assert_allclose(trail[len(trail) // 2], SE2.exp(1.0 * xi)[:2], atol=1e-9)
+    np.testing.assert_allclose(p.vel.world_vector(), SE2.body_to_world(g_end, xi)[:2], atol=1e-9)
+    # equal wheel speeds: straight line along x
+    p.set(wheel1_speed=1.0, wheel2_speed=1.0)
+    np.testing.assert_allclose(np.column_stack(p.trail.line.get_data())[:, 1], 0, atol=1e-12)
+
+
+def test_ackerman_car_constant_steering_is_a_circle_and_singular_flag():
+    p = ch3.AckermanCarPanel()
+    p.set(wheel_speed=2.0, steering=0.4, steering_speed=0.0, duration=3.0)
+    s = p.system
+    xi = s.body_velocity([0, 0.4], [2.0, 0.0])
+    np.testing.assert_allclose(p.traj.g[-1], SE2.exp(3.0 * xi), atol=1e-9)
+    assert_body_at(p.body, s, SE2.exp(3.0 * xi), [6.0, 0.4])
+    # turning radius L / tan(steer) about the centre (0, L / tan(steer))
+    pts = np.column_stack(p.trail.line.get_data())
+    rho = s.wheelbase / np.tan(0.4)
+    np.testing.assert_allclose(np.hypot(pts[:, 0], pts[:, 1] - rho), rho, atol=1e-9)
+    assert not p.flag.visible
+    # steering through 90 degrees is singular: flag shown, body and trail hidden
+    p.set(steering=1.3, steering_speed=1.0, duration=3.0)
+    assert p.flag.visible and "singular" in p.message
+    assert not p.trail.line.get_visible() and not p.body.bodies[0].patch.get_visible()
+    p.set(steering=0.0, steering_speed=0.0)
+    assert not p.flag.visible and p.trail.line.get_visible()
+
+
+@pytest.mark.parametrize("system", [KinematicSnake(), FloatingSnake(), LowReSwimmer(), HighReSwimmer()],
+                         ids=lambda s: type(s).__name__)
+def test_connection_field_panel_cursor_body_and_velocity(system):
+    p = ch3.ConnectionFieldPanel(system=system)
+    r, rd = np.array([1.1, -0.7]), np.array([0.4, -0.9])
+    p.set(alpha1=r[0], alpha2=r[1], alpha1_dot=rd[0], alpha2_dot=rd[1])
+    for c in p.cursors:
+        np.testing.assert_allclose(np.ravel(c.marker.get_data()), r)
+    assert_body_at(p.body, system, np.zeros(3), r)
+    xi = -system.connection(r) @ rd
+    np.testing.assert_allclose(p.xi, xi, atol=1e-12)
+    np.testing.assert_allclose(p.vel.world_vector(), xi[:2] * p.vel.scale, atol=1e-12)
+    # the quivers show -A^i on the grid (times the display factor, where not clipped)
+    for i, f in enumerate(p.fields):
+        a1, a2, rg = D.shape_grid(system, f.n)
+        A = system.connection(rg)
+        U = np.ma.masked_invalid(-A[..., i, 0]).ravel()
+        keep = ~np.ma.getmaskarray(U) & ~f.clipped.ravel()
+        np.testing.assert_allclose(np.ma.filled(f.quiver.U, np.nan)[keep], (U * f.factor)[keep], atol=1e-12)
+
+
+def test_connection_field_panel_singular_line_of_kinematic_snake():
+    p = ch3.ConnectionFieldPanel(system=KinematicSnake())
+    p.set(alpha1=0.5, alpha2=0.5)
+    assert p.flag.visible
+    assert not p.vel.quiver.get_visible()
+    assert np.all(np.isnan(p.xi))
+    # masked (never NaN) arrows on the diagonal of the grid
+    f = p.fields[0]
+    assert np.asarray(f.quiver.Umask).any()  # matplotlib keeps the mask, fills U with 1 there
+    assert np.all(np.isfinite(f.quiver.U)) and np.all(np.isfinite(f.quiver.V))
+    # the red singular curve is drawn on every field
+    for ax in p.field_axes:
+        assert any(type(c).__name__ in ("QuadContourSet", "ContourSet") for c in ax.get_children())
+    p.set(alpha2=-0.5)
+    assert not p.flag.visible and p.vel.quiver.get_visible()
+
+
+def test_gait_panel_motion_matches_net_displacement():
+    p = ch3.GaitPanel(system=LowReSwimmer())
+    p.set(amplitude=1.2, center1=0.2, center2=-0.3)
+    g = net_displacement(p.system, circle_gait(1.2, (0.2, -0.3)))
+    np.testing.assert_allclose(p.net, g, atol=1e-8)
+    assert_body_at(p.body, p.system, p.traj.g[-1], p.traj.r[-1])
+    np.testing.assert_allclose(np.column_stack(p.trail.line.get_data())[-1], g[:2], atol=1e-8)
+    path = np.column_stack(p.paths[2][0].get_data())
+    np.testing.assert_allclose(path[0], [1.4, -0.3], atol=1e-12)
+
+
+def test_gait_panel_singular_gait_flags():
+    p = ch3.GaitPanel(system=KinematicSnake())
+    p.set(amplitude=1.0, center1=0.0, center2=0.0)
+    assert p.flag.visible and "singular" in p.message
+    assert not p.trail.line.get_visible()
+    p.set(amplitude=0.8, center1=0.4, center2=-1.0)
+    assert not p.flag.visible
+    np.testing.assert_allclose(p.net, net_displacement(p.system, circle_gait(0.8, (0.4, -1.0))), atol=1e-8)
+
+
+def test_static_figures_and_animation():
+    fig, axes, arts = D.connection_fields_figure(KinematicSnake(), n=9)
+    assert len(arts) == 3
+    fig2, axes2 = D.regimes_figure([ALL_SYSTEMS()[k] for k in ("KinematicSnake", "LowReSwimmer")], n=7)
+    assert axes2.shape == (2, 3)
+    anim, fig3, traj = D.animate_gait(LowReSwimmer(), circle_gait(1.0), n_frames=12)
+    assert traj.g.shape == (12, 3)
+    from gm_core.drawing.base import jshtml
+    html = jshtml(anim)  # plays without a kernel; shortened under the test flag
+    assert "<script" in html.data
+    import matplotlib.pyplot as plt
+    plt.close("all")
