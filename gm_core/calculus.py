@@ -40,7 +40,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validate import SingularShapeError, as_array
-from .groups import LieGroup, Rn, S1
+from .groups import LieGroup, RPlus as _RPLUS, Rn, S1
 
 __all__ = [
     "product_integral", "RunningProduct", "quotient_derivative",
@@ -427,8 +427,16 @@ def _lifted(group, g, side):
 
 
 def _euler_states(group, xi, n, side):
-    """States g_0 = e, g_{j+1} = g_j + (1/n) T_e{L,R}_{g_j} xi, j < n; shape (n+1, dim)."""
+    """States g_0 = e, g_{j+1} = g_j + (1/n) T_e{L,R}_{g_j} xi, j < n; shape (n+1, dim).
+
+    On (R+, x) the lifted actions are multiplication by g, (1.24)-(1.25), so the steps are
+    g_{j+1} = g_j (1 + xi/n): exactly the cumulative product (1.49). With n <= -xi a step
+    overshoots to g <= 0, outside the group; those values are returned as they are (they show
+    the failure of too few steps) instead of being rejected by the group's checks.
+    """
     dt = 1.0 / n
+    if isinstance(group, type(_RPLUS)):
+        return np.cumprod(np.concatenate([[1.0], np.full(n, 1.0 + dt * xi[0])]))[:, None]
     g = group.identity()
     out = np.empty((n + 1, group.dim))
     out[0] = g
@@ -436,6 +444,11 @@ def _euler_states(group, xi, n, side):
         g = g + dt * (_lifted(group, g, side) @ xi)
         out[j + 1] = g
     return out
+
+
+def _state_matrices(group, G):
+    """group.matrix(G), except on (R+, x) where overshooting Euler states may be <= 0."""
+    return G[..., None].copy() if isinstance(group, type(_RPLUS)) else group.matrix(G)
 
 
 def _taylor_sums(A, n):
@@ -476,7 +489,7 @@ def _path_closed(group, xi, n, side):
 def _path_euler(group, xi, n, side):
     s = np.arange(n + 1) / n
     G = _euler_states(group, xi, n, side)
-    return ExpPath("euler", side, n, s, group.matrix(G), G, _geodesic_matrices(group, xi, s))
+    return ExpPath("euler", side, n, s, _state_matrices(group, G), G, _geodesic_matrices(group, xi, s))
 
 
 def _path_product(group, xi, n, side):
@@ -523,7 +536,7 @@ def exp_history(group, xi, n=DEFAULT_N, method="product", side="left"):
         eye = np.eye(A.shape[-1])
         mats = np.stack([np.linalg.matrix_power(eye + A / m, int(m)) for m in ns])
     else:
-        mats = group.matrix(np.stack([_euler_states(group, xi, int(m), side)[-1] for m in ns]))
+        mats = _state_matrices(group, np.stack([_euler_states(group, xi, int(m), side)[-1] for m in ns]))
     return ExpHistory(method=method, side=side, group=group, xi=xi, n=ns, matrices=mats,
                       exact=exact, exact_matrix=exact_matrix)
 

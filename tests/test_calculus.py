@@ -221,6 +221,19 @@ def test_rplus_euler_equals_product_and_both_tend_to_e():
     assert abs(ta.elements[0, 0] - math.e) < 1e-15 * 10
 
 
+def test_rplus_euler_follows_the_lifted_action_and_may_overshoot():
+    # independent route: step g += dt * T_e L_g xi with the group's own lifted action (1.24)
+    g, e = RPlus.identity(), RPlus.identity()
+    for _ in range(25):
+        g = g + (1 / 25) * (RPlus.left_lifted_action(g, e) @ np.array([0.7]))
+    assert np.isclose(C.exp_euler(RPlus, [0.7], 25).elements[0, 0], g[0], rtol=1e-13)
+    # too few steps for a fast decay overshoot below zero, out of (R+, x): reported, not rejected
+    h = C.exp_euler(RPlus, [-3.0], [1, 2, 4, 64])
+    assert np.allclose(h.elements[:, 0], [-2.0, 0.25, 1 / 256, (1 - 3 / 64) ** 64])
+    assert h.error[0] > 2 and h.error[-1] < 5e-3
+    assert np.allclose(h.path(1).elements[:, 0], [1.0, -2.0])
+
+
 @pytest.mark.parametrize("name", sorted(ALL_GROUPS))
 @pytest.mark.parametrize("side", ["left", "right"])
 def test_four_ways_agree_on_every_group(name, side):
