@@ -1,0 +1,183 @@
+"""Chapter 1 panels: the scenes of :mod:`gm_core.drawing.ch1` with sliders.
+
+Every panel is a thin wrapper: ``build`` makes the scene and the sliders, ``update`` asks the
+scene to move its artists and calls ``draw_idle``, ``naive_update`` is the clear-and-replot
+baseline used by ``benchmarks/widget_latency.py``. The scene is ``panel.scene``; its artists are
+what the headless tests in ``tests/test_widgets_ch1.py`` read back.
+"""
+from __future__ import annotations
+
+import ipywidgets as W
+import numpy as np
+
+from ..drawing import ch1 as D
+from .base import Panel, register, slider
+
+__all__ = [
+    "show", "TorusPathPanel", "LoopsPanel", "PoleChartPanel",
+    "GroupAxiomsPanel", "SlideRulePanel", "CircleIsoPanel", "LeftRightActionPanel",
+    "ForwardLeftPanel", "BodyPointsPanel",
+]
+
+PI = np.pi
+
+
+def show(fig):
+    """Display a static figure under any backend (the ipympl canvas, or a PNG otherwise)."""
+    from IPython.display import display
+
+    canvas = fig.canvas
+    if isinstance(canvas, W.DOMWidget):
+        display(canvas)
+    else:
+        display(fig)
+
+
+def int_slider(value, lo, hi, description=""):
+    return W.IntSlider(value=value, min=lo, max=hi, step=1, description=description,
+                       continuous_update=True, style={"description_width": "initial"})
+
+
+class ScenePanel(Panel):
+    """A Panel whose figure is a :class:`gm_core.drawing.ch1.Scene` (``scene_class``)."""
+
+    scene_class = None
+
+    def controls_spec(self):
+        raise NotImplementedError
+
+    def build(self):
+        self.scene = self.scene_class(**self.options)
+        self.fig = self.scene.fig
+        self.controls = self.controls_spec()
+
+    def update(self, **values):
+        self.scene.set(**values)
+        self.fig.canvas.draw_idle()
+
+    def naive_update(self, **values):
+        self.scene.replot(**values)
+        self.fig.canvas.draw_idle()
+
+
+# ====================================================================== 1.1 configuration spaces
+@register
+class TorusPathPanel(ScenePanel):
+    """A straight line on the flattened torus is a winding path on the torus (figs 1.5, 1.16)."""
+
+    title = "Torus: flattened view with glued edges"
+    scene_class = D.TorusPathScene
+
+    def controls_spec(self):
+        return {"a0": slider(0.5, 0.0, 2 * PI, description="start a₀"),
+                "b0": slider(1.0, 0.0, 2 * PI, description="start b₀"),
+                "slope": slider(0.5, -3.0, 3.0, description="slope db/da"),
+                "turns": slider(2.0, 0.1, 4.0, description="turns in a")}
+
+
+@register
+class LoopsPanel(ScenePanel):
+    """Fig. 1.6: shrinking a loop on the sphere works; on the torus it cannot."""
+
+    title = "Loops on the torus and on the sphere (fig. 1.6)"
+    scene_class = D.LoopsScene
+
+    def controls_spec(self):
+        return {"s": slider(0.0, 0.0, 1.0, description="shrink s")}
+
+
+@register
+class PoleChartPanel(ScenePanel):
+    """Walk towards a pole: the latitude/longitude chart's coordinate speed blows up there."""
+
+    title = "Charts on the sphere and the pole singularity"
+    scene_class = D.PoleChartScene
+
+    def controls_spec(self):
+        return {"lat_deg": slider(45.0, -90.0, 90.0, step=0.5, description="latitude φ (°)",
+                                  readout_format=".1f"),
+                "heading_deg": slider(45.0, 0.0, 180.0, step=1.0, description="heading from north (°)",
+                                      readout_format=".0f")}
+
+
+# ============================================================================ 1.2-1.3 groups
+@register
+class GroupAxiomsPanel(ScenePanel):
+    """Group axioms (1.ii)-(1.v) checked on fresh random elements of every group."""
+
+    title = "Group axioms on random elements"
+    scene_class = D.GroupAxiomsScene
+
+    def controls_spec(self):
+        return {"seed": int_slider(0, 0, 99, description="random seed"),
+                "scale": slider(1.0, 0.1, 5.0, description="element size ×")}
+
+
+@register
+class SlideRulePanel(ScenePanel):
+    """(R+, ×) ↔ (R, +) through log: a slide rule, (1.xii)."""
+
+    title = "A slide rule multiplies by adding logarithms"
+    scene_class = D.SlideRuleScene
+
+    def controls_spec(self):
+        return {"a": slider(2.0, 1.0, 10.0, description="a"),
+                "b": slider(3.0, 1.0, 10.0, description="b")}
+
+
+@register
+class CircleIsoPanel(ScenePanel):
+    """(S¹, + mod 1) ↔ SO(2) through S1(1.0).matrix, (1.xiv)-(1.xvi)."""
+
+    title = "Adding on the circle = multiplying rotations"
+    scene_class = D.CircleIsoScene
+
+    def controls_spec(self):
+        return {"a1": slider(0.2, 0.0, 0.99, description="a₁ (cycles)"),
+                "a2": slider(0.35, 0.0, 0.99, description="a₂ (cycles)")}
+
+
+def _se2_sliders(x, y, theta, names=("x", "y", "theta"), lim=2.5, labels=("x", "y", "θ")):
+    return {names[0]: slider(x, -lim, lim, description=labels[0]),
+            names[1]: slider(y, -lim, lim, description=labels[1]),
+            names[2]: slider(theta, -PI, PI, description=labels[2])}
+
+
+@register
+class LeftRightActionPanel(ScenePanel):
+    """Figs. 1.8-1.9: left action h∘g and right action g∘h of SE(2)."""
+
+    title = "SE(2): left action (move by h) vs right action (h relative to g)"
+    scene_class = D.LeftRightActionScene
+
+    def controls_spec(self):
+        c = _se2_sliders(1.5, 0.5, 0.5, labels=("g: x", "g: y", "g: θ"))
+        c.update(_se2_sliders(-1.0, 1.0, 0.9, names=("u", "v", "beta"), labels=("h: u", "h: v", "h: β")))
+        return c
+
+
+@register
+class ForwardLeftPanel(ScenePanel):
+    """Fig. 1.10: repeating a step in (R²×S¹, +) and in SE(2)."""
+
+    title = "“Forward and to the left”, again and again (fig. 1.10)"
+    scene_class = D.ForwardLeftScene
+
+    def controls_spec(self):
+        c = _se2_sliders(1.0, 1.0, PI / 2, lim=2.0, labels=("g: x", "g: y", "g: θ"))
+        c["n"] = int_slider(2, 1, D.ForwardLeftScene.N_MAX, description="steps n")
+        return c
+
+
+@register
+class BodyPointsPanel(ScenePanel):
+    """(1.11)-(1.12): a point fixed in the body and its world position."""
+
+    title = "Points on a rigid body"
+    scene_class = D.BodyPointsScene
+
+    def controls_spec(self):
+        c = _se2_sliders(0.5, 0.3, 0.6, lim=2.0, labels=("g: x", "g: y", "g: θ"))
+        c["px"] = slider(0.6, -0.8, 0.8, description="body pₓᵇ")
+        c["py"] = slider(0.3, -0.4, 0.4, description="body p_yᵇ")
+        return c
