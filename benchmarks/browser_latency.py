@@ -81,9 +81,8 @@ def wait_still(nbp, sel, still_ms=300, timeout=20.0):
     raise browserlab.BrowserTestError(f"{nbp.relpath}: canvas/kernel did not settle within {timeout} s")
 
 
-def measure(context, server, relpath, moves=20, per_move_timeout=15.0):
-    nbp = browserlab.NotebookPage(context, server, relpath)
-    try:
+def measure(lab, relpath, moves=20, per_move_timeout=15.0):
+    with browserlab.NotebookPage(lab, relpath) as nbp:
         nbp.open()
         nbp.run_all()
         nbp.check_no_errors()
@@ -120,8 +119,6 @@ def measure(context, server, relpath, moves=20, per_move_timeout=15.0):
             wait_still(nbp, sel)
         nbp.check_no_errors()
         return {"notebook": relpath, "slider": name, "lat": lat, "misses": misses}
-    finally:
-        nbp.close()
 
 
 def pct(xs, q):
@@ -158,14 +155,16 @@ def main(argv=None):
         server = browserlab.LabServer(Path(tmp), extra_notebooks={browserlab.SELFCHECK_PATH: browserlab.selfcheck_notebook()})
         with server, sync_playwright() as pw:
             context = browserlab.launch_chromium(pw, Path(tmp) / "profile")
+            lab = browserlab.LabBrowser(context, server)
             try:
                 for nb in nbs:
-                    r = measure(context, server, nb, moves=args.moves)
+                    r = measure(lab, nb, moves=args.moves)
                     if nb == browserlab.SELFCHECK_PATH:
                         r["notebook"] = "(minimal panel)"
                     rows.append(r)
                     print(f"  measured {r['notebook']}: {len(r['lat'])} moves", file=sys.stderr)
             finally:
+                lab.close()
                 context.close()
     print(f"\nslider key press -> canvas pixels changed, headless Chromium + JupyterLab ({args.moves} moves each)\n")
     hdr = f"{'notebook':<34} {'slider':<14} {'n':>3} {'median ms':>10} {'p95 ms':>8} {'max ms':>8} {'missed':>6}"

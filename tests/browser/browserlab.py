@@ -307,6 +307,19 @@ _STATUS_JS = r"""
   out.kernel = k ? k.status : null;
   out.kernelName = k ? k.name : null;
   out.connection = k ? k.connectionStatus : null;
+  // Errors raised in widget callbacks (a slider move) reach the kernel's iopub channel but not
+  // the cell's output area (JupyterLab sends them to the log console): listen to iopub directly.
+  window.__gmKernelErrors = window.__gmKernelErrors || [];
+  if (k && !k.__gmHooked) {
+    k.__gmHooked = true;
+    k.iopubMessage.connect((_, msg) => {
+      const t = msg.header.msg_type, c = msg.content || {};
+      if (t === 'error') window.__gmKernelErrors.push({path, text: `${c.ename}: ${c.evalue}\n` + (c.traceback || []).join('\n').replace(/\x1b\[[0-9;]*m/g, '').slice(-1500)});
+      else if (t === 'stream' && c.name === 'stderr' && String(c.text).includes('Traceback'))
+        window.__gmKernelErrors.push({path, text: String(c.text).slice(-1500)});
+    });
+  }
+  for (const e of window.__gmKernelErrors) if (e.path === path) out.errors.push('kernel: ' + e.text);
   out.ncode = 0; out.executed = 0; out.running = 0; out.counts = [];
   panel.content.widgets.forEach((cell, i) => {
     if (cell.model.type !== 'code') return;
@@ -428,22 +441,96 @@ class Timings:
         return time.monotonic()
 
 
-class NotebookPage:
-    """One notebook open in its own page of the shared browser context."""
+class LabBrowser:
+    """One browser page running the JupyterLab app, reused for one notebook after another.
 
-    def __init__(self, context, server: LabServer, relpath: str, poll: float = 0.15):
+    Loading the app costs a few seconds, so notebooks after the first are opened in the running
+    app (``docmanager:open``) and closed again (kernel shut down, panel disposed). After any
+    failure the page is thrown away and the next notebook starts from a fresh page load.
+    """
+
+    def __init__(self, context, server: LabServer):
         self.context = context
         self.server = server
+        self.page = None
+        self.console_errors: list[str] = []
+
+    def open(self, relpath: str, timeout: float) -> tuple:
+        """Show ``relpath`` in the app; returns (page, fresh_page_load)."""
+        if self.page is not None and not self.page.is_closed():
+            try:
+                self.page.evaluate("""async (p) => { const app = window.jupyterapp;
+                    await app.commands.execute('docmanager:open', {path: p}); return true; }""", relpath)
+                return self.page, False
+            except Exception:
+                self.discard()
+        page = self.context.new_page()
+        page.on("console", lambda m: m.type == "error" and self.console_errors.append(m.text[:300]))
+        page.on("pageerror", lambda e: self.console_errors.append(f"pageerror: {e}"[:300]))
+        page.on("dialog", lambda d: d.accept())  # beforeunload etc.
+        page.set_default_timeout(30_000)
+        self.page = page
+        page.goto(self.server.lab_url(relpath), wait_until="domcontentloaded", timeout=timeout * 1000)
+        return page, True
+
+    def close_notebook(self, relpath: str):
+        """Shut the notebook's kernel down and dispose of its panel (no save dialog)."""
+        if self.page is None or self.page.is_closed():
+            return
+        try:
+            self.page.evaluate("""async (p) => { const app = window.jupyterapp;
+                for (const w of [...app.shell.widgets('main')]) {
+                  if (w.context && w.context.path === p) {
+                    try { await w.sessionContext.shutdown(); } catch (e) {}
+                    w.context.model.dirty = false; w.dispose();
+                  }
+                }
+                return document.querySelectorAll('.jp-Dialog').length; }""", relpath)
+        except Exception:
+            self.discard()
+
+    def discard(self):
+        if self.page is not None:
+            try:
+                self.page.close()
+            except Exception:
+                pass
+        self.page = None
+
+    def close(self):
+        self.discard()
+
+
+class NotebookPage:
+    """One notebook open in the shared JupyterLab page."""
+
+    def __init__(self, lab: LabBrowser, relpath: str, poll: float = 0.15):
+        self.lab = lab
+        self.server = lab.server
         self.relpath = relpath
         self.poll = poll
         self.page = None
         self.status = {}
+        self.failed = False
         self.dialogs_dismissed: list[str] = []
-        self.console_errors: list[str] = []
+        self._console_start = len(lab.console_errors)
         self.timings = Timings()
+
+    @property
+    def console_errors(self):
+        return self.lab.console_errors[self._console_start:]
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, exc_type, exc, tb):
+        if exc_type is not None:
+            self.failed = True
+        self.close()
 
     # -- plumbing ----------------------------------------------------------------------------
     def fail(self, what: str):
+        self.failed = True
         shot = self.screenshot()
         extra = ""
         if self.console_errors:
@@ -506,14 +593,9 @@ class NotebookPage:
     # -- steps ---------------------------------------------------------------------------
     def open(self, timeout: float = 90.0):
         t0 = time.monotonic()
-        self.page = self.context.new_page()
-        self.page.on("console", lambda m: m.type == "error" and self.console_errors.append(m.text[:300]))
-        self.page.on("pageerror", lambda e: self.console_errors.append(f"pageerror: {e}"[:300]))
-        self.page.on("dialog", lambda d: d.accept())  # beforeunload etc.
-        self.page.set_default_timeout(30_000)
-        self.page.goto(self.server.lab_url(self.relpath), wait_until="domcontentloaded",
-                       timeout=timeout * 1000)
-        t0 = self.timings.mark("load page", t0)
+        self.page, fresh = self.lab.open(self.relpath, timeout)
+        if fresh:
+            t0 = self.timings.mark("load page", t0)
         self.wait_until(lambda s: s["phase"] == "panel", "JupyterLab to show the notebook", timeout)
         t0 = self.timings.mark("lab ready", t0)
         self.wait_until(lambda s: s["phase"] == "panel" and s.get("ready") and s.get("kernel") == "idle"
@@ -622,18 +704,16 @@ class NotebookPage:
         return res
 
     def close(self):
-        if self.page is not None:
-            try:
-                self.page.close()
-            except Exception:
-                pass
+        if self.failed:
+            self.lab.discard()  # start the next notebook from a fresh page load
+        else:
+            self.lab.close_notebook(self.relpath)
         self.server.delete_sessions()
 
 
-def check_interactive_notebook(context, server: LabServer, relpath: str, change_timeout: float = 20.0):
+def check_interactive_notebook(lab: LabBrowser, relpath: str, change_timeout: float = 20.0):
     """The whole browser check of one chapter notebook; returns (SliderResult, timings dict)."""
-    nbp = NotebookPage(context, server, relpath)
-    try:
+    with NotebookPage(lab, relpath) as nbp:
         nbp.open()
         nbp.run_all()
         nbp.check_no_errors()
@@ -646,8 +726,6 @@ def check_interactive_notebook(context, server: LabServer, relpath: str, change_
                      f"slider ({res.detail}: readout {res.readout_before!r} -> {res.readout_after!r})")
         nbp.check_no_errors()
         return res, nbp.timings.phases
-    finally:
-        nbp.close()
 
 
 # --------------------------------------------------------------------------------------------

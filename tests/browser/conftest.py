@@ -63,6 +63,14 @@ def browser_context(chromium, tmp_path_factory, request):
     return context
 
 
+@pytest.fixture(scope="session")
+def lab(lab_server, browser_context, request):
+    """The JupyterLab page shared by the notebooks (reloaded after a failure)."""
+    lab = browserlab.LabBrowser(browser_context, lab_server)
+    request.addfinalizer(lab.close)
+    return lab
+
+
 @pytest.fixture
 def record_timing(request):
     """Store per-notebook phase timings; printed in the terminal summary."""

@@ -20,17 +20,14 @@ pytestmark = pytest.mark.browser
 NOTEBOOKS = browserlab.interactive_notebooks()
 
 
-def test_detector_tells_a_live_panel_from_a_dead_one(lab_server, browser_context, record_timing):
-    page = browserlab.NotebookPage(browser_context, lab_server, browserlab.SELFCHECK_PATH)
-    try:
+def test_detector_tells_a_live_panel_from_a_dead_one(lab, record_timing):
+    with browserlab.NotebookPage(lab, browserlab.SELFCHECK_PATH) as page:
         page.open()
         page.run_all()
         page.check_no_errors()
         live = page.move_slider(page.find_panel(0), change_timeout=20)
         dead = page.move_slider(page.find_panel(1), change_timeout=4)
         page.check_no_errors()
-    finally:
-        page.close()
     record_timing("(self-check notebook)", page.timings.phases)
     assert live.slider_moved and live.changed, f"working panel not detected as changing: {live}"
     assert dead.slider_moved, f"the broken panel's slider did not move, so the check proves nothing: {dead}"
@@ -38,8 +35,8 @@ def test_detector_tells_a_live_panel_from_a_dead_one(lab_server, browser_context
 
 
 @pytest.mark.parametrize("notebook", NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])
-def test_interactive_notebook_runs_and_responds(notebook, lab_server, browser_context, record_timing):
+def test_interactive_notebook_runs_and_responds(notebook, lab, record_timing):
     relpath = notebook.relative_to(browserlab.ROOT).as_posix()
-    result, phases = browserlab.check_interactive_notebook(browser_context, lab_server, relpath)
+    result, phases = browserlab.check_interactive_notebook(lab, relpath)
     record_timing(relpath, phases)
     assert result.changed and result.slider_moved, result
