@@ -26,7 +26,9 @@ Conversely the right-invariant flow g_dot = xi_s^ g is the *left* product integr
 function :func:`product_integral` uses the product-integral names (its ``side`` says where new
 factors go). From the identity both exponential flows reach the same element exp(xi); the
 intermediate values of the Euler integration differ (see :meth:`ExpHistory.path`), while the
-cumulative products of a constant matrix coincide (powers of one matrix commute).
+cumulative products of a constant matrix coincide (powers of one matrix commute). (Exercise 1.4a/b
+as drafted pair the body velocity xi with the right-invariant field and xi_s with the left one,
+the reverse of (1.46)-(1.47); this module follows (1.46)-(1.47).)
 
 The binomial step between (1.50) and (1.51) needs the coefficient C(n, k) = n! / (k! (n - k)!);
 the draft prints n^k / k!, which is only its large-n limit (see :func:`binomial_terms`).

@@ -635,30 +635,34 @@ class _SE2(LieGroup):
     def Ad(self, g):
         """Ad_g = [[cos th, -sin th, y], [sin th, cos th, -x], [0, 0, 1]], book (1.43)."""
         g = self._element(g)
-        x, y, t = g[..., 0], g[..., 1], g[..., 2]
-        c, s = np.cos(t), np.sin(t)
-        M = np.zeros(g.shape[:-1] + (3, 3))
-        M[..., 0, 0] = c
-        M[..., 0, 1] = -s
-        M[..., 0, 2] = y
-        M[..., 1, 0] = s
+        M = np.empty(g.shape[:-1] + (3, 3))
+        c = np.cos(g[..., 2], out=M[..., 0, 0])     # written straight into the matrix
+        s = np.sin(g[..., 2], out=M[..., 1, 0])
+        np.negative(s, out=M[..., 0, 1])
+        M[..., 0, 2] = g[..., 1]
         M[..., 1, 1] = c
-        M[..., 1, 2] = -x
+        np.negative(g[..., 0], out=M[..., 1, 2])
+        M[..., 2, :2] = 0.0
         M[..., 2, 2] = 1.0
         return M
 
     def Ad_inv(self, g):
         """Ad_g^-1 = [[c, s, x s - y c], [-s, c, x c + y s], [0, 0, 1]], book (1.45)."""
         g = self._element(g)
-        x, y, t = g[..., 0], g[..., 1], g[..., 2]
-        c, s = np.cos(t), np.sin(t)
-        M = np.zeros(g.shape[:-1] + (3, 3))
-        M[..., 0, 0] = c
-        M[..., 0, 1] = s
-        M[..., 0, 2] = x * s - y * c
-        M[..., 1, 0] = -s
+        x, y = g[..., 0], g[..., 1]
+        M = np.empty(g.shape[:-1] + (3, 3))
+        c = np.cos(g[..., 2], out=M[..., 0, 0])     # written straight into the matrix
+        s = np.sin(g[..., 2], out=M[..., 0, 1])
+        np.negative(s, out=M[..., 1, 0])
         M[..., 1, 1] = c
-        M[..., 1, 2] = x * c + y * s
+        m02, m12 = M[..., 0, 2], M[..., 1, 2]
+        np.multiply(x, s, out=m02)                  # same roundings as x s - y c and x c + y s
+        tmp = np.multiply(y, c, out=np.empty(g.shape[:-1]))
+        m02 -= tmp
+        np.multiply(x, c, out=m12)
+        np.multiply(y, s, out=tmp)
+        m12 += tmp
+        M[..., 2, :2] = 0.0
         M[..., 2, 2] = 1.0
         return M
 
