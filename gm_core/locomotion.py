@@ -30,7 +30,7 @@ from .groups import SE2, matvec
 
 __all__ = [
     "connection_from_pfaffian", "connection_from_mass_matrix", "metric_from_jacobians",
-    "pfaffian_determinant", "body_velocity", "Gait", "circle_gait", "as_gait", "check_gait",
+    "pfaffian_determinant", "body_velocity", "connection_curl", "Gait", "circle_gait", "as_gait", "check_gait",
     "net_displacement", "trajectory", "Trajectory", "se2_bracket", "SingularShapeError",
 ]
 
@@ -150,6 +150,20 @@ def body_velocity(system, r, r_dot):
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     r_dot = as_array(r_dot, "r_dot", (n,), what=f" (a shape velocity of {system.name})")
     return -matvec(system.connection(r), r_dot)
+
+
+def connection_curl(system, r, h=1e-5):
+    """Scalar curl (..., 3) of each connection row over a 2-D shape space, by central differences.
+
+    For row i, ``d A_i2 / d alpha1 - d A_i1 / d alpha2``. It vanishes where the row is locally
+    the gradient of a function of shape (an exact one-form, box on one-forms (3.xvii)); only then
+    does a global contour plot of that row make sense.
+    """
+    r = as_array(r, "r", (2,), what=" (a point of a 2-D shape space)")
+    e1, e2 = np.array([h, 0.0]), np.array([0.0, h])
+    dA1 = (system.connection(r + e1) - system.connection(r - e1)) / (2 * h)
+    dA2 = (system.connection(r + e2) - system.connection(r - e2)) / (2 * h)
+    return dA1[..., :, 1] - dA2[..., :, 0]
 
 
 def se2_bracket(xi1, xi2):

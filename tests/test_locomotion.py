@@ -257,3 +257,15 @@ def test_gait_touching_singular_line_raises():
 def test_nonsingular_systems_never_raise():
     for name in ["DifferentialDrive", "FloatingSnake", "LowReSwimmer", "HighReSwimmer"]:
         net_displacement(ALL_SYSTEMS()[name], circle_gait(2.5, (0.0, 0.0)))
+
+
+def test_connection_curl():
+    from gm_core.locomotion import connection_curl
+    assert np.allclose(connection_curl(DifferentialDrive(0.3, 0.7), RNG.uniform(-3, 3, (5, 2))), 0)
+    s = KinematicSnake((1.0, 0.8, 1.2))
+    r = np.array([0.7, -0.6])
+    h = 1e-4
+    f = s.connection_closed_form
+    ref = ((f(r + [h, 0]) - f(r - [h, 0]))[:, 1] - (f(r + [0, h]) - f(r - [0, h]))[:, 0]) / (2 * h)
+    np.testing.assert_allclose(connection_curl(s, r), ref, rtol=1e-6, atol=1e-9)
+    assert abs(connection_curl(s, r)[2]) > 0.1

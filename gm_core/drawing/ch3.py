@@ -18,7 +18,7 @@ from .base import BodyArtist, FrameArtist, SingularFlag, TrailArtist, animate, n
 
 __all__ = ["PART_STYLES", "SystemArtist", "ConnectionFieldArtist", "ShapeCursorArtist", "VelocityArtist",
            "shape_grid", "connection_field", "system_extent", "draw_singular_set", "draw_system_naive",
-           "connection_fields_figure", "regimes_figure", "animate_gait", "ROW_LABELS"]
+           "connection_fields_figure", "regimes_figure", "poor_pictures_figure", "animate_gait", "ROW_LABELS"]
 
 PART_STYLES = {
     "chassis": dict(facecolor="tab:blue", alpha=0.35, edgecolor="k"),
@@ -232,6 +232,51 @@ def regimes_figure(systems, n=13, figsize=(9, 11)):
             _style_shape_axes(ax, s, f"{s.name}: {ROW_LABELS[i]}")
             ConnectionFieldArtist(ax, s, i, n=n)
             draw_singular_set(ax, s)
+    fig.tight_layout()
+    return fig, axes
+
+
+def poor_pictures_figure(system, row=2, n=6, figsize=(11, 3.6)):
+    """Three pictures of one connection row: a plane field, local contour lines, and arrows.
+
+    (a) at each grid shape r0, a small tilted square: the graph of the linear function
+    r_dot -> <-A^row(r0), r_dot>; (b) at each grid shape, three short parallel segments along which
+    that linear function is constant, spaced inversely to its gain; (c) the arrow field -A^row.
+    Singular grid shapes are skipped. Returns (fig, axes).
+    """
+    fig, axes = new_figure(1, 3, figsize=figsize)
+    axes = list(axes)
+    axes[0].remove()
+    axes[0] = fig.add_subplot(1, 3, 1, projection="3d")
+    a1, a2, U, V = connection_field(system, row, n)
+    (lo1, hi1), (lo2, hi2) = system.shape_limits
+    h = 0.35 * min(hi1 - lo1, hi2 - lo2) / n
+    big = float(np.ma.max(np.ma.sqrt(U ** 2 + V ** 2))) or 1.0
+    s = np.linspace(-h, h, 2)
+    S1, S2 = np.meshgrid(s, s)
+    for k in np.ndindex(a1.shape):
+        if np.ma.is_masked(U[k]) or np.ma.is_masked(V[k]):
+            continue
+        u, v = float(U[k]), float(V[k])
+        axes[0].plot_surface(a1[k] + S1, a2[k] + S2, (u * S1 + v * S2) / big, color="tab:blue", alpha=0.6,
+                             linewidth=0.3, edgecolor="k")
+        m = np.hypot(u, v)
+        if m > 0:
+            t = np.array([-v, u]) / m  # along a level line of the local linear function
+            nrm = np.array([u, v]) / m
+            gap = min(h, 0.25 * h * big / m)
+            for j in (-1, 0, 1):
+                c = np.array([a1[k], a2[k]]) + j * gap * nrm
+                axes[1].plot([c[0] - h * t[0], c[0] + h * t[0]], [c[1] - h * t[1], c[1] + h * t[1]],
+                             color="tab:purple", lw=1)
+    axes[0].set(xlabel=r"$\alpha_1$", ylabel=r"$\alpha_2$", title="(a) plane field")
+    axes[0].title.set_fontsize(9)
+    for ax, title in zip(axes[1:], ["(b) local level lines", "(c) connection vector field"]):
+        _style_shape_axes(ax, system, title)
+    ConnectionFieldArtist(axes[2], system, row, n=n)
+    for ax in axes[1:]:
+        draw_singular_set(ax, system)
+    fig.suptitle(f"{system.name}, row {ROW_LABELS[row]}", fontsize=10)
     fig.tight_layout()
     return fig, axes
 
