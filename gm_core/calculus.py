@@ -13,6 +13,7 @@ exp_taylor                  partial sums  sum_{k<n} A^k / k!                    
 exp_product                 cumulative product (I + A/n)^n                              (1.49)
 exp_euler                   n Euler steps along the invariant field of xi               (1.46), (1.47)
 exp_four_ways               all four at once, as a dict                                 ex. 1.4d
+se2_exp_study               every method and side for xi = (1, 0, thetadot), several rates  ex. 1.4d
 ==========================  ==========================================================  =============
 
 Left and right
@@ -48,7 +49,7 @@ __all__ = [
     "product_integral", "RunningProduct", "quotient_derivative",
     "ExpHistory", "ExpPath", "exp_closed_form", "exp_taylor", "exp_product", "exp_euler",
     "exp_four_ways", "exp_history", "convergence_order", "binomial_terms", "element_from_matrix",
-    "EXP_METHODS",
+    "se2_exp_study", "EXP_METHODS",
 ]
 
 EXP_METHODS = ("closed", "taylor", "product", "euler")
@@ -568,3 +569,23 @@ def exp_four_ways(group, xi, n=DEFAULT_N, side="left"):
     """``{"closed", "taylor", "product", "euler"} -> ExpHistory`` for one xi: exercise 1.4d."""
     return {m: exp_history(group, xi, n, m, side) for m in EXP_METHODS}
 
+
+
+def se2_exp_study(thetadots=(0.5, 1.0, 2.0, 4.0), n=DEFAULT_N, speed=1.0):
+    """Exercise 1.4d in one call: every method and side for xi = (speed, 0, thetadot).
+
+    Returns ``{side: {method: [ExpHistory for each thetadot]}}`` with sides ``"left"`` and
+    ``"right"`` and methods :data:`EXP_METHODS`, all on SE(2) with the same ``n``. The fitted
+    orders (``h.order()``) are about 1 for Euler and cumulative products; Taylor errors fall faster
+    than any power of n, and more slowly (in n) the larger |thetadot| is.
+    """
+    from .groups import SE2
+
+    td = as_array(thetadots, "thetadots", what=" (rotation rates)")
+    if td.ndim > 1:
+        raise ValueError(f"thetadots must be a number or a 1-D array; got shape {td.shape}")
+    speed = _check_scalar(speed, "speed")
+    _check_n_list(n)
+    xis = [np.array([speed, 0.0, w]) for w in np.atleast_1d(td)]
+    return {side: {m: [exp_history(SE2, xi, n, m, side) for xi in xis] for m in EXP_METHODS}
+            for side in _SIDES}

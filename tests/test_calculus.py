@@ -296,6 +296,20 @@ def test_taylor_and_closed_paths():
     assert np.allclose(cp.elements, SE2.exp(cp.s[:, None] * xi))
 
 
+def test_se2_exp_study_shapes_and_orders():
+    study = C.se2_exp_study([0.5, 3.0], n=[32, 64, 128])
+    assert set(study) == {"left", "right"}
+    for side, methods in study.items():
+        assert set(methods) == set(C.EXP_METHODS)
+        for h, w in zip(methods["euler"], [0.5, 3.0]):
+            assert np.allclose(h.xi, [1.0, 0.0, w]) and h.side == side
+            assert 0.9 < h.order() < 1.1
+        # faster rotation, bigger error for the same n (first-order constant grows with |w|)
+        assert methods["product"][1].error[-1] > methods["product"][0].error[-1]
+    with pytest.raises(ValueError, match="thetadots"):
+        C.se2_exp_study(np.ones((2, 2)))
+
+
 @HYP
 @given(se2_xi())
 def test_taylor_series_equals_closed_form_property(xi):
