@@ -268,4 +268,4 @@ def test_connection_curl():
     f = s.connection_closed_form
     ref = ((f(r + [h, 0]) - f(r - [h, 0]))[:, 1] - (f(r + [0, h]) - f(r - [0, h]))[:, 0]) / (2 * h)
     np.testing.assert_allclose(connection_curl(s, r), ref, rtol=1e-6, atol=1e-9)
-    assert abs(connection_curl(s, r)[2]) > 0.1
+    assert abs(connection_curl(s, r)[0]) > 0.1  # the forward row is not exact
