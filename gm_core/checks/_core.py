@@ -449,8 +449,6 @@ class TuplePart(Part):
             raise Unattempted()
         if isinstance(answer, dict):
             missing = [lbl for lbl in labels if lbl not in answer]
-            if missing and all(is_starter(answer.get(lbl)) for lbl in labels):
-                raise Unattempted()
             if missing:
                 raise Wrong(f"your dict is missing the key(s) {', '.join(missing)}.")
             values = [answer[lbl] for lbl in labels]

@@ -292,9 +292,12 @@ def _helix_inputs():
 
 def _d_methods_judge(answer):
     keys = ("euler_left", "euler_right", "product", "taylor")
-    if not isinstance(answer, dict):
+    if not isinstance(answer, dict) or not answer:
         raise Wrong("give a dict {'euler_left': f, 'euler_right': f, 'product': f, 'taylor': f} of "
                     "functions f(xi, n).")
+    missing = [k for k in keys if k not in answer]
+    if missing:
+        raise Wrong(f"your dict has no entry for {', '.join(repr(k) for k in missing)}.")
     if all(is_starter(answer.get(k)) for k in keys):
         raise Unattempted()
     for k in keys:

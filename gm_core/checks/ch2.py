@@ -55,6 +55,9 @@ def _judge_2_1(answer):
         raise Wrong(f"your answer is {describe(answer)}; give a pair (f1, f2) of constraint functions.")
     if all(is_starter(a) for a in answer):
         raise Unattempted()
+    for label, a in zip(("f1", "f2"), answer):
+        if is_starter(a):
+            raise Wrong(f"{label} is still None; give both constraint functions.")
     f1 = _scalar_fn(answer[0], "f1")
     f2 = _scalar_fn(answer[1], "f2")
     rng = np.random.default_rng(21)

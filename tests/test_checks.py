@@ -1,0 +1,188 @@
+"""gm_core.checks: every checker passes the reference, fails plausible wrong answers with a message,
+calls the untouched starter "unattempted", and turns junk (exceptions, NaN, wrong types and shapes)
+into a verdict instead of a traceback. Also progress() and the widgets, headless."""
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from gm_core import checks
+from gm_core.checks import EXERCISE_IDS, FAILED, PASSED, UNATTEMPTED, progress, reset_progress
+from gm_core.checks._core import REGISTRY
+
+PARTS = [(ex_id, name) for ex_id in EXERCISE_IDS for name in REGISTRY[ex_id].parts]
+
+
+def part(ex_id, name):
+    return REGISTRY[ex_id].parts[name]
+
+
+@pytest.fixture(autouse=True)
+def clean():
+    reset_progress()
+    yield
+    reset_progress()
+
+
+def test_all_thirteen_exercises_are_registered():
+    assert tuple(REGISTRY) == EXERCISE_IDS
+    assert all(hasattr(checks, "ex" + i.replace(".", "_")) for i in EXERCISE_IDS)
+
+
+@pytest.mark.parametrize("ex_id,name", PARTS)
+def test_reference_passes(ex_id, name):
+    p = part(ex_id, name)
+    v = p.check(p.reference, quiet=True)
+    assert v.status == PASSED, v.message
+    assert v and v.message
+
+
+@pytest.mark.parametrize("ex_id,name", PARTS)
+def test_wrong_answers_fail_with_a_message(ex_id, name):
+    p = part(ex_id, name)
+    assert p.wrong, f"{ex_id}{name} has no plausible wrong answer to test"
+    for w in p.wrong:
+        v = p.check(w, quiet=True)
+        assert v.status == FAILED and len(v.message) > 20, v
+
+
+@pytest.mark.parametrize("ex_id,name", PARTS)
+def test_starter_is_unattempted(ex_id, name):
+    p = part(ex_id, name)
+    for starter in (p.starter, None, ...):
+        v = p.check(starter, quiet=True)
+        assert v.status == UNATTEMPTED, v
+
+
+def starter_function(*args):
+    return None  # what a generated exercise's `def f(...): return None  # your answer here` does
+
+
+def raises(*args):
+    raise ZeroDivisionError("division by zero")
+
+
+JUNK = [
+    "abc", 42, 3.5, float("nan"), object(), [1, 2], {}, {"x": 1}, np.full((7,), np.nan),
+    np.zeros((4, 4, 4)), raises, lambda *a: np.full(7, np.nan), lambda *a: "text",
+    lambda *a: np.zeros((9, 9)), lambda: 1.0, lambda *a: float("inf"), lambda *a: [1, [2, 3]],
+    (raises, raises, raises, raises), (None, 1), True,
+]
+
+
+@pytest.mark.parametrize("ex_id,name", PARTS)
+def test_junk_gives_a_verdict_not_a_traceback(ex_id, name, capsys):
+    p = part(ex_id, name)
+    for junk in JUNK:
+        v = p.check(junk, quiet=True)
+        assert v.status == FAILED, (junk, v)
+        assert v.message and "Traceback" not in v.message
+    assert capsys.readouterr().out == ""  # quiet=True prints nothing
+
+
+@pytest.mark.parametrize("ex_id,name", PARTS)
+def test_starter_function_returning_none_is_unattempted(ex_id, name):
+    p = part(ex_id, name)
+    if p.kind not in ("function",):
+        pytest.skip("only function answers have starter functions")
+    assert p.check(starter_function, quiet=True).status == UNATTEMPTED
+
+
+def test_sympy_answer_with_foreign_symbol_names_it():
+    import sympy as sp
+    q = sp.Symbol("q")
+    v = checks.ex1_2.b.check(sp.diag(q, q), quiet=True)
+    assert v.status == FAILED and "q" in v.message
+
+
+def test_exception_message_names_the_error_and_input():
+    v = checks.ex1_4.a.check(raises, quiet=True)
+    assert "ZeroDivisionError" in v.message and "xi" in v.message.lower() or "called with" in v.message
+
+
+def test_nan_at_zero_rotation_is_reported():
+    def naive(xi):
+        vx, vy, w = xi
+        return np.array([(vx * np.sin(w) - vy * (1 - np.cos(w))) / w,
+                         (vx * (1 - np.cos(w)) + vy * np.sin(w)) / w, w])
+    v = checks.ex1_4.a.check(naive, quiet=True)
+    assert v.status == FAILED and "NaN" in v.message
+
+
+def test_transposed_matrix_is_recognised():
+    v = checks.ex2_2.a.check(lambda *a: part("2.2", "a").ref(*a).T, quiet=True)
+    assert v.status == FAILED and "transposed" in v.message
+
+
+def test_choice_accepts_letters_text_and_index():
+    p = checks.ex1_1.a
+    assert p.check("B", quiet=True).passed
+    assert p.check(" (b) ", quiet=True).passed
+    assert p.check(p.options["b"], quiet=True).passed
+    assert p.check(1, quiet=True).passed
+    assert p.check("", quiet=True).status == UNATTEMPTED
+
+
+def test_hint_and_solution_return_text_and_never_raise(capsys):
+    for ex_id, name in PARTS:
+        p = part(ex_id, name)
+        assert p.hint() and p.hint(2) and p.hint(99) and p.hint("junk")
+        assert "solutions/ex" in p.solution()
+    out = capsys.readouterr().out
+    assert "[Hint]" in out and "[Solution]" in out
+
+
+def test_check_prints_when_not_quiet(capsys):
+    checks.ex1_1.a.check("b")
+    assert "[Correct]" in capsys.readouterr().out
+
+
+def test_progress_aggregates_parts():
+    assert progress() == {i: UNATTEMPTED for i in EXERCISE_IDS}
+    ex = checks.ex1_2
+    ex.a.check(ex.a.reference, quiet=True)
+    assert progress()["1.2"] == UNATTEMPTED          # some parts still unchecked
+    ex.b.check(ex.b.wrong[0], quiet=True)
+    assert progress()["1.2"] == FAILED               # latest check of a part failed
+    for p in ex.parts.values():
+        p.check(p.reference, quiet=True)
+    assert progress()["1.2"] == PASSED
+    assert set(progress()) == set(EXERCISE_IDS)
+    assert all(progress()[i] == UNATTEMPTED for i in EXERCISE_IDS if i != "1.2")
+
+
+def test_exercise_check_with_dict():
+    ex = checks.ex1_1
+    out = ex.check({"a": "b", "b": "a"})
+    assert all(v.passed for v in out.values()) and progress()["1.1"] == PASSED
+    assert ex.check("not a dict") == {}
+
+
+def test_widgets_headless():
+    w = checks.ex1_1.a.widget()
+    w.radio.value = "b"
+    w.button.click()
+    assert "passed" in w.feedback.value and progress()["1.1"] == UNATTEMPTED  # part b unchecked
+    box = checks.progress_widget()
+    box.refresh()
+    assert "1.1" in box.view.value and "3.4" in box.view.value
+
+
+def test_slide_rule_reads_products():
+    from gm_core.checks._widgets import slide_rule_svg
+    for a, b in [(1.0, 1.0), (2.0, 3.0), (9.9, 9.9), (3.7, 2.4)]:
+        svg, product, x = slide_rule_svg(a, b)
+        assert np.isclose(product, a * b) and svg.startswith("<svg")
+    box = checks.ex1_5.slide_rule(2.0, 3.0)
+    sa, sb = box.sliders
+    sa.value, sb.value = 4.0, 2.5
+    assert "10" in box.readout.value
+
+
+def test_import_stays_light():
+    code = ("import sys, gm_core, gm_core.checks; "
+            "bad = [m for m in ('matplotlib', 'ipywidgets', 'sympy') if m in sys.modules]; "
+            "print(bad)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"

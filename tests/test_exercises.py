@@ -1,0 +1,159 @@
+"""exercises/ is generated from solutions/ by tools/make_exercises.py and must stay in sync.
+
+Also: the generator's marker rules, its determinism, and that every untouched exercise notebook
+runs without error and leaves its exercise "unattempted" (nbval runs the notebooks too, but
+cannot look at progress())."""
+import contextlib
+import importlib.util
+import io
+import subprocess
+import sys
+from pathlib import Path
+
+import nbformat
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+SCRIPT = ROOT / "tools" / "make_exercises.py"
+spec = importlib.util.spec_from_file_location("make_exercises", SCRIPT)
+mk = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(mk)
+
+SOLUTIONS = sorted((ROOT / "solutions").glob("ex*.ipynb"))
+EXERCISES = sorted((ROOT / "exercises").glob("ex*.ipynb"))
+
+
+def ex_id(path):
+    return path.stem[2:].replace("_", ".")
+
+
+def test_there_is_one_exercise_per_solution():
+    assert SOLUTIONS, "no worked solutions found"
+    assert [p.name for p in SOLUTIONS] == [p.name for p in EXERCISES]
+
+
+def test_exercises_are_up_to_date():
+    changes = mk.plan(ROOT / "solutions", ROOT / "exercises")
+    assert not changes, ("exercises/ is out of date with solutions/: run `make exercises` "
+                         f"({', '.join(p.name for p in changes)})")
+
+
+@pytest.mark.parametrize("path", EXERCISES, ids=lambda p: p.name)
+def test_exercise_has_no_markers_or_outputs(path):
+    text = path.read_text(encoding="utf-8")
+    for marker in ("BEGIN SOLUTION", "END SOLUTION", "#> ", "solution_only"):
+        assert marker not in text, f"{path.name} contains {marker!r}"
+    nb = nbformat.read(path, as_version=4)
+    assert all(not c.get("outputs") and c.get("execution_count") is None
+               for c in nb.cells if c.cell_type == "code")
+
+
+@pytest.mark.parametrize("path", SOLUTIONS, ids=lambda p: p.name)
+def test_solution_is_committed_without_outputs_and_ends_with_progress(path):
+    nb = nbformat.read(path, as_version=4)
+    code = [c for c in nb.cells if c.cell_type == "code"]
+    assert all(not c.get("outputs") and c.get("execution_count") is None for c in code)
+    assert any(c.source.strip() == "progress()" for c in code)
+    assert f'progress()["{ex_id(path)}"] == "passed"' in code[-1].source
+
+
+def test_generation_is_deterministic(tmp_path):
+    out = tmp_path / "ex"
+    assert mk.main(["--exercises", str(out)]) == 0
+    first = {p.name: p.read_text() for p in out.glob("*.ipynb")}
+    assert mk.main(["--exercises", str(out), "--check"]) == 0
+    assert mk.main(["--exercises", str(out)]) == 0
+    assert {p.name: p.read_text() for p in out.glob("*.ipynb")} == first
+
+
+def make_solution(tmp_path, cells):
+    nb = nbformat.v4.new_notebook()
+    nb.cells = cells
+    for i, c in enumerate(nb.cells):
+        c["id"] = f"c{i}"
+    d = tmp_path / "solutions"
+    d.mkdir(exist_ok=True)
+    nbformat.write(nb, d / "ex9_9.ipynb")
+    return d
+
+
+def generated(tmp_path, cells):
+    src = make_solution(tmp_path, cells)
+    assert mk.main(["--solutions", str(src), "--exercises", str(tmp_path / "exercises")]) == 0
+    return nbformat.read(tmp_path / "exercises" / "ex9_9.ipynb", as_version=4)
+
+
+def test_marker_rules(tmp_path):
+    v4 = nbformat.v4
+    nb = generated(tmp_path, [
+        v4.new_code_cell("x = 1\n### BEGIN SOLUTION\n#> answer = None  # your answer here\n"
+                         "answer = 42\n### END SOLUTION\nprint(answer)"),
+        v4.new_code_cell("def f():\n    ### BEGIN SOLUTION\n    return 3\n    ### END SOLUTION"),
+        v4.new_markdown_cell("Intro\n<!-- ### BEGIN SOLUTION -->\nThe secret.\n<!-- ### END SOLUTION -->"),
+        v4.new_markdown_cell("### BEGIN SOLUTION\nBare secret\n### END SOLUTION\nafter"),
+        v4.new_code_cell("assert True", metadata={"tags": ["solution_only"]}),
+    ])
+    src = [c.source for c in nb.cells]
+    assert src[0] == "x = 1\nanswer = None  # your answer here\nprint(answer)"
+    assert src[1] == "def f():\n    # your code here"
+    assert src[2] == "Intro\n*Your answer here.*"
+    assert src[3] == "*Your answer here.*\nafter"
+    assert len(src) == 4  # the solution_only cell is gone
+    assert [c["id"] for c in nb.cells] == ["c0", "c1", "c2", "c3"]
+
+
+@pytest.mark.parametrize("source", ["### BEGIN SOLUTION\nx = 1",
+                                    "x = 1\n### END SOLUTION",
+                                    "### BEGIN SOLUTION\n### BEGIN SOLUTION\n### END SOLUTION"])
+def test_unbalanced_markers_are_an_error(tmp_path, source, capsys):
+    src = make_solution(tmp_path, [nbformat.v4.new_code_cell(source)])
+    assert mk.main(["--solutions", str(src), "--exercises", str(tmp_path / "ex")]) == 2
+    assert "ex9_9.ipynb cell 0" in capsys.readouterr().err
+
+
+def test_check_mode_detects_stale_and_missing(tmp_path):
+    src = make_solution(tmp_path, [nbformat.v4.new_code_cell("x = 1")])
+    out = tmp_path / "exercises"
+    args = ["--solutions", str(src), "--exercises", str(out)]
+    assert mk.main(args + ["--check"]) == 1          # not generated yet
+    assert mk.main(args) == 0 and mk.main(args + ["--check"]) == 0
+    (out / "ex9_9.ipynb").write_text("{}")
+    assert mk.main(args + ["--check"]) == 1          # edited by hand
+    (out / "ex8_8.ipynb").write_text("{}")
+    assert mk.main(args) == 0 and not (out / "ex8_8.ipynb").exists()  # stale file removed
+
+
+def test_script_runs_from_the_command_line():
+    res = subprocess.run([sys.executable, str(SCRIPT), "--check"], capture_output=True, text=True)
+    assert res.returncode == 0, res.stdout + res.stderr
+
+
+def run_in_process(path):
+    """Execute a notebook's code cells in a fresh namespace (magics dropped); return the namespace."""
+    import matplotlib
+    matplotlib.use("Agg")
+    from IPython.display import display
+    ns = {"display": display, "__name__": "__main__"}
+    nb = nbformat.read(path, as_version=4)
+    with contextlib.redirect_stdout(io.StringIO()):
+        for i, cell in enumerate(nb.cells):
+            if cell.cell_type != "code":
+                continue
+            src = "\n".join(l for l in cell.source.splitlines() if not l.lstrip().startswith("%"))
+            exec(compile(src, f"{path.name}[{i}]", "exec"), ns)
+    return ns
+
+
+@pytest.mark.parametrize("path", EXERCISES, ids=lambda p: p.name)
+def test_untouched_exercise_runs_and_is_unattempted(path):
+    from gm_core.checks import progress, reset_progress
+    reset_progress()
+    try:
+        run_in_process(path)
+        status = progress()
+        assert status[ex_id(path)] == "unattempted", status
+        assert set(status.values()) == {"unattempted"}
+    finally:
+        reset_progress()
+        import matplotlib.pyplot as plt
+        plt.close("all")
