@@ -314,12 +314,14 @@ _STATUS_JS = r"""
     k.__gmHooked = true;
     k.iopubMessage.connect((_, msg) => {
       const t = msg.header.msg_type, c = msg.content || {};
+      // errors of executed cells are in their outputs already; keep the rest (widget callbacks)
+      if (msg.parent_header && msg.parent_header.msg_type === 'execute_request') return;
       if (t === 'error') window.__gmKernelErrors.push({path, text: `${c.ename}: ${c.evalue}\n` + (c.traceback || []).join('\n').replace(/\x1b\[[0-9;]*m/g, '').slice(-1500)});
       else if (t === 'stream' && c.name === 'stderr' && String(c.text).includes('Traceback'))
         window.__gmKernelErrors.push({path, text: String(c.text).slice(-1500)});
     });
   }
-  for (const e of window.__gmKernelErrors) if (e.path === path) out.errors.push('kernel: ' + e.text);
+  for (const e of window.__gmKernelErrors) if (e.path === path) out.errors.push('kernel (widget callback): ' + e.text);
   out.ncode = 0; out.executed = 0; out.running = 0; out.counts = [];
   panel.content.widgets.forEach((cell, i) => {
     if (cell.model.type !== 'code') return;
@@ -719,12 +721,12 @@ def check_interactive_notebook(lab: LabBrowser, relpath: str, change_timeout: fl
         nbp.check_no_errors()
         sel = nbp.find_panel(0)
         res = nbp.move_slider(sel, change_timeout=change_timeout)
+        nbp.check_no_errors()
         if not res.slider_moved:
             nbp.fail(f"the slider did not move ({res.detail}; readout {res.readout_before!r})")
         if not res.changed:
             nbp.fail(f"the figure did not change within {change_timeout:.0f} s after moving the first "
                      f"slider ({res.detail}: readout {res.readout_before!r} -> {res.readout_after!r})")
-        nbp.check_no_errors()
         return res, nbp.timings.phases
 
 
