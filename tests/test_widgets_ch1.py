@@ -193,3 +193,170 @@ def test_path_text_renders_and_updates():
     t.set_position((0.5, 0.5))
     assert np.allclose(t.collection.get_offsets(), [[0.5, 0.5]])
     fig.canvas.draw()
+
+
+# ---------------------------------------------------------------------- 1.4-1.5 velocities
+@pytest.mark.parametrize("field", list(D.FIELDS))
+def test_vector_field_curve_follows_the_field(field):
+    p = slide(W.VectorFieldPanel(), field=field, x0=0.8, y0=-0.6)
+    fx, fy = p.scene.forward.get_data()
+    assert np.allclose([fx[0], fy[0]], [0.8, -0.6])
+    # independent route: classical RK4 with small steps, forward and backward
+    ref = D.rk4_curve(D.FIELDS[field], np.array([0.8, -0.6]), D.VectorFieldScene.T, 2400)[::10]
+    m = len(fx)
+    assert np.allclose(np.c_[fx, fy], ref[:m], atol=1e-4)
+    bx, by = p.scene.backward.get_data()
+    back = D.rk4_curve(lambda q: -D.FIELDS[field](q), np.array([0.8, -0.6]), D.VectorFieldScene.T, 2400)[::10]
+    assert np.allclose(np.c_[bx, by], back[: len(bx)], atol=1e-4)
+    assert np.all(np.isfinite(fx)) and np.all(np.isfinite(bx))
+    # the background arrows point along the field
+    uv = quiver_uv(p.scene.quiver)
+    v = D.FIELDS[field](p.scene._grid)
+    nz = np.linalg.norm(v, axis=1) > 1e-9
+    cos = np.sum(uv[nz] * v[nz], 1) / np.linalg.norm(uv[nz], axis=1) / np.linalg.norm(v[nz], axis=1)
+    assert np.allclose(cos, 1.0)
+
+
+def test_lifted_scalar_actions():
+    p = slide(W.LiftedScalarPanel(), hx=0.5, hy=-0.7, h=3.0)
+    uv = quiver_uv(p.scene.arrows2)
+    assert np.allclose(uv[0], uv[1])                         # (1.22): identity on R^2
+    off = p.scene.arrows2.get_offsets()
+    assert np.allclose(off[1] - off[0], [0.5, -0.7])
+    uv1 = quiver_uv(p.scene.arrows1)
+    assert np.isclose(uv1[1, 0], 3.0 * uv1[0, 0])           # (1.24): scaled by h
+    off1 = p.scene.arrows1.get_offsets()
+    assert np.isclose(off1[1, 0], 3.0 * off1[0, 0])
+
+
+def test_lifted_se2_preserves_body_and_spatial_velocity():
+    p = W.LiftedSE2Panel()
+    slide(p, theta=-0.8, u=1.1, v=-0.4, beta=2.1)
+    g, hg, gh = p.scene.poses
+    h = np.array([1.1, -0.4, 2.1])
+    gd = p.scene.world_vels[0]
+    # independent route: finite differences of the group operation
+    assert np.allclose(p.scene.world_vels[1], SE2.numerical_left_lifted_action(h, g) @ gd, atol=1e-6)
+    assert np.allclose(p.scene.world_vels[2], SE2.numerical_right_lifted_action(h, g) @ gd, atol=1e-6)
+    assert np.allclose(p.scene.body_vels[1], p.scene.body_vels[0])        # left: same body velocity
+    assert np.allclose(p.scene.spatial_vels[2], p.scene.spatial_vels[0])  # right: same spatial velocity
+    # the corner arrows of gh are the rigid-motion velocities of g's motion at those points
+    pts = np.vstack([gh[:2], SE2.act_on_points(gh, p.scene.bodies[2].outline)])
+    eps = 1e-6
+    g_next = g + eps * gd
+    moved = SE2.act_on_points(SE2.compose(g_next, h), np.vstack([[0, 0], p.scene.bodies[2].outline]))
+    fd = (moved - pts) / eps
+    assert np.allclose(quiver_uv(p.scene.vel[2]) / D.LiftedSE2Scene.SCALE, fd, atol=1e-4)
+
+
+def test_velocity_panel_world_body_spatial():
+    p = W.VelocityPanel()
+    g = np.array([-1.0, 0.8, 2.0])
+    xi = np.array([0.4, -0.9, 1.1])
+    slide(p, x=g[0], y=g[1], theta=g[2], vx=xi[0], vy=xi[1], w=xi[2])
+    # world velocity by differentiating g exp(t xi) (independent of the lifted-action formulas)
+    eps = 1e-6
+    gdot = (SE2.compose(g, SE2.exp(eps * xi)) - SE2.compose(g, SE2.exp(-eps * xi))) / (2 * eps)
+    assert np.allclose(quiver_uv(p.scene.world)[0], gdot[:2], atol=1e-6)
+    # spatial velocity: velocity of the body point over the origin
+    p_body = SE2.act_on_points(SE2.inverse(g), np.zeros(2))
+    v0 = (SE2.act_on_points(SE2.compose(g, SE2.exp(eps * xi)), p_body)
+          - SE2.act_on_points(SE2.compose(g, SE2.exp(-eps * xi)), p_body)) / (2 * eps)
+    assert np.allclose(quiver_uv(p.scene.spatial)[0], v0, atol=1e-6)
+    parts = quiver_uv(p.scene.spatial_parts)
+    assert np.allclose(parts.sum(0), v0, atol=1e-6)
+    assert np.allclose(quiver_uv(p.scene.at_e)[0], xi[:2])
+    assert np.allclose(body_xy(p.scene.bodies[2]), p.scene.bodies[2].outline)
+
+
+def test_adjoint_three_ways_agree():
+    p = W.AdjointPanel()
+    slide(p, x=2.0, y=-1.5, theta=-2.5, vx=0.3, vy=1.2, w=-0.8)
+    assert p.scene.mismatch < 1e-6
+    import scipy.linalg
+
+    g = np.array([2.0, -1.5, -2.5])
+    xi = np.array([0.3, 1.2, -0.8])
+    G = SE2.matrix(g)
+    assert np.allclose(SE2.vee(G @ SE2.hat(xi) @ np.linalg.inv(G)), p.scene.xi_s)   # Ad as conjugation
+    assert np.allclose(p.scene.xi_s_fd, p.scene.xi_s, atol=1e-6)
+    assert np.allclose(scipy.linalg.expm(SE2.hat(xi)), SE2.matrix(SE2.exp(xi)))
+
+
+# ---------------------------------------------------------------------- 1.6 geodesics and exp
+def test_helix_panel_follows_exp_and_flags_straight_line():
+    p = slide(W.HelixPanel(), thetadot=1.5)
+    x, y, z = p.scene.helix.get_data_3d()
+    import scipy.linalg
+
+    for k in (0, 40, 120):
+        t = D.HelixScene.T[k]
+        M = scipy.linalg.expm(t * SE2.hat([1.0, 0.0, 1.5]))
+        assert np.allclose([x[k], y[k]], M[:2, 2])
+        assert np.isclose(z[k], 1.5 * t)
+    # the xy shadow is a circle through the origin with diameter 2/|thetadot|
+    cx, cy = p.scene.centre.get_data()
+    assert np.allclose(np.hypot(np.asarray(x) - cx[0], np.asarray(y) - cy[0]), 1 / 1.5)
+    assert np.isclose(p.scene.geometry["diameter"], 2 / 1.5)
+    slide(p, thetadot=0.0)
+    assert p.scene.geometry["straight"] and not p.scene.centre.get_visible()
+    assert np.all(np.isfinite(p.scene.helix.get_data_3d()[0]))
+
+
+def test_puck_vs_arc_positions():
+    p = slide(W.PuckArcPanel(), w=1.0, t=2.0)
+    xi = np.array([1.0, 1.0, 1.0])
+    assert np.allclose(p.scene.bodies[0].g, R2xS1.exp(2.0 * xi))
+    import scipy.linalg
+
+    M = scipy.linalg.expm(2.0 * SE2.hat(xi))
+    assert np.allclose(SE2.matrix(p.scene.bodies[1].g), M)
+    assert np.allclose(body_xy(p.scene.bodies[1]), SE2.act_on_points(SE2.from_matrix(M), p.scene.bodies[1].outline))
+    assert np.allclose(p.scene.now_state.arc_body_velocity, xi)
+    assert np.allclose(p.scene.now_state.puck_body_velocity[-1, :2],
+                       SE2.matrix([0, 0, -2.0])[:2, :2] @ xi[:2])
+
+
+def test_puck_vs_arc_animation_runs():
+    from gm_core.drawing.base import jshtml
+
+    anim = D.puck_vs_arc_animation(frames=3)
+    html = jshtml(anim).data
+    assert "<img" in html or "data:image/png" in html
+
+
+def test_rplus_geodesic_ratios_and_slopes():
+    p = slide(W.RPlusGeodesicPanel(), xi=0.7)
+    assert np.allclose(p.scene.ratios, np.exp(0.7))
+    t, g = p.scene.curve.get_data()
+    # slope of the curve = xi * g, the left-invariant field (1.46) with T_eL_g = g (1.24)
+    assert np.allclose(np.gradient(g, t)[5:-5], 0.7 * g[5:-5], rtol=1e-3)
+    uv = quiver_uv(p.scene.arrows)
+    assert np.allclose(uv[:, 1] / uv[:, 0], p.scene.slopes)
+
+
+def test_exp_four_ways_errors_and_paths():
+    p = slide(W.ExpFourWaysPanel(), thetadot=2.0, n=16, side="right")
+    import scipy.linalg
+
+    E = scipy.linalg.expm(SE2.hat([1.0, 0.0, 2.0]))
+    A = SE2.hat([1.0, 0.0, 2.0])
+    prod = np.linalg.matrix_power(np.eye(3) + A / 16, 16)
+    assert np.isclose(p.scene.final_error["product"], np.linalg.norm(prod - E))
+    taylor = sum(np.linalg.matrix_power(A, k) / np.prod(np.arange(1, k + 1)) for k in range(16))
+    assert np.isclose(p.scene.final_error["taylor"], np.linalg.norm(taylor - E), atol=1e-12)
+    x, y = p.scene.path_lines["product"].get_data()
+    assert len(x) == 17 and np.allclose([x[-1], y[-1]], prod[:2, 2])
+    # errors fall as n grows for every method
+    for m, h in p.scene.histories.items():
+        assert h.error[-1] < h.error[0]
+
+
+def test_binomial_table_limits():
+    rows = D.binomial_table(ns=(10, 10000), kmax=4)
+    for n, k, c, ratio, inv_fact, draft in rows:
+        assert c == __import__("math").comb(n, k)
+        if n == 10000:
+            assert abs(ratio - inv_fact) < 1e-3
+    n, k, c, ratio, inv_fact, draft = rows[2]   # n = 10, k = 2
+    assert c == 45 and draft == 50.0             # the draft's n^k/k! is not C(n, k)

@@ -1090,3 +1090,669 @@ class BodyPointsScene(Scene):
         self.point.set_data([self.world[0]], [self.world[1]])
         self.text.set_text(f"body point ({px:.2f}, {py:.2f}) → world ({self.world[0]:.2f}, "
                            f"{self.world[1]:.2f})\nmatrix (1.12) agrees to {self.matrix_mismatch:.0e}")
+
+
+# ============================================================================ 1.4 velocities
+def _field_funcs():
+    def spiral(q, t=0.0):
+        x, y = q[..., 0], q[..., 1]
+        return np.stack([-0.25 * x - y, x - 0.25 * y], -1)
+
+    def saddle(q, t=0.0):
+        return np.stack([q[..., 0], -q[..., 1]], -1)
+
+    def rotation(q, t=0.0):
+        return np.stack([-q[..., 1], q[..., 0]], -1)
+
+    def vdp(q, t=0.0):
+        x, y = q[..., 0], q[..., 1]
+        return np.stack([y, (1.0 - x * x) * y - x], -1)
+
+    return {"spiral sink": spiral, "saddle": saddle, "closed loops": rotation,
+            "limit cycle (van der Pol)": vdp}
+
+
+#: The example vector fields of figs. 1.13-1.14, as functions (q (..., 2), t) -> q_dot.
+FIELDS = _field_funcs()
+
+
+def rk4_curve(f, q0, T, n):
+    """Integral curve of a time-invariant field by n classical RK4 steps over [0, T]: (n+1, ..., 2)."""
+    q = np.asarray(q0, float)
+    h = T / n
+    out = np.empty((n + 1,) + q.shape)
+    out[0] = q
+    for k in range(n):
+        k1 = f(q)
+        k2 = f(q + 0.5 * h * k1)
+        k3 = f(q + 0.5 * h * k2)
+        k4 = f(q + h * k3)
+        q = q + h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
+        out[k + 1] = q
+    return out
+
+
+class VectorFieldScene(Scene):
+    """Figs. 1.13-1.14: a vector field, some integral curves, and one from a movable start point.
+
+    Values ``field`` (a key of :data:`FIELDS`), ``x0``, ``y0``. The movable curve is drawn
+    forwards (solid) and backwards in time (dashed, the flow of -X); curves computed with
+    :func:`gm_core.fields.integral_curve` (scipy solve_ivp).
+    """
+
+    LIM = 3.0
+    T = 6.0
+    N = 240
+
+    def make_figure(self):
+        fig, ax = new_figure(figsize=(5.2, 5.0))
+        fig.subplots_adjust(left=0.03, right=0.97, bottom=0.03, top=0.93)
+        return fig, [ax]
+
+    def decorate(self):
+        (ax,) = self.axes
+        _plane(ax, self.LIM, grid=False)
+        self._field = None
+
+    def create(self):
+        (ax,) = self.axes
+        g = np.linspace(-self.LIM + 0.25, self.LIM - 0.25, 13)
+        self._grid = np.stack(np.meshgrid(g, g), -1).reshape(-1, 2)
+        self.quiver = ax.quiver(self._grid[:, 0], self._grid[:, 1], np.zeros(len(self._grid)),
+                                np.zeros(len(self._grid)), color="0.6", angles="xy", scale_units="xy",
+                                scale=1.0, width=0.004, zorder=1)
+        self.background = LineCollection([], colors="tab:blue", linewidths=1.0, alpha=0.55, zorder=2)
+        ax.add_collection(self.background)
+        (self.forward,) = ax.plot([], [], color="tab:red", lw=2.2, zorder=4)
+        (self.backward,) = ax.plot([], [], color="tab:red", lw=1.5, ls="--", zorder=4)
+        (self.start,) = ax.plot([], [], "o", color="k", ms=7, zorder=5)
+        self.title = _title(ax)
+        self._field = None
+
+    def _background(self, name):
+        """A few fixed integral curves (both directions), cut where they leave the view: segments."""
+        f = FIELDS[name]
+        starts = np.array([[2.5, 0.0], [-2.5, 0.5], [0.5, 2.5], [-0.5, -2.5], [1.2, 1.2], [-1.5, -1.0],
+                           [0.3, 0.05], [2.8, 2.8], [-2.8, 2.2]])
+        segs = []
+        with np.errstate(over="ignore", invalid="ignore"):
+            for sign in (1.0, -1.0):
+                q = rk4_curve(lambda p: sign * f(p), starts, 4.0, 200)
+                for j in range(len(starts)):
+                    seg = q[:, j][: _first_outside(q[:, j], 1.5 * self.LIM)]
+                    if len(seg) > 1:
+                        segs.append(seg)
+        return segs
+
+    def curve(self, name, x0, y0):
+        """Forward and backward integral curves from (x0, y0), each (m, 2), by solve_ivp.
+
+        Uses :func:`gm_core.fields.integral_curve` (scipy's solve_ivp) on X and on -X, stopping
+        early if the curve leaves a box three times the view (so runaway curves never overflow).
+        """
+        from ..fields import integral_curve
+
+        f = FIELDS[name]
+        lim = 3 * self.LIM
+        t_eval = np.linspace(0.0, self.T, self.N + 1)
+
+        def leave(t, y):
+            return lim - np.max(np.abs(y))
+
+        leave.terminal = True
+        out = []
+        for sign in (1.0, -1.0):
+            c = integral_curve(lambda q, t, s=sign: s * f(q), [x0, y0], (0.0, self.T), t_eval=t_eval,
+                               method="RK45", rtol=1e-6, atol=1e-9, events=leave)
+            out.append(c.q)
+        return out
+
+    def set(self, field="spiral sink", x0=1.5, y0=1.0):
+        if field != self._field:
+            v = FIELDS[field](self._grid)
+            n = np.linalg.norm(v, axis=1, keepdims=True)
+            v = 0.32 * v / np.maximum(n, 1e-12) * (n > 1e-12)
+            self.quiver.set_UVC(v[:, 0], v[:, 1])
+            self.background.set_segments(self._background(field))
+            self._field = field
+        fwd, bwd = self.curve(field, x0, y0)
+        # a curve that runs away (saddle, backwards van der Pol) is cut where it leaves the view
+        self.fwd_pts, self.bwd_pts = (c[: _first_outside(c, 3 * self.LIM)] for c in (fwd, bwd))
+        self.forward.set_data(self.fwd_pts[:, 0], self.fwd_pts[:, 1])
+        self.backward.set_data(self.bwd_pts[:, 0], self.bwd_pts[:, 1])
+        self.start.set_data([x0], [y0])
+        self.title.set_text(f"{field}: forward (solid) and backward (dashed) from ({x0:.2f}, {y0:.2f})")
+
+
+def _first_outside(c, lim):
+    bad = ~np.all(np.isfinite(c) & (np.abs(c) < lim), axis=1)
+    return int(np.argmax(bad)) if bad.any() else len(c)
+
+
+class LiftedScalarScene(Scene):
+    """Lifted actions on (R^2, +) and (R+, x), (1.22)-(1.25): a velocity carried from g to hg.
+
+    Values ``hx``, ``hy`` (a translation of R^2) and ``h`` (a factor in R+). On R^2 the arrow is
+    carried unchanged; on R+ it is scaled by h, like interest proportional to the balance.
+    """
+
+    G_R2 = np.array([-1.0, -0.5])
+    V_R2 = np.array([0.8, 0.4])
+    G_RP = 1.5
+    V_RP = 0.6
+
+    def make_figure(self):
+        fig, axes = new_figure(1, 2, figsize=(9, 3.6), gridspec_kw=dict(width_ratios=[1, 1.5]))
+        fig.subplots_adjust(left=0.03, right=0.98, bottom=0.14, top=0.88, wspace=0.12)
+        return fig, list(axes)
+
+    def decorate(self):
+        ax2, ax1 = self.axes
+        _plane(ax2, 2.5)
+        _title(ax2, "(R², +): T_gL_h = identity")
+        ax1.set_xlim(-0.2, 10.5)
+        ax1.set_ylim(-1.0, 1.6)
+        ax1.set_yticks([])
+        ax1.plot([0, 10.5], [0, 0], color="k", lw=1)
+        _xticks(ax1, [0, 1, 2, 4, 6, 8, 10], ["0", "1 = e", "2", "4", "6", "8", "10"])
+        _title(ax1, "(R⁺, ×): T_gL_h = h scales the arrow")
+
+    def create(self):
+        ax2, ax1 = self.axes
+        (self.pts2,) = ax2.plot([], [], "o", color="k", ms=6)
+        self.arrows2 = _arrow(ax2, color=["tab:blue", "tab:orange"], n=2, width=0.012)
+        self.shift2 = _arrow(ax2, color="0.6", width=0.004)
+        (self.pts1,) = ax1.plot([], [], "o", color="k", ms=6)
+        self.arrows1 = _arrow(ax1, color=["tab:blue", "tab:orange"], n=2, width=0.008)
+        self.text1 = PathText(ax1, 0.02, 0.06, "", size=8, coords="axes")
+
+    def set(self, hx=1.5, hy=1.0, h=2.5):
+        g2 = self.G_R2
+        hg2 = g2 + np.array([hx, hy])
+        self.pts2.set_data([g2[0], hg2[0]], [g2[1], hg2[1]])
+        self.v_R2 = np.stack([self.V_R2, np.eye(2) @ self.V_R2])
+        _set_arrows(self.arrows2, [g2, hg2], self.v_R2)
+        _set_arrows(self.shift2, g2, [hx, hy])
+        g1 = self.G_RP
+        hg1 = RPlus.compose([h], [g1])[0]
+        lifted = (RPlus.left_lifted_action([h], [g1]) @ [self.V_RP])[0]
+        self.v_RP = np.array([self.V_RP, lifted])
+        self.pts1.set_data([g1, hg1], [0, 0])
+        _set_arrows(self.arrows1, [[g1, 0.5], [hg1, 0.5]], [[self.V_RP, 0], [lifted, 0]])
+        self.text1.set_text(f"g = {g1:.2f}, ġ = {self.V_RP:.2f}  →  hg = {hg1:.2f}, "
+                            f"T_gL_h ġ = {lifted:.2f};  ratio ġ/g = {self.V_RP / g1:.3f} = "
+                            f"{lifted / hg1:.3f}")
+
+
+def point_velocities(g, g_dot, points):
+    """World velocities of world points rigidly attached to a body at g moving with g_dot.
+
+    v(p) = (x_dot, y_dot) + theta_dot * J (p - (x, y)), J the quarter turn; shapes (..., 2).
+    """
+    g = np.asarray(g, float)
+    g_dot = np.asarray(g_dot, float)
+    r = np.asarray(points, float) - g[..., None, :2]
+    return g_dot[..., None, :2] + g_dot[..., None, 2:3] * np.stack([-r[..., 1], r[..., 0]], -1)
+
+
+class LiftedSE2Scene(Scene):
+    """Lifted actions on SE(2), (1.31) and (1.37): a body's motion carried from g to hg and to gh.
+
+    Values ``theta`` (heading of g), ``u, v, beta`` (h). The body at g moves with world velocity
+    g_dot (body velocity XI0). Arrows are the velocities of the body's corners: at hg they are
+    T_gL_h g_dot (same motion *as seen by the body*), at gh they are T_gR_h g_dot (the motion of a
+    frame welded to g, same *spatial* velocity).
+    """
+
+    XI0 = np.array([0.7, 0.0, 0.9])
+    G_XY = np.array([-1.2, -1.0])
+    SCALE = 0.7
+
+    def make_figure(self):
+        fig, ax = new_figure(figsize=(6.4, 5.2))
+        fig.subplots_adjust(left=0.02, right=0.98, bottom=0.02, top=0.93)
+        return fig, [ax]
+
+    def decorate(self):
+        (ax,) = self.axes
+        _plane(ax, 3.5)
+
+    def create(self):
+        (ax,) = self.axes
+        colors = ("0.45", "tab:blue", "tab:orange")
+        self.bodies = [BodyArtist(ax, BODY * 1.6, facecolor=c, alpha=0.45) for c in colors]
+        self.vel = [_arrow(ax, color=c, n=4, width=0.006) for c in colors]
+        (self.weld,) = ax.plot([], [], color="tab:orange", ls=":", lw=1.5)
+        self.title = _title(ax, size=8)
+        self.text = PathText(ax, 0.02, 0.03, "", size=7, va="bottom", coords="axes")
+
+    def set(self, theta=0.3, u=2.0, v=1.5, beta=1.0):
+        g = np.array([self.G_XY[0], self.G_XY[1], theta])
+        h = np.array([u, v, beta])
+        g_dot = SE2.body_to_world(g, self.XI0)
+        self.poses = [g, SE2.compose(h, g), SE2.compose(g, h)]
+        self.world_vels = [g_dot, SE2.left_lifted_action(h, g) @ g_dot, SE2.right_lifted_action(h, g) @ g_dot]
+        for body, q, pose, gd in zip(self.bodies, self.vel, self.poses, self.world_vels):
+            body.set(pose)
+            pts = np.vstack([pose[:2], SE2.act_on_points(pose, body.outline)])
+            _set_arrows(q, pts, self.SCALE * point_velocities(pose, gd, pts))
+        self.weld.set_data([g[0], self.poses[2][0]], [g[1], self.poses[2][1]])
+        xi = [SE2.world_to_body(p, gd) for p, gd in zip(self.poses, self.world_vels)]
+        xs = [SE2.world_to_spatial(p, gd) for p, gd in zip(self.poses, self.world_vels)]
+        self.body_vels, self.spatial_vels = np.array(xi), np.array(xs)
+        self.title.set_text("grey: g     blue: hg with T_gL_h ġ     orange: gh with T_gR_h ġ")
+        f = lambda a: "(" + ", ".join(f"{c:+.2f}" for c in a) + ")"  # noqa: E731
+        self.text.set_text(f"body ξ:     g {f(xi[0])}  hg {f(xi[1])}  gh {f(xi[2])}\n"
+                           f"spatial ξˢ: g {f(xs[0])}  hg {f(xs[1])}  gh {f(xs[2])}")
+
+
+class VelocityScene(Scene):
+    """Fig. 1.15: world, body and spatial velocity of a body at g with body velocity xi.
+
+    Values ``x, y, theta`` (g) and ``vx, vy, w`` (the body velocity xi).
+    """
+
+    LIM = 3.0
+
+    def make_figure(self):
+        fig, axes = new_figure(2, 2, figsize=(7.2, 7.0))
+        fig.subplots_adjust(left=0.02, right=0.98, bottom=0.02, top=0.95, wspace=0.06, hspace=0.12)
+        return fig, list(np.ravel(axes))
+
+    def decorate(self):
+        names = ["(a) world velocity ġ", "(b) body velocity ξ, in the body frame",
+                 "(c) ξ after moving the body to e", "(d) spatial velocity ξˢ at the origin"]
+        for ax, name in zip(self.axes, names):
+            _plane(ax, self.LIM)
+            _title(ax, name, size=8.5)
+
+    def create(self):
+        a, b, c, d = self.axes
+        self.bodies = [BodyArtist(ax, BODY * 1.5, facecolor="tab:blue", alpha=0.4) for ax in self.axes]
+        self.frames = [FrameArtist(ax, length=0.6) for ax in (b, c)]
+        self.world = _arrow(a, color="k", width=0.012)
+        self.components = _arrow(b, color=["tab:red", "tab:green"], n=2, width=0.012)
+        self.at_e = _arrow(c, color="k", width=0.012)
+        self.spatial_parts = _arrow(d, color=["0.55", "tab:purple"], n=2, width=0.008)
+        self.spatial = _arrow(d, color="tab:red", width=0.012)
+        (self.lever,) = d.plot([], [], color="tab:purple", ls=":", lw=1.5)
+        self.texts = [PathText(ax, 0.03, 0.04, "", size=8, coords="axes") for ax in self.axes]
+
+    def set(self, x=1.2, y=0.6, theta=0.7, vx=0.8, vy=0.3, w=0.6):
+        g = np.array([x, y, theta])
+        xi = np.array([vx, vy, w])
+        self.g_dot = SE2.body_to_world(g, xi)
+        self.xi_s = SE2.body_to_spatial(g, xi)
+        for k in (0, 1, 3):
+            self.bodies[k].set(g)
+        self.bodies[2].set(SE2.identity())
+        self.frames[0].set(g)
+        self.frames[1].set(SE2.identity())
+        _set_arrows(self.world, g[:2], self.g_dot[:2])
+        axes_b = SE2.matrix(g)[:2, :2]
+        self.component_vecs = np.stack([vx * axes_b[:, 0], vy * axes_b[:, 1]])
+        _set_arrows(self.components, [g[:2], g[:2] + self.component_vecs[0]], self.component_vecs)
+        _set_arrows(self.at_e, [0, 0], xi[:2])
+        lever = -g[:2]                         # from the body's frame origin to the world origin
+        swirl = w * np.array([-lever[1], lever[0]])
+        self.spatial_parts_vecs = np.stack([self.g_dot[:2], swirl])
+        _set_arrows(self.spatial_parts, [[0, 0], self.g_dot[:2]], self.spatial_parts_vecs)
+        _set_arrows(self.spatial, [0, 0], self.xi_s[:2])
+        self.lever.set_data([x, 0], [y, 0])
+        f = lambda a: "(" + ", ".join(f"{c:+.2f}" for c in a) + ")"  # noqa: E731
+        self.texts[0].set_text(f"ġ = {f(self.g_dot)}")
+        self.texts[1].set_text(f"ξ = {f(xi)}  (red: ξˣ, green: ξʸ)")
+        self.texts[2].set_text(f"ξ = T_gL_g⁻¹ ġ = {f(SE2.world_to_body(g, self.g_dot))}")
+        self.texts[3].set_text(f"ξˢ = {f(self.xi_s)} = ġ + ξᶿ × l")
+
+
+def _matrix_lines(M):
+    return "\n".join("[" + "  ".join(f"{v:+7.3f}" for v in row) + " ]" for row in M)
+
+
+class AdjointScene(Scene):
+    """(1.40)-(1.45): Ad_g three ways, plus the spatial velocity by finite differences of g(t) g(t)^-1.
+
+    Values ``x, y, theta`` (g) and ``vx, vy, w`` (body velocity xi).
+    """
+
+    def make_figure(self):
+        fig, ax = new_figure(figsize=(8.4, 3.6))
+        fig.subplots_adjust(left=0.0, right=1.0, bottom=0.0, top=1.0)
+        return fig, [ax]
+
+    def decorate(self):
+        (ax,) = self.axes
+        ax.set_axis_off()
+        ax.set_xlim(0, 1)
+        ax.set_ylim(0, 1)
+        heads = ["Ad_g, closed form (1.43)", "T_gR_g⁻¹ · T_eL_g  (1.40)", "same, finite differences"]
+        for k, s in enumerate(heads):
+            PathText(ax, 0.02 + 0.33 * k, 0.9, s, size=8.5, weight="bold")
+
+    def create(self):
+        (ax,) = self.axes
+        self.blocks = [PathText(ax, 0.02 + 0.33 * k, 0.78, "", size=8.5, va="top", color=c)
+                       for k, c in enumerate(("k", "tab:blue", "tab:green"))]
+        self.summary = PathText(ax, 0.02, 0.33, "", size=8.5, va="top")
+
+    def set(self, x=1.0, y=-0.5, theta=0.8, vx=0.5, vy=0.2, w=0.7):
+        g = np.array([x, y, theta])
+        xi = np.array([vx, vy, w])
+        e = SE2.identity()
+        ginv = SE2.inverse(g)
+        self.Ad = SE2.Ad(g)
+        Ad_tn = SE2.right_lifted_action(ginv, g) @ SE2.left_lifted_action(g, e)
+        self.Ad_fd = SE2.numerical_right_lifted_action(ginv, g) @ SE2.numerical_left_lifted_action(g, e)
+        # independent check with velocities: xi_s = d/dt (g(t) g^-1) at t = 0 with g(t) = g exp(t xi)
+        hstep = 1e-6
+        Mp = SE2.matrix(SE2.compose(g, SE2.exp(hstep * xi))) @ SE2.matrix(ginv)
+        Mm = SE2.matrix(SE2.compose(g, SE2.exp(-hstep * xi))) @ SE2.matrix(ginv)
+        self.xi_s_fd = SE2.vee((Mp - Mm) / (2 * hstep))
+        self.xi_s = self.Ad @ xi
+        self.mismatch = float(max(np.abs(self.Ad - Ad_tn).max(), np.abs(self.Ad - self.Ad_fd).max()))
+        for blk, M in zip(self.blocks, (self.Ad, Ad_tn, self.Ad_fd)):
+            blk.set_text(_matrix_lines(M))
+        f = lambda a: "(" + ", ".join(f"{c:+.4f}" for c in a) + ")"  # noqa: E731
+        self.summary.set_text(
+            f"largest difference between the three matrices: {self.mismatch:.1e}\n"
+            f"{f(self.xi_s)}   ξˢ = Ad_g ξ\n"
+            f"{f(self.xi_s_fd)}   ξˢ from d/dt (g(t) g⁻¹) by finite differences, g(t) = g exp(tξ)\n"
+            f"{f(SE2.Ad_inv(g) @ self.xi_s)}   back again: Ad_g⁻¹ ξˢ = ξ")
+
+
+# ============================================================================ 1.6 geodesics, exp
+def helix_geometry(thetadot, speed=1.0):
+    """Diameter, period and pitch of the SE(2) geodesic of xi = (speed, 0, thetadot): a dict.
+
+    Thin wrapper over :func:`gm_core.fields.se2_helix` returning plain floats (inf for a
+    straight line, thetadot = 0).
+    """
+    from ..fields import se2_helix
+
+    geo = se2_helix(np.array([speed, 0.0, thetadot]))
+    return {"diameter": float(geo.diameter), "radius": float(geo.radius), "period": float(geo.period),
+            "pitch": float(geo.pitch), "arclength": float(geo.arclength),
+            "straight": bool(geo.straight), "centre": np.asarray(geo.centre, float)}
+
+
+class HelixScene(Scene):
+    """Fig. 1.18: SE(2) geodesics exp(t (1, 0, thetadot)) as helices in (x, y, theta) and their
+    xy shadows, circles through the origin tangent to the x axis. Value ``thetadot``.
+    """
+
+    FAMILY = (-2.0, -1.0, -0.5, 0.5, 1.0, 2.0)
+    T = np.linspace(-np.pi, np.pi, 121)
+
+    def make_figure(self):
+        fig = figure(figsize=(9, 4.2))
+        ax3 = fig.add_subplot(1, 2, 1, projection="3d")
+        ax2 = fig.add_subplot(1, 2, 2)
+        fig.subplots_adjust(left=0.0, right=0.98, bottom=0.04, top=0.9, wspace=0.05)
+        return fig, [ax3, ax2]
+
+    def decorate(self):
+        from ..fields import se2_helices
+
+        ax3, ax2 = self.axes
+        _plain_3d(ax3, lim=3.2, labels=("x", "y", "θ"))
+        ax3.set_zlim(-7.0, 7.0)
+        ax3.view_init(elev=22, azim=-62)
+        _plane(ax2, 3.2)
+        _title(ax2, "xy projection: circles through the origin")
+        paths, _ = se2_helices(np.array(self.FAMILY), self.T)
+        segs3 = [p for p in paths]
+        ax3.add_collection3d(Line3DCollection(segs3, colors="0.7", linewidths=0.8))
+        ax2.add_collection(LineCollection([p[:, :2] for p in paths], colors="0.75", linewidths=0.8))
+
+    def create(self):
+        ax3, ax2 = self.axes
+        (self.helix,) = ax3.plot([], [], [], color="tab:red", lw=2.2)
+        (self.circle,) = ax2.plot([], [], color="tab:red", lw=2.2)
+        (self.unit,) = ax2.plot([], [], color="k", lw=3.5, alpha=0.6)
+        (self.centre,) = ax2.plot([], [], "+", color="tab:red", ms=9)
+        self.title3 = PathText(ax3, 0.5, 0.98, "", size=9, ha="center", va="top", coords="axes")
+        self.info = PathText(ax2, 0.03, 0.04, "", size=8, coords="axes")
+
+    def set(self, thetadot=1.0):
+        from ..fields import se2_helices
+
+        paths, _ = se2_helices(np.array([thetadot]), self.T)
+        self.path = paths[0]
+        self.helix.set_data_3d(self.path[:, 0], self.path[:, 1], self.path[:, 2])
+        self.geometry = geo = helix_geometry(thetadot)
+        self.circle.set_data(self.path[:, 0], self.path[:, 1])
+        unit = SE2.exp(np.linspace(0, 1, 30)[:, None] * np.array([1.0, 0.0, thetadot]))
+        self.unit.set_data(unit[:, 0], unit[:, 1])
+        self.title3.set_text(f"helix in (x, y, θ) for ξ = (1, 0, {thetadot:.2f})")
+        if geo["straight"]:
+            self.centre.set_visible(False)
+            self.info.set_text("dθ/dt = 0: a straight line (the circle's diameter is infinite)")
+        else:
+            self.centre.set_visible(True)
+            self.centre.set_data([geo["centre"][0]], [geo["centre"][1]])
+            self.info.set_text(f"diameter 2|v|/|dθ/dt| = {geo['diameter']:.2f};  one turn: t = "
+                               f"{geo['period']:.2f}, θ rises 2π\nblack: exp(ξ), xy length |v| = 1")
+
+
+class PuckArcScene(Scene):
+    """Fig. 1.19: the (R^2 x S^1, +) 'spinning puck' and the SE(2) arc, same xi, same time t.
+
+    Values ``t`` and ``w`` (xi = (1, 1, w) as in the book for w = 1). A third panel shows each
+    path's *body-frame* forward velocity: constant on SE(2), oscillating for the puck.
+    """
+
+    T_MAX = 2 * np.pi
+
+    def make_figure(self):
+        fig, axes = new_figure(1, 3, figsize=(10, 3.6), gridspec_kw=dict(width_ratios=[1, 1, 1.1]))
+        fig.subplots_adjust(left=0.02, right=0.98, bottom=0.12, top=0.88, wspace=0.12)
+        return fig, list(axes)
+
+    def decorate(self):
+        a, b, c = self.axes
+        _plane(a, 4.5)
+        _plane(b, 4.5)
+        _title(a, "(R² × S¹, +): straight line, spinning")
+        _title(b, "SE(2): arc, constant body velocity")
+        c.set_xlim(0, self.T_MAX)
+        c.set_ylim(-1.6, 1.6)
+        c.axhline(0, color="0.6", lw=0.8)
+        _xticks(c, [0, np.pi, 2 * np.pi], ["0", "π", "2π  t"])
+        _yticks(c, [-1, 0, 1], ["−1", "0", "1"])
+        _title(c, "forward speed seen by the body")
+
+    def create(self):
+        a, b, c = self.axes
+        self.paths = [TrailArtist(ax, color=col, lw=1.2, alpha=0.6) for ax, col in
+                      ((a, "tab:purple"), (b, "tab:blue"))]
+        self.trails = [TrailArtist(ax, color=col, lw=2.5) for ax, col in ((a, "tab:purple"), (b, "tab:blue"))]
+        self.bodies = [BodyArtist(ax, BODY * 1.4, facecolor=col) for ax, col in
+                       ((a, "tab:purple"), (b, "tab:blue"))]
+        self.frames = [FrameArtist(ax, length=0.5) for ax in (a, b)]
+        (self.fwd_puck,) = c.plot([], [], color="tab:purple", lw=1.8)
+        (self.fwd_arc,) = c.plot([], [], color="tab:blue", lw=1.8)
+        (self.now,) = c.plot([], [], color="k", lw=1)
+        self._w = None
+
+    def set(self, t=1.0, w=1.0):
+        from ..fields import puck_vs_arc
+
+        if w != self._w:
+            ts = np.linspace(0, self.T_MAX, 181)
+            self.full = puck_vs_arc(ts, xi=(1.0, 1.0, w))
+            self.paths[0].set(self.full.puck[:, :2])
+            self.paths[1].set(self.full.arc[:, :2])
+            self.fwd_puck.set_data(ts, self.full.puck_body_velocity[:, 0])
+            self.fwd_arc.set_data(ts, self.full.arc_body_velocity[:, 0])
+            self._w = w
+        now = puck_vs_arc(np.linspace(0, t, 60), xi=(1.0, 1.0, w))
+        self.now_state = now
+        for k, P in enumerate((now.puck, now.arc)):
+            self.trails[k].set(P[:, :2])
+            self.bodies[k].set(P[-1])
+            self.frames[k].set(P[-1])
+        self.now.set_data([t, t], [-1.6, 1.6])
+
+
+def puck_vs_arc_animation(w=1.0, frames=48, interval=80):
+    """FuncAnimation of fig. 1.19 (play it with ``gm_core.drawing.base.jshtml``; no kernel needed)."""
+    scene = PuckArcScene()
+    ts = np.linspace(0.0, PuckArcScene.T_MAX, frames)
+
+    def step(k):
+        scene.set(t=float(ts[k]), w=w)
+        return []
+
+    scene.set(t=0.0, w=w)
+    return animate(scene.fig, step, frames=frames, interval=interval)
+
+
+class RPlusGeodesicScene(Scene):
+    """Fig. 1.17: geodesics g(t) = exp(t xi) of (R+, x) from e = 1, with the invariant field's arrows.
+
+    Value ``xi``. Every unit of time multiplies g by the same factor exp(xi), so the curve speeds
+    up (xi > 0) or slows down (xi < 0); the dashed line is the additive (R, +) geodesic with the
+    same starting velocity, for contrast.
+    """
+
+    T = np.linspace(0.0, 3.0, 121)
+
+    def make_figure(self):
+        fig, ax = new_figure(figsize=(6.4, 4.2))
+        fig.subplots_adjust(left=0.09, right=0.97, bottom=0.1, top=0.9)
+        return fig, [ax]
+
+    def decorate(self):
+        from ..fields import rplus_geodesics
+
+        (ax,) = self.axes
+        ax.set_xlim(0, 3)
+        ax.set_ylim(0, 8)
+        _xticks(ax, [0, 1, 2, 3], ["0", "1", "2", "3  t"])
+        _yticks(ax, [0, 1, np.e, 4, 6, 8], ["0", "1 = e (identity)", "ℯ = 2.718…", "4", "6", "8"])
+        ax.axhline(1.0, color="0.7", lw=0.8)
+        g, _ = rplus_geodesics(np.array([-1.0, -0.5, 0.5, 1.0]), self.T)
+        ax.add_collection(LineCollection([np.c_[self.T, gi] for gi in g], colors="0.8", linewidths=1))
+
+    def create(self):
+        (ax,) = self.axes
+        (self.curve,) = ax.plot([], [], color="tab:red", lw=2.2)
+        (self.additive,) = ax.plot([], [], color="tab:blue", lw=1.2, ls="--")
+        self.arrows = _arrow(ax, color="tab:red", n=4, width=0.006)
+        (self.marks,) = ax.plot([], [], "o", color="k", ms=5)
+        self.title = _title(ax)
+        self.info = PathText(ax, 0.03, 0.93, "", size=8, va="top", coords="axes")
+
+    def set(self, xi=1.0):
+        from ..fields import rplus_geodesics
+
+        g, g_dot = rplus_geodesics(np.array(xi), self.T)
+        self.g = g
+        self.curve.set_data(self.T, g)
+        self.additive.set_data(self.T, 1.0 + xi * self.T)
+        tk = np.array([0.0, 1.0, 2.0, 3.0])
+        gk = RPlus.exp(tk[:, None] * xi)[:, 0]
+        self.slopes = xi * gk                    # T_eL_g xi = g xi, the left-invariant field (1.46)
+        dt = 0.35
+        _set_arrows(self.arrows, np.c_[tk, gk], np.c_[np.full(4, dt), dt * self.slopes])
+        self.marks.set_data(tk, gk)
+        self.ratios = gk[1:] / gk[:-1]
+        self.title.set_text(f"ξ = {xi:.2f}: exp(ξ) = {np.exp(xi):.4f}"
+                            + ("  — this is e" if abs(xi - 1) < 1e-12 else ""))
+        self.info.set_text("g(t+1)/g(t) = " + ", ".join(f"{r:.4f}" for r in self.ratios)
+                           + "\narrows: slope ġ = ξ g (left-invariant field)")
+
+
+class ExpFourWaysScene(Scene):
+    """Section 1.6.4 / exercise 1.4d: exp(xi) on SE(2) by closed form, Taylor series, the product
+    (I + xi^/n)^n and Euler steps, for xi = (1, 0, thetadot).
+
+    Values ``thetadot``, ``n`` and ``side`` ("left" or "right" invariant field, for Euler). Left:
+    error against the number of steps/terms (log-log), with the current n marked. Right: the
+    intermediate values of each method in the xy plane, over the closed-form arc.
+    """
+
+    NS = tuple(2 ** k for k in range(8))
+    METHODS = (("taylor", "tab:green", "Taylor partial sums"), ("product", "tab:blue", "(I + ξ^/n)ᵏ"),
+               ("euler", "tab:orange", "Euler steps"))
+
+    def make_figure(self):
+        fig, axes = new_figure(1, 2, figsize=(9.6, 4.0))
+        fig.subplots_adjust(left=0.08, right=0.98, bottom=0.11, top=0.9, wspace=0.15)
+        return fig, list(axes)
+
+    def decorate(self):
+        a, b = self.axes
+        a.set_xlim(0, 7.3)
+        a.set_ylim(-17, 1.5)
+        _xticks(a, range(8), [str(n) for n in self.NS])
+        _yticks(a, [0, -4, -8, -12, -16], ["1", "1e-4", "1e-8", "1e-12", "1e-16"])
+        _title(a, "error ‖estimate − exp(ξ^)‖ against n (log scales)")
+        PathText(a, 7.2, -16.5, "n steps / terms →", size=7.5, ha="right")  # noqa: RUF001
+        b.set_aspect("equal")
+        b.set_xticks([])
+        b.set_yticks([])
+        _title(b, "intermediate values in the xy plane")
+
+    def create(self):
+        a, b = self.axes
+        self.err_lines, self.err_marks, self.path_lines = {}, {}, {}
+        for k, (m, col, label) in enumerate(self.METHODS):
+            (self.err_lines[m],) = a.plot([], [], "-o", color=col, ms=4, lw=1.5)
+            (self.err_marks[m],) = a.plot([], [], "*", color=col, ms=13, mec="k", mew=0.5)
+            (self.path_lines[m],) = b.plot([], [], "-o", color=col, ms=3.5, lw=1.0, alpha=0.85)
+            PathText(a, 0.03, 0.30 - 0.07 * k, label, size=8, color=col, coords="axes")
+        (self.arc,) = b.plot([], [], color="0.3", lw=2.5, alpha=0.5)
+        (self.target,) = b.plot([], [], "k*", ms=12)
+        self.info = PathText(b, 0.02, 0.03, "", size=7.5, coords="axes")
+        self._key = None
+
+    def set(self, thetadot=1.0, n=8, side="left"):
+        from ..calculus import exp_history
+
+        n = int(n)
+        xi = np.array([1.0, 0.0, thetadot])
+        key = (thetadot, side)
+        if key != self._key:
+            self.histories = {m: exp_history(SE2, xi, self.NS, m, side) for m, _, _ in self.METHODS}
+            for m, h in self.histories.items():
+                self.err_lines[m].set_data(np.log2(h.n), np.log10(np.maximum(h.error, 1e-16)))
+            s = np.linspace(0, 1, 60)
+            arc = SE2.exp(s[:, None] * xi)
+            self.arc.set_data(arc[:, 0], arc[:, 1])
+            end = SE2.exp(xi)
+            self.target.set_data([end[0]], [end[1]])
+            self._key = key
+            lo = np.minimum(arc[:, :2].min(0), 0) - 0.35
+            hi = np.maximum(arc[:, :2].max(0), 0) + 0.35
+            span = max(hi - lo) / 2 + 0.2
+            c = (hi + lo) / 2
+            self.axes[1].set_xlim(c[0] - span, c[0] + span)
+            self.axes[1].set_ylim(c[1] - span, c[1] + span)
+        self.final_error = {}
+        for m, _, _ in self.METHODS:
+            path = self.histories[m].path(n)
+            self.final_error[m] = float(path.error[-1]) if m != "taylor" else float(
+                np.linalg.norm(path.matrices[-1] - SE2.matrix(SE2.exp(xi))))
+            self.err_marks[m].set_data([np.log2(n)], [np.log10(max(self.final_error[m], 1e-16))])
+            pts = path.matrices[:, :2, 2] if m != "taylor" else path.matrices[1:, :2, 2]
+            self.path_lines[m].set_data(pts[:, 0], pts[:, 1])
+        self.info.set_text("n = {}:  ".format(n) + "   ".join(
+            f"{m} {self.final_error[m]:.1e}" for m, _, _ in self.METHODS))
+
+
+def binomial_table(ns=(5, 10, 100, 1000), kmax=5):
+    """Rows (n, k, C(n,k), C(n,k)/n^k, 1/k!, n^k/k!) showing why (I + A/n)^n -> sum A^k/k!.
+
+    Uses :func:`gm_core.calculus.binomial_terms`; the last column is the draft's coefficient in
+    (1.50), which is *not* C(n, k).
+    """
+    from ..calculus import binomial_terms
+
+    rows = []
+    for n in ns:
+        for k in range(kmax + 1):
+            c, ratio = binomial_terms(n, k)
+            rows.append((n, k, c, ratio, 1.0 / factorial(k), n ** k / factorial(k)))
+    return rows

@@ -17,6 +17,8 @@ __all__ = [
     "show", "TorusPathPanel", "LoopsPanel", "PoleChartPanel",
     "GroupAxiomsPanel", "SlideRulePanel", "CircleIsoPanel", "LeftRightActionPanel",
     "ForwardLeftPanel", "BodyPointsPanel",
+    "VectorFieldPanel", "LiftedScalarPanel", "LiftedSE2Panel", "VelocityPanel", "AdjointPanel",
+    "HelixPanel", "PuckArcPanel", "RPlusGeodesicPanel", "ExpFourWaysPanel",
 ]
 
 PI = np.pi
@@ -181,3 +183,124 @@ class BodyPointsPanel(ScenePanel):
         c["px"] = slider(0.6, -0.8, 0.8, description="body pₓᵇ")
         c["py"] = slider(0.3, -0.4, 0.4, description="body p_yᵇ")
         return c
+
+
+# ============================================================================== 1.4-1.5 velocities
+@register
+class VectorFieldPanel(ScenePanel):
+    """Figs. 1.13-1.14: integral curves of a vector field from a movable start point."""
+
+    title = "Vector fields and integral curves"
+    scene_class = D.VectorFieldScene
+
+    def controls_spec(self):
+        return {"field": W.Dropdown(options=list(D.FIELDS), value="spiral sink", description="field"),
+                "x0": slider(1.5, -2.9, 2.9, description="start x₀"),
+                "y0": slider(1.0, -2.9, 2.9, description="start y₀")}
+
+
+@register
+class LiftedScalarPanel(ScenePanel):
+    """(1.22)-(1.25): lifted actions on (R², +) and (R⁺, ×)."""
+
+    title = "Lifted actions carry velocities between tangent spaces"
+    scene_class = D.LiftedScalarScene
+
+    def controls_spec(self):
+        return {"hx": slider(1.5, -1.0, 3.0, description="R²: hₓ"),
+                "hy": slider(1.0, -1.0, 2.5, description="R²: h_y"),
+                "h": slider(2.5, 0.2, 6.0, description="R⁺: h")}
+
+
+@register
+class LiftedSE2Panel(ScenePanel):
+    """(1.31), (1.37): left and right lifted actions of SE(2) on a moving body."""
+
+    title = "SE(2): T_gL_h keeps the body velocity, T_gR_h keeps the spatial velocity"
+    scene_class = D.LiftedSE2Scene
+
+    def controls_spec(self):
+        return {"theta": slider(0.3, -PI, PI, description="g: θ"),
+                "u": slider(2.0, -1.5, 3.0, description="h: u"),
+                "v": slider(1.5, -1.5, 3.0, description="h: v"),
+                "beta": slider(1.0, -PI, PI, description="h: β")}
+
+
+def _xi_sliders(vx, vy, w):
+    return {"vx": slider(vx, -1.5, 1.5, description="ξˣ"),
+            "vy": slider(vy, -1.5, 1.5, description="ξʸ"),
+            "w": slider(w, -1.5, 1.5, description="ξᶿ")}
+
+
+@register
+class VelocityPanel(ScenePanel):
+    """Fig. 1.15: world, body and spatial velocity."""
+
+    title = "Four views of one velocity (fig. 1.15)"
+    scene_class = D.VelocityScene
+
+    def controls_spec(self):
+        c = _se2_sliders(1.2, 0.6, 0.7, lim=2.0, labels=("g: x", "g: y", "g: θ"))
+        c.update(_xi_sliders(0.8, 0.3, 0.6))
+        return c
+
+
+@register
+class AdjointPanel(ScenePanel):
+    """(1.40)-(1.45): the adjoint, checked three ways, live."""
+
+    title = "The adjoint Ad_g = T_gR_g⁻¹ T_eL_g, checked live"
+    scene_class = D.AdjointScene
+
+    def controls_spec(self):
+        c = _se2_sliders(1.0, -0.5, 0.8, lim=2.5, labels=("g: x", "g: y", "g: θ"))
+        c.update(_xi_sliders(0.5, 0.2, 0.7))
+        return c
+
+
+# ============================================================================== 1.6 geodesics, exp
+@register
+class HelixPanel(ScenePanel):
+    """Fig. 1.18: SE(2) geodesic helices and their circular shadows."""
+
+    title = "SE(2) geodesics are helices (fig. 1.18)"
+    scene_class = D.HelixScene
+
+    def controls_spec(self):
+        return {"thetadot": slider(1.0, -3.0, 3.0, description="θ̇")}
+
+
+@register
+class PuckArcPanel(ScenePanel):
+    """Fig. 1.19: spinning puck vs SE(2) arc, scrubbed by time."""
+
+    title = "Spinning puck vs SE(2) arc (fig. 1.19)"
+    scene_class = D.PuckArcScene
+
+    def controls_spec(self):
+        return {"t": slider(1.5, 0.0, 2 * PI, description="time t"),
+                "w": slider(1.0, 0.2, 2.0, description="ξᶿ")}
+
+
+@register
+class RPlusGeodesicPanel(ScenePanel):
+    """Fig. 1.17: accelerating and decelerating geodesics of (R⁺, ×)."""
+
+    title = "Geodesics of (R⁺, ×) (fig. 1.17)"
+    scene_class = D.RPlusGeodesicScene
+
+    def controls_spec(self):
+        return {"xi": slider(1.0, -1.5, 1.5, description="ξ")}
+
+
+@register
+class ExpFourWaysPanel(ScenePanel):
+    """Section 1.6.4, exercise 1.4d: the exponential map four ways."""
+
+    title = "exp(ξ) on SE(2), four ways"
+    scene_class = D.ExpFourWaysScene
+
+    def controls_spec(self):
+        return {"thetadot": slider(1.0, -3.0, 3.0, description="θ̇ in ξ = (1, 0, θ̇)"),
+                "n": int_slider(8, 1, 64, description="steps / terms n"),
+                "side": W.Dropdown(options=["left", "right"], value="left", description="field")}
