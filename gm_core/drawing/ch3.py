@@ -122,11 +122,24 @@ def shape_grid(system, n=21, limits=None):
 
 
 def connection_field(system, row, n=21, limits=None):
-    """(a1, a2, U, V): the field -A^row over a shape grid, U and V masked where A is undefined."""
+    """(a1, a2, U, V): the field -A^row over a shape grid, U and V masked where A is undefined.
+
+    Entries below 1e-10 of the largest entry of A on the grid are set to exactly zero, so a row
+    that vanishes analytically (e.g. the floating snake's translation rows) is not drawn as
+    magnified round-off.
+    """
     a1, a2, r = shape_grid(system, n, limits)
     A = system.connection(r)
-    U = np.ma.masked_invalid(-A[..., row, 0])
-    V = np.ma.masked_invalid(-A[..., row, 1])
+    finite = np.isfinite(A)
+    big = float(np.max(np.abs(A[finite]))) if finite.any() else 0.0
+    U = -A[..., row, 0]
+    V = -A[..., row, 1]
+    with np.errstate(invalid="ignore"):
+        tiny = np.hypot(U, V) <= 1e-10 * big
+    U = np.where(tiny, 0.0, U)
+    V = np.where(tiny, 0.0, V)
+    U = np.ma.masked_invalid(U)
+    V = np.ma.masked_invalid(V)
     mask = np.ma.getmaskarray(U) | np.ma.getmaskarray(V)
     return a1, a2, np.ma.array(U, mask=mask), np.ma.array(V, mask=mask)
 
@@ -157,7 +170,8 @@ class ConnectionFieldArtist:
         self.quiver.set_offsets(np.column_stack([a1.ravel(), a2.ravel()]))
         mag = np.ma.sqrt(U ** 2 + V ** 2)
         spacing = min(np.ptp(a1) / (self.n - 1), np.ptp(a2) / (self.n - 1))
-        med = float(np.ma.median(mag)) if mag.count() else 0.0
+        nonzero = np.ma.masked_equal(mag, 0.0)
+        med = float(np.ma.median(nonzero)) if nonzero.count() else 0.0
         cap = self.clip * med if med > 0 else (float(mag.max()) if mag.count() else 1.0)
         cap = cap if cap > 0 else 1.0
         self.factor = 0.9 * spacing / cap
