@@ -586,7 +586,8 @@ class _SE2(LieGroup):
         x, y, t = g[..., 0], g[..., 1], g[..., 2]
         u, v, b = h[..., 0], h[..., 1], h[..., 2]
         c, s = np.cos(t), np.sin(t)
-        out = np.empty(_batch(g, h, tail=1) + (3,))
+        # np.broadcast_shapes costs microseconds: skip it in the common equal-shapes case
+        out = np.empty(g.shape if g.shape == h.shape else _batch(g, h, tail=1) + (3,))
         out[..., 0] = x + c * u - s * v
         out[..., 1] = y + s * u + c * v
         out[..., 2] = t + b
