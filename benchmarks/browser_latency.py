@@ -64,23 +64,6 @@ _ARM_JS = r"""
 """
 
 
-def wait_still(nbp, sel, still_ms=300, timeout=20.0):
-    """Wait until the kernel is idle and the canvas has not changed for ``still_ms``."""
-    deadline = time.monotonic() + timeout
-    last = nbp.snapshot(sel)
-    last_change = time.monotonic()
-    while time.monotonic() < deadline:
-        nbp.page.wait_for_timeout(50)
-        snap = nbp.snapshot(sel)
-        if snap != last:
-            last, last_change = snap, time.monotonic()
-            continue
-        if time.monotonic() - last_change >= still_ms / 1000:
-            if nbp.read_status().get("kernel") == "idle":
-                return
-    raise browserlab.BrowserTestError(f"{nbp.relpath}: canvas/kernel did not settle within {timeout} s")
-
-
 def measure(lab, relpath, moves=20, per_move_timeout=15.0):
     with browserlab.NotebookPage(lab, relpath) as nbp:
         nbp.open()
@@ -91,7 +74,7 @@ def measure(lab, relpath, moves=20, per_move_timeout=15.0):
         label = nbp.page.locator(f"{sel} .widget-slider .widget-label").first
         name = label.inner_text().strip() if label.count() else "?"
         handle.scroll_into_view_if_needed()
-        info = nbp.slider_value(sel)
+        info = nbp.slider_value(sel, 0)
         lo, hi, v = info["min"], info["max"], info["value"]
         up, down = "PageUp", "PageDown"
         first = up if v <= (lo + hi) / 2 else down
@@ -100,13 +83,13 @@ def measure(lab, relpath, moves=20, per_move_timeout=15.0):
         keys = ([first] * block + [second] * block) * (moves // (2 * block) + 1)
         keys = keys[:moves]
         handle.focus()
-        wait_still(nbp, sel)
+        nbp.wait_still(sel, still=0.3)
         lat, misses = [], 0
         for key in keys:
             nbp.page.evaluate(_ARM_JS, sel)
-            v_before = nbp.slider_value(sel)["value"]
+            v_before = nbp.slider_value(sel, 0)["value"]
             handle.press(key)
-            if nbp.slider_value(sel)["value"] == v_before:
+            if nbp.slider_value(sel, 0)["value"] == v_before:
                 nbp.page.evaluate("window.__gmLatency = null")
                 continue  # at the end of the range: no move, nothing to time
             try:
@@ -116,7 +99,7 @@ def measure(lab, relpath, moves=20, per_move_timeout=15.0):
             except Exception:
                 misses += 1
             nbp.page.evaluate("window.__gmLatency = null")
-            wait_still(nbp, sel)
+            nbp.wait_still(sel, still=0.3)
         nbp.check_no_errors()
         return {"notebook": relpath, "slider": name, "lat": lat, "misses": misses}
 

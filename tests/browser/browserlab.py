@@ -380,17 +380,20 @@ _FIND_PANEL_JS = r"""
 """
 
 _SLIDER_VALUE_JS = r"""
-(sel) => {
-  const t = document.querySelector(sel + ' .widget-slider .noUi-target');
+([sel, index]) => {
+  const s = document.querySelectorAll(sel + ' .widget-slider')[index];
+  if (!s) return {};
+  const t = s.querySelector('.noUi-target');
   const num = (x) => { const v = Number(Array.isArray(x) ? x[0] : x); return Number.isFinite(v) ? v : null; };
+  const label = (s.querySelector('.widget-label') || {}).innerText || '';
   if (t && t.noUiSlider) {
     const r = t.noUiSlider.options.range;
-    return {value: num(t.noUiSlider.get()), min: num(r.min), max: num(r.max)};
+    return {value: num(t.noUiSlider.get()), min: num(r.min), max: num(r.max), label};
   }
-  const h = document.querySelector(sel + ' .widget-slider .noUi-handle');
-  if (!h) return {};
+  const h = s.querySelector('.noUi-handle');
+  if (!h) return {label};
   return {value: num(h.getAttribute('aria-valuenow')), min: num(h.getAttribute('aria-valuemin')),
-          max: num(h.getAttribute('aria-valuemax'))};
+          max: num(h.getAttribute('aria-valuemax')), label};
 }
 """
 
@@ -654,31 +657,52 @@ class NotebookPage:
                 self.fail(f"no interactive panel #{index} after {timeout:.0f} s: {why}")
             self.page.wait_for_timeout(self.poll * 1000)
 
-    def slider_value(self, sel) -> dict:
-        """Exact value and range of the panel's first slider (noUiSlider API; aria-* are rounded)."""
-        return self.page.evaluate(_SLIDER_VALUE_JS, sel)
+    def slider_value(self, sel, index: int = 0) -> dict:
+        """Exact value, range and label of the panel's ``index``-th slider (noUiSlider API; aria-* are rounded)."""
+        return self.page.evaluate(_SLIDER_VALUE_JS, [sel, index])
 
-    def _slider_state(self, sel):
-        handle = self.page.locator(f"{sel} .widget-slider .noUi-handle").first
-        readout = self.page.locator(f"{sel} .widget-slider .widget-readout").first
+    def slider_count(self, sel) -> int:
+        return self.page.locator(f"{sel} .widget-slider").count()
+
+    def _slider_state(self, sel, index):
+        slider = self.page.locator(f"{sel} .widget-slider").nth(index)
+        handle = slider.locator(".noUi-handle").first
+        readout = slider.locator(".widget-readout").first
         r = readout.inner_text() if readout.count() else ""
-        return handle, r, self.slider_value(sel).get("value")
+        return handle, r, self.slider_value(sel, index).get("value")
 
     def snapshot(self, sel) -> str:
         return self.page.evaluate(_SNAPSHOT_JS, sel)
 
-    def move_slider(self, sel: str, fraction: float = 0.06, max_presses: int = 25,
+    def wait_still(self, sel, still: float = 0.4, timeout: float = 20.0):
+        """Wait until the panel's canvas has not changed for ``still`` seconds and the kernel is idle
+        (so a late initial render is not mistaken for the slider's effect)."""
+        deadline = time.monotonic() + timeout
+        last = self.snapshot(sel)
+        since = time.monotonic()
+        while time.monotonic() < deadline:
+            self.page.wait_for_timeout(50)
+            snap = self.snapshot(sel)
+            if snap != last:
+                last, since = snap, time.monotonic()
+            elif time.monotonic() - since >= still and self.read_status().get("kernel") == "idle":
+                return last
+        self.fail(f"the panel's canvas kept changing (or the kernel stayed busy) for {timeout:.0f} s "
+                  "before any slider was moved")
+
+    def move_slider(self, sel: str, index: int = 0, fraction: float = 0.06, max_presses: int = 25,
                     change_timeout: float = 20.0) -> SliderResult:
-        """Focus the panel's first slider handle, press ArrowRight (ArrowLeft when in the upper
-        half) until the value moved by ~``fraction`` of its range, and wait for the canvas to change."""
+        """Focus the panel's ``index``-th slider handle, press ArrowRight (ArrowLeft when in the
+        upper half of the range) until the value moved by ~``fraction`` of the range, and wait up
+        to ``change_timeout`` s for the canvas pixels to change."""
         t0 = time.monotonic()
-        handle, r0, v0 = self._slider_state(sel)
+        handle, r0, v0 = self._slider_state(sel, index)
         handle.scroll_into_view_if_needed()
-        before = self.snapshot(sel)
-        info = self.slider_value(sel)
+        before = self.wait_still(sel)
+        info = self.slider_value(sel, index)
         lo, hi, v = info.get("min"), info.get("max"), info.get("value")
         if None in (lo, hi, v):
-            self.fail(f"cannot read the first slider of the panel: {info}")
+            self.fail(f"cannot read slider #{index} of the panel: {info}")
         key = "ArrowRight" if v <= (lo + hi) / 2 else "ArrowLeft"
         target = abs(hi - lo) * fraction
         handle.focus()
@@ -686,10 +710,10 @@ class NotebookPage:
         while presses < max_presses:
             handle.press(key)
             presses += 1
-            now = self.slider_value(sel).get("value")
+            now = self.slider_value(sel, index).get("value")
             if now is None or abs(now - v) >= target:
                 break
-        _, r1, v1 = self._slider_state(sel)
+        _, r1, v1 = self._slider_state(sel, index)
         changed = False
         deadline = time.monotonic() + change_timeout
         while time.monotonic() < deadline:
@@ -701,7 +725,7 @@ class NotebookPage:
                 break
             self.page.wait_for_timeout(self.poll * 1000)
         res = SliderResult(changed, r0, r1, v0, v1, round(time.monotonic() - t0, 2), presses,
-                           detail=f"{presses} x {key}")
+                           detail=f"slider #{index} {info.get('label', '')!r}: {presses} x {key}")
         self.timings.mark("slider", t0)
         return res
 
@@ -720,13 +744,22 @@ def check_interactive_notebook(lab: LabBrowser, relpath: str, change_timeout: fl
         nbp.run_all()
         nbp.check_no_errors()
         sel = nbp.find_panel(0)
-        res = nbp.move_slider(sel, change_timeout=change_timeout)
-        nbp.check_no_errors()
-        if not res.slider_moved:
-            nbp.fail(f"the slider did not move ({res.detail}; readout {res.readout_before!r})")
-        if not res.changed:
-            nbp.fail(f"the figure did not change within {change_timeout:.0f} s after moving the first "
-                     f"slider ({res.detail}: readout {res.readout_before!r} -> {res.readout_after!r})")
+        # The first slider decides; if it leaves the picture unchanged (e.g. a parameter that only
+        # matters in another mode) up to two more sliders of the same panel get a shorter chance.
+        tried = []
+        for index in range(min(3, nbp.slider_count(sel))):
+            res = nbp.move_slider(sel, index, change_timeout=change_timeout if index == 0 else 6.0)
+            nbp.check_no_errors()
+            tried.append(res)
+            if res.changed and res.slider_moved:
+                break
+        if not any(r.slider_moved for r in tried):
+            nbp.fail("no slider of the first panel moved: " + "; ".join(
+                f"{r.detail} (readout {r.readout_before!r})" for r in tried))
+        if not (res.changed and res.slider_moved):
+            nbp.fail(f"the figure did not change within {change_timeout:.0f} s after moving the panel's "
+                     "sliders: " + "; ".join(f"{r.detail}, readout {r.readout_before!r} -> {r.readout_after!r}"
+                                             for r in tried))
         return res, nbp.timings.phases
 
 
