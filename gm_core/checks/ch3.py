@@ -98,15 +98,15 @@ ex3_2 = Exercise("3.2", "Pfaffians with fewer or more than three rows", [
 
 # ============================================================================ 3.3
 def ackerman_rear(alpha, R, L):
-    """Local connection of the rear-wheel-drive kinematic bicycle, (3, 2); (3.9) when R = L = 1."""
+    """Local connection (3, 2) of the rear-wheel-drive kinematic bicycle; -A is (3.9)'s matrix for R = L = 1."""
     a2 = np.asarray(alpha, dtype=float)[1]
-    return np.array([[R, 0.0], [0.0, 0.0], [R * np.tan(a2) / L, 0.0]])
+    return -np.array([[R, 0.0], [0.0, 0.0], [R * np.tan(a2) / L, 0.0]])
 
 
 def ackerman_front(alpha, R, L):
-    """Local connection of the front-wheel-drive kinematic bicycle (passive rear wheel), (3, 2)."""
+    """Local connection (3, 2) of the front-wheel-drive kinematic bicycle (passive rear wheel)."""
     a2 = np.asarray(alpha, dtype=float)[1]
-    return np.array([[R * np.cos(a2), 0.0], [0.0, 0.0], [R * np.sin(a2) / L, 0.0]])
+    return -np.array([[R * np.cos(a2), 0.0], [0.0, 0.0], [R * np.sin(a2) / L, 0.0]])
 
 
 def ackerman_pfaffian(alpha, R, L, drive="rear"):
@@ -136,7 +136,7 @@ def _ack_part(name, drive):
               "alpha = (drive wheel angle, steering angle), wheel radius R, wheelbase L",
         ref=ref, inputs=_ack_inputs, arg_names=("alpha", "R", "L"), shape=(3, 2),
         mistakes=[(_neg(ref), "your sign is reversed: the book writes xi = -A r_dot (3.10), so A = "
-                   "omega_xi^-1 omega_r (3.17)."),
+                   "omega_xi^-1 omega_r (3.17); driving forward must give xi^x > 0, i.e. A < 0 there."),
                   (other, f"that is the connection of the {'front' if drive == 'rear' else 'rear'}-"
                    "wheel-drive car."),
                   (lambda al, R, L: ref(al, R, 1.0), "your rotation rate ignores the wheelbase L.")],
@@ -147,9 +147,10 @@ def _ack_part(name, drive):
                "steering rate does not move its contact point).",
                "Stack three independent rows into omega (3 x 5), split it into omega_xi (3 x 3) and "
                "omega_r (3 x 2), and use (3.17)."],
-        solution_text=("A = [[R, 0], [0, 0], [R tan(alpha2) / L, 0]], (3.9) for R = L = 1."
+        solution_text=("A = -[[R, 0], [0, 0], [R tan(alpha2) / L, 0]], so xi = -A r_dot is (3.9) "
+                       "for R = L = 1."
                        if drive == "rear" else
-                       "A = [[R cos(alpha2), 0], [0, 0], [R sin(alpha2) / L, 0]]: no singularity at "
+                       "A = -[[R cos(alpha2), 0], [0, 0], [R sin(alpha2) / L, 0]]: no singularity at "
                        "alpha2 = pi/2, where the car pivots about its rear axle."),
         reference=ref, wrong=[_neg(ref)])
 
