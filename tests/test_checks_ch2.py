@@ -1,0 +1,98 @@
+"""Chapter 2 checkers: references against gm_core.chains (three-way Jacobians) and finite differences."""
+import numpy as np
+import pytest
+import sympy as sp
+
+from gm_core import SE2, chains
+from gm_core.checks import ex2_1, ex2_2, ex2_3, ex2_4, reset_progress
+from gm_core.checks import ch2
+
+
+@pytest.fixture(autouse=True)
+def clean():
+    reset_progress()
+    yield
+    reset_progress()
+
+
+def test_constraint_answers_in_several_forms():
+    x, y, z = sp.symbols("x y z", real=True)
+    assert ex2_1.a.check((x**2 + y**2 + z**2 - 2, z - 1), quiet=True).passed
+    assert ex2_1.a.check((sp.sqrt(x**2 + y**2 + z**2) - sp.sqrt(2), 1 - z), quiet=True).passed
+    assert ex2_1.a.check((lambda x, y, z: x*x + y*y + z*z - 2, lambda x, y, z: z - 1), quiet=True).passed
+    v = ex2_1.a.check((x**2 + y**2 + z**2 - 1, z - 1), quiet=True)
+    assert v.status == "failed" and "radius 1" in v.message
+    v = ex2_1.a.check((x**2 + y**2 + z**2 - 2, z**2 - 1), quiet=True)
+    assert v.status == "failed" and "z = -1" in v.message
+    v = ex2_1.a.check((x**2 + y**2 - 1, z - 1), quiet=True)   # first constraint not a sphere
+    assert v.status == "failed"
+
+
+def test_rp_arm_references_against_chains_and_finite_differences():
+    for args in ex2_2.a.inputs():
+        alpha, delta, l1, l2, a = args
+        chain = chains.Chain("RP", [l1, l2], offsets=[a, 0.0])
+        q = np.array([alpha, delta])
+        assert np.allclose(chain.jacobians(q, method="world")["h"][-1], ch2._rp_world(*args))
+        assert np.allclose(chains.rp_arm_body_jacobians(*args)["h2"], ch2._rp_body(*args))
+        eps = 1e-6
+        fd = np.stack([(chain.end_effector(q + eps * e) - chain.end_effector(q - eps * e)) / (2 * eps)
+                       for e in np.eye(2)], 1)
+        assert np.allclose(fd, ch2._rp_world(*args), atol=1e-6)
+
+
+def test_com_frame_references_against_chains():
+    for alpha, lengths in ex2_3.a.inputs():
+        beta, dbeta = chains.com_frame(alpha, lengths)
+        assert np.allclose(ch2.com_beta(alpha, lengths), beta)
+        assert np.allclose(ch2.com_dbeta(alpha, lengths), dbeta)
+        J_com, links = chains.com_frame_jacobians(alpha, lengths)
+        assert np.allclose(ch2.com_jacobian(alpha, lengths), J_com)
+        assert np.allclose(ch2.links_from_com(alpha, lengths), np.stack(links))
+        assert np.allclose(ch2.three_link_body_jacobians(alpha, lengths),
+                           np.stack(chains.three_link_jacobians(alpha, lengths)))
+
+
+def test_com_jacobian_by_finite_differences():
+    rng = np.random.default_rng(5)
+    for _ in range(5):
+        xi, alpha, adot, lengths = rng.normal(size=3), rng.uniform(-1.5, 1.5, 2), rng.normal(size=2), rng.uniform(0.5, 2, 3)
+
+        def pose(t):
+            return SE2.compose(SE2.exp(t * xi), ch2.com_beta(alpha + t * adot, lengths))
+        eps = 1e-6
+        g_dot = (pose(eps) - pose(-eps)) / (2 * eps)
+        body = SE2.world_to_body(pose(0.0), g_dot)
+        assert np.allclose(ch2.com_jacobian(alpha, lengths) @ np.r_[xi, adot], body, atol=1e-6)
+
+
+def test_link_jacobians_in_com_frame_by_finite_differences():
+    rng = np.random.default_rng(6)
+    for _ in range(3):
+        xi, alpha, adot, lengths = rng.normal(size=3), rng.uniform(-1.5, 1.5, 2), rng.normal(size=2), rng.uniform(0.5, 2, 3)
+
+        def link_world(t, i):
+            g_com = SE2.exp(t * xi)
+            a = alpha + t * adot
+            middle = SE2.compose(g_com, SE2.inverse(ch2.com_beta(a, lengths)))
+            return SE2.compose(middle, ch2.link_poses(a, lengths)[i])
+        eps = 1e-6
+        J = ch2.links_from_com(alpha, lengths)
+        for i in range(3):
+            g_dot = (link_world(eps, i) - link_world(-eps, i)) / (2 * eps)
+            assert np.allclose(J[i] @ np.r_[xi, adot], SE2.world_to_body(link_world(0.0, i), g_dot), atol=1e-6)
+
+
+def test_change_of_basis_reference():
+    for x, y, tg, th in ex2_4.a.inputs():
+        assert np.allclose(ch2._cob(x, y, tg, th), SE2.Ad_inv([x, y, th]) @ SE2.Ad([x, y, tg]))
+    X, Y, TG, TH = sp.symbols("x y theta_g theta_h", real=True)
+    d = TH - TG
+    M = sp.Matrix([[sp.cos(d), sp.sin(d), 0], [-sp.sin(d), sp.cos(d), 0], [0, 0, 1]])
+    assert ex2_4.a.check(M, quiet=True).passed
+    assert "wrong way" in ex2_4.a.check(M.T, quiet=True).message
+
+
+def test_links_answer_as_a_tuple_of_three():
+    f = lambda al, le: tuple(ch2.links_from_com(al, le))
+    assert ex2_3.c.check(f, quiet=True).passed
