@@ -269,3 +269,19 @@ def test_connection_curl():
     ref = ((f(r + [h, 0]) - f(r - [h, 0]))[:, 1] - (f(r + [0, h]) - f(r - [0, h]))[:, 0]) / (2 * h)
     np.testing.assert_allclose(connection_curl(s, r), ref, rtol=1e-6, atol=1e-9)
     assert abs(connection_curl(s, r)[0]) > 0.1  # the forward row is not exact
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2 ** 32 - 1))
+def test_connection_is_invariant_under_row_operations(seed):
+    """Recombining the constraint rows (omega -> M omega, M invertible) describes the same
+    constraints, so A must not change; scaling the shape columns scales A's columns."""
+    rng = np.random.default_rng(seed)
+    om = rng.normal(size=(3, 5))
+    M = rng.normal(size=(3, 3))
+    if abs(np.linalg.det(om[:, :3])) < 1e-3 or abs(np.linalg.det(M)) < 1e-3:
+        return
+    A = connection_from_pfaffian(om)
+    np.testing.assert_allclose(connection_from_pfaffian(M @ om), A, rtol=1e-6, atol=1e-6 * np.abs(A).max())
+    S = np.diag([1.0, 1.0, 1.0, 2.0, -3.0])
+    np.testing.assert_allclose(connection_from_pfaffian(om @ S), A * [2.0, -3.0], rtol=1e-9, atol=1e-9 * np.abs(A).max())
