@@ -18,7 +18,9 @@ Usage::
 
 Timing: ``time.perf_counter`` around a loop of calls sized to take at least ~50 ms, repeated
 with gm_core and the reference interleaved; the whole measurement alternates local and peer runs
-``--rounds`` times (default 2) and the table shows each cell's best (medians are in ``--json``). jax runs with float64
+``--rounds`` times (default 2) and the table shows each cell's best (medians are in ``--json``).
+The gm_core/reference ratio is the median over adjacent (interleaved) repeat pairs, which is far
+less sensitive to other processes' load than a ratio of independent bests. jax runs with float64
 enabled and XLA limited to one thread (numpy's elementwise maps are single-threaded too); jitted
 functions are compiled before timing and synchronised with ``block_until_ready``. geomstats runs
 on its numpy backend. Peers return their own representations (jaxlie: (cos, sin, x, y);
@@ -166,11 +168,11 @@ def measure(cases, repeats):
             times[name].append((time.perf_counter() - t0) / loops[name])
         if i >= 2 and time.perf_counter() - start > 20.0:  # very slow peers: three repeats suffice
             break
-    return {name: (float(np.min(t)), float(np.median(t))) for name, t in times.items()}
+    return {name: (float(np.min(t)), float(np.median(t)), t) for name, t in times.items()}
 
 
-def _per_element(pair, n):
-    return {"best": pair[0] / n * 1e9, "median": pair[1] / n * 1e9}
+def _per_element(res, n):
+    return {"best": res[0] / n * 1e9, "median": res[1] / n * 1e9}
 
 
 def machine():
@@ -183,8 +185,12 @@ def machine():
                     break
     except OSError:
         pass
+    try:
+        load = "%.1f" % os.getloadavg()[0]
+    except (AttributeError, OSError):
+        load = "?"
     return {"cpu": cpu, "cores": os.cpu_count(), "python": platform.python_version(),
-            "numpy": np.__version__}
+            "numpy": np.__version__, "load": load}
 
 
 # ----------------------------------------------------------------------------- gm_core + reference
@@ -193,7 +199,7 @@ def run_local(sizes, repeats):
 
     gm = {"exp": SE2.exp, "log": SE2.log, "compose": SE2.compose, "inverse": SE2.inverse,
           "Ad": SE2.Ad}
-    out = {"gm_core": {}, "reference": {}}
+    out = {"gm_core": {}, "reference": {}, "pair_ratios": {}}
     for n in sizes:
         data = make_inputs(n)
         for op in OPS:
@@ -203,8 +209,11 @@ def run_local(sizes, repeats):
                 raise SystemExit(f"gm_core.SE2.{op} disagrees with the reference formula")
             res = measure({"gm_core": (gm[op], args, None),
                            "reference": (REFERENCE[op], args, None)}, repeats)
-            for name, pair in res.items():
-                out[name].setdefault(op, {})[str(n)] = _per_element(pair, n)
+            for name, r in res.items():
+                out[name].setdefault(op, {})[str(n)] = _per_element(r, n)
+            # each gm_core repeat ran right next to a reference repeat: their ratio sees the same load
+            pairs = np.array(res["gm_core"][2]) / np.array(res["reference"][2])
+            out["pair_ratios"].setdefault(op, {})[str(n)] = [float(x) for x in pairs]
     return out
 
 
@@ -348,13 +357,15 @@ def _fmt_n(n):
 def report(local, peers, sizes):
     info = machine()
     lines = [
-        f"Machine: {info['cpu']}, {info['cores']} cores; Python {info['python']}, numpy {info['numpy']}",
+        f"Machine: {info['cpu']}, {info['cores']} cores (1-min load average {info['load']} at the end); "
+        f"Python {info['python']}, numpy {info['numpy']}",
     ]
     versions = peers.get("versions", {}) if peers else {}
     if peers and "machine" in peers:
         lines.append(f"Peers: numpy {peers['machine']['numpy']} in their venv; "
                      + ", ".join(f"{k} {v}" for k, v in versions.items()))
-    lines.append("ns per element (best of repeats); ratio = gm_core / plain-numpy reference")
+    lines.append("ns per element (best of repeats); ratio = gm_core / plain-numpy reference, the median "
+                 "over interleaved repeat pairs")
     head = ["op", "N", "gm_core", "reference", "ratio", *PEERS]
     rows = []
     checks = []
@@ -362,7 +373,7 @@ def report(local, peers, sizes):
         for n in sizes:
             g = local["gm_core"][op][str(n)]
             r = local["reference"][op][str(n)]
-            ratio = g["best"] / r["best"]
+            ratio = float(np.median(local["pair_ratios"][op][str(n)]))
             row = [op, _fmt_n(n), _cell(g), _cell(r), f"{ratio:.2f}"]
             for p in PEERS:
                 entry = (peers or {}).get("timings", {}).get(p, {}).get(op, {}).get(str(n))
@@ -410,7 +421,9 @@ def _merge(old, new):
             cells = {}
             for n in set(a) | set(b):
                 x, y = a.get(n), b.get(n)
-                if isinstance(x, dict) and isinstance(y, dict):
+                if isinstance(x, list) and isinstance(y, list):
+                    cells[n] = x + y
+                elif isinstance(x, dict) and isinstance(y, dict):
                     cells[n] = {"best": min(x["best"], y["best"]), "median": min(x["median"], y["median"])}
                 else:
                     cells[n] = y if y is not None else x
