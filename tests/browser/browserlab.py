@@ -28,6 +28,7 @@ import socket
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import urllib.error
 import urllib.request
@@ -106,6 +107,7 @@ class LabServer:
         self.log_path = self.workdir / "jupyterlab.log"
         self.extra_notebooks = extra_notebooks or {}
         self.start_timeout = start_timeout
+        self._background: list[threading.Thread] = []
 
     # -- set-up ---------------------------------------------------------------------------
     def _copy_course(self):
@@ -213,21 +215,30 @@ class LabServer:
             body = r.read()
         return json.loads(body) if body else None
 
-    def delete_sessions(self):
-        """Shut down every session and kernel (after each notebook; CPU is shared)."""
+    def delete_sessions(self, path: str | None = None):
+        """Shut down the sessions (and their kernels) of ``path``, or every session and kernel."""
         try:
             for s in self.api("GET", "/api/sessions") or []:
+                if path is not None and s.get("path") != path:
+                    continue
                 try:
-                    self.api("DELETE", f"/api/sessions/{s['id']}", timeout=20)
+                    self.api("DELETE", f"/api/sessions/{s['id']}", timeout=30)
                 except (OSError, urllib.error.URLError):
                     pass
-            for k in self.api("GET", "/api/kernels") or []:
-                try:
-                    self.api("DELETE", f"/api/kernels/{k['id']}", timeout=20)
-                except (OSError, urllib.error.URLError):
-                    pass
+            if path is None:
+                for k in self.api("GET", "/api/kernels") or []:
+                    try:
+                        self.api("DELETE", f"/api/kernels/{k['id']}", timeout=30)
+                    except (OSError, urllib.error.URLError):
+                        pass
         except (OSError, urllib.error.URLError, ValueError):
             pass
+
+    def delete_sessions_later(self, path: str):
+        """Shut ``path``'s kernel down in the background (the next notebook need not wait for it)."""
+        t = threading.Thread(target=self.delete_sessions, args=(path,), daemon=True)
+        t.start()
+        self._background.append(t)
 
     def log_tail(self, n: int = 40) -> str:
         try:
@@ -239,6 +250,8 @@ class LabServer:
     def stop(self):
         if self.proc is None:
             return
+        for t in self._background:
+            t.join(timeout=30)
         if self.proc.poll() is None:
             self.delete_sessions()
             pid = self.proc.pid  # the server leads its own session: its PID is its process group id
@@ -479,18 +492,15 @@ class LabBrowser:
         return page, True
 
     def close_notebook(self, relpath: str):
-        """Shut the notebook's kernel down and dispose of its panel (no save dialog)."""
+        """Dispose of the notebook's panel (no save dialog; its kernel is shut down by the caller)."""
         if self.page is None or self.page.is_closed():
             return
         try:
-            self.page.evaluate("""async (p) => { const app = window.jupyterapp;
+            self.page.evaluate("""(p) => { const app = window.jupyterapp;
                 for (const w of [...app.shell.widgets('main')]) {
-                  if (w.context && w.context.path === p) {
-                    try { await w.sessionContext.shutdown(); } catch (e) {}
-                    w.context.model.dirty = false; w.dispose();
-                  }
+                  if (w.context && w.context.path === p) { w.context.model.dirty = false; w.dispose(); }
                 }
-                return document.querySelectorAll('.jp-Dialog').length; }""", relpath)
+                return true; }""", relpath)
         except Exception:
             self.discard()
 
@@ -643,7 +653,7 @@ class NotebookPage:
             self.fail("error output:\n  " + "\n  ".join(problems))
         return st
 
-    def find_panel(self, index: int = 0, timeout: float = 30.0) -> str:
+    def find_panel(self, index: int = 0, timeout: float = 60.0) -> str:
         """CSS selector of the ``index``-th output area with a slider and an ipympl canvas."""
         deadline = time.monotonic() + timeout
         panel_id = self.read_status().get("panelId")
@@ -730,11 +740,14 @@ class NotebookPage:
         return res
 
     def close(self):
+        t0 = time.monotonic()
         if self.failed:
             self.lab.discard()  # start the next notebook from a fresh page load
+            self.server.delete_sessions()  # ... and a clean server
         else:
             self.lab.close_notebook(self.relpath)
-        self.server.delete_sessions()
+            self.server.delete_sessions_later(self.relpath)
+        self.timings.mark("close", t0)
 
 
 def check_interactive_notebook(lab: LabBrowser, relpath: str, change_timeout: float = 20.0):
