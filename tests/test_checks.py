@@ -186,3 +186,17 @@ def test_import_stays_light():
             "print(bad)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_student_function_that_edits_its_input_cannot_corrupt_the_checker():
+    from gm_core import SE2
+
+    def vandal(xi):
+        out = SE2.exp(xi)
+        xi[...] = 0.0
+        return out
+    assert checks.ex1_4.a.check(vandal, quiet=True).passed
+    assert checks.ex1_4.a.check(checks.ex1_4.a.reference, quiet=True).passed
+    first = [a[0].copy() for a in checks.ex1_4.a.inputs()][:3]
+    checks.ex1_4.a.check(vandal, quiet=True)
+    assert all(np.array_equal(x, a[0]) for x, a in zip(first, checks.ex1_4.a.inputs()))
