@@ -25,7 +25,7 @@ PART_STYLES = {
     "wheel": dict(facecolor="0.15", alpha=0.9, edgecolor="k"),
     "link": dict(facecolor="tab:orange", alpha=0.6, edgecolor="k"),
 }
-ROW_LABELS = (r"$\xi^x$ (forward)", r"$\xi^y$ (sideways)", r"$\xi^\theta$ (turning)")
+ROW_LABELS = ("ξx (forward)", "ξy (sideways)", "ξθ (turning)")  # plain text: no mathtext parse cost
 
 
 # ------------------------------------------------------------------------------ bodies
@@ -182,7 +182,7 @@ class ConnectionFieldArtist:
         return self
 
 
-def draw_singular_set(ax, system, n=241, limits=None, **style):
+def draw_singular_set(ax, system, n=161, limits=None, **style):
     """Draw the singular shapes (det omega_xi = 0) as red lines; returns the contour set or None."""
     if not system.may_be_singular:
         return None
@@ -217,8 +217,8 @@ def _style_shape_axes(ax, system, title=None):
     ax.set_xlim(lo1, hi1)
     ax.set_ylim(lo2, hi2)
     ax.set_aspect("equal")
-    ax.set_xlabel(r"$\alpha_1$")
-    ax.set_ylabel(r"$\alpha_2$")
+    ax.set_xlabel("α₁")
+    ax.set_ylabel("α₂")
     if title:
         ax.set_title(title, fontsize=9)
 
@@ -231,8 +231,8 @@ def connection_fields_figure(system, n=17, figsize=(10, 3.4)):
         _style_shape_axes(ax, system, ROW_LABELS[i])
         arts.append(ConnectionFieldArtist(ax, system, i, n=n))
         draw_singular_set(ax, system)
-    fig.suptitle(f"{system.name}: fields $-A^i(r)$", fontsize=10)
-    fig.tight_layout()
+    fig.suptitle(f"{system.name}: the rows of −A(r) as fields", fontsize=10)
+    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.14, top=0.84, wspace=0.3)
     return fig, axes, arts
 
 
@@ -246,7 +246,7 @@ def regimes_figure(systems, n=13, figsize=(9, 11)):
             _style_shape_axes(ax, s, f"{s.name}: {ROW_LABELS[i]}")
             ConnectionFieldArtist(ax, s, i, n=n)
             draw_singular_set(ax, s)
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.05, top=0.97, wspace=0.35, hspace=0.45)
     return fig, axes
 
 
@@ -283,7 +283,7 @@ def poor_pictures_figure(system, row=2, n=6, figsize=(11, 3.6)):
                 c = np.array([a1[k], a2[k]]) + j * gap * nrm
                 axes[1].plot([c[0] - h * t[0], c[0] + h * t[0]], [c[1] - h * t[1], c[1] + h * t[1]],
                              color="tab:purple", lw=1)
-    axes[0].set(xlabel=r"$\alpha_1$", ylabel=r"$\alpha_2$", title="(a) plane field")
+    axes[0].set(xlabel="α₁", ylabel="α₂", title="(a) plane field")
     axes[0].title.set_fontsize(9)
     for ax, title in zip(axes[1:], ["(b) local level lines", "(c) connection vector field"]):
         _style_shape_axes(ax, system, title)
@@ -291,12 +291,12 @@ def poor_pictures_figure(system, row=2, n=6, figsize=(11, 3.6)):
     for ax in axes[1:]:
         draw_singular_set(ax, system)
     fig.suptitle(f"{system.name}, row {ROW_LABELS[row]}", fontsize=10)
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.02, right=0.98, bottom=0.14, top=0.84, wspace=0.3)
     return fig, axes
 
 
 # ------------------------------------------------------------------------------ gaits
-def animate_gait(system, gait, n_frames=60, row=2, cycles=1, world_lim=None, interval=60):
+def animate_gait(system, gait, n_frames=60, row=2, cycles=1, world_lim=None, interval=60, dpi=72):
     """An animation (FuncAnimation): the gait on connection row ``row`` and the body moving in the plane.
 
     Left: shape space with the field -A^row, the gait and a cursor at the current shape. Right: the
@@ -304,7 +304,7 @@ def animate_gait(system, gait, n_frames=60, row=2, cycles=1, world_lim=None, int
     """
     gait = as_gait(gait)
     traj = trajectory(system, gait, n_frames, cycles=cycles)
-    fig, (axs, axw) = new_figure(1, 2, figsize=(9, 4))
+    fig, (axs, axw) = new_figure(1, 2, figsize=(9, 4), dpi=dpi)
     _style_shape_axes(axs, system, f"gait on {ROW_LABELS[row]}")
     ConnectionFieldArtist(axs, system, row, n=15, color="0.5")
     draw_singular_set(axs, system)
@@ -324,7 +324,7 @@ def animate_gait(system, gait, n_frames=60, row=2, cycles=1, world_lim=None, int
     axw.set_aspect("equal")
     axw.grid(True, alpha=0.3)
     axw.set_title(system.name, fontsize=9)
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.08, right=0.98, bottom=0.12, top=0.92, wspace=0.25)
 
     def update(k):
         k = int(k)

@@ -197,7 +197,7 @@ class ConnectionFieldPanel(Panel):
             "alpha1_dot": slider(1.0, -1.0, 1.0, description="alpha1 rate"),
             "alpha2_dot": slider(0.0, -1.0, 1.0, description="alpha2 rate"),
         }
-        self.fig.tight_layout()
+        self.fig.subplots_adjust(left=0.08, right=0.98, bottom=0.07, top=0.95, wspace=0.3, hspace=0.3)
 
     def update(self, **v):
         r = np.array([v["alpha1"], v["alpha2"]])
@@ -278,7 +278,7 @@ class GaitPanel(Panel):
             "center1": slider(c[0], lo1 / 2, hi1 / 2, description="centre alpha1"),
             "center2": slider(c[1], lo2 / 2, hi2 / 2, description="centre alpha2"),
         }
-        self.fig.tight_layout()
+        self.fig.subplots_adjust(left=0.08, right=0.98, bottom=0.07, top=0.95, wspace=0.3, hspace=0.3)
 
     def gait(self, v):
         return circle_gait(v["amplitude"], (v["center1"], v["center2"]))
