@@ -208,9 +208,12 @@ class LabServer:
     def lab_url(self, relpath: str) -> str:
         return f"{self.url}/lab/tree/{relpath}?reset&token={self.token}"
 
-    def api(self, method: str, path: str, timeout: float = 10.0):
-        req = urllib.request.Request(self.url + path, method=method,
-                                     headers={"Authorization": f"token {self.token}"})
+    def api(self, method: str, path: str, timeout: float = 10.0, body: dict | None = None):
+        data = json.dumps(body).encode() if body is not None else None
+        headers = {"Authorization": f"token {self.token}"}
+        if data is not None:
+            headers["Content-Type"] = "application/json"
+        req = urllib.request.Request(self.url + path, method=method, data=data, headers=headers)
         with urllib.request.urlopen(req, timeout=timeout) as r:
             body = r.read()
         return json.loads(body) if body else None
@@ -233,6 +236,23 @@ class LabServer:
                         pass
         except (OSError, urllib.error.URLError, ValueError):
             pass
+
+    def prestart(self, path: str):
+        """Start ``path``'s kernel in the background, before the browser opens it.
+
+        JupyterLab joins an existing session of the same path, so the next notebook finds an
+        idle kernel instead of waiting for one to boot (the test still waits for "idle")."""
+        def start():
+            try:
+                nb = json.loads((self.course / path).read_text(encoding="utf-8"))
+                name = nb.get("metadata", {}).get("kernelspec", {}).get("name") or "python3"
+                self.api("POST", "/api/sessions", timeout=60, body={
+                    "path": path, "name": Path(path).name, "type": "notebook", "kernel": {"name": name}})
+            except Exception:
+                pass  # purely an optimisation: JupyterLab starts the kernel itself otherwise
+        t = threading.Thread(target=start, daemon=True)
+        t.start()
+        self._background.append(t)
 
     def delete_sessions_later(self, path: str):
         """Shut ``path``'s kernel down in the background (the next notebook need not wait for it)."""
@@ -700,7 +720,7 @@ class NotebookPage:
         self.fail(f"the panel's canvas kept changing (or the kernel stayed busy) for {timeout:.0f} s "
                   "before any slider was moved")
 
-    def move_slider(self, sel: str, index: int = 0, fraction: float = 0.06, max_presses: int = 25,
+    def move_slider(self, sel: str, index: int = 0, fraction: float = 0.05, max_presses: int = 15,
                     change_timeout: float = 20.0) -> SliderResult:
         """Focus the panel's ``index``-th slider handle, press ArrowRight (ArrowLeft when in the
         upper half of the range) until the value moved by ~``fraction`` of the range, and wait up
@@ -750,10 +770,15 @@ class NotebookPage:
         self.timings.mark("close", t0)
 
 
-def check_interactive_notebook(lab: LabBrowser, relpath: str, change_timeout: float = 20.0):
-    """The whole browser check of one chapter notebook; returns (SliderResult, timings dict)."""
+def check_interactive_notebook(lab: LabBrowser, relpath: str, change_timeout: float = 20.0, on_open=None):
+    """The whole browser check of one chapter notebook; returns (SliderResult, timings dict).
+
+    ``on_open()`` is called once the notebook has an idle kernel (the tests prestart the next
+    notebook's kernel there)."""
     with NotebookPage(lab, relpath) as nbp:
         nbp.open()
+        if on_open is not None:
+            on_open()
         nbp.run_all()
         nbp.check_no_errors()
         sel = nbp.find_panel(0)

@@ -72,6 +72,25 @@ def lab(lab_server, browser_context, request):
 
 
 @pytest.fixture
+def prestart_next(request, lab_server):
+    """Start the kernel of the notebook the next browser test will open (see LabServer.prestart)."""
+    def prestart():
+        items = request.session.items
+        try:
+            i = items.index(request.node)
+        except ValueError:
+            return None
+        for item in items[i + 1:]:
+            nb = getattr(item, "callspec", None) and item.callspec.params.get("notebook")
+            if nb is not None:
+                rel = Path(nb).relative_to(browserlab.ROOT).as_posix()
+                lab_server.prestart(rel)
+                return rel
+        return None
+    return prestart
+
+
+@pytest.fixture
 def record_timing(request):
     """Store per-notebook phase timings; printed in the terminal summary."""
     def record(name, phases):

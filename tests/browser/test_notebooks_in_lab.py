@@ -20,9 +20,10 @@ pytestmark = pytest.mark.browser
 NOTEBOOKS = browserlab.interactive_notebooks()
 
 
-def test_detector_tells_a_live_panel_from_a_dead_one(lab, record_timing):
+def test_detector_tells_a_live_panel_from_a_dead_one(lab, record_timing, prestart_next):
     with browserlab.NotebookPage(lab, browserlab.SELFCHECK_PATH) as page:
         page.open()
+        prestart_next()
         page.run_all()
         page.check_no_errors()
         live = page.move_slider(page.find_panel(0), 0, change_timeout=20)
@@ -35,8 +36,8 @@ def test_detector_tells_a_live_panel_from_a_dead_one(lab, record_timing):
 
 
 @pytest.mark.parametrize("notebook", NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])
-def test_interactive_notebook_runs_and_responds(notebook, lab, record_timing):
+def test_interactive_notebook_runs_and_responds(notebook, lab, record_timing, prestart_next):
     relpath = notebook.relative_to(browserlab.ROOT).as_posix()
-    result, phases = browserlab.check_interactive_notebook(lab, relpath)
+    result, phases = browserlab.check_interactive_notebook(lab, relpath, on_open=prestart_next)
     record_timing(relpath, phases)
     assert result.changed and result.slider_moved, result
