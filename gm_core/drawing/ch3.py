@@ -17,7 +17,7 @@ from ..locomotion import as_gait, trajectory
 from .base import BodyArtist, FrameArtist, SingularFlag, TrailArtist, animate, new_figure
 
 __all__ = ["PART_STYLES", "SystemArtist", "ConnectionFieldArtist", "ShapeCursorArtist", "VelocityArtist",
-           "shape_grid", "connection_field", "system_extent", "draw_singular_set", "draw_system_naive",
+           "shape_grid", "connection_field", "system_extent", "style_world_axes", "draw_singular_set", "draw_system_naive",
            "connection_fields_figure", "regimes_figure", "poor_pictures_figure", "animate_gait", "ROW_LABELS"]
 
 PART_STYLES = {
@@ -212,15 +212,38 @@ class ShapeCursorArtist:
         self.arrow.set_UVC([d[0]], [d[1]])
 
 
+def _tick_label(v):
+    if np.isclose(abs(v), np.pi):
+        return "−π" if v < 0 else "π"
+    return f"{v:g}".replace("-", "−")
+
+
 def _style_shape_axes(ax, system, title=None):
+    """Shape-space axes: equal aspect, three ticks per axis (few labels keep redraws cheap)."""
     (lo1, hi1), (lo2, hi2) = system.shape_limits
     ax.set_xlim(lo1, hi1)
     ax.set_ylim(lo2, hi2)
     ax.set_aspect("equal")
-    ax.set_xlabel("α₁")
-    ax.set_ylabel("α₂")
+    ax.set_xticks([lo1, 0.0, hi1], [_tick_label(v) for v in (lo1, 0.0, hi1)])
+    ax.set_yticks([lo2, 0.0, hi2], [_tick_label(v) for v in (lo2, 0.0, hi2)])
+    ax.tick_params(labelsize=8, pad=1)
+    ax.set_xlabel("α₁", fontsize=9, labelpad=0)
+    ax.set_ylabel("α₂", fontsize=9, labelpad=0)
     if title:
         ax.set_title(title, fontsize=9)
+
+
+def style_world_axes(ax, half, center=(0.0, 0.0)):
+    """Square world axes of half-width ``half`` about ``center``, light grid, few ticks."""
+    from matplotlib.ticker import MaxNLocator
+
+    ax.set_xlim(center[0] - half, center[0] + half)
+    ax.set_ylim(center[1] - half, center[1] + half)
+    ax.set_aspect("equal")
+    ax.grid(True, alpha=0.3)
+    ax.xaxis.set_major_locator(MaxNLocator(4))
+    ax.yaxis.set_major_locator(MaxNLocator(4))
+    ax.tick_params(labelsize=8, pad=1)
 
 
 def connection_fields_figure(system, n=17, figsize=(10, 3.4)):
@@ -319,10 +342,7 @@ def animate_gait(system, gait, n_frames=60, row=2, cycles=1, world_lim=None, int
     c, half = (lo + hi) / 2, max(hi - lo) / 2
     if world_lim is not None:
         half = world_lim
-    axw.set_xlim(c[0] - half, c[0] + half)
-    axw.set_ylim(c[1] - half, c[1] + half)
-    axw.set_aspect("equal")
-    axw.grid(True, alpha=0.3)
+    style_world_axes(axw, half, c)
     axw.set_title(system.name, fontsize=9)
     fig.subplots_adjust(left=0.08, right=0.98, bottom=0.12, top=0.92, wspace=0.25)
 

@@ -12,7 +12,8 @@ import numpy as np
 from .._validate import SingularShapeError
 from ..drawing.base import SingularFlag, TrailArtist, new_figure
 from ..drawing.ch3 import (ROW_LABELS, ConnectionFieldArtist, ShapeCursorArtist, SystemArtist, VelocityArtist,
-                           _style_shape_axes, draw_singular_set, draw_system_naive, system_extent)
+                           _style_shape_axes, draw_singular_set, draw_system_naive, style_world_axes,
+                           system_extent)
 from ..locomotion import Gait, circle_gait, net_displacement, trajectory
 from ..systems import Ackerman, DifferentialDrive, KinematicSnake
 from .base import Panel, register, slider
@@ -36,10 +37,19 @@ def drive(system, r0, r_dot, duration, n_frames=81):
 
 
 def _square(ax, lim, center=(0.0, 0.0)):
-    ax.set_xlim(center[0] - lim, center[0] + lim)
-    ax.set_ylim(center[1] - lim, center[1] + lim)
-    ax.set_aspect("equal")
-    ax.grid(True, alpha=0.3)
+    style_world_axes(ax, lim, center)
+
+
+def _thin_labels(field_axes, body_ax, body_labels=True):
+    """Fewer texts, faster redraws: tick labels only on the outer edges of the 2 x 2 grid."""
+    top_left, top_right, bottom_left = field_axes
+    for ax in (top_left, top_right):
+        ax.tick_params(labelbottom=False)
+        ax.set_xlabel("")
+    top_right.tick_params(labelleft=False)
+    top_right.set_ylabel("")
+    if not body_labels:
+        body_ax.tick_params(labelbottom=False, labelleft=False)
 
 
 def _fmt(xi):
@@ -197,6 +207,7 @@ class ConnectionFieldPanel(Panel):
             "alpha1_dot": slider(1.0, -1.0, 1.0, description="alpha1 rate"),
             "alpha2_dot": slider(0.0, -1.0, 1.0, description="alpha2 rate"),
         }
+        _thin_labels(self.field_axes, self.ax, body_labels=False)
         self.fig.subplots_adjust(left=0.08, right=0.98, bottom=0.07, top=0.95, wspace=0.3, hspace=0.3)
 
     def update(self, **v):
@@ -278,6 +289,7 @@ class GaitPanel(Panel):
             "center1": slider(c[0], lo1 / 2, hi1 / 2, description="centre alpha1"),
             "center2": slider(c[1], lo2 / 2, hi2 / 2, description="centre alpha2"),
         }
+        _thin_labels(self.field_axes, self.ax)
         self.fig.subplots_adjust(left=0.08, right=0.98, bottom=0.07, top=0.95, wspace=0.3, hspace=0.3)
 
     def gait(self, v):
