@@ -383,7 +383,7 @@ def configuration_space_gallery():
         ("$\\mathbb{R}^2$: the plane", "robot position on a floor,\ntwo sliders, two points on a line"),
         ("$\\mathbb{R}^1\\times\\mathbb{S}^1$: the cylinder", "slider + free revolute joint,\n"
          "point on a pipe"),
-        ("$\\mathbb{T}^2=\\mathbb{S}^1\\times\\mathbb{S}^1$: the torus", "two free revolute joints\n"
+        ("$\\mathbb{T}^2$: the torus (circle × circle)", "two free revolute joints\n"
          "(a double pendulum)"),
         ("$\\mathbb{S}^2$: the sphere", "direction of a pointer,\npendulum bob on a rod"),
     ]
