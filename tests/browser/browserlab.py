@@ -10,9 +10,18 @@ Used by ``tests/browser/`` (pytest fixtures in conftest.py) and by ``benchmarks/
   (sessions deleted over the REST API, then terminate/kill of the server's process group by its PID).
 * :func:`launch_chromium` starts /usr/bin/chromium headless with a fresh, empty profile and the
   flags that keep it off the network.
+* :class:`LabBrowser` keeps one page with the JupyterLab app (``window.jupyterapp`` is exposed
+  with ``--LabApp.expose_app_in_browser``) and opens notebook after notebook in it; after a
+  failure the page is dropped and the next notebook gets a fresh page load.
 * :class:`NotebookPage` opens one notebook, waits for an idle kernel, runs all cells, checks that
-  every code cell ran and nothing failed, and moves the first slider of an interactive panel,
-  reporting whether the ipympl canvas pixels changed.
+  every code cell ran and nothing failed (cell errors, stderr tracebacks, "Error displaying
+  widget", and errors raised in widget callbacks, which JupyterLab does not show in the cell: the
+  kernel's iopub channel is watched), and moves a slider of an interactive panel with the
+  keyboard, reporting whether the ipympl canvas pixels (``toDataURL``) changed.
+* :func:`check_interactive_notebook` is the whole check of one chapter notebook.
+
+Run ``pytest -m browser`` (the tests) or ``benchmarks/browser_latency.py``. Set ``GM_CHROMIUM``
+to use another Chromium binary. Failure screenshots go to ``$TMPDIR/gm-browser-failures/``.
 
 Every wait polls (no fixed long sleeps) and fails with a message that says what was seen last and
 where a screenshot was written.
