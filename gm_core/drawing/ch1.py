@@ -420,7 +420,8 @@ def configuration_space_gallery():
             ax.set_ylim(-2, 2)
             ax.set_aspect("equal")
             ax.plot([0.8], [0.6], "o", color="tab:blue", ms=9)
-            ax.tick_params(labelsize=7)
+            ax.set_xticks([-2, -1, 0, 1, 2], [])
+            ax.set_yticks([-2, -1, 0, 1, 2], [])
         else:
             u = np.linspace(0, TWO_PI, 25)
             if i == 3:
@@ -1309,7 +1310,7 @@ class LiftedScalarScene(Scene):
         ax1.set_ylim(-1.0, 1.6)
         ax1.set_yticks([])
         ax1.plot([0, 10.5], [0, 0], color="k", lw=1)
-        _xticks(ax1, [0, 1, 2, 4, 6, 8, 10], ["0", "1 = e", "2", "4", "6", "8", "10"])
+        _xticks(ax1, [0, 1, 4, 6, 8, 10], ["0", "1 = e", "4", "6", "8", "10"])
         _title(ax1, "(R⁺, ×): T_gL_h = h scales the arrow")
 
     def create(self):
@@ -1472,7 +1473,7 @@ class AdjointScene(Scene):
     """
 
     def make_figure(self):
-        fig, ax = new_figure(figsize=(8.4, 3.6))
+        fig, ax = new_figure(figsize=(7.6, 2.9))
         fig.subplots_adjust(left=0.0, right=1.0, bottom=0.0, top=1.0)
         return fig, [ax]
 
@@ -1483,13 +1484,13 @@ class AdjointScene(Scene):
         ax.set_ylim(0, 1)
         heads = ["Ad_g, closed form (1.43)", "T_gR_g⁻¹ · T_eL_g  (1.40)", "same, finite differences"]
         for k, s in enumerate(heads):
-            PathText(ax, 0.02 + 0.33 * k, 0.9, s, size=8.5, weight="bold")
+            PathText(ax, 0.02 + 0.33 * k, 0.92, s, size=8, weight="bold")
 
     def create(self):
         (ax,) = self.axes
-        self.blocks = [PathText(ax, 0.02 + 0.33 * k, 0.78, "", size=8.5, va="top", color=c)
+        self.blocks = [PathText(ax, 0.02 + 0.33 * k, 0.82, "", size=8, va="top", color=c)
                        for k, c in enumerate(("k", "tab:blue", "tab:green"))]
-        self.summary = PathText(ax, 0.02, 0.33, "", size=8.5, va="top")
+        self.summary = PathText(ax, 0.02, 0.42, "", size=8, va="top")
 
     def set(self, x=1.0, y=-0.5, theta=0.8, vx=0.5, vy=0.2, w=0.7):
         g = np.array([x, y, theta])
