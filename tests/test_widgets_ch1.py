@@ -76,6 +76,10 @@ def test_pole_chart_flags_instead_of_plotting_inf():
     want = D.PoleChartScene.ARROW * np.array([np.sin(np.deg2rad(30)) / np.cos(np.deg2rad(60)),
                                               np.cos(np.deg2rad(30))])
     assert np.allclose(quiver_uv(p.scene.arrow_c)[0], want)
+    slide(p, lat_deg=89.5)                   # finite but huge: warned, still drawn
+    assert p.scene.flag.visible and p.scene.arrow_c.get_visible()
+    assert np.isclose(p.scene.chart_speed, np.hypot(np.cos(np.deg2rad(30)),
+                                                    np.sin(np.deg2rad(30)) / np.cos(np.deg2rad(89.5))))
     slide(p, lat_deg=90.0)
     assert p.scene.at_pole and p.scene.flag.visible
     assert not p.scene.arrow_c.get_visible() and not p.scene.pt_c.get_visible()

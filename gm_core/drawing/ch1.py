@@ -663,6 +663,7 @@ class PoleChartScene(Scene):
     """
 
     POLE_TOL_DEG = 1e-6
+    WARN_SPEED = 50.0
     ARROW = 0.25  # radians drawn per unit coordinate speed
 
     def make_figure(self):
@@ -729,7 +730,10 @@ class PoleChartScene(Scene):
             self.speed_pt.set_visible(False)
             self.readout.set_text("φ = ±90°: every λ names this one point")
         else:
-            self.flag.hide()
+            if speed > self.WARN_SPEED:  # still finite, but the chart is visibly failing
+                self.flag.show(f"near the pole: chart speed {speed:.0f}\n(unbounded as φ → ±90°)")
+            else:
+                self.flag.hide()
             self.pt_c.set_visible(True)
             self.arrow_c.set_visible(True)
             self.speed_pt.set_visible(True)
