@@ -12,6 +12,10 @@ A subclass implements
 
 Changing a control calls ``update`` with the values of all controls, so a test can set
 ``panel.controls["theta"].value = 1.0`` and then inspect the artists, with no browser.
+
+In a live notebook (ipympl canvas) each change is rendered by blitting
+(:class:`gm_core.drawing.blit.Blitter`): only the artists the update changed are redrawn over a
+cached background. A panel that must not be blitted sets ``blit = False``.
 """
 from __future__ import annotations
 
@@ -46,6 +50,11 @@ class Panel:
     """Controls plus a live figure; display it by leaving the panel as the last line of a cell."""
 
     title = ""
+    #: Render slider changes by blitting where the canvas allows it (see gm_core.drawing.blit).
+    blit = True
+    #: Blit on non-widget canvases too (Agg); the latency benchmark and blit tests turn it on.
+    blit_everywhere = False
+    blitter = None
 
     def __init__(self, **options):
         self.options = options
@@ -56,6 +65,13 @@ class Panel:
             c.continuous_update = True
             c.observe(self._on_change, names="value")
         self.update(**self.values())
+        self.blitter = None
+        if self.blit and self.fig is not None:
+            from ..drawing.blit import Blitter, can_blit
+
+            live = isinstance(self.fig.canvas, W.DOMWidget)
+            if (live or self.blit_everywhere) and can_blit(self.fig):
+                self.blitter = Blitter(self.fig)
 
     # -- to implement -------------------------------------------------------------
     def build(self):
@@ -78,7 +94,7 @@ class Panel:
                 if k not in self.controls:
                     raise ValueError(f"unknown control {k!r}; this panel has {sorted(self.controls)}")
                 self.controls[k].value = v
-        self.update(**self.values())
+        self.refresh()
 
     def hold(self):
         panel = self
@@ -96,7 +112,20 @@ class Panel:
 
     def _on_change(self, change):
         if not self._held:
-            self.update(**self.values())
+            self.refresh()
+
+    def refresh(self, **values):
+        """Update to the controls' values (overridden by ``values``) and show the new frame.
+
+        This is exactly what one slider change does: ``update`` moves the artists, then the
+        figure is refreshed by a blit (live canvases) or a full draw.
+        """
+        values = {**self.values(), **values}
+        if self.blitter is None:
+            self.update(**values)
+            return
+        with self.blitter.frame():
+            self.update(**values)
 
     def sample_values(self, rng):
         out = {}
