@@ -1218,9 +1218,7 @@ class VectorFieldScene(Scene):
         (ax,) = self.axes
         g = np.linspace(-self.LIM + 0.25, self.LIM - 0.25, 13)
         self._grid = np.stack(np.meshgrid(g, g), -1).reshape(-1, 2)
-        self.quiver = ax.quiver(self._grid[:, 0], self._grid[:, 1], np.zeros(len(self._grid)),
-                                np.zeros(len(self._grid)), color="0.6", angles="xy", scale_units="xy",
-                                scale=1.0, width=0.004, zorder=1)
+        self.quiver = ArrowSet(ax, n=len(self._grid), color="0.6", width=0.0045, zorder=1)
         self.background = LineCollection([], colors="tab:blue", linewidths=1.0, alpha=0.55, zorder=2)
         ax.add_collection(self.background)
         (self.forward,) = ax.plot([], [], color="tab:red", lw=2.2, zorder=4)
@@ -1272,7 +1270,7 @@ class VectorFieldScene(Scene):
             v = FIELDS[field](self._grid)
             n = np.linalg.norm(v, axis=1, keepdims=True)
             v = 0.32 * v / np.maximum(n, 1e-12) * (n > 1e-12)
-            self.quiver.set_UVC(v[:, 0], v[:, 1])
+            self.quiver.set(self._grid - v / 2, v)   # arrows centred on the grid points
             self.background.set_segments(self._background(field))
             self._field = field
         fwd, bwd = self.curve(field, x0, y0)
@@ -1344,6 +1342,12 @@ class LiftedScalarScene(Scene):
                             f"{lifted / hg1:.3f}")
 
 
+def _vec(a, digits=2):
+    """'(+0.12, -0.50, +0.00)': fixed-width numbers for readouts, never printing -0.00."""
+    tiny = 0.5 * 10.0 ** -digits
+    return "(" + ", ".join(f"{(c if abs(c) >= tiny else 0.0):+.{digits}f}" for c in a) + ")"
+
+
 def point_velocities(g, g_dot, points):
     """World velocities of world points rigidly attached to a body at g moving with g_dot.
 
@@ -1369,7 +1373,7 @@ class LiftedSE2Scene(Scene):
     SCALE = 0.7
 
     def make_figure(self):
-        fig, ax = new_figure(figsize=(6.4, 5.2))
+        fig, ax = new_figure(figsize=(5.8, 4.9))
         fig.subplots_adjust(left=0.02, right=0.98, bottom=0.02, top=0.93)
         return fig, [ax]
 
@@ -1401,7 +1405,7 @@ class LiftedSE2Scene(Scene):
         xs = [SE2.world_to_spatial(p, gd) for p, gd in zip(self.poses, self.world_vels)]
         self.body_vels, self.spatial_vels = np.array(xi), np.array(xs)
         self.title.set_text("grey: g     blue: hg with T_gL_h ġ     orange: gh with T_gR_h ġ")
-        f = lambda a: "(" + ", ".join(f"{c:+.2f}" for c in a) + ")"  # noqa: E731
+        f = _vec
         self.text.set_text(f"body ξ:     g {f(xi[0])}  hg {f(xi[1])}  gh {f(xi[2])}\n"
                            f"spatial ξˢ: g {f(xs[0])}  hg {f(xs[1])}  gh {f(xs[2])}")
 
@@ -1459,7 +1463,7 @@ class VelocityScene(Scene):
         _set_arrows(self.spatial_parts, [[0, 0], self.g_dot[:2]], self.spatial_parts_vecs)
         _set_arrows(self.spatial, [0, 0], self.xi_s[:2])
         self.lever.set_data([x, 0], [y, 0])
-        f = lambda a: "(" + ", ".join(f"{c:+.2f}" for c in a) + ")"  # noqa: E731
+        f = _vec
         self.texts[0].set_text(f"ġ = {f(self.g_dot)}")
         self.texts[1].set_text(f"ξ = {f(xi)}  (red: ξˣ, green: ξʸ)")
         self.texts[2].set_text(f"ξ = T_gL_g⁻¹ ġ = {f(SE2.world_to_body(g, self.g_dot))}")
@@ -1513,7 +1517,7 @@ class AdjointScene(Scene):
         self.mismatch = float(max(np.abs(self.Ad - Ad_tn).max(), np.abs(self.Ad - self.Ad_fd).max()))
         for blk, M in zip(self.blocks, (self.Ad, Ad_tn, self.Ad_fd)):
             blk.set_text(_matrix_lines(M))
-        f = lambda a: "(" + ", ".join(f"{c:+.4f}" for c in a) + ")"  # noqa: E731
+        f = lambda a: _vec(a, 4)  # noqa: E731
         self.summary.set_text(
             f"largest difference between the three matrices: {self.mismatch:.1e}\n"
             f"{f(self.xi_s)}   ξˢ = Ad_g ξ\n"
