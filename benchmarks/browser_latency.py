@@ -7,8 +7,9 @@ to the first animation frame in which the panel's ipympl canvas pixels differ fr
 press (getImageData, checked on every requestAnimationFrame). Between moves we wait until the
 kernel is idle and the canvas has been still for 300 ms, so moves do not overlap.
 
-The row "(minimal panel)" is a one-line panel (gm_core Panel moving one Line2D): the floor set by
-the browser -> kernel -> ipympl PNG round trip; chapter panels add their own computation.
+The row "(minimal panel)" is a plain ipywidgets slider moving one Line2D on an ipympl canvas with
+draw_idle (the browser tests' self-check notebook): the floor set by the browser -> kernel ->
+ipympl PNG round trip; chapter panels add their own computation (and gm_core's blitting).
 
     .venv/bin/python benchmarks/browser_latency.py                    # the first two interactive chapters
     .venv/bin/python benchmarks/browser_latency.py book/01-*.ipynb --moves 30

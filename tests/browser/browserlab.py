@@ -811,7 +811,7 @@ def check_interactive_notebook(lab: LabBrowser, relpath: str, change_timeout: fl
 
 
 # --------------------------------------------------------------------------------------------
-# Self-check notebook: one working panel and one whose update does nothing
+# Self-check notebook: one working panel and one whose callback does nothing
 # --------------------------------------------------------------------------------------------
 
 def _code(src, n=[0]):
@@ -821,29 +821,34 @@ def _code(src, n=[0]):
 
 
 def selfcheck_notebook() -> dict:
-    """A notebook with two ipympl panels: ``Working`` moves a line, ``Broken``'s update does nothing."""
+    """A notebook with two ipympl panels: the first slider moves a line, the second's callback
+    does nothing. Plain ipywidgets + ipympl (no gm_core), so it tests only the detector."""
     cells = [
         _code("%matplotlib widget\n"
               "import numpy as np\n"
-              "from gm_core.widgets.base import Panel, slider\n"
-              "from gm_core.drawing import new_figure\n"),
-        _code("class Working(Panel):\n"
-              "    def build(self):\n"
-              "        self.fig, self.ax = new_figure(figsize=(4, 3))\n"
-              "        self.ax.set(xlim=(-1.2, 1.2), ylim=(-1.2, 1.2))\n"
-              "        (self.line,) = self.ax.plot([0, 1], [0, 0], lw=3)\n"
-              "        self.controls = {'theta': slider(0.3, -3.14, 3.14, description='theta')}\n"
-              "    def update(self, theta):\n"
-              "        self.line.set_data([0, np.cos(theta)], [0, np.sin(theta)])\n"
-              "        self.fig.canvas.draw_idle()\n"
-              "    def naive_update(self, theta):\n"
-              "        self.update(theta)\n"
+              "import ipywidgets as W\n"
+              "import matplotlib.pyplot as plt\n"
               "\n"
-              "class Broken(Working):\n"
-              "    def update(self, theta):\n"
-              "        pass  # the bug the browser test must catch: the picture never follows the slider\n"),
-        _code("Working()"),
-        _code("Broken()"),
+              "def panel(live):\n"
+              "    with plt.ioff():\n"
+              "        fig, ax = plt.subplots(figsize=(4, 3))\n"
+              "    fig.canvas.header_visible = fig.canvas.footer_visible = fig.canvas.toolbar_visible = False\n"
+              "    ax.set(xlim=(-1.2, 1.2), ylim=(-1.2, 1.2))\n"
+              "    (line,) = ax.plot([0, np.cos(0.3)], [0, np.sin(0.3)], lw=3)\n"
+              "    theta = W.FloatSlider(value=0.3, min=-3.14, max=3.14, step=0.01, description='theta',\n"
+              "                          continuous_update=True)\n"
+              "\n"
+              "    def update(change):\n"
+              "        if live:\n"
+              "            t = change['new']\n"
+              "            line.set_data([0, np.cos(t)], [0, np.sin(t)])\n"
+              "            fig.canvas.draw_idle()\n"
+              "        # else: the bug the browser test must catch, the picture never follows the slider\n"
+              "\n"
+              "    theta.observe(update, names='value')\n"
+              "    return W.HBox([W.VBox([theta]), fig.canvas])\n"),
+        _code("panel(live=True)"),
+        _code("panel(live=False)"),
     ]
     return {"cells": cells, "metadata": {"kernelspec": {"display_name": "Python 3", "language": "python",
                                                         "name": "python3"}},
