@@ -12,7 +12,7 @@ inf is ever handed to matplotlib.
 """
 from __future__ import annotations
 
-from math import comb, factorial
+from math import factorial
 
 import numpy as np
 from matplotlib.collections import LineCollection, PathCollection, PolyCollection
@@ -22,11 +22,11 @@ from matplotlib.textpath import TextPath
 from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3d projection)
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
-from ..groups import ALL_GROUPS, S1, SE2, SO2, R2xS1, RPlus, matvec
+from ..groups import ALL_GROUPS, S1, SE2, R2xS1, RPlus
 from .base import BodyArtist, FrameArtist, SingularFlag, TrailArtist, animate, new_figure
 
 __all__ = [
-    "Scene", "figure", "torus_xyz", "sphere_xyz", "cylinder_xyz", "wrap_segments",
+    "Scene", "figure", "PathText", "ArrowSet", "AXIOMS", "torus_xyz", "sphere_xyz", "cylinder_xyz", "wrap_segments",
     "configuration_space_gallery", "flattened_views", "TorusPathScene", "LoopsScene",
     "PoleChartScene", "chart_speed",
     "axiom_residuals", "GroupAxiomsScene", "SlideRuleScene", "CircleIsoScene",
