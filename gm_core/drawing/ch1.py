@@ -1757,6 +1757,12 @@ class ExpFourWaysScene(Scene):
         b.set_aspect("equal")
         b.set_xticks([])
         b.set_yticks([])
+        # one fixed window holds every arc exp(s xi), |thetadot| <= 3 (fixed limits keep slider
+        # changes cheap); early Taylor partial sums may leave it, which is part of the story
+        b.set_xlim(-0.55, 1.35)
+        b.set_ylim(-0.95, 0.95)
+        b.axhline(0, color="0.85", lw=0.8, zorder=0)
+        b.axvline(0, color="0.85", lw=0.8, zorder=0)
         _title(b, "intermediate values in the xy plane")
 
     def create(self):
@@ -1788,12 +1794,6 @@ class ExpFourWaysScene(Scene):
             end = SE2.exp(xi)
             self.target.set_data([end[0]], [end[1]])
             self._key = key
-            lo = np.minimum(arc[:, :2].min(0), 0) - 0.35
-            hi = np.maximum(arc[:, :2].max(0), 0) + 0.35
-            span = max(hi - lo) / 2 + 0.2
-            c = (hi + lo) / 2
-            self.axes[1].set_xlim(c[0] - span, c[0] + span)
-            self.axes[1].set_ylim(c[1] - span, c[1] + span)
         self.final_error = {}
         for m, _, _ in self.METHODS:
             path = self.histories[m].path(n)
