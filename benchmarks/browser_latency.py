@@ -151,13 +151,13 @@ def main(argv=None):
                 lab.close()
                 context.close()
     print(f"\nslider key press -> canvas pixels changed, headless Chromium + JupyterLab ({args.moves} moves each)\n")
-    hdr = f"{'notebook':<34} {'slider':<14} {'n':>3} {'median ms':>10} {'p95 ms':>8} {'max ms':>8} {'missed':>6}"
+    hdr = f"{'notebook':<38} {'slider':<14} {'n':>3} {'median ms':>10} {'p95 ms':>8} {'max ms':>8} {'missed':>6}"
     print(hdr)
     print("-" * len(hdr))
     for r in rows:
         lat = r["lat"]
         med = statistics.median(lat) if lat else float("nan")
-        print(f"{r['notebook']:<34} {r['slider'][:14]:<14} {len(lat):>3} {med:>10.0f} {pct(lat, 0.95):>8.0f} "
+        print(f"{r['notebook']:<38} {r['slider'][:14]:<14} {len(lat):>3} {med:>10.0f} {pct(lat, 0.95):>8.0f} "
               f"{(max(lat) if lat else float('nan')):>8.0f} {r['misses']:>6}")
     return 0
 
