@@ -19,6 +19,7 @@ HERE = Path(__file__).resolve().parent
 TIMINGS_KEY = pytest.StashKey[dict]()
 
 
+@pytest.hookimpl(tryfirst=True)  # before -m selects (the module also sets pytestmark)
 def pytest_collection_modifyitems(config, items):
     for item in items:
         if HERE in Path(str(item.path)).resolve().parents:
