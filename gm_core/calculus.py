@@ -43,7 +43,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validate import SingularShapeError, as_array
-from .groups import LieGroup, RPlus as _RPLUS, Rn, S1
+from .groups import LieGroup, RPlus as _RPLUS, Rn, S1, check_group
 
 __all__ = [
     "product_integral", "RunningProduct", "quotient_derivative",
@@ -92,15 +92,6 @@ def _check_scalar(x, name):
     if arr.ndim != 0:
         raise ValueError(f"{name} must be a single real number; got shape {arr.shape}")
     return float(arr)
-
-
-def _check_group(group):
-    if not isinstance(group, LieGroup):
-        raise TypeError(
-            f"group must be one of gm_core's Lie groups (e.g. gm_core.SE2, gm_core.RPlus); "
-            f"got {type(group).__name__}"
-        )
-    return group
 
 
 def _check_xi(group, xi, name="xi"):
@@ -296,7 +287,7 @@ def element_from_matrix(group, M):
     the angle of the nearest rotation (polar decomposition). Exact group matrices round-trip.
     For (R+, x) the single entry is returned unchecked (a partial sum can be negative).
     """
-    group = _check_group(group)
+    group = check_group(group)
     k = group.matrix_size
     M = as_array(M, "M", (k, k), what=f", a {k}x{k} matrix for {group.name}")
 
@@ -522,7 +513,7 @@ def exp_history(group, xi, n=DEFAULT_N, method="product", side="left"):
     ``xi`` is a single Lie-algebra vector (a body velocity for ``side="left"``, a spatial velocity
     for ``side="right"``). Returns an :class:`ExpHistory`.
     """
-    group = _check_group(group)
+    group = check_group(group)
     xi = _check_xi(group, xi)
     ns = _check_n_list(n)
     side = _check_side(side)

@@ -36,7 +36,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ._validate import as_array, check_positive
-from .groups import LieGroup, R2xS1, SE2, matvec
+from .groups import LieGroup, R2xS1, SE2, check_group, matvec
 
 __all__ = [
     "VectorField", "IntegralCurve", "integral_curve", "left_invariant_field",
@@ -48,15 +48,6 @@ __all__ = [
 DEFAULT_RTOL = 1e-10
 DEFAULT_ATOL = 1e-12
 DEFAULT_METHOD = "DOP853"
-
-
-def _check_group(group):
-    if not isinstance(group, LieGroup):
-        raise TypeError(
-            f"group must be one of gm_core's Lie groups (e.g. gm_core.SE2, gm_core.RPlus); "
-            f"got {type(group).__name__}"
-        )
-    return group
 
 
 def _check_side(side):
@@ -241,7 +232,7 @@ def left_invariant_field(group, xi):
     ``xi`` is a Lie-algebra vector ``(dim,)`` (or a batch broadcasting against g). Its flows have
     constant body velocity xi; from g0 the flow is g0 o exp(t xi).
     """
-    group = _check_group(group)
+    group = check_group(group)
     xi = as_array(xi, "xi", (group.dim,), what=f", a body velocity in the Lie algebra of {group.name}")
     e = group.identity()
 
@@ -256,7 +247,7 @@ def right_invariant_field(group, xi_s):
 
     Its flows have constant spatial velocity xi_s; from g0 the flow is exp(t xi_s) o g0.
     """
-    group = _check_group(group)
+    group = check_group(group)
     xi_s = as_array(xi_s, "xi_s", (group.dim,),
                     what=f", a spatial velocity in the Lie algebra of {group.name}")
     e = group.identity()
@@ -279,7 +270,7 @@ def group_geodesic(group, xi, t, side="left", g0=None, *, method="exp", **solve_
     Returns elements of shape ``t.shape + (dim,)`` (angles are not wrapped; compare with
     ``group.isclose``). ``xi`` must be a single vector ``(dim,)``; ``g0`` an element ``(dim,)``.
     """
-    group = _check_group(group)
+    group = check_group(group)
     side = _check_side(side)
     xi = as_array(xi, "xi", (group.dim,), what=f", a Lie-algebra vector of {group.name}")
     if xi.ndim != 1:

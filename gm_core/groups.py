@@ -226,11 +226,39 @@ class LieGroup:
         return self.name
 
 
+def check_group(group, name="group"):
+    """Return ``group`` after checking it is one of gm_core's Lie groups (TypeError otherwise)."""
+    if not isinstance(group, LieGroup):
+        raise TypeError(
+            f"{name} must be one of gm_core's Lie groups (e.g. gm_core.SE2, gm_core.RPlus); "
+            f"got {type(group).__name__}"
+        )
+    return group
+
+
 def _eye(n, batch):
     return np.broadcast_to(np.eye(n), tuple(batch) + (n, n)).copy()
 
 
-class Rn(LieGroup):
+class _Additive(LieGroup):
+    """Groups whose operation is (modular) addition: the lifted actions and adjoints are
+    identity matrices, book (1.22), so left and right coincide, (1.3)."""
+
+    def identity(self, batch_shape=()):
+        return np.zeros(tuple(batch_shape) + (self.dim,))
+
+    def left_lifted_action(self, h, g):
+        return _eye(self.dim, _batch(self._element(h, "h"), self._element(g), tail=1))
+
+    right_lifted_action = left_lifted_action
+
+    def Ad(self, g):
+        return _eye(self.dim, self._element(g).shape[:-1])
+
+    Ad_inv = Ad
+
+
+class Rn(_Additive):
     """The additive group (R^n, +); lifted actions are identities, book (1.22)."""
 
     def __init__(self, n=1):
@@ -242,24 +270,11 @@ class Rn(LieGroup):
         self.angular = (False,) * n
         self.matrix_size = n + 1
 
-    def identity(self, batch_shape=()):
-        return np.zeros(tuple(batch_shape) + (self.dim,))
-
     def compose(self, g, h):
         return self._element(g) + self._element(h, "h")
 
     def inverse(self, g):
         return -self._element(g)
-
-    def left_lifted_action(self, h, g):
-        return _eye(self.dim, _batch(self._element(h, "h"), self._element(g), tail=1))
-
-    right_lifted_action = left_lifted_action
-
-    def Ad(self, g):
-        return _eye(self.dim, self._element(g).shape[:-1])
-
-    Ad_inv = Ad
 
     def hat(self, xi):
         xi = self._algebra(xi)
@@ -373,7 +388,7 @@ def _check_rotation(Rm, name):
         )
 
 
-class _SO2(LieGroup):
+class _SO2(_Additive):
     """Rotations of the plane, elements stored as the angle theta, shape ``(..., 1)``; book (1.1)."""
 
     name = "SO(2)"
@@ -382,25 +397,12 @@ class _SO2(LieGroup):
     angular = (True,)
     matrix_size = 2
 
-    def identity(self, batch_shape=()):
-        return np.zeros(tuple(batch_shape) + (1,))
-
     def compose(self, g, h):
         """theta_g + theta_h: matrix product R(a) R(b) = R(a + b), book (1.xvi)."""
         return self._element(g) + self._element(h, "h")
 
     def inverse(self, g):
         return -self._element(g)
-
-    def left_lifted_action(self, h, g):
-        return _eye(1, _batch(self._element(h, "h"), self._element(g), tail=1))
-
-    right_lifted_action = left_lifted_action
-
-    def Ad(self, g):
-        return _eye(1, self._element(g).shape[:-1])
-
-    Ad_inv = Ad
 
     def hat(self, xi):
         w = self._algebra(xi)[..., 0]
@@ -428,7 +430,7 @@ class _SO2(LieGroup):
         return np.arctan2(G[..., 1, 0], G[..., 0, 0])[..., None]
 
 
-class S1(LieGroup):
+class S1(_Additive):
     """The circle with modular addition (S^1, + mod k), elements in [0, k), book section 1.2.
 
     ``period`` is the cycle length k (2 pi for radians, 1 for cycles, as in fig. 1.2).
@@ -448,24 +450,11 @@ class S1(LieGroup):
     def _mod(self, a):
         return np.mod(a, self.period)
 
-    def identity(self, batch_shape=()):
-        return np.zeros(tuple(batch_shape) + (1,))
-
     def compose(self, g, h):
         return self._mod(self._element(g) + self._element(h, "h"))
 
     def inverse(self, g):
         return self._mod(-self._element(g))
-
-    def left_lifted_action(self, h, g):
-        return _eye(1, _batch(self._element(h, "h"), self._element(g), tail=1))
-
-    right_lifted_action = left_lifted_action
-
-    def Ad(self, g):
-        return _eye(1, self._element(g).shape[:-1])
-
-    Ad_inv = Ad
 
     def hat(self, xi):
         return SO2.hat(self._algebra(xi) * (TWO_PI / self.period))
@@ -497,7 +486,7 @@ class S1(LieGroup):
         return rng.uniform(0.0, self.period, size + (1,))
 
 
-class _R2xS1(LieGroup):
+class _R2xS1(_Additive):
     """The direct product (R^2 x S^1, +): coordinates add independently, book section 1.3.3."""
 
     name = "(R^2 x S^1, +)"
@@ -506,24 +495,11 @@ class _R2xS1(LieGroup):
     angular = (False, False, True)
     matrix_size = 5
 
-    def identity(self, batch_shape=()):
-        return np.zeros(tuple(batch_shape) + (3,))
-
     def compose(self, g, h):
         return self._element(g) + self._element(h, "h")
 
     def inverse(self, g):
         return -self._element(g)
-
-    def left_lifted_action(self, h, g):
-        return _eye(3, _batch(self._element(h, "h"), self._element(g), tail=1))
-
-    right_lifted_action = left_lifted_action
-
-    def Ad(self, g):
-        return _eye(3, self._element(g).shape[:-1])
-
-    Ad_inv = Ad
 
     def hat(self, xi):
         """Block-diagonal algebra matrix: a translation block and an so(2) block, ``(..., 5, 5)``."""
