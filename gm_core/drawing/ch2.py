@@ -7,8 +7,11 @@ draws translational velocities (e.g. end-effector velocities) as arrows.
 """
 from __future__ import annotations
 
+import re as _re
+
 import numpy as np
 from matplotlib.patches import Polygon
+from matplotlib.text import Text as _Text
 
 from ..chains import accessible_circle, circle_constraints, sample_accessible_manifold
 from .base import FrameArtist
@@ -160,3 +163,136 @@ def draw_accessible_manifold(ax3d, n=60, rng=None):
     ax3d.set_ylabel("y")
     ax3d.set_zlabel("z")
     return pts
+
+
+# ------------------------------------------------------------------------------ readouts
+_DIGITS = _re.compile(r"[0-9]")
+_SIGNS = _re.compile(r"[-+−]")
+_GLYPHS: dict = {}     # (font file, size, dpi, glyph, antialiased, subpixel x, y) -> (bitmap, left, top)
+_LINES: dict = {}      # (font file, size, dpi, line template) -> [(dx, dy)] glyph origins of that line
+
+
+def _template(line):
+    """The line with every digit -> 0 and sign -> +: same layout in a monospace font."""
+    return _SIGNS.sub("+", _DIGITS.sub("0", line))
+
+
+def _fast_text_available():
+    """True if this matplotlib renders Agg text glyph by glyph the way the cache below replays it."""
+    try:
+        from matplotlib.backends.backend_agg import RendererAgg, get_hinting_flag  # noqa: F401
+        from matplotlib.ft2font import FT2Font, RenderMode  # noqa: F401
+    except ImportError:
+        return False
+    return all(hasattr(RendererAgg, a) for a in ("_prepare_font", "_draw_text_glyphs_and_boxes")) and \
+        all(hasattr(FT2Font, a) for a in ("_layout", "_render_glyph", "_set_transform"))
+
+
+_FAST_TEXT = _fast_text_available()
+
+
+def _agg_draw_text_cached(renderer, gc, x, y, s, prop, angle, ismath=False, mtext=None, template=True):
+    """RendererAgg.draw_text for one line of monospace text, with rendered glyphs cached.
+
+    Agg renders text glyph by glyph through FreeType (about 0.05-0.1 ms per glyph), so a readout of
+    100 characters costs 5-10 ms per frame. Here every glyph bitmap is rendered once per
+    (glyph, size, dpi, 1/64-pixel offset) and then pasted with the same ``draw_text_image`` call at
+    the same pixel position as matplotlib would use: the picture is identical, only cheaper.
+    """
+    from matplotlib.backends.backend_agg import RendererAgg, get_hinting_flag
+    from matplotlib.ft2font import RenderMode
+
+    if ismath or angle:
+        return RendererAgg.draw_text(renderer, gc, x, y, s, prop, angle, ismath=ismath, mtext=mtext)
+    font = renderer._prepare_font(prop)
+    size = prop.get_size_in_points()
+    dpi = renderer.dpi
+    flags = get_hinting_flag()
+    from matplotlib.ft2font import FaceFlags
+
+    template = template and FaceFlags.FIXED_WIDTH in font.face_flags  # digits -> 0 only in a monospace font
+    key = (font.fname, size, dpi, _template(s) if template else s)
+    origins = _LINES.get(key)
+    if origins is None:
+        items = font._layout(key[3], flags=flags)
+        if len(items) != len(s) or any(it.ft_object is not font for it in items):
+            return RendererAgg.draw_text(renderer, gc, x, y, s, prop, angle, ismath=ismath, mtext=mtext)
+        if len(_LINES) > 5_000:
+            _LINES.clear()
+        origins = _LINES[key] = [(it.x, it.y) for it in items]
+    aa = bool(gc.get_antialiased())
+    height = renderer.height
+    for ch, (dx, dy) in zip(s, origins):
+        if ch == " ":
+            continue
+        ox = round(0x40 * (x + dx))
+        oy = round(0x40 * (height - y + dy))
+        gkey = (font.fname, size, dpi, ch, aa, ox & 63, oy & 63)
+        hit = _GLYPHS.get(gkey)
+        if hit is None:
+            if len(_GLYPHS) > 50_000:
+                _GLYPHS.clear()
+            font.set_size(size, dpi)
+            font._set_transform([[0x10000, 0], [0, 0x10000]], [ox, oy])
+            bitmap = font._render_glyph(font.get_char_index(ord(ch)), flags,
+                                        RenderMode.NORMAL if aa else RenderMode.MONO)
+            buf = np.array(bitmap.buffer)
+            if not aa:
+                buf *= 0xff
+            hit = _GLYPHS[gkey] = (buf, bitmap.left - (ox >> 6), bitmap.top - (oy >> 6))
+        buf, left, top = hit
+        renderer._renderer.draw_text_image(buf, (ox >> 6) + left,
+                                           int(height) - ((oy >> 6) + top) + buf.shape[0], 0, gc)
+
+
+class ReadoutText(_Text):
+    """A Text for monospace numeric readouts that change every frame; drawn through a glyph cache.
+
+    Looks exactly like ``ax.text(..., family="monospace")``. Line metrics come from a template of
+    the text (digits -> 0, signs -> +; identical in a monospace font), so a new value needs no
+    new font layout, and on Agg each glyph is rendered once and then pasted. Other renderers
+    (PDF, SVG) and rotated text take matplotlib's ordinary path. With ``template = False`` (any
+    font, e.g. tick labels) layouts are cached per distinct string instead.
+    """
+
+    template = True
+
+    def _get_layout(self, renderer):
+        if not self.template or "monospace" not in self.get_fontfamily():
+            return super()._get_layout(renderer)
+        real = self._text
+        lines = real.split("\n")
+        self._text = "\n".join(_template(line) for line in lines)
+        try:
+            bbox, info, descent = super()._get_layout(renderer)
+        finally:
+            self._text = real
+        if len(info) != len(lines):
+            return super()._get_layout(renderer)
+        info = [(line, wad, xy) for line, (_, wad, xy) in zip(lines, info)]
+        return bbox, info, descent
+
+    def draw(self, renderer):
+        from matplotlib.backends.backend_agg import RendererAgg
+
+        if not _FAST_TEXT or not isinstance(renderer, RendererAgg) or self.get_usetex() \
+                or self.get_path_effects() or self.get_wrap():
+            return _Text.draw(self, renderer)
+        renderer.draw_text = lambda *a, **k: _agg_draw_text_cached(renderer, *a, template=self.template, **k)
+        try:
+            return super().draw(renderer)
+        finally:
+            del renderer.draw_text
+
+
+def readout(ax, x, y, s="", **kw):
+    """A monospace :class:`ReadoutText` in axes coordinates (fontsize 8 by default), added to ``ax``."""
+    kw.setdefault("transform", ax.transAxes)
+    kw.setdefault("fontsize", 8)
+    kw.setdefault("family", "monospace")
+    t = ReadoutText(x, y, s, **kw)
+    ax._add_text(t)
+    return t
+
+
+__all__ += ["ReadoutText", "readout"]

@@ -358,3 +358,120 @@ def animate_gait(system, gait, n_frames=60, row=2, cycles=1, world_lim=None, int
 
 
 __all__ += ["SingularFlag"]
+
+
+# ------------------------------------------------------------------------------ moving world view
+class MovingView:
+    """World axes whose visible window follows the motion without changing the axes limits.
+
+    A live panel is redrawn by blitting (gm_core.drawing.blit); a new axis limit forces a full
+    redraw of the whole figure (~80 ms for a 2 x 2 figure). Here the axes keep fixed limits
+    ``(-half0, half0)``; the artists attached with :meth:`attach` keep their *world* data and
+    are drawn through ``view + transData``, where ``view`` maps the window ``center +- half`` onto
+    the fixed limits. Grid lines, tick marks and tick labels (MaxNLocator(4), ScalarFormatter
+    labels, as :func:`style_world_axes` shows them) are moving artists updated by :meth:`set`.
+    Quiver arrows given in data units are rescaled with the window.
+    """
+
+    def __init__(self, ax, half, nticks=4, max_ticks=8):
+        import matplotlib as mpl
+        from matplotlib.collections import LineCollection
+        from matplotlib.lines import Line2D
+        from matplotlib.markers import TICKDOWN, TICKLEFT
+        from matplotlib.ticker import MaxNLocator
+        from matplotlib.transforms import Affine2D, offset_copy
+
+        from .ch2 import ReadoutText
+
+        self.ax, self.half0 = ax, float(half)
+        style_world_axes(ax, self.half0)
+        ax.grid(False)
+        ax.set_xticks([])
+        ax.set_yticks([])
+        self.view = Affine2D()
+        self.transform = self.view + ax.transData
+        self.locator = MaxNLocator(nticks)
+        rc = mpl.rcParams
+        self.grid = LineCollection([], colors=rc["grid.color"], linewidths=rc["grid.linewidth"],
+                                   linestyles=rc["grid.linestyle"], alpha=0.3, zorder=1.5, snap=True)
+        ax.add_collection(self.grid, autolim=False)
+        length, width, pad = rc["xtick.major.size"], rc["xtick.major.width"], 1.0
+        xt, yt = ax.get_xaxis_transform(), ax.get_yaxis_transform()
+        (self.xticks,) = ax.plot([], [], ls="none", marker=TICKDOWN, ms=length, mew=width, color=rc["xtick.color"],
+                                 transform=xt, clip_on=False)
+        (self.yticks,) = ax.plot([], [], ls="none", marker=TICKLEFT, ms=length, mew=width, color=rc["ytick.color"],
+                                 transform=yt, clip_on=False)
+        fig = ax.get_figure()
+        xlab = offset_copy(xt, fig, y=-(length + pad), units="points")
+        ylab = offset_copy(yt, fig, x=-(length + pad), units="points")
+        self.xlabels, self.ylabels = [], []
+        for labels, tr, kw in ((self.xlabels, xlab, dict(ha="center", va="top")),
+                               (self.ylabels, ylab, dict(ha="right", va="center_baseline"))):
+            for _ in range(max_ticks):
+                t = ReadoutText(0.0, 0.0, "", transform=tr, fontsize=8, clip_on=False, **kw)
+                t.template = False
+                ax._add_text(t)
+                labels.append(t)
+        self.quivers = []
+        self.center, self.half = np.zeros(2), self.half0
+        self.set((0.0, 0.0), self.half0)
+
+    def attach(self, *artists):
+        """Draw these artists (world data) through the moving window."""
+        from matplotlib.quiver import Quiver
+
+        for a in artists:
+            if isinstance(a, Quiver):
+                a.set_offset_transform(self.transform)
+                self.quivers.append((a, a.scale))
+            else:
+                a.set_transform(self.transform)
+        self.set(self.center, self.half)
+
+    def limits(self):
+        """The world window shown: ``(x0, x1, y0, y1)``."""
+        c, h = self.center, self.half
+        return (c[0] - h, c[0] + h, c[1] - h, c[1] + h)
+
+    def set(self, center, half):
+        from matplotlib.ticker import ScalarFormatter
+
+        self.center, self.half = np.asarray(center, float).copy(), float(half)
+        k = self.half0 / self.half
+        self.view.clear().translate(-self.center[0], -self.center[1]).scale(k)
+        for q, scale in self.quivers:
+            q.scale = scale / k
+            q.stale = True
+        segs, xt, yt = [], [], []
+        for axis, (lo, hi), marks, labels in ((0, self.limits()[:2], xt, self.xlabels),
+                                              (1, self.limits()[2:], yt, self.ylabels)):
+            eps = 1e-9 * (hi - lo)
+            locs = [v for v in self.locator.tick_values(lo, hi) if lo - eps <= v <= hi + eps]
+            fmt = ScalarFormatter()
+            fmt.create_dummy_axis()
+            fmt.axis.set_view_interval(lo, hi)
+            text = fmt.format_ticks(locs)
+            for i, t in enumerate(labels):
+                if i < len(locs):
+                    p = (locs[i] - self.center[axis]) * k
+                    t.set_position((p, 0.0) if axis == 0 else (0.0, p))
+                    t.set_text(text[i])
+                    t.set_visible(True)
+                else:
+                    t.set_visible(False)
+            for v in locs:
+                p = (v - self.center[axis]) * k
+                marks.append(p)
+                segs.append([[p, -self.half0], [p, self.half0]] if axis == 0 else [[-self.half0, p], [self.half0, p]])
+        self.grid.set_segments(segs)
+        self.grid.set_transform(self.ax.transData)
+        self.xticks.set_data(xt, np.zeros(len(xt)))
+        self.yticks.set_data(np.zeros(len(yt)), yt)
+
+    def touch(self):
+        """Mark the view's artists changed (so a blitter counts them as moving from the first frame)."""
+        for a in [self.grid, self.xticks, self.yticks] + self.xlabels + self.ylabels:
+            a.stale = True
+
+
+__all__ += ["MovingView"]

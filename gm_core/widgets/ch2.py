@@ -11,7 +11,7 @@ import numpy as np
 from .. import chains as C
 from ..groups import SE2
 from ..drawing.base import FrameArtist, new_figure
-from ..drawing.ch2 import ArrowsArtist, ChainArtist, draw_chain_naive
+from ..drawing.ch2 import ArrowsArtist, ChainArtist, draw_chain_naive, readout
 from .base import Panel, register, slider
 
 __all__ = ["SingleLinkPanel", "RRArmPanel", "RPArmPanel", "OffsetRPArmPanel", "MobileChainPanel",
@@ -56,7 +56,7 @@ class _ArmPanel(Panel):
             self.controls[name] = slider(v, lo, hi, description=name)
         for name in self.names:
             self.controls[name + "_dot"] = slider(0.5, -2.0, 2.0, description=name + " rate")
-        self.text = self.ax.text(0.02, 0.02, "", transform=self.ax.transAxes, family="monospace", fontsize=8)
+        self.text = readout(self.ax, 0.02, 0.02)
 
     def _config(self, values):
         q = np.array([values[n] for n in self.names])
@@ -306,7 +306,7 @@ class JacobianMethodsPanel(Panel):
         self.arrows = {m: ArrowsArtist(self.ax, 1, color=self.COLORS[m], width=widths[m], label=m)
                        for m in C.METHODS}
         self.ax.legend(loc="upper right", fontsize=8)
-        self.text = self.ax.text(0.02, 0.02, "", transform=self.ax.transAxes, family="monospace", fontsize=8)
+        self.text = readout(self.ax, 0.02, 0.02)
         self.controls = {}
         for i, jt in enumerate(self.chain.joints):
             lo, hi = (-PI, PI) if jt.kind == "revolute" else (0.0, 1.0)
@@ -319,9 +319,12 @@ class JacobianMethodsPanel(Panel):
         n = self.chain.n_joints
         q = np.array([values[f"q{i + 1}"] for i in range(n)])
         qd = np.array([values[f"q{i + 1}_dot"] for i in range(n)])
-        fr = self.chain.frames(q)
-        v = {m: self.chain.jacobians(q, method=m)["h"][-1] @ qd for m in C.METHODS}
-        return fr, v
+        key = tuple(q)
+        if getattr(self, "_at", None) != key:  # frames and Jacobians depend on q only: a rate slider reuses them
+            self._fr = self.chain.frames(q)
+            self._J = {m: self.chain.jacobians(q, method=m)["h"][-1] for m in C.METHODS}
+            self._at = key
+        return self._fr, {m: J @ qd for m, J in self._J.items()}
 
     def update(self, **values):
         fr, v = self.compute(**values)
@@ -363,7 +366,7 @@ class ThreeLinkVelocityPanel(Panel):
         _square(self.ax, self.lim)
         self.art = ChainArtist(self.ax, 3, frames_shown=("g",), frame_length=0.25, base_link=1)
         self.arrows = ArrowsArtist(self.ax, 3, color="tab:purple", scale=0.5, label="link velocity (x 0.5)")
-        self.text = self.ax.text(0.02, 0.02, "", transform=self.ax.transAxes, family="monospace", fontsize=8)
+        self.text = readout(self.ax, 0.02, 0.02)
         self.controls = {
             "alpha1": slider(0.6, -2.5, 2.5, description="alpha1"),
             "alpha2": slider(-0.4, -2.5, 2.5, description="alpha2"),
