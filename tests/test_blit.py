@@ -76,3 +76,28 @@ def test_no_blitting_on_static_canvases():
     p = FrameDemo()
     assert p.blitter is None   # Agg in tests: plain updates, pictures drawn on demand
     plt.close(p.fig)
+
+
+def test_saving_a_blitted_figure_draws_each_artist_once(blitting, tmp_path):
+    """savefig of a live panel equals the picture of a panel that never blitted."""
+    import matplotlib.image as mpimg
+    from gm_core.widgets.start import FrameDemo
+
+    Panel.blit_everywhere = True
+    live = FrameDemo()
+    live.fig.canvas.draw()
+    for x in (0.3, 0.7):
+        live.refresh(x=x)
+    Panel.blit_everywhere = False
+    plain = FrameDemo()
+    plain.update(**{**live.values(), "x": 0.7})   # refresh(x=...) drew x without moving the slider
+    live.fig.savefig(tmp_path / "live.png")
+    plain.fig.savefig(tmp_path / "plain.png")
+    a, b = mpimg.imread(tmp_path / "live.png"), mpimg.imread(tmp_path / "plain.png")
+    assert a.shape == b.shape and np.abs(a - b).max() < 1e-6
+    # Blitting still works after the save, from an unchanged background.
+    blits = live.blitter.blits
+    live.refresh(x=0.9)
+    assert live.blitter.blits == blits + 1
+    plt.close(live.fig)
+    plt.close(plain.fig)

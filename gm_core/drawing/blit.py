@@ -64,10 +64,9 @@ class Blitter:
 
     def _on_draw(self, event):
         """After every full draw: keep the background, then paint the animated artists on it."""
-        if event is not None and event.canvas is not self.canvas:
-            # A savefig onto another canvas: still show the moving artists in that picture.
-            for a in self._sorted():
-                a.draw(event.renderer)
+        if self.canvas.is_saving() or (event is not None and event.canvas is not self.canvas):
+            # savefig: matplotlib draws animated artists itself while saving, and that picture
+            # is not the live background.
             return
         self._background = self.canvas.copy_from_bbox(self.fig.bbox)
         self._limits = self._view_limits()
