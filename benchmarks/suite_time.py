@@ -8,11 +8,14 @@ summary of each:
     set-up      make setup (nothing to do when .venv is up to date; not counted in the total)
     unit        pytest tests -m "not browser"
     notebooks   pytest book exercises solutions          (nbval runs every notebook)
-    browser     pytest tests -m browser                  (JupyterLab + headless Chromium)
+    browser     pytest tests/browser -m browser          (JupyterLab + headless Chromium)
 
     .venv/bin/python benchmarks/suite_time.py             # all phases
     .venv/bin/python benchmarks/suite_time.py unit browser
     .venv/bin/python benchmarks/suite_time.py --make      # also time one real `make test`
+
+The phases' sum is close to one `make test` but not equal: each phase starts pytest and imports
+its plugins once more, while `make test` shares one collection (use --make to see both).
 """
 from __future__ import annotations
 
@@ -31,7 +34,8 @@ GOAL_S = 180.0
 PHASES = {
     "unit": [PY, "-m", "pytest", "tests", "-m", "not browser", "-q"],
     "notebooks": [PY, "-m", "pytest", "book", "exercises", "solutions", "-q"],
-    "browser": [PY, "-m", "pytest", "tests", "-m", "browser", "-q"],
+    # tests/browser only: collecting all of tests/ again would count the unit tests' import time twice
+    "browser": [PY, "-m", "pytest", "tests/browser", "-m", "browser", "-q"],
 }
 SUMMARY = re.compile(r"^=*\s*((?:\d+ \w+(?:, )?)+) in [\d.]+s", re.M)
 COUNTS = re.compile(r"(\d+) (passed|failed|errors?|skipped|deselected|xfailed|xpassed|warnings?)")

@@ -725,7 +725,7 @@ class NotebookPage:
     def snapshot(self, sel) -> str:
         return self.page.evaluate(_SNAPSHOT_JS, sel)
 
-    def wait_still(self, sel, still: float = 0.4, timeout: float = 20.0, busy_ok: bool = False):
+    def wait_still(self, sel, still: float = 0.3, timeout: float = 20.0, busy_ok: bool = False):
         """Wait until the panel's canvas has not changed for ``still`` seconds and the kernel is idle
         (so a late initial render is not mistaken for the slider's effect). If it never settles,
         raise :class:`CanvasBusy` when ``busy_ok``, else fail."""

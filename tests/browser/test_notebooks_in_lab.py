@@ -29,7 +29,7 @@ def test_detector_tells_a_live_panel_from_a_dead_one(lab, record_timing, prestar
         page.run_all()
         page.check_no_errors()
         live = page.move_slider(page.find_panel(0), 0, change_timeout=20)
-        dead = page.move_slider(page.find_panel(1), 0, change_timeout=3)
+        dead = page.move_slider(page.find_panel(1), 0, change_timeout=2.5)
         page.check_no_errors()
     record_timing("(self-check notebook)", page.timings.phases)
     assert live.slider_moved and live.changed, f"working panel not detected as changing: {live}"
