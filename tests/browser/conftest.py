@@ -38,13 +38,49 @@ def chromium():
     return browserlab.CHROMIUM
 
 
+# Clean-ups of the session resources, newest last. They run right after the last browser test
+# (so the server and Chromium do not idle through the unit tests and notebooks that `make test`
+# runs next) or at the end of the session, whichever comes first.
+_CLEANUPS: list = []
+
+
+def _release(request=None):
+    t0 = time.monotonic()
+    ran = bool(_CLEANUPS)
+    while _CLEANUPS:
+        fn = _CLEANUPS.pop()
+        try:
+            fn()
+        except Exception as e:  # keep releasing the rest
+            print(f"browser tests: clean-up {fn!r} failed: {e}", file=sys.stderr)
+    if ran and request is not None:
+        request.config.stash[TIMINGS_KEY]["(stop browser + server)"] = {"total": round(time.monotonic() - t0, 2)}
+
+
+def _on_cleanup(request, fn):
+    _CLEANUPS.append(fn)
+    request.addfinalizer(_release)
+
+
+@pytest.fixture(autouse=True)
+def _release_after_last_browser_test(request):
+    yield
+    items = request.session.items
+    try:
+        i = items.index(request.node)
+    except ValueError:
+        return
+    if not any("lab" in getattr(it, "fixturenames", ()) for it in items[i + 1:]):
+        _release(request)
+
+
 @pytest.fixture(scope="session")
 def lab_server(chromium, tmp_path_factory, request):
     """JupyterLab on a temporary copy of the course (plus the self-check notebook)."""
     t0 = time.monotonic()
     server = browserlab.LabServer(tmp_path_factory.mktemp("lab"),
                                   extra_notebooks={browserlab.SELFCHECK_PATH: browserlab.selfcheck_notebook()})
-    request.addfinalizer(server.stop)
+    _on_cleanup(request, server.stop)
     server.start()
     request.config.stash[TIMINGS_KEY]["(server start)"] = {"total": round(time.monotonic() - t0, 2)}
     return server
@@ -57,9 +93,9 @@ def browser_context(chromium, tmp_path_factory, request):
 
     t0 = time.monotonic()
     pw = sync_playwright().start()
-    request.addfinalizer(pw.stop)
+    _on_cleanup(request, pw.stop)
     context = browserlab.launch_chromium(pw, tmp_path_factory.mktemp("chromium-profile"))
-    request.addfinalizer(context.close)
+    _on_cleanup(request, context.close)
     request.config.stash[TIMINGS_KEY]["(browser start)"] = {"total": round(time.monotonic() - t0, 2)}
     return context
 
@@ -68,7 +104,7 @@ def browser_context(chromium, tmp_path_factory, request):
 def lab(lab_server, browser_context, request):
     """The JupyterLab page shared by the notebooks (reloaded after a failure)."""
     lab = browserlab.LabBrowser(browser_context, lab_server)
-    request.addfinalizer(lab.close)
+    _on_cleanup(request, lab.close)
     return lab
 
 
