@@ -1,5 +1,6 @@
 """Notebooks are committed without outputs, and no solution leaks into exercises/."""
 import json
+import re
 import subprocess
 from pathlib import Path
 
@@ -40,3 +41,21 @@ def test_no_solution_markers_in_exercises(path):
     text = (ROOT / path).read_text()
     assert "BEGIN SOLUTION" not in text and "END SOLUTION" not in text, (
         f"{path} contains a solution marker; regenerate with `make exercises`")
+
+
+BOOK = [p for p in NOTEBOOKS if p.startswith("book/")]
+LINK = re.compile(r"\]\((?!https?:|#|mailto:)([^)#\s]+\.(?:ipynb|md))(?:#[^)]*)?\)")
+
+
+@pytest.mark.parametrize("path", BOOK)
+def test_book_links_resolve(path):
+    """Relative links in the book point at files that exist; exercise links go to the student's
+    workspace/ copy (made from exercises/ by `make lab`), never to the tracked originals."""
+    nb = json.loads((ROOT / path).read_text())
+    text = "".join("".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "markdown")
+    for target in LINK.findall(text):
+        resolved = (ROOT / path).parent / target
+        assert "exercises/" not in target, f"{path}: link {target} should point into ../workspace/"
+        if "workspace/" in target:
+            resolved = ROOT / "exercises" / resolved.name
+        assert resolved.exists(), f"{path}: broken link {target}"
