@@ -8,9 +8,11 @@ webagg's diff images: ``canvas.blit`` marks the picture old and sends only chang
 
 :class:`Blitter` needs no list of moving artists from the panel. During a frame it intercepts
 ``canvas.draw_idle``; afterwards the leaf artists that the update made *stale* are the moving
-ones. New moving artists, changed axis limits or a missing background trigger one full draw (the
-``draw_event`` callback then captures the background without the animated artists and paints
-them on top); every later frame is a blit. Figures with 3D axes always take the full-draw path.
+ones. New moving artists, a changed view (axis limits; for 3D axes also the viewing angles, which
+a student changes by dragging) or a missing background trigger one full draw (the ``draw_event``
+callback then captures the background without the animated artists and paints them on top);
+every later frame is a blit. In 3D the moving artists are projected with the view of the last
+full draw, which the view check keeps current.
 """
 from __future__ import annotations
 
@@ -24,11 +26,17 @@ __all__ = ["Blitter", "can_blit"]
 
 
 def can_blit(fig) -> bool:
-    """True if ``fig`` can be blitted: an Agg-based canvas and no 3D axes."""
+    """True if ``fig`` can be blitted: its canvas can copy and restore regions (Agg-based)."""
     canvas = fig.canvas
-    if not (hasattr(canvas, "copy_from_bbox") and hasattr(canvas, "restore_region")):
-        return False
-    return not any(getattr(ax, "name", "") == "3d" for ax in fig.axes)
+    return hasattr(canvas, "copy_from_bbox") and hasattr(canvas, "restore_region")
+
+
+def _view(ax):
+    """Everything that places an axes' content on the canvas: limits, and for 3D the camera."""
+    view = (tuple(ax.viewLim.bounds), tuple(ax.get_position().bounds))
+    if getattr(ax, "name", "") == "3d":
+        view += (tuple(ax.get_zlim()), ax.elev, ax.azim, getattr(ax, "roll", 0.0))
+    return view
 
 
 def _leaf_artists(fig):
@@ -60,7 +68,7 @@ class Blitter:
 
     # -- bookkeeping ------------------------------------------------------------------
     def _view_limits(self):
-        return [tuple(ax.viewLim.bounds) for ax in self.fig.axes]
+        return [_view(ax) for ax in self.fig.axes]
 
     def _on_draw(self, event):
         """After every full draw: keep the background, then paint the animated artists on it."""

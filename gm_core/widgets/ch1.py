@@ -69,6 +69,8 @@ class TorusPathPanel(ScenePanel):
 
     title = "Torus: flattened view with glued edges"
     scene_class = D.TorusPathScene
+    # The path winds behind the torus's wireframe; only a full 3D draw sorts them by depth.
+    blit = False
 
     def controls_spec(self):
         return {"a0": slider(0.5, 0.0, 2 * PI, description="start a₀"),
