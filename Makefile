@@ -46,6 +46,8 @@ exercises: setup
 bench: setup
 	$(PY) benchmarks/se2_batched.py
 	$(PY) benchmarks/widget_latency.py
+	$(PY) benchmarks/connection_grid.py
+	@echo "also: benchmarks/browser_latency.py (needs chromium), benchmarks/suite_time.py (runs the suite)"
 
 clean:
 	rm -rf $(VENV) .hypothesis
