@@ -101,3 +101,16 @@ def test_saving_a_blitted_figure_draws_each_artist_once(blitting, tmp_path):
     assert live.blitter.blits == blits + 1
     plt.close(live.fig)
     plt.close(plain.fig)
+
+
+@pytest.mark.parametrize("name", sorted(PANELS))
+def test_full_draw_leaves_figure_clean(name, monkeypatch):
+    """The draw callback must not touch the figure: a figure left stale after a draw makes ipympl
+    request another draw, forever (a redraw loop that only shows in a live browser)."""
+    monkeypatch.setattr(Panel, "blit_everywhere", True)
+    p = PANELS[name]()
+    rng = np.random.default_rng(5)
+    for _ in range(3):
+        p.refresh(**p.sample_values(rng))
+        p.fig.canvas.draw()
+        assert not p.fig.stale, f"{name}: figure is stale right after a full draw"

@@ -33,7 +33,9 @@ def can_blit(fig) -> bool:
 
 def _view(ax):
     """Everything that places an axes' content on the canvas: limits, and for 3D the camera."""
-    view = (tuple(ax.viewLim.bounds), tuple(ax.get_position().bounds))
+    # Only side-effect-free reads: get_position() would run apply_aspect(), mark the figure stale
+    # and, under ipympl, request another draw from inside the draw callback (a redraw loop).
+    view = (tuple(ax.viewLim.bounds),)
     if getattr(ax, "name", "") == "3d":
         view += (tuple(ax.get_zlim()), ax.elev, ax.azim, getattr(ax, "roll", 0.0))
     return view
