@@ -27,6 +27,17 @@ def _square(ax, lim, center=(0.0, 0.0)):
     ax.set_aspect("equal")
     ax.grid(True, alpha=0.3)
 
+def _three_link_scene(panel):
+    """Shared set-up of the three-link panels: chain, square axes and a chain artist with the
+    middle link as base (the chapter-2 convention of (2.57)-(2.59))."""
+    panel.lengths = tuple(panel.options.get("lengths", (1.0, 1.0, 1.0)))
+    panel.chain = C.three_link_chain(panel.lengths)
+    panel.fig, panel.ax = new_figure(figsize=(5.5, 4.5))
+    panel.lim = 0.75 * sum(panel.lengths)
+    _square(panel.ax, panel.lim)
+    panel.art = ChainArtist(panel.ax, 3, frames_shown=("g",), frame_length=0.25, base_link=1)
+
+
 
 # ======================================================================= fixed-base arms
 class _ArmPanel(Panel):
@@ -238,12 +249,7 @@ class BetaFramePanel(Panel):
     title = "Generalized body frame beta (figs. 2.7, 2.9)"
 
     def build(self):
-        self.lengths = tuple(self.options.get("lengths", (1.0, 1.0, 1.0)))
-        self.chain = C.three_link_chain(self.lengths)
-        self.fig, self.ax = new_figure(figsize=(5.5, 4.5))
-        self.lim = 0.75 * sum(self.lengths)
-        _square(self.ax, self.lim)
-        self.art = ChainArtist(self.ax, 3, frames_shown=("g",), frame_length=0.25, base_link=1)
+        _three_link_scene(self)
         self.beta_art = FrameArtist(self.ax, length=0.5, colors=("k", "tab:olive"), zorder=8)
         (self.link_line,) = self.ax.plot([], [], ":", color="k", lw=1.5)
         (self.centres,) = self.ax.plot([], [], "s", color="k", ms=4)
@@ -359,12 +365,7 @@ class ThreeLinkVelocityPanel(Panel):
     title = "Three-link system: link body velocities from xi and the joint speeds (2.57)-(2.59)"
 
     def build(self):
-        self.lengths = tuple(self.options.get("lengths", (1.0, 1.0, 1.0)))
-        self.chain = C.three_link_chain(self.lengths)
-        self.fig, self.ax = new_figure(figsize=(5.5, 4.5))
-        self.lim = 0.75 * sum(self.lengths)
-        _square(self.ax, self.lim)
-        self.art = ChainArtist(self.ax, 3, frames_shown=("g",), frame_length=0.25, base_link=1)
+        _three_link_scene(self)
         self.arrows = ArrowsArtist(self.ax, 3, color="tab:purple", scale=0.5, label="link velocity (x 0.5)")
         self.text = readout(self.ax, 0.02, 0.02)
         self.controls = {
