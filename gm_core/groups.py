@@ -127,6 +127,23 @@ class LieGroup:
         """Vector form ``(..., dim)`` of a Lie-algebra matrix; inverse of :meth:`hat`."""
         raise NotImplementedError
 
+    def bracket(self, xi1, xi2):
+        """Lie bracket [xi1, xi2] ``(..., tangent_dim)``: the vee of hat(xi1) hat(xi2) - hat(xi2) hat(xi1).
+
+        This matrix commutator is the definition; groups override it with a closed form, and
+        abelian groups return zero.
+        """
+        X1 = self.hat(self._algebra(xi1, "xi1"))
+        X2 = self.hat(self._algebra(xi2, "xi2"))
+        return self.vee(X1 @ X2 - X2 @ X1)
+
+    def ad(self, xi):
+        """Matrix ``(..., dim, dim)`` of ad_xi = [xi, .], so that ad(xi) @ eta = bracket(xi, eta)."""
+        xi = self._algebra(xi)
+        basis = np.eye(self.dim)
+        cols = self.bracket(xi[..., None, :], basis)  # (..., dim[j], dim)
+        return np.swapaxes(cols, -1, -2)
+
     def exp(self, xi):
         """Group exponential: the unit-time flow from e along the invariant field of xi; section 1.6.4."""
         raise NotImplementedError
@@ -567,6 +584,17 @@ class _SE2(LieGroup):
         out[..., 0] = x + c * u - s * v
         out[..., 1] = y + s * u + c * v
         out[..., 2] = t + b
+        return out
+
+    def bracket(self, xi1, xi2):
+        """[xi1, xi2] = (w2 v1y - w1 v2y, w1 v2x - w2 v1x, 0), the vee of X1 X2 - X2 X1 with (1.54)."""
+        xi1 = self._algebra(xi1, "xi1")
+        xi2 = self._algebra(xi2, "xi2")
+        v1x, v1y, w1 = xi1[..., 0], xi1[..., 1], xi1[..., 2]
+        v2x, v2y, w2 = xi2[..., 0], xi2[..., 1], xi2[..., 2]
+        out = np.zeros(_batch(xi1, xi2, tail=1) + (3,))
+        out[..., 0] = -w1 * v2y + w2 * v1y
+        out[..., 1] = w1 * v2x - w2 * v1x
         return out
 
     def inverse(self, g):

@@ -167,13 +167,8 @@ def connection_curl(system, r, h=1e-5):
 
 
 def se2_bracket(xi1, xi2):
-    """Lie bracket [xi1, xi2] (..., 3) of se(2) vectors: the vee of X1 X2 - X2 X1 (hat matrices (1.54))."""
-    v1x, v1y, w1 = xi1[..., 0], xi1[..., 1], xi1[..., 2]
-    v2x, v2y, w2 = xi2[..., 0], xi2[..., 1], xi2[..., 2]
-    out = np.zeros(np.broadcast_shapes(xi1.shape, xi2.shape))
-    out[..., 0] = -w1 * v2y + w2 * v1y
-    out[..., 1] = w1 * v2x - w2 * v1x
-    return out
+    """Lie bracket [xi1, xi2] (..., 3) of se(2) vectors; kept name for :meth:`SE2.bracket`."""
+    return SE2.bracket(xi1, xi2)
 
 
 # ---------------------------------------------------------------------------------------------
