@@ -11,11 +11,7 @@ from gm_core.systems import Ackerman, DifferentialDrive, HighReSwimmer, LowReSwi
 from gm_core.systems.high_re import ellipse_added_mass
 
 
-@pytest.fixture(autouse=True)
-def clean():
-    reset_progress()
-    yield
-    reset_progress()
+pytestmark = pytest.mark.usefixtures("clean")
 
 
 def test_differential_drive_heading_by_integration():

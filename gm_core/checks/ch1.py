@@ -4,8 +4,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..groups import SE2, wrap_angle
-from ._core import ChoicePart, CustomPart, Exercise, FunctionPart, TuplePart, Unattempted, Wrong, \
-    call_student, is_starter, match_shape, rng_inputs, to_array
+from ._choice import ChoicePart
+from ._core import CustomPart, Exercise, FunctionPart, TuplePart, outcome_error, rng_inputs
+from ._answers import fmt_value, is_starter, is_sympy, match_shape, to_numbers
+from ._sandbox import Unattempted, Wrong
 
 # ============================================================================ 1.1
 ex1_1 = Exercise("1.1", "Configuration spaces of a universal joint and an offset universal joint", [
@@ -76,7 +78,7 @@ _scaling_inputs = rng_inputs(12, 6, _pos_pair,
 
 def _diag_params(out, args):
     """Accept the two diagonal entries or the full 2x2 matrix (which must be diagonal)."""
-    arr = to_array(out, "the value your function returned")
+    arr = to_numbers(out, "the value your function returned")
     if arr.shape == (2, 2):
         if abs(arr[0, 1]) > 1e-9 or abs(arr[1, 0]) > 1e-9:
             raise Wrong("your product matrix has non-zero off-diagonal entries, so it is not a "
@@ -186,6 +188,44 @@ def _swap_msg(a, b):
     return f"this is {b}, not {a}: the two are inverses of each other, so check which one you meant."
 
 
+_PRODUCT_LABELS = ("T_g L_{g^-1} T_e L_g on (R+, x)", "T_g R_{g^-1} T_e R_g on (R+, x)",
+                   "T_g L_{g^-1} T_e L_g on SE(2)", "T_g R_{g^-1} T_e R_g on SE(2)")
+
+
+def _product_probe(answer, i):
+    """Student side: the i-th product as given: (symbols left in it, its numbers or None)."""
+    if is_starter(answer):
+        raise Unattempted()
+    if not isinstance(answer, (list, tuple)) or len(answer) != 4:
+        raise Wrong("give a tuple of the four simplified products, in the order of the prompt.")
+    if all(is_starter(a) for a in answer):
+        raise Unattempted()
+    item = answer[i]
+    if is_starter(item):
+        raise Wrong(f"{_PRODUCT_LABELS[i]} is still None.")
+    free = sorted(str(x) for x in getattr(item, "free_symbols", ())) if is_sympy(item) else []
+    if free:
+        return [free, None]
+    return [[], to_numbers(item, _PRODUCT_LABELS[i])]
+
+
+def _product_judge(outcomes):
+    for i, o in enumerate(outcomes):
+        if o["k"] != "ok":
+            outcome_error(o, "your products", "")
+        free, value = o["v"]
+        label = _PRODUCT_LABELS[i]
+        if free:
+            raise Wrong(f"{label} still contains {', '.join(free)}: simplify it (sp.simplify) until "
+                        "the symbols cancel; that cancellation is what the exercise shows.")
+        n = 1 if i < 2 else 3
+        value = np.asarray(value, dtype=float)
+        if value.size != n * n or not np.allclose(value.reshape(n, n), np.eye(n), atol=1e-12):
+            raise Wrong(f"{label} should simplify to the identity{' matrix' if n == 3 else ' 1'}; "
+                        "yours does not. Check the order of the factors and parts (a) and (b).")
+    return "Correct: each product simplifies to the identity, so each pair are inverses."
+
+
 ex1_3 = Exercise("1.3", "T_g L_{g^-1} = (T_e L_g)^-1 and T_g R_{g^-1} = (T_e R_g)^-1", [
     TuplePart(
         "a", "On (R+, x): the four lifted actions as functions of g",
@@ -216,13 +256,23 @@ ex1_3 = Exercise("1.3", "T_g L_{g^-1} = (T_e L_g)^-1 and T_g R_{g^-1} = (T_e R_g
         reference=(_TgL_ginv, _TeL_g, _TgR_ginv, _TeR_g),
         wrong=[(_TeL_g, _TeL_g, _TgR_ginv, _TeR_g)],
         starter=(None, None, None, None)),
+    CustomPart(
+        "c", "Show the identities: the four products, simplified: (T_g L_{g^-1} T_e L_g, "
+             "T_g R_{g^-1} T_e R_g) on (R+, x), then the same two on SE(2)",
+        lambda: [lambda ans, i=i: _product_probe(ans, i) for i in range(4)], _product_judge,
+        hints=["Multiply the pairs from parts (a) and (b) in the order T_g L_{g^-1} times T_e L_g.",
+               "sp.simplify(M1 * M2) on SE(2): the sines and cosines combine through "
+               "cos^2 + sin^2 = 1."],
+        solution_text="All four products simplify to the identity (1 on (R+, x), I_3 on SE(2)).",
+        reference=(1, 1, np.eye(3), np.eye(3)), wrong=[(1, 1, np.eye(3), 2 * np.eye(3))],
+        starter=(None, None, None, None), weight=1.0),
 ])
 
 
 # ============================================================================ 1.4
-def _se2_vec(out, args):
+def _se2_vec(out, args, nan_ok=True):
     """Accept (x, y, theta) or a 3x3 homogeneous matrix; wrap the angle to (-pi, pi]."""
-    arr = to_array(out, "the value your function returned")
+    arr = to_numbers(out, "the value your function returned")
     if arr.shape == (3, 3):
         arr = np.array([arr[0, 2], arr[1, 2], np.arctan2(arr[1, 0], arr[0, 0])])
     arr = match_shape(arr, (3,), "the value your function returned")
@@ -261,7 +311,7 @@ def _exp_part(name, side):
     return FunctionPart(
         name, f"Closed-form {side} exponential exp(xi) as a function of xi = (vx, vy, w)",
         ref=_exp_ref, inputs=_xi_inputs, arg_names=("xi",), shape=(3,), postprocess=_se2_vec,
-        rtol=1e-6, atol=1e-7, sympy_names=("vx", "vy", "w"),
+        rtol=1e-6, atol=1e-7, sympy_names=("vx", "vy", "w"), angles=(2,),
         sympy_args=lambda xi: (xi[0], xi[1], xi[2]), sympy_ok=lambda xi: abs(xi[2]) > 1e-3,
         mistakes=_EXP_MISTAKES,
         hints=[f"Write the flow of the {field} as three ODEs for x, y and theta, starting at e.",
@@ -290,51 +340,106 @@ def _helix_inputs():
         yield (np.array([rng.uniform(-2, 2), rng.uniform(-2, 2), w]),)
 
 
-def _d_methods_judge(answer):
-    keys = ("euler_left", "euler_right", "product", "taylor")
+_D_KEYS = ("euler_left", "euler_right", "product", "taylor")
+_D_NAMES = {"euler_left": "Euler on the left-invariant field", "euler_right": "Euler on the "
+            "right-invariant field", "product": "the cumulative product (I + xi^/n)^n",
+            "taylor": "the Taylor sum over k < n"}
+_D_XIS = (np.array([1.0, 0.0, 0.5]), np.array([0.3, -0.7, 2.0]), np.array([1.0, 0.5, -4.0]))
+_D_NS = {"euler_left": (1, 2, 7, 40), "euler_right": (1, 2, 7, 40), "product": (1, 2, 7, 40),
+         "taylor": (1, 2, 5, 12, 30)}
+_D_CALLS = [(k, xi, n) for k in _D_KEYS for xi in _D_XIS for n in _D_NS[k]]
+
+
+def _d_structure(answer):
+    """Student side: which entries of the dict are given."""
+    if is_starter(answer):
+        raise Unattempted()
     if not isinstance(answer, dict) or not answer:
         raise Wrong("give a dict {'euler_left': f, 'euler_right': f, 'product': f, 'taylor': f} of "
                     "functions f(xi, n).")
-    missing = [k for k in keys if k not in answer]
+    missing = [k for k in _D_KEYS if k not in answer]
     if missing:
         raise Wrong(f"your dict has no entry for {', '.join(repr(k) for k in missing)}.")
-    if all(is_starter(answer.get(k)) for k in keys):
+    if all(is_starter(answer[k]) for k in _D_KEYS):
         raise Unattempted()
-    for k in keys:
-        if k not in answer or is_starter(answer[k]):
-            raise Wrong(f"the entry {k!r} is missing or still None.")
+    for k in _D_KEYS:
+        if is_starter(answer[k]):
+            raise Wrong(f"the entry {k!r} is still None.")
         if not callable(answer[k]):
             raise Wrong(f"answer[{k!r}] is not a function f(xi, n).")
-    for xi in (np.array([1.0, 0.0, 0.5]), np.array([1.0, 0.0, 2.0]), np.array([1.0, 0.0, -4.0])):
-        exact = _exp_ref(xi)
-        errs = {}
-        for k in keys:
-            ns = (40, 80) if k != "taylor" else (10, 30)
-            es = []
-            for n in ns:
-                out = call_student(answer[k], (xi, n), f"answer[{k!r}]")
-                if is_starter(out):
-                    raise Unattempted(f"answer[{k!r}] still returns None.")
-                got = _se2_vec(out, None)
-                d = got - exact
-                d[2] = wrap_angle(d[2])
-                es.append(float(np.linalg.norm(d)))
-            errs[k] = es
-            if k == "taylor":
-                if es[1] > 1e-7:
-                    raise Wrong(f"with 30 terms your Taylor sum is still {es[1]:.1e} away from the "
-                                f"closed form for xi = {tuple(xi)}; the series should have converged.")
-            else:
-                if es[0] < 1e-12 and es[1] < 1e-12:
-                    raise Wrong(f"answer[{k!r}] returns the exact exponential for every n; implement "
-                                "the n-step method itself so that its convergence can be seen.")
-                ratio = es[1] / es[0] if es[0] > 0 else 0.0
-                if not (es[1] < 0.2 * max(1.0, abs(xi[2])) and 0.35 < ratio < 0.65):
-                    raise Wrong(f"answer[{k!r}] does not converge to the closed form at first order "
-                                f"for xi = {tuple(xi)} (errors {es[0]:.2e} at n=40, {es[1]:.2e} at "
-                                "n=80): check the step size 1/n and that you take n steps.")
-    return "Correct: both Euler flows and the cumulative product converge at first order (error ~ 1/n), " \
-           "the Taylor sum factorially fast."
+    return "ok"
+
+
+def _d_call(answer, k, xi, n):
+    out = answer[k](np.array(xi), int(n))
+    if is_starter(out):
+        return None
+    return _se2_vec(out, None, nan_ok=True)
+
+
+def _d_probes():
+    return [_d_structure] + [lambda ans, c=c: _d_call(ans, *c) for c in _D_CALLS]
+
+
+def _d_close(got, want):
+    d = np.asarray(got, dtype=float) - np.asarray(want, dtype=float)
+    d[2] = (d[2] + np.pi) % (2 * np.pi) - np.pi
+    return bool(np.all(np.abs(d) <= 1e-9 + 1e-7 * np.abs(want)))
+
+
+def _d_vec(f, xi, n):
+    return _se2_vec(f(xi, n), None)
+
+
+#: wrong routes a student may hand in for each key, with the message each deserves
+def _d_mistakes(k):
+    out = [(EXP_METHODS[o], f"answer[{k!r}] computes {_D_NAMES[o]}, not {_D_NAMES[k]}.")
+           for o in _D_KEYS if o != k]
+    out.append((lambda xi, n: SE2.exp(xi), f"answer[{k!r}] returns the exact exponential for every "
+                "n; implement the n-step method itself so that its convergence can be seen."))
+    if k == "taylor":
+        out.append((lambda xi, n: _taylor(xi, n + 1), "answer['taylor'] sums n + 1 terms (k = 0 ... "
+                    "n); the prompt asks for the terms k < n."))
+    else:
+        out.append((lambda xi, n, k=k: EXP_METHODS[k](xi, n + 1) if k == "product" else
+                    _euler(xi, n + 1, k.split("_")[1]), f"answer[{k!r}] takes n + 1 steps; take n "
+                    "steps of size 1/n."))
+    return out
+
+
+def _d_judge(outcomes):
+    if not outcomes or outcomes[0]["k"] != "ok":
+        outcome_error(outcomes[0] if outcomes else {"k": "crash", "m": ""}, "your dict", "")
+    if len(outcomes) != len(_D_CALLS) + 1:
+        raise Wrong("the check could not evaluate every route.")
+    results = dict(zip(range(len(_D_CALLS)), outcomes[1:]))
+    by_key = {k: [] for k in _D_KEYS}
+    for i, (k, xi, n) in enumerate(_D_CALLS):
+        o = results[i]
+        label = f"xi = {fmt_value(xi)}, n = {n}"
+        if o["k"] != "ok":
+            outcome_error(o, f"answer[{k!r}]", label)
+        if o["v"] is None:
+            raise Unattempted(f"answer[{k!r}] still returns None for {label}.") if all(
+                results[j]["k"] == "ok" and results[j]["v"] is None
+                for j, c in enumerate(_D_CALLS) if c[0] == k) else Wrong(
+                f"answer[{k!r}] returned None for {label} (a branch without return?).")
+        got = np.asarray(o["v"], dtype=float)
+        if got.shape != (3,) or not np.all(np.isfinite(got)):
+            raise Wrong(f"answer[{k!r}] returned NaN or infinite entries for {label}.")
+        by_key[k].append((xi, n, got))
+    for k in _D_KEYS:
+        bad = [(xi, n) for xi, n, got in by_key[k] if not _d_close(got, _d_vec(EXP_METHODS[k], xi, n))]
+        if not bad:
+            continue
+        for f, msg in _d_mistakes(k):
+            if all(_d_close(got, _d_vec(f, xi, n)) for xi, n, got in by_key[k]):
+                raise Wrong(msg)
+        xi, n = bad[0]
+        raise Wrong(f"answer[{k!r}] gives a different value for xi = {fmt_value(xi)}, n = {n}: it "
+                    f"should be {_D_NAMES[k]} with n steps (or terms), starting at e. Try n = 1 by hand.")
+    return ("Correct: all four routes match, step for step. Both Euler flows and the cumulative "
+            "product converge at first order (error ~ 1/n), the Taylor sum factorially fast.")
 
 
 def _euler(xi, n, side):
@@ -390,7 +495,7 @@ ex1_4 = Exercise("1.4", "The exponential map on SE(2)", [
                       "2 |(vx, vy)| / |w|, xy arclength in unit time = |(vx, vy)|.",
         reference=_helix_ref, wrong=[lambda xi: _helix_ref(xi) * np.array([1, 0.5, 1])]),
     CustomPart(
-        "d", "Four numerical routes to exp: dict of functions f(xi, n)", _d_methods_judge,
+        "d", "Four numerical routes to exp: dict of functions f(xi, n)", _d_probes, _d_judge,
         hints=["Euler on the left field: g <- g + (1/n) T_e L_g xi, n times. On the right field use "
                "T_e R_g instead.",
                "Cumulative product: multiply n copies of (I + xi_hat / n). Taylor: sum xi_hat^k / k! "

@@ -9,7 +9,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..groups import SE2
-from ._core import ChoicePart, Exercise, FunctionPart, rng_inputs
+from ._choice import ChoicePart
+from ._core import Exercise, FunctionPart, rng_inputs
 
 # ============================================================================ 3.1
 def _theta_dd(alpha1, alpha2, R, w):
@@ -135,11 +136,14 @@ def _ack_part(name, drive):
         name, f"A(alpha, R, L): local connection (3 x 2) of the {drive}-wheel-drive kinematic bicycle; "
               "alpha = (drive wheel angle, steering angle), wheel radius R, wheelbase L",
         ref=ref, inputs=_ack_inputs, arg_names=("alpha", "R", "L"), shape=(3, 2),
+        sympy_names=("alpha1", "alpha2", "R", "L"), sympy_args=lambda al, R, L: (al[0], al[1], R, L),
         mistakes=[(_neg(ref), "your sign is reversed: the book writes xi = -A r_dot (3.10), so A = "
                    "omega_xi^-1 omega_r (3.17); driving forward must give xi^x > 0, i.e. A < 0 there."),
                   (other, f"that is the connection of the {'front' if drive == 'rear' else 'rear'}-"
                    "wheel-drive car."),
-                  (lambda al, R, L: ref(al, R, 1.0), "your rotation rate ignores the wheelbase L.")],
+                  (lambda al, R, L: ref(al, R, 1.0), "your rotation rate ignores the wheelbase L."),
+                  (lambda al, R, L: ref(al, 1.0, L), "your connection ignores the wheel radius R: "
+                   "a wheel turning by alpha1 rolls R alpha1.")],
         hints=["Body frame at the middle of the rear axle, x forward; the front wheel sits at "
                "(L, 0) turned by the steering angle alpha2. Each wheel may not slide sideways; the "
                "driven wheel may not slip: its forward speed is R alpha1_dot.",
