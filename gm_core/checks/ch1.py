@@ -39,25 +39,25 @@ ex1_1 = Exercise("1.1", "Configuration spaces of a universal joint and an offset
         solution_text="(b) T^2 = S^1 x S^1: two independent, unrestricted rotations."),
     ChoicePart(
         "b", "Configuration space when the two rotation axes do not intersect",
-        {"a": "The same space, T^2: only the forward kinematics (where the output link is) changes",
-         "b": "R^2 x S^1, because the offset adds a translation",
-         "c": "SE(2), because the output now translates and rotates",
-         "d": "T^2 x R, one extra dimension for the offset"},
-        "a",
+        {"a": "R^2 x S^1, because the offset between the axes adds a translation",
+         "b": "SE(2), because the output shaft now translates as well as rotates",
+         "c": "Still T^2: only the forward kinematics (where the output link is) changes",
+         "d": "T^2 x R, with one extra dimension that measures the offset between the two axes"},
+        "c",
         feedback={
-            "a": "Correct: the offset is a fixed length, not a degree of freedom. The two joint "
+            "c": "Correct: the offset is a fixed length, not a degree of freedom. The two joint "
                  "angles still describe every configuration, so the space is still T^2; what "
                  "changes is the map from (angle 1, angle 2) to the output link's pose.",
-            "b": "The offset moves the output link, but by an amount fixed by the two angles: it "
+            "a": "The offset moves the output link, but by an amount fixed by the two angles: it "
                  "adds no new independent coordinate.",
-            "c": "The output link's pose does change, but it is determined by the two angles: the "
+            "b": "The output link's pose does change, but it is determined by the two angles: the "
                  "configuration space counts independent coordinates, not the pose's dimension.",
             "d": "A fixed offset is a constant of the mechanism, not a coordinate that can vary.",
         },
         hints=["Does the offset between the axes change while the joint moves?",
                "The configuration space is set by the independent coordinates and their character "
                "(line or circle), not by where the parts end up in space."],
-        solution_text="(a) Still T^2; the offset only changes the forward kinematics."),
+        solution_text="(c) Still T^2; the offset only changes the forward kinematics."),
 ])
 
 
@@ -511,28 +511,27 @@ ex1_4 = Exercise("1.4", "The exponential map on SE(2)", [
         starter={"euler_left": None, "euler_right": None, "product": None, "taylor": None}),
     ChoicePart(
         "d_rates", "How fast do the methods converge?",
-        {"a": "All four converge at the same rate, like 1/n",
-         "b": "Euler (left and right) and the cumulative product: error ~ 1/n; Taylor: faster than "
-              "any power of 1/n",
-         "c": "Taylor: error ~ 1/n; the others converge factorially",
-         "d": "Euler on the right field is exact for every n"},
-        "b",
-        feedback={"b": "Correct: the first three are first-order methods; the Taylor tail is bounded "
+        {"a": "All four converge at the same rate: the error halves when n doubles",
+         "b": "Taylor: error ~ 1/n; Euler and the cumulative product converge factorially",
+         "c": "Euler on the right-invariant field is exact for every n; the other three converge like 1/n",
+         "d": "Euler (both fields) and the product: error ~ 1/n; Taylor: faster than any power of 1/n"},
+        "d",
+        feedback={"d": "Correct: the first three are first-order methods; the Taylor tail is bounded "
                        "by |xi|^n/n!.",
                   "a": "Look at the Taylor curve on a log scale: it drops off a cliff.",
-                  "c": "Swap them: the Taylor remainder shrinks like |xi|^n / n!.",
-                  "d": "Its error halves when n doubles, like the left field's."},
+                  "b": "Swap them: the Taylor remainder shrinks like |xi|^n / n!.",
+                  "c": "Its error halves when n doubles, like the left field's."},
         hints=["Plot the error against n on log-log axes: a straight line of slope -1 is first order."]),
     ChoicePart(
         "d_meaning", "What are the intermediate values of the cumulative product?",
-        {"a": "After k of n factors, (I + xi_hat/n)^k approximates exp((k/n) xi_hat): a point on the "
-              "geodesic at time k/n, so the partial products trace the path",
-         "b": "The partial Taylor sums are points on the geodesic at intermediate times",
-         "c": "The partial products mean nothing until all n factors are in",
-         "d": "They are the body velocities at each step"},
+        {"a": "Points near the geodesic at times k/n: the partial products trace the path",
+         "b": "The partial Taylor sums, not the products, are the points of the geodesic at times k/n",
+         "c": "Nothing until all n factors are in: only the complete product approximates exp(xi)",
+         "d": "The body velocities at each step, which stay equal to xi all along the product"},
         "a",
         feedback={"a": "Correct: each factor is a small step 'from where we are', so the running "
-                       "product is the discretised trajectory (compare (1.xxvii)).",
+                       "product after k factors approximates exp((k/n) xi), a discretised "
+                       "trajectory (compare (1.xxvii)).",
                   "b": "A partial Taylor sum is not even a rigid motion: its 2x2 block is not a "
                        "rotation. It has no meaning as a point on the path.",
                   "c": "Look at what k factors of a unit-time step of length 1/n add up to.",
@@ -545,17 +544,15 @@ ex1_4 = Exercise("1.4", "The exponential map on SE(2)", [
 ex1_5 = Exercise("1.5", "The slide rule and the isomorphism log: (R+, x) -> (R, +)", [
     ChoicePart(
         "a", "How does a slide rule compute products?",
-        {"a": "Each scale marks the number x at the distance log(x) from its index; sliding one "
-              "scale along the other adds distances, and log a + log b = log(ab), so the product is "
-              "read off where the added distances end",
-         "b": "The scales are uniform; sliding adds a + b and a printed table converts sums to products",
-         "c": "Each scale marks x at the distance exp(x); sliding multiplies the distances",
-         "d": "It multiplies by repeated addition: the slide is moved b times by a"},
-        "a",
-        feedback={"a": "Correct: the log map is an isomorphism (1.xii), so adding lengths in (R, +) "
+        {"a": "Its scales are uniform; sliding adds a + b, and a printed table turns sums into products",
+         "b": "Each scale marks x at the distance exp(x) from its index, and sliding multiplies distances",
+         "c": "Each scale marks x at the distance log(x); sliding adds distances: log a + log b = log ab",
+         "d": "It multiplies by repeated addition: the slide is moved along b times by the length of a"},
+        "c",
+        feedback={"c": "Correct: the log map is an isomorphism (1.xii), so adding lengths in (R, +) "
                        "is multiplying numbers in (R+, x).",
-                  "b": "Look at a real C/D scale: the gap from 1 to 2 is much larger than from 9 to 10.",
-                  "c": "Exp would turn products into sums the other way round; distances on the rule "
+                  "a": "Look at a real C/D scale: the gap from 1 to 2 is much larger than from 9 to 10.",
+                  "b": "Exp would turn products into sums the other way round; distances on the rule "
                        "are added, not multiplied.",
                   "d": "One slide, one reading: no repetition involved."},
         hints=["Try the slide rule widget: ex1_5.slide_rule().",
@@ -579,17 +576,16 @@ ex1_5 = Exercise("1.5", "The slide rule and the isomorphism log: (R+, x) -> (R, 
         reference=lambda a: np.log10(a), wrong=[lambda a: np.log(a)]),
     ChoicePart(
         "c", "Why is it interesting that the isomorphism is exp/log?",
-        {"a": "Because log is the inverse of the group exponential of (R+, x): the rule computes in "
-              "the Lie algebra (R, +), and exp(a + b) = exp(a) exp(b) holds because the group is "
-              "commutative; on SE(2) exp(a) exp(b) differs from exp(a + b), so no such rule exists there",
-         "b": "Any bijection would work equally well; exp and log are only familiar choices",
-         "c": "Because exp(a + b) = exp(a) exp(b) on every Lie group, so slide rules exist for all of them",
-         "d": "Because log is a linear function"},
-        "a",
-        feedback={"a": "Correct: the slide rule works in exponential coordinates of a commutative "
-                       "group. For non-commuting elements the product exp(a) exp(b) picks up "
-                       "correction terms (the Lie bracket), a theme the book returns to.",
-                  "b": "A bijection must also turn the group operation into addition, (1.x); that "
+        {"a": "It is not: any bijection would work equally well; exp and log are only the familiar choice",
+         "b": "log inverts the exponential of the commutative group (R+, x); on SE(2) exp(a) exp(b) != exp(a + b)",
+         "c": "Because exp(a + b) = exp(a) exp(b) holds on every Lie group, so slide rules exist for every one of them",
+         "d": "Because log is a linear function, so it turns the products of numbers into sums of lengths"},
+        "b",
+        feedback={"b": "Correct: the rule computes in the Lie algebra (R, +) of a commutative group, "
+                       "where exp(a + b) = exp(a) exp(b). For non-commuting elements the product "
+                       "exp(a) exp(b) picks up correction terms (the Lie bracket), so no such rule "
+                       "exists on SE(2).",
+                  "a": "A bijection must also turn the group operation into addition, (1.x); that "
                        "singles out log up to a constant factor (the base).",
                   "c": "Try it on SE(2): exp of (1, 0, 0) then (0, 0, pi/2) is not exp of their sum.",
                   "d": "log is far from linear; it turns multiplication into addition."},
