@@ -125,6 +125,8 @@ class Part:
     def verdict(self, outcomes, output=""):
         """A Verdict from plain outcomes (used by check() and by the grader). Never raises."""
         try:
+            if not isinstance(outcomes, list) or len(outcomes) != len(self.probes()):
+                raise Wrong("the check could not evaluate your answer completely.")
             message = self.judge(outcomes)
             status = PASSED
         except Unattempted as u:

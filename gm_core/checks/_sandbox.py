@@ -175,7 +175,7 @@ def _can_fork():
     return hasattr(os, "fork") and os.environ.get("GM_CHECKS_NO_FORK", "") not in ("1", "true")
 
 
-def _in_process(probes, answer):
+def _in_process(probes, answer, raw=False):
     buf = io.StringIO()
     outcomes = []
     with redirect_stdout(buf), redirect_stderr(buf):
@@ -186,7 +186,7 @@ def _in_process(probes, answer):
             except BaseException:  # noqa: BLE001
                 a = answer
             outcomes.append(_run_probe(probe, a))
-    return [decode_outcome(o) for o in outcomes], _truncate(buf.getvalue())
+    return (outcomes if raw else [decode_outcome(o) for o in outcomes]), _truncate(buf.getvalue())
 
 
 def decode_outcome(o):
@@ -202,17 +202,19 @@ def decode_outcome(o):
     return out
 
 
-def collect(answer, probes, time_limit=None):
+def collect(answer, probes, time_limit=None, raw=False):
     """Run ``probe(answer)`` for every probe, each under the time limit; return (outcomes, output).
 
-    Outcomes are decoded dicts (see the module docstring), one per probe, in order.
+    Outcomes are decoded dicts (see the module docstring), one per probe, in order; with
+    ``raw=True`` they stay JSON-able (for the grader, which decodes them in its own process).
     """
     limit = TIME_LIMIT[0] if time_limit is None else float(time_limit)
     probes = list(probes)
     if not probes:
         return [], ""
     if not _can_fork():
-        return _in_process(probes, answer)
+        outcomes, output = _in_process(probes, answer, raw)
+        return outcomes, output
     rfd, wfd = os.pipe()
     try:
         with warnings.catch_warnings():
@@ -221,7 +223,7 @@ def collect(answer, probes, time_limit=None):
     except OSError:
         os.close(rfd)
         os.close(wfd)
-        return _in_process(probes, answer)
+        return _in_process(probes, answer, raw)
     if pid == 0:  # pragma: no cover - runs in the child
         os.close(rfd)
         _child(probes, answer, wfd)
@@ -251,7 +253,7 @@ def collect(answer, probes, time_limit=None):
                 if isinstance(o, dict) and o.get("k") == "output":
                     output = o.get("v", "") if isinstance(o.get("v"), str) else ""
                 else:
-                    outcomes.append(decode_outcome(o))
+                    outcomes.append(o if raw and isinstance(o, dict) else decode_outcome(o))
                     deadline = time.monotonic() + limit  # the next probe gets its own limit
     finally:
         os.close(rfd)
