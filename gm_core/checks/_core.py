@@ -37,6 +37,7 @@ class Verdict:
 
     def __init__(self, status, message, part="", output=""):
         self.status, self.message, self.part, self.output = status, message, part, output
+        self._shown = False
 
     def __bool__(self):
         return self.status == PASSED
@@ -47,11 +48,13 @@ class Verdict:
 
     def show(self):
         show(self.status, self.part, self.message, self.output)
+        self._shown = True
         return self
 
     def _ipython_display_(self):
         # check() has already displayed the message; ending a cell with it shows nothing more.
-        pass
+        if not self._shown:
+            self.show()
 
     def __repr__(self):
         return f"Verdict({self.part}: {self.status} - {self.message})"
