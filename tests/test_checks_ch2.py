@@ -4,9 +4,7 @@ import pytest
 import sympy as sp
 
 from gm_core import SE2, chains
-from gm_core.checks import ex2_1, ex2_2, ex2_3, ex2_4, reset_progress
-from gm_core.checks import ch2
-
+from gm_core.checks import ch2, ex2_1, ex2_2, ex2_3, ex2_4
 
 pytestmark = pytest.mark.usefixtures("clean")
 

@@ -1,6 +1,5 @@
 """Multiple choice that must be read (issue #14, point 3), and the notebooks show the checker's options."""
 import collections
-import re
 from pathlib import Path
 
 import nbformat

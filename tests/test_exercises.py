@@ -4,9 +4,9 @@ Also: the generator's marker rules, its determinism, and that every untouched ex
 runs without error and leaves its exercise "unattempted" (nbval runs the notebooks too, but
 cannot look at progress())."""
 import contextlib
-import re
 import importlib.util
 import io
+import re
 import subprocess
 import sys
 from pathlib import Path

@@ -9,8 +9,15 @@ from pathlib import Path
 import pytest
 
 from gm_core import checks
-from gm_core.checks import (FAILED, IN_PROGRESS, PASSED, UNATTEMPTED, exercise_ids, progress,
-                            reset_progress)
+from gm_core.checks import (
+    FAILED,
+    IN_PROGRESS,
+    PASSED,
+    UNATTEMPTED,
+    exercise_ids,
+    progress,
+    reset_progress,
+)
 from gm_core.checks._core import REGISTRY, Exercise, FunctionPart
 
 ROOT = Path(__file__).resolve().parent.parent

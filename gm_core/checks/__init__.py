@@ -28,9 +28,24 @@ import pkgutil
 import re
 
 from ._choice import ChoicePart
-from ._core import (FAILED, IN_PROGRESS, PASSED, REGISTRY, UNATTEMPTED, CustomPart, Exercise,
-                    FunctionPart, Part, TuplePart, Verdict, exercise_ids, part_progress, progress,
-                    reset_progress, solutions_viewed)
+from ._core import (
+    FAILED,
+    IN_PROGRESS,
+    PASSED,
+    REGISTRY,
+    UNATTEMPTED,
+    CustomPart,
+    Exercise,
+    FunctionPart,
+    Part,
+    TuplePart,
+    Verdict,
+    exercise_ids,
+    part_progress,
+    progress,
+    reset_progress,
+    solutions_viewed,
+)
 from ._progress import pending_updates
 from ._sandbox import set_time_limit
 
@@ -79,8 +94,8 @@ def course_updates():
     the new version sits beside it. Returns None (the list is displayed); ``pending_updates()``
     returns it as data.
     """
-    from ._widgets import updates_html
     from ._display import in_notebook
+    from ._widgets import updates_html
     pending = pending_updates(mark_seen=True)
     if not pending:
         text = "No course updates are waiting in your workspace."

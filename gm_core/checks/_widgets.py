@@ -12,7 +12,14 @@ import numpy as np
 
 from ._core import exercise_ids, part_progress, progress, solutions_viewed
 from ._display import COLORS
-from ._progress import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED, find_workspace, pending_updates
+from ._progress import (
+    FAILED,
+    IN_PROGRESS,
+    PASSED,
+    UNATTEMPTED,
+    find_workspace,
+    pending_updates,
+)
 
 
 def choice_widget(part):
@@ -83,8 +90,8 @@ def slide_rule_svg(a, b):
              # the slide (C scale)
              f'<rect x="{_PAD + shift - 8:.1f}" y="20" width="{_DECADE + 16}" height="56" '
              'fill="#fffbe8" stroke="#999"/>',
-             f'<text x="4" y="64" font-size="13" font-weight="bold">C</text>',
-             f'<text x="4" y="100" font-size="13" font-weight="bold">D</text>']
+             '<text x="4" y="64" font-size="13" font-weight="bold">C</text>',
+             '<text x="4" y="100" font-size="13" font-weight="bold">D</text>']
     parts += _ticks(_PAD + shift, 76, True, 1)
     parts += _ticks(_PAD, 76, False, 2)
     parts.append(f'<line x1="{cursor:.1f}" y1="8" x2="{cursor:.1f}" y2="142" stroke="#b42318" '

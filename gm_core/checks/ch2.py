@@ -11,7 +11,14 @@ import numpy as np
 
 from .. import chains
 from ..groups import SE2
-from ._answers import describe, fmt_value, is_starter, is_sympy, sympy_function, to_numbers
+from ._answers import (
+    describe,
+    fmt_value,
+    is_starter,
+    is_sympy,
+    sympy_function,
+    to_numbers,
+)
 from ._choice import ChoicePart  # noqa: F401 - kept for chapter modules that add choices
 from ._core import CustomPart, Exercise, FunctionPart, outcome_error, rng_inputs
 from ._sandbox import Unattempted, Wrong

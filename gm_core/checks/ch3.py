@@ -12,6 +12,7 @@ from ..groups import SE2
 from ._choice import ChoicePart
 from ._core import Exercise, FunctionPart, rng_inputs
 
+
 # ============================================================================ 3.1
 def _theta_dd(alpha1, alpha2, R, w):
     return R * (alpha2 - alpha1) / (2.0 * w)
