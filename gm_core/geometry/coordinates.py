@@ -172,7 +172,7 @@ class MinimumPerturbationCoordinates(Reframed):
 
     Attributes: ``bounds``, ``nodes1``, ``nodes2`` (grid axes), ``beta_nodes`` (n1, n2, 3) (the
     finite-element solution, beta = 0 at the reference node), ``reference`` (the shape where
-    beta vanishes). beta between nodes is a bicubic spline through the nodal values, so the
+    beta vanishes). beta between nodes is a biquintic spline through the nodal values, so the
     connection is smooth; outside ``bounds`` it is undefined (NaN, reported as singular).
     """
 
@@ -257,7 +257,7 @@ def minimum_perturbation_coordinates(system, bounds=None, n=33, *, reference=Non
     bxy = spla.spsolve(Kxy + 1e-13 * scale * sp.identity(2 * N, format="csc"), fxy)
     bn = np.stack([bxy[:N], bxy[N:], bt], -1)  # (N, 3)
     grid = bn.reshape(n, n, 3)
-    splines = [RectBivariateSpline(x1, x2, grid[..., c], kx=3, ky=3, s=0) for c in range(3)]
+    splines = [RectBivariateSpline(x1, x2, grid[..., c], kx=5, ky=5, s=0) for c in range(3)]
 
     def beta(r):
         out = np.stack([s.ev(r[..., 0], r[..., 1]) for s in splines], -1)

@@ -132,8 +132,20 @@ def constraint_curvature(system, r, *, method="auto"):
     (a system, or one seen from other coordinates, see :mod:`gm_core.geometry.coordinates`).
     """
     check_system(system)
+    base = getattr(system, "base_system", None)
+    if method == "auto" and base is not None and callable(getattr(system, "beta", None)):
+        # A frame change beta(r) acts on the curvature by Ad_{beta^-1} (gauge covariance); this
+        # avoids differentiating beta twice. tests/test_geometry_coordinates.py checks it against "fd".
+        r = as_array(r, "r", (system.n_shape,), what=f" (a shape of {system.name})")
+        F = matvec(SE2.Ad_inv(system.beta(r)), constraint_curvature(base, r))
+        valid = getattr(system, "_inside", None)
+        return F if valid is None else np.where(valid(r)[..., None], F, np.nan)
     A, dA = connection_derivative(system, r, method=method)
     exterior = dA[..., :, 1, 0] - dA[..., :, 0, 1]
+    ok = np.isfinite(A).all(axis=(-1, -2)) & np.isfinite(exterior).all(axis=-1)
+    if not ok.all():  # singular shapes: NaN out, and keep NaN away from the bracket's input check
+        A = np.where(ok[..., None, None], A, 0.0)
+        exterior = np.where(ok[..., None], exterior, np.nan)
     return -exterior + SE2.bracket(A[..., :, 0], A[..., :, 1])
 
 
@@ -193,7 +205,7 @@ def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True):
     while True:
         nt, ns = 2 * nt, ns + 8
         cur = _stokes_once(system, gait, nt, ns, center, method)
-        if np.max(np.abs(cur - prev)) <= rtol * max(1.0, np.max(np.abs(cur))) or nt >= 2 ** 14:
+        if np.max(np.abs(cur - prev)) <= rtol * max(1.0, np.max(np.abs(cur))) or nt >= 2 ** 12:
             return cur
         prev = cur
 
