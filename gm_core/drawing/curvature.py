@@ -45,8 +45,9 @@ def _style(ax, limits, title=None):
 class CurvatureMapArtist:
     """One row of the constraint curvature D(-A) as an image over a rectangle of shape space.
 
-    Red is positive, blue negative, colour limits symmetric about zero (the 99th percentile of
-    |F|, so a singular line does not wash out the picture); singular shapes are grey.
+    Red is positive, blue negative, colour limits symmetric about zero (a high percentile of
+    |F|, so a singular line does not wash out the picture, and never below 1e-6 of the largest
+    row, so a row that vanishes up to rounding shows white); singular shapes are grey.
     """
 
     def __init__(self, ax, system, row=0, limits=None, n=81):
@@ -55,8 +56,7 @@ class CurvatureMapArtist:
         (lo1, hi1), (lo2, hi2) = self.limits
         import matplotlib
 
-        cmap = matplotlib.colormaps[_CMAP].copy()
-        cmap.set_bad("0.75")
+        cmap = matplotlib.colormaps[_CMAP].with_extremes(bad="0.75")
         self.image = ax.imshow(np.zeros((self.n, self.n)), origin="lower", extent=(lo1, hi1, lo2, hi2),
                                cmap=cmap, interpolation="bilinear", aspect="equal", zorder=1)
         self._cache = {}
@@ -75,9 +75,13 @@ class CurvatureMapArtist:
             self.system = system
         if row is not None:
             self.row = int(row)
-        F = self.values(self.system)[..., self.row]
+        Fall = self.values(self.system)
+        F = Fall[..., self.row]
         finite = np.isfinite(F)
-        vmax = float(np.percentile(np.abs(F[finite]), 99)) if finite.any() else 1.0
+        q = 95 if getattr(self.system, "may_be_singular", False) else 99
+        vmax = float(np.percentile(np.abs(F[finite]), q)) if finite.any() else 1.0
+        every = np.abs(Fall[np.isfinite(Fall)])
+        vmax = max(vmax, 1e-6 * float(every.max()) if every.size else 0.0)
         vmax = vmax if vmax > 0 else 1.0
         self.image.set_data(np.ma.masked_invalid(F))
         self.image.set_clim(-vmax, vmax)
@@ -147,7 +151,7 @@ class SwimmerArtist:
         return poses
 
 
-def curvature_maps_figure(cases, n=81, figsize=(9, 8.2)):
+def curvature_maps_figure(cases, n=81, figsize=(9, 7.6)):
     """Grid of curvature maps: one column per case, rows x, y, theta; ``cases`` = {title: (system, gait or None)}."""
     fig, axes = new_figure(3, len(cases), figsize=figsize, dpi=DPI, layout="constrained", squeeze=False)
     for j, (title, (system, gait)) in enumerate(cases.items()):
@@ -155,7 +159,9 @@ def curvature_maps_figure(cases, n=81, figsize=(9, 8.2)):
             ax = axes[i, j]
             m = CurvatureMapArtist(ax, system, i, n=n)
             _style(ax, m.limits, f"{title}\nD(−A), row {ROWS[i]}" if i == 0 else f"row {ROWS[i]}")
-            ax.text(0.02, 0.02, f"±{m.vmax:.2g}", transform=ax.transAxes, fontsize=FONT, va="bottom",
+            vals = m.values(system)[..., i]
+            flat = not np.nanmax(np.abs(vals)) > 1e-9
+            ax.text(0.02, 0.02, "≡ 0" if flat else f"±{m.vmax:.2g}", transform=ax.transAxes, fontsize=FONT, va="bottom",
                     bbox=dict(facecolor="white", alpha=0.7, lw=0))
             if gait is not None:
                 GaitArtist(ax).set(gait)

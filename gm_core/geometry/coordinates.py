@@ -286,7 +286,7 @@ def minimum_perturbation_coordinates(system, bounds=None, n=33, *, reference=Non
     return out
 
 
-def body_frames(system, *, n=33):
-    """Dict of the same system in three frames: 'middle link', 'centre of mass', 'minimum perturbation'."""
+def body_frames(system, bounds=None, *, n=33):
+    """Dict of the same system in three frames: 'middle link', 'centre of mass', 'minimum perturbation' (over bounds)."""
     return {"middle link": system, "centre of mass": centre_of_mass_coordinates(system),
-            "minimum perturbation": minimum_perturbation_coordinates(system, n=n)}
+            "minimum perturbation": minimum_perturbation_coordinates(system, bounds, n=n)}

@@ -34,11 +34,14 @@ def shaped_gait(c1=0.0, c2=0.0, a=1.0, b=1.0, tilt=0.0, bend=0.0, period=1.0):
     return fourier_gait(R @ cos_c, R @ sin_c, (c1, c2), period=period, name="shaped gait")
 
 
+LIMITS = ((-2.5, 2.5), (-2.5, 2.5))
+
+
 def _frames(system):
     frames = getattr(_frames, "_cache", {})
     key = id(system)
     if key not in frames:
-        frames[key] = body_frames(system)
+        frames[key] = body_frames(system, LIMITS)
         _frames._cache = frames
     return frames[key]
 
@@ -54,7 +57,7 @@ class GaitStokesPanel(Panel):
         self.frames = _frames(self.system)
         self.fig, (self.ax, self.axb) = new_figure(1, 2, figsize=(9, 4.2), dpi=DPI, layout="constrained",
                                                    gridspec_kw=dict(width_ratios=[1.1, 1]))
-        self.map = CurvatureMapArtist(self.ax, self.frames["middle link"], 0, limits=((-2.5, 2.5), (-2.5, 2.5)))
+        self.map = CurvatureMapArtist(self.ax, self.frames["middle link"], 0, limits=LIMITS)
         _style(self.ax, self.map.limits)
         self.gait_artist = GaitArtist(self.ax)
         self.flag = SingularFlag(self.ax)
@@ -75,7 +78,7 @@ class GaitStokesPanel(Panel):
             "b": slider(0.6, 0.1, 1.5, description="size b"),
             "tilt": slider(0.78, -1.6, 1.6, description="tilt"),
             "bend": slider(0.0, -0.6, 0.6, description="bend"),
-            "row": W.ToggleButtons(options=list(enumerate(ROWS)) and [(r, i) for i, r in enumerate(ROWS)], value=0,
+            "row": W.ToggleButtons(options=[(r, i) for i, r in enumerate(ROWS)], value=0,
                                    description="map row"),
             "frame": W.ToggleButtons(options=list(FRAMES), value="middle link", description="frame"),
         }
@@ -116,7 +119,7 @@ class GaitStokesPanel(Panel):
     def naive_update(self, **v):
         self.ax.clear()
         self.axb.clear()
-        self.map = CurvatureMapArtist(self.ax, self.frames[v["frame"]], v["row"], limits=((-2.5, 2.5), (-2.5, 2.5)))
+        self.map = CurvatureMapArtist(self.ax, self.frames[v["frame"]], v["row"], limits=LIMITS)
         GaitArtist(self.ax).set(shaped_gait(v["c1"], v["c2"], v["a"], v["b"], v["tilt"], v["bend"]))
         try:
             _, _, exact, stokes, bvi = self.compute(**v)
@@ -136,7 +139,7 @@ class FrameFieldsPanel(Panel):
         self.system = self.options.get("system") or LowReSwimmer()
         self.frames = _frames(self.system)
         self.fig, axes = new_figure(1, 3, figsize=(9, 3.3), dpi=DPI, layout="constrained")
-        lim = ((-2.5, 2.5), (-2.5, 2.5))
+        lim = LIMITS
         self.axes = axes
         self.fields = [FieldArtist(ax, self.system, i, limits=lim, n=13) for i, ax in enumerate(axes)]
         for i, ax in enumerate(axes):
@@ -163,7 +166,7 @@ class FrameFieldsPanel(Panel):
     def naive_update(self, frame):
         for i, ax in enumerate(self.axes):
             ax.clear()
-            FieldArtist(ax, self.frames[frame], i, limits=((-2.5, 2.5), (-2.5, 2.5)), n=13)
+            FieldArtist(ax, self.frames[frame], i, limits=LIMITS, n=13)
         self.fig.canvas.draw_idle()
 
 
