@@ -155,6 +155,10 @@ def test_bad_input():
         stokes_estimate(s, Gait(lambda t: np.stack([np.cos(t), np.sin(t), t * 0], -1), 2 * np.pi))
     with pytest.raises(TypeError, match="gait"):
         body_velocity_integral(s, None)
+    open_arc = Gait(lambda t: np.stack([np.cos(t), np.sin(t)], -1), np.pi)
+    for f in (stokes_estimate, body_velocity_integral):
+        with pytest.raises(ValueError, match="gait is not closed"):
+            f(s, open_arc)
 
     class ThreeShapes:
         n_shape, name = 3, "toy"

@@ -43,6 +43,12 @@ def test_path_length_is_pacing_independent_and_euclidean_circle():
         path_length(DifferentialDrive(), g)
     with pytest.raises(ValueError, match="metric"):
         path_length(s, g, metric="riemann")
+    with pytest.raises(ValueError, match="gait is not closed"):
+        efficiency(s, Gait(lambda t: np.stack([t, 0 * t], -1), 1.0))
+    with pytest.raises(TypeError, match="system"):
+        dissipation_metric(None, np.zeros(2))
+    with pytest.raises(ValueError, match="r must have shape"):
+        dissipation_metric(s, np.zeros(3))
 
 
 # -- sysplotter's strokes ----------------------------------------------------------------------

@@ -24,7 +24,7 @@ from ..groups import SE2, matvec
 from ..locomotion import as_gait, check_gait
 
 __all__ = ["constraint_curvature", "connection_derivative", "stokes_estimate",
-           "body_velocity_integral", "check_system"]
+           "body_velocity_integral", "check_system", "closed_gait"]
 
 #: Relative central-difference step for connection derivatives (about eps**(1/3)).
 FD_STEP = 6e-6
@@ -195,8 +195,7 @@ def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True):
     equals the exact net rotation; (x, y) are the leading-order estimate of g(T).
     """
     check_system(system)
-    gait = as_gait(gait)
-    _match(system, gait)
+    gait = closed_gait(gait, system)
     if check:
         check_gait(system, gait)
     center = _centroid(gait(np.linspace(0, gait.period, 1024, endpoint=False)))
@@ -217,8 +216,7 @@ def body_velocity_integral(system, gait, *, rtol=1e-12, check=True):
     until two results agree to ``rtol``.
     """
     check_system(system)
-    gait = as_gait(gait)
-    _match(system, gait)
+    gait = closed_gait(gait, system)
     if check:
         check_gait(system, gait)
     T = gait.period
@@ -238,6 +236,18 @@ def body_velocity_integral(system, gait, *, rtol=1e-12, check=True):
         if np.max(np.abs(cur - prev)) <= rtol * max(1.0, np.max(np.abs(cur))) or n >= 2 ** 17:
             return cur
         prev = cur
+
+
+def closed_gait(gait, system=None, name="gait"):
+    """``gait`` as a :class:`Gait` after checking it is closed (r(T) = r(0)) and matches ``system``."""
+    gait = as_gait(gait)
+    p0, p1 = gait(np.array([0.0, gait.period]))
+    if np.max(np.abs(p1 - p0)) > 1e-8 * max(1.0, float(np.max(np.abs(p0)))):
+        raise ValueError(f"{name} is not closed: r(0) = {np.round(p0, 6).tolist()} but r(T) = "
+                         f"{np.round(p1, 6).tolist()} (T = {gait.period:g}); a gait must return to its start")
+    if system is not None:
+        _match(system, gait)
+    return gait
 
 
 def _match(system, gait):

@@ -15,8 +15,8 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array
-from ..locomotion import as_gait, check_gait, net_displacement
-from .curvature import check_system
+from ..locomotion import check_gait, net_displacement
+from .curvature import check_system, closed_gait
 
 __all__ = ["dissipation_metric", "full_cost_matrix", "path_length", "efficiency", "metric_function"]
 
@@ -76,9 +76,7 @@ def path_length(system, gait, *, metric=None, samples=None, check=True):
     rule over the period (spectral for smooth periodic gaits): 4096 samples unless given.
     """
     check_system(system)
-    gait = as_gait(gait)
-    if gait.n_shape != system.n_shape:
-        raise ValueError(f"gait has {gait.n_shape} shape variables but {system.name} has {system.n_shape}")
+    gait = closed_gait(gait, system)
     Mf = metric_function(system, metric)
     if check:
         check_gait(system, gait)
@@ -95,7 +93,7 @@ def path_length(system, gait, *, metric=None, samples=None, check=True):
 def efficiency(system, gait, *, metric=None, check=True):
     """Efficiency (float): translation ``|(x, y) of g(T)|`` per unit path length in the cost metric."""
     check_system(system)
-    gait = as_gait(gait)
+    gait = closed_gait(gait, system)
     L = path_length(system, gait, metric=metric, check=check)
     g = net_displacement(system, gait, check=False)
     return float(np.hypot(g[0], g[1]) / L)

@@ -51,6 +51,9 @@ class GaitStokesPanel(Panel):
     """Move, resize and reshape a gait on a curvature map; compare exact g(T), Stokes and ∮ξ dt."""
 
     title = "A gait on the curvature map: exact displacement, Stokes estimate, body-velocity integral"
+    #: The bar chart rescales its axis on every change, so blitting a cached background would
+    #: leave stale tick labels: always draw the whole figure.
+    blit = False
 
     def build(self):
         self.system = self.options.get("system") or LowReSwimmer()
