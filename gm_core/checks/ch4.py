@@ -173,7 +173,7 @@ def _judge_41c(answer):
     key = _choice(answer, _OPT_41C)
     if key == "a":
         return "Correct: the red lobes on the anti-diagonal subtract from the blue band along the diagonal."
-    raise _Wrong({"b": "The net displacement of a gait does not depend on its pace (section 3.3).",
+    raise _Wrong({"b": "The net displacement of a gait does not depend on its pace (the reparameterization (3.3)).",
                   "c": "It is less accurate for large gaits, yet the exact values show the same ordering.",
                   "d": "Look again at the map: there are strong lobes near (1.5, -1.5) and (-1.5, 1.5)."}[key])
 

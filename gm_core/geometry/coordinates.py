@@ -2,7 +2,7 @@
 
 If the new body frame sits at ``beta(r)`` (an SE(2) pose, (..., 3)) relative to the old one, the
 new position is ``g~ = g beta(r)`` and its body velocity is
-``xi~ = Ad_{beta^-1} xi + beta^-1 beta_dot`` (section 1.7's velocity conversions), so with
+``xi~ = Ad_{beta^-1} xi + beta^-1 beta_dot`` (the velocity conversions of section 1.5, (1.41)-(1.43)), so with
 ``xi = -A r_dot`` (3.10) the connection seen from the new frame is
 
     A~(r) = Ad_{beta^-1} A(r) - T_beta L_{beta^-1} d beta / dr.
