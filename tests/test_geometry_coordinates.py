@@ -124,3 +124,24 @@ def test_bad_input():
         minimum_perturbation_coordinates(KinematicSnake(), ((-1, 1), (-1, 1)), 9)
     with pytest.raises(TypeError, match="beta"):
         reframe(s, np.zeros(3))
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.floats(-2, 2), st.floats(-2, 2), st.floats(-3, 3), st.floats(-1, 1), st.floats(-1, 1),
+       st.floats(-1, 1))
+def test_curvature_is_covariant_under_shape_dependent_frames(r1, r2, th, kx, ky, kt):
+    """D(-A~) = Ad_{beta^-1} D(-A) for beta(r) = (kx a1 a2, ky sin a1, th + kt a2), by differences of A~."""
+    s = LowReSwimmer()
+
+    def beta(r):
+        return np.stack([kx * r[..., 0] * r[..., 1], ky * np.sin(r[..., 0]), th + kt * r[..., 1]], -1)
+
+    other = reframe(s, beta)  # Jacobian of beta by central differences inside Reframed
+    r = np.array([r1, r2])
+    got = constraint_curvature(other, r, method="fd")
+    want = SE2.Ad_inv(beta(r)) @ constraint_curvature(s, r)
+    np.testing.assert_allclose(got, want, atol=2e-5 * max(1.0, np.abs(want).max()))
