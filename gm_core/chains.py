@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._integers import check_int
 from ._validate import as_array, check_positive
 from .groups import SE2, matvec
 
@@ -33,7 +34,7 @@ __all__ = [
     "Joint", "Link", "Chain", "MobileChain", "METHODS", "world_to_body_jacobian",
     "finite_difference_jacobians", "single_link_frames", "rr_arm_frames", "rr_arm_jacobian",
     "rp_arm_frames", "rp_arm_body_jacobians", "three_link_chain", "three_link_frames",
-    "three_link_jacobians", "beta_frame_jacobian", "links_from_beta_frame", "com_frame",
+    "three_link_poses", "three_link_jacobians", "beta_frame_jacobian", "links_from_beta_frame", "com_frame",
     "com_frame_jacobians", "circle_constraints", "sphere_plane_constraints",
     "sample_accessible_manifold", "accessible_circle",
 ]
@@ -225,8 +226,14 @@ class _FrameGraph:
 
 def world_to_body_jacobian(g, J):
     """Body-velocity Jacobian ``T_g L_{g^-1} J`` from a world-velocity one; g: (..., 3), J: (..., 3, m); book (1.32)."""
-    g = as_array(g, "g", (3,))
-    return SE2.left_lifted_action(SE2.inverse(g), g) @ np.asarray(J, dtype=float)
+    g = as_array(g, "g", (3,), what=" (the pose the Jacobian is taken at)")
+    J = as_array(J, "J", (3, np.shape(J)[-1] if np.ndim(J) >= 2 else 0),
+                 what=" (a world-velocity Jacobian with 3 rows)")
+    try:
+        np.broadcast_shapes(g.shape[:-1], J.shape[:-2])
+    except ValueError:
+        raise ValueError(f"g and J have incompatible batch shapes {g.shape[:-1]} and {J.shape[:-2]}") from None
+    return SE2.left_lifted_action(SE2.inverse(g), g) @ J
 
 
 def _body_to_world_jacobian(g, J):
@@ -504,6 +511,32 @@ def three_link_frames(alpha, lengths=(1.0, 1.0, 1.0), g=None):
     return fr
 
 
+def _three_link_lengths(lengths):
+    if isinstance(lengths, (str, bytes)) or np.ndim(lengths) != 1 or len(lengths) != 3:
+        raise ValueError(f"lengths must be a length-3 sequence of positive link lengths; got {lengths!r}")
+    return _lengths(lengths, 3)
+
+
+def three_link_poses(alpha, lengths=(1.0, 1.0, 1.0)):
+    """Poses ``(..., 3, 3)`` of the three link centres g1, g2, g3 in the middle link's frame; book (2.12), fig. 2.8.
+
+    The closed form of the chain product ``g1 = (-l2/2, 0, 0) exp(-alpha1) (-l1/2, 0, 0)``,
+    ``g2 = e``, ``g3 = (l2/2, 0, 0) exp(alpha2) (l3/2, 0, 0)`` (the link index is on axis -2):
+    link 1 sits at heading -alpha1, link 3 at +alpha2. alpha: ``(..., 2)``.
+    """
+    alpha = as_array(alpha, "alpha", (2,), what=" (alpha1, alpha2)")
+    l1, l2, l3 = _three_link_lengths(lengths)
+    a1, a2 = alpha[..., 0], alpha[..., 1]
+    P = np.zeros(alpha.shape[:-1] + (3, 3))
+    P[..., 0, 0] = -l2 / 2 - l1 / 2 * np.cos(a1)
+    P[..., 0, 1] = l1 / 2 * np.sin(a1)
+    P[..., 0, 2] = -a1
+    P[..., 2, 0] = l2 / 2 + l3 / 2 * np.cos(a2)
+    P[..., 2, 1] = l3 / 2 * np.sin(a2)
+    P[..., 2, 2] = a2
+    return P
+
+
 def three_link_jacobians(alpha, lengths=(1.0, 1.0, 1.0)):
     """Body-velocity Jacobians (J1, J2, J3) of the three links, each ``(..., 3, 5)``; book (2.57)-(2.59), corrected.
 
@@ -515,9 +548,7 @@ def three_link_jacobians(alpha, lengths=(1.0, 1.0, 1.0)):
     xi_theta + alpha2_dot, so row 3 of (2.59) is (0, 0, 1, 0, 1).
     """
     alpha = as_array(alpha, "alpha", (2,), what=" (alpha1, alpha2)")
-    if isinstance(lengths, (str, bytes)) or np.ndim(lengths) != 1 or len(lengths) != 3:
-        raise ValueError(f"lengths must be a length-3 sequence of positive link lengths; got {lengths!r}")
-    l1, l2, l3 = _lengths(lengths, 3)
+    l1, l2, l3 = _three_link_lengths(lengths)
     c1, s1 = np.cos(alpha[..., 0]), np.sin(alpha[..., 0])
     c2, s2 = np.cos(alpha[..., 1]), np.sin(alpha[..., 1])
     batch = alpha.shape[:-1]
@@ -584,15 +615,14 @@ def com_frame(alpha, lengths=(1.0, 1.0, 1.0), weights=None):
     ``(1, 1, 1)`` for the plain mean.
     """
     alpha = as_array(alpha, "alpha", (2,), what=" (alpha1, alpha2)")
-    l1, l2, l3 = _lengths(lengths, 3)
+    P = three_link_poses(alpha, lengths)
+    l1, l2, l3 = _three_link_lengths(lengths)
     w = np.array([l1, l2, l3]) if weights is None else _lengths(weights, 3, "weights")
     w = w / w.sum()
     a1, a2 = alpha[..., 0], alpha[..., 1]
     c1, s1, c2, s2 = np.cos(a1), np.sin(a1), np.cos(a2), np.sin(a2)
-    # link centres relative to g2: g1 = (-l2/2 - (l1/2) cos a1, (l1/2) sin a1), g3 = (l2/2 + (l3/2) cos a2, (l3/2) sin a2)
-    x = w[0] * (-l2 / 2 - l1 / 2 * c1) + w[2] * (l2 / 2 + l3 / 2 * c2)
-    y = w[0] * (l1 / 2 * s1) + w[2] * (l3 / 2 * s2)
-    th = -w[0] * a1 + w[2] * a2
+    x, y = np.moveaxis(np.einsum("i,...ij->...j", w, P[..., :2]), -1, 0)
+    th = np.einsum("i,...i->...", w, P[..., 2])
     beta = np.stack([x, y, th], -1)
     d = np.zeros(alpha.shape[:-1] + (3, 2))
     d[..., 0, 0] = w[0] * l1 / 2 * s1
@@ -635,10 +665,18 @@ def sample_accessible_manifold(constraints, n=200, rng=None, box=2.0, dim=3, ite
     Random points in ``[-box, box]^dim`` are projected onto ``constraints(p) = 0`` by Gauss-Newton
     steps with a numerical Jacobian; points that do not converge (or hit a singularity) are dropped.
     """
-    rng = np.random.default_rng(0) if rng is None else rng
     if not callable(constraints):
         raise TypeError("constraints must be a function p (..., dim) -> values (..., k)")
-    p = rng.uniform(-box, box, (int(n), dim))
+    n = check_int(n, "n", low=1, high=10 ** 7, what=" (the number of random starting points)")
+    dim = check_int(dim, "dim", low=1, high=1000, what=" (the dimension of the ambient space)")
+    iters = check_int(iters, "iters", low=1, high=10 ** 6, what=" (Gauss-Newton iterations)")
+    box = float(check_positive(box, "box"))
+    tol = float(check_positive(tol, "tol"))
+    if rng is None:
+        rng = np.random.default_rng(0)
+    elif not isinstance(rng, np.random.Generator):
+        raise TypeError(f"rng must be a numpy Generator (np.random.default_rng(seed)) or None; got {rng!r}")
+    p = rng.uniform(-box, box, (n, dim))
     eps = 1e-7
     for _ in range(iters):
         f = constraints(p)
@@ -653,5 +691,6 @@ def sample_accessible_manifold(constraints, n=200, rng=None, box=2.0, dim=3, ite
 
 def accessible_circle(n=100):
     """Points ``(n, 3)`` of the accessible manifold of (2.i)-(2.ii): the unit circle in the plane z = 1."""
-    t = np.linspace(0.0, 2 * np.pi, int(n))
+    n = check_int(n, "n", low=2, high=10 ** 7, what=" (the number of points)")
+    t = np.linspace(0.0, 2 * np.pi, n)
     return np.stack([np.cos(t), np.sin(t), np.ones_like(t)], -1)
