@@ -227,8 +227,9 @@ class _FrameGraph:
 def world_to_body_jacobian(g, J):
     """Body-velocity Jacobian ``T_g L_{g^-1} J`` from a world-velocity one; g: (..., 3), J: (..., 3, m); book (1.32)."""
     g = as_array(g, "g", (3,), what=" (the pose the Jacobian is taken at)")
-    J = as_array(J, "J", (3, np.shape(J)[-1] if np.ndim(J) >= 2 else 0),
-                 what=" (a world-velocity Jacobian with 3 rows)")
+    J = as_array(J, "J", what=" (a world-velocity Jacobian (..., 3, m))")
+    if J.ndim < 2 or J.shape[-2] != 3:
+        raise ValueError(f"J must have shape (..., 3, m) (a world-velocity Jacobian); got shape {J.shape}")
     try:
         np.broadcast_shapes(g.shape[:-1], J.shape[:-2])
     except ValueError:
