@@ -6,7 +6,6 @@ import warnings
 
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
 
 from gm_core import SE2, SingularShapeError
 from gm_core import chains
@@ -15,18 +14,10 @@ from gm_core.locomotion import (AccuracyWarning, Gait, body_velocity, check_gait
                                 metric_from_jacobians, net_displacement, pfaffian_determinant, se2_bracket,
                                 trajectory)
 from gm_core.systems import FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
+from test_locomotion import reference_displacement  # the solve_ivp route, written once
 
 SNAKE = KinematicSnake()
 SAFE = circle_gait(0.8, (0.4, -1.0))
-
-
-def reference_displacement(system, gait, rtol=1e-13):
-    """Independent route: solve_ivp (DOP853) on (x, y, theta) with g_dot = T_e L_g xi, (1.28)."""
-    def f(t, g):
-        xi = -system.connection(gait(np.array([t]))[0]) @ gait.velocity(np.array([t]))[0]
-        c, s = np.cos(g[2]), np.sin(g[2])
-        return [c * xi[0] - s * xi[1], s * xi[0] + c * xi[1], xi[2]]
-    return solve_ivp(f, (0.0, gait.period), np.zeros(3), method="DOP853", rtol=rtol, atol=1e-14).y[:, -1]
 
 
 def near_miss(gap):
@@ -39,7 +30,7 @@ def near_miss(gap):
 def test_near_singular_gait_meets_rtol():
     g = near_miss(1e-5)
     d = net_displacement(SNAKE, g)        # no warning: the adaptive steps meet rtol
-    ref = reference_displacement(SNAKE, g)
+    ref = reference_displacement(SNAKE, g, rtol=1e-13)
     scale = max(1.0, np.abs(ref).max())
     assert np.abs(d - ref).max() <= 1e-9 * scale, (d, ref)
 
