@@ -18,7 +18,7 @@ import numpy as np
 
 from ._validate import as_array, check_positive
 
-__all__ = ["Gait", "CircleGait", "circle_gait", "as_gait", "GaitWarning", "CLOSURE_RTOL"]
+__all__ = ["Gait", "CircleGait", "circle_gait", "constant_rate_path", "as_gait", "GaitWarning", "CLOSURE_RTOL"]
 
 #: A gait is closed when |r(T) - r(0)| <= CLOSURE_RTOL * max(1, max |r|).
 CLOSURE_RTOL = 1e-8
@@ -214,6 +214,23 @@ def circle_gait(amplitude, center=(0.0, 0.0), period=1.0):
     ``center`` is c; the circle is traversed counterclockwise once per ``period``.
     """
     return CircleGait(amplitude, center, period)
+
+
+def constant_rate_path(r0, r_dot, duration, *, name="constant rate"):
+    """The open shape path ``r(t) = r0 + t r_dot`` for 0 <= t <= duration, as a :class:`Gait`.
+
+    For driving a system at a constant shape rate (e.g. both wheels of a car turning steadily)
+    with :func:`gm_core.locomotion.trajectory`. Its feature time is the whole duration (a straight
+    line has no narrow features), so singularity checks need only a few thousand samples.
+    """
+    r0 = as_array(r0, "r0", what=" (the starting shape)")
+    r_dot = as_array(r_dot, "r_dot", what=" (the constant shape velocity)")
+    if r0.ndim != 1 or r_dot.shape != r0.shape or r0.size < 1:
+        raise ValueError(f"r0 and r_dot must be vectors of the same length n >= 1; got shapes "
+                         f"{r0.shape} and {r_dot.shape}")
+    T = float(check_positive(duration, "duration"))
+    return Gait(lambda t: r0 + np.asarray(t, float)[..., None] * r_dot, T,
+                lambda t: np.broadcast_to(r_dot, np.shape(t) + r_dot.shape), name=name, feature_time=T)
 
 
 def as_gait(gait, period=1.0):

@@ -33,13 +33,13 @@ import numpy as np
 
 from ._integers import check_int
 from ._validate import SingularShapeError, as_array, check_positive
-from .gaits import CircleGait, Gait, GaitWarning, as_gait, circle_gait
+from .gaits import CircleGait, Gait, GaitWarning, as_gait, circle_gait, constant_rate_path
 from .groups import SE2, matvec
 
 __all__ = [
     "connection_from_pfaffian", "connection_from_mass_matrix", "metric_from_jacobians",
     "pfaffian_determinant", "body_velocity", "connection_curl", "Gait", "CircleGait", "circle_gait",
-    "as_gait", "check_gait", "net_displacement", "trajectory", "Trajectory", "se2_bracket",
+    "constant_rate_path", "as_gait", "check_gait", "net_displacement", "trajectory", "Trajectory", "se2_bracket",
     "SingularShapeError", "AccuracyWarning", "GaitWarning",
 ]
 

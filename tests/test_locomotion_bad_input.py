@@ -230,3 +230,20 @@ def test_no_hidden_state_in_systems():
     g = circle_gait(0.7, (0.1, 0.2))
     np.testing.assert_allclose(g.amplitude, [0.7, 0.7])
     np.testing.assert_allclose(g.center, [0.1, 0.2])
+
+
+def test_constant_rate_path_is_a_cheaply_checked_open_path():
+    from gm_core.locomotion import constant_rate_path
+    from gm_core.systems import Ackerman
+    p = constant_rate_path([0.0, 0.3], [1.0, 0.2], 2.0)
+    np.testing.assert_allclose(p(np.array([0.0, 1.0, 2.0])), [[0, 0.3], [1, 0.5], [2, 0.7]], atol=1e-15)
+    np.testing.assert_allclose(p.velocity(np.array([0.5, 1.5])), [[1, 0.2], [1, 0.2]])
+    assert p.feature_time == 2.0 and not p.is_closed()
+    # Ackerman: xi = (R a1', 0, (R/L) tan(a2) a1'), so theta(T) = sum of tan(a2(t)) a1' dt, exactly integrable
+    tr = trajectory(Ackerman(), p, 5)
+    theta = (np.log(np.cos(0.3)) - np.log(np.cos(0.7))) / 0.2
+    np.testing.assert_allclose(tr.g[-1, 2], theta, rtol=1e-10)
+    with pytest.raises(ValueError, match="r0 and r_dot"):
+        constant_rate_path([0.0, 0.3], [1.0], 2.0)
+    with pytest.raises(ValueError, match="duration"):
+        constant_rate_path([0.0], [1.0], 0.0)
