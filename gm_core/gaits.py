@@ -94,7 +94,11 @@ class Gait:
     def velocity(self, t):
         """Shape velocity r_dot(t), ``(..., n)``: exact if given, else an 8th-order central difference."""
         if self._velocity is not None:
-            return self._eval(self._velocity, t)
+            out = self._eval(self._velocity, t)
+            if out.shape[-1] != self.n_shape:
+                raise ValueError(f"the gait's velocity callable returned {out.shape[-1]} components per time; "
+                                 f"the shape has {self.n_shape}")
+            return out
         t = np.asarray(t, dtype=float)
         h = 1e-3 * (self.period if self.feature_time is None else self.feature_time)
         out = 0.0

@@ -117,6 +117,7 @@ def connection_from_pfaffian(omega, *, n_position=3):
     (3.10). Where ``omega_xi`` is singular the result is NaN (no warning): see
     :func:`pfaffian_determinant`.
     """
+    n_position = check_int(n_position, "n_position", low=1, high=64, what=" (rows of the Pfaffian)")
     omega = as_array(omega, "omega", allow_nan=True)
     if omega.ndim < 2 or omega.shape[-2] != n_position or omega.shape[-1] <= n_position:
         raise ValueError(f"omega must have shape (..., {n_position}, {n_position} + n) with n >= 1 "
@@ -190,6 +191,7 @@ def connection_from_mass_matrix(M, *, n_position=3):
     the body momentum is ``I xi + (I A) r_dot`` with ``I`` the top-left (locked) block, so zero
     momentum gives ``xi = -A r_dot``. The top three rows of ``M`` are therefore a Pfaffian.
     """
+    n_position = check_int(n_position, "n_position", low=1, high=64, what=" (rows of the locked inertia)")
     M = as_array(M, "M", allow_nan=True)
     if M.ndim < 2 or M.shape[-1] != M.shape[-2] or M.shape[-1] <= n_position:
         raise ValueError(f"M must be a square (..., 3 + n, 3 + n) mass matrix; got shape {M.shape}")
