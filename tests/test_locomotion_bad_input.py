@@ -6,6 +6,7 @@ import warnings
 
 import numpy as np
 import pytest
+from hypothesis import given, settings, strategies as st
 
 from gm_core import SE2, SingularShapeError
 from gm_core import chains
@@ -247,3 +248,17 @@ def test_constant_rate_path_is_a_cheaply_checked_open_path():
         constant_rate_path([0.0, 0.3], [1.0], 2.0)
     with pytest.raises(ValueError, match="duration"):
         constant_rate_path([0.0], [1.0], 0.0)
+
+
+@settings(max_examples=8, deadline=None)
+@given(st.floats(-1.0, 1.0), st.floats(0.3, 1.5), st.booleans(), st.floats(0.05, 0.999))
+def test_random_circle_gaits_meet_the_promised_accuracy(along, across, side, fraction):
+    """Circles beside the snake's singular line, some within 1e-3 of it: g(T) within rtol, no warning."""
+    u, v = np.array([1.0, 1.0]) / np.sqrt(2), np.array([1.0, -1.0]) / np.sqrt(2)
+    d = across if side else -across
+    g = circle_gait(fraction * across, along * u + d * v)          # distance to the line: across (1 - fraction)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", AccuracyWarning)
+        out = net_displacement(SNAKE, g)
+    ref = reference_displacement(SNAKE, g, rtol=1e-13)
+    assert np.abs(out - ref).max() <= 1e-9 * max(1.0, np.abs(ref).max()), (out, ref)
