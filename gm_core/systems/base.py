@@ -12,7 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import as_array
-from ..locomotion import SINGULAR_TOL, body_velocity, connection_from_pfaffian, pfaffian_determinant
+from ..connection import SINGULAR_TOL, connection_from_pfaffian, pfaffian_determinant
+from ..locomotion import body_velocity
 
 __all__ = ["LocomotionSystem", "Part", "ellipse_outline", "rectangle_outline"]
 

@@ -5,7 +5,7 @@ import numpy as np
 
 from .._validate import as_array, check_positive
 from ..chains import com_frame
-from ..locomotion import connection_from_pfaffian, metric_from_jacobians
+from ..connection import connection_from_pfaffian, metric_from_jacobians
 from .three_link import LinkMetricSystem
 
 __all__ = ["FloatingSnake"]

@@ -13,8 +13,8 @@ import numpy as np
 
 from .._validate import as_array, check_positive
 from ..chains import three_link_jacobians, three_link_poses
+from ..connection import metric_from_jacobians
 from ..groups import SE2
-from ..locomotion import metric_from_jacobians
 from .base import LocomotionSystem, Part, rectangle_outline
 
 __all__ = ["ThreeLinkSystem", "LinkMetricSystem", "three_link_link_poses"]
