@@ -10,8 +10,9 @@ import numpy as np
 
 from .. import chains as C
 from ..groups import SE2
-from ..drawing.base import FrameArtist, new_figure
-from ..drawing.ch2 import ArrowsArtist, ChainArtist, draw_chain_naive, readout
+from ..drawing.base import FrameArtist
+from ..drawing.chains import ArrowsArtist, ChainArtist, draw_chain_naive
+from ..drawing.toolkit import PALETTE, new_figure, readout
 from .base import Panel, register, slider
 
 __all__ = ["SingleLinkPanel", "RRArmPanel", "RPArmPanel", "OffsetRPArmPanel", "MobileChainPanel",
@@ -250,7 +251,7 @@ class BetaFramePanel(Panel):
 
     def build(self):
         _three_link_scene(self)
-        self.beta_art = FrameArtist(self.ax, length=0.5, colors=("k", "tab:olive"), zorder=8)
+        self.beta_art = FrameArtist(self.ax, length=0.5, colors=("k", PALETTE["sky"]), zorder=8)
         (self.link_line,) = self.ax.plot([], [], ":", color="k", lw=1.5)
         (self.centres,) = self.ax.plot([], [], "s", color="k", ms=4)
         self.controls = {
@@ -298,7 +299,7 @@ class JacobianMethodsPanel(Panel):
     """The end-effector velocity of a chain by the three Jacobian methods of section 2.5, live side by side."""
 
     title = "Three ways to a Jacobian: direct (2.16), world iterative (2.31), body iterative (2.37)"
-    COLORS = {"direct": "tab:blue", "world": "tab:orange", "body": "tab:purple"}
+    COLORS = {"direct": PALETTE["blue"], "world": PALETTE["orange"], "body": PALETTE["purple"]}
 
     def build(self):
         o = self.options
@@ -366,7 +367,7 @@ class ThreeLinkVelocityPanel(Panel):
 
     def build(self):
         _three_link_scene(self)
-        self.arrows = ArrowsArtist(self.ax, 3, color="tab:purple", scale=0.5, label="link velocity (x 0.5)")
+        self.arrows = ArrowsArtist(self.ax, 3, color=PALETTE["purple"], scale=0.5, label="link velocity (x 0.5)")
         self.text = readout(self.ax, 0.02, 0.02)
         self.controls = {
             "alpha1": slider(0.6, -2.5, 2.5, description="alpha1"),

@@ -10,32 +10,20 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import SingularShapeError
-from ..drawing.base import SingularFlag, TrailArtist, new_figure
-from ..drawing.ch2 import readout
-from ..drawing.ch3 import (ROW_LABELS, ConnectionFieldArtist, MovingView, ShapeCursorArtist, SystemArtist,
-                           VelocityArtist,
-                           _style_shape_axes, draw_singular_set, draw_system_naive, style_world_axes,
-                           system_extent)
-from ..locomotion import Gait, circle_gait, net_displacement, trajectory
+from ..drawing.base import SingularFlag, TrailArtist
+from ..drawing.connection import (ROW_LABELS, ConnectionFieldArtist, ShapeCursorArtist, draw_singular_set,
+                                  style_shape_axes)
+from ..drawing.motion import (MovingView, SystemArtist, VelocityArtist, draw_system_naive, style_world_axes,
+                              system_extent)
+from ..drawing.toolkit import PALETTE, new_figure, readout
+from ..examples import drive
+from ..locomotion import circle_gait, net_displacement, trajectory
 from ..systems import Ackerman, DifferentialDrive, KinematicSnake
 from .base import Panel, register, slider
 
 __all__ = ["drive", "DiffDriveCarPanel", "AckermanCarPanel", "ConnectionFieldPanel", "GaitPanel"]
 
 PI = float(np.pi)
-
-
-def drive(system, r0, r_dot, duration, n_frames=81):
-    """Trajectory of ``system`` when its shape moves at the constant rate r_dot from r0 for ``duration``.
-
-    Returns a :class:`gm_core.locomotion.Trajectory` starting at the identity; raises
-    SingularShapeError if the shape path reaches a singular shape.
-    """
-    r0 = np.asarray(r0, dtype=float)
-    rd = np.asarray(r_dot, dtype=float)
-    gait = Gait(lambda t: r0 + np.asarray(t, float)[..., None] * rd, float(duration),
-                lambda t: np.broadcast_to(rd, np.shape(t) + rd.shape), name="constant rate")
-    return trajectory(system, gait, n_frames, substeps=16)
 
 
 def _square(ax, lim, center=(0.0, 0.0)):
@@ -75,7 +63,7 @@ class _CarPanel(Panel):
         self.system = self.options.get("system") or self.make_system()
         self.fig, self.ax = new_figure(figsize=(5.5, 5.0))
         _square(self.ax, self.options.get("lim", self.lim))
-        self.trail = TrailArtist(self.ax, color="tab:green", lw=2)
+        self.trail = TrailArtist(self.ax, color=PALETTE["green"], lw=2)
         self.start = SystemArtist(self.ax, self.system, styles={"chassis": dict(facecolor="0.8", alpha=0.4,
                                                                              edgecolor="0.5")})
         self.body = SystemArtist(self.ax, self.system)
@@ -126,7 +114,7 @@ class _CarPanel(Panel):
             self.ax.set_title("singular shape reached")
             self.fig.canvas.draw_idle()
             return
-        self.ax.plot(traj.g[:, 0], traj.g[:, 1], color="tab:green", lw=2)
+        self.ax.plot(traj.g[:, 0], traj.g[:, 1], color=PALETTE["green"], lw=2)
         draw_system_naive(self.ax, self.system, traj.g[-1], traj.r[-1])
         self.fig.canvas.draw_idle()
 
@@ -194,8 +182,8 @@ class ConnectionFieldPanel(Panel):
         self.ax = axes[1, 1]
         self.fields, self.cursors = [], []
         for i, ax in enumerate(self.field_axes):
-            _style_shape_axes(ax, s, f"row {i + 1}: {ROW_LABELS[i]}")
-            self.fields.append(ConnectionFieldArtist(ax, s, i, n=self.options.get("n", 15), color="0.35"))
+            style_shape_axes(ax, s, f"row {i + 1}: {ROW_LABELS[i]}")
+            self.fields.append(ConnectionFieldArtist(ax, s, i, n=self.options.get("n"), color="0.35"))
             draw_singular_set(ax, s)
             self.cursors.append(ShapeCursorArtist(ax))
         _square(self.ax, 1.15 * system_extent(s))
@@ -212,7 +200,7 @@ class ConnectionFieldPanel(Panel):
             "alpha2_dot": slider(0.0, -1.0, 1.0, description="alpha2 rate"),
         }
         _thin_labels(self.field_axes, self.ax, body_labels=False)
-        self.fig.subplots_adjust(left=0.08, right=0.98, bottom=0.07, top=0.95, wspace=0.3, hspace=0.3)
+
 
     def update(self, **v):
         r = np.array([v["alpha1"], v["alpha2"]])
@@ -238,10 +226,10 @@ class ConnectionFieldPanel(Panel):
         rd = np.array([v["alpha1_dot"], v["alpha2_dot"]])
         for i, ax in enumerate(self.field_axes):
             ax.clear()
-            _style_shape_axes(ax, self.system, ROW_LABELS[i])
-            ConnectionFieldArtist(ax, self.system, i, n=self.options.get("n", 15))
+            style_shape_axes(ax, self.system, ROW_LABELS[i])
+            ConnectionFieldArtist(ax, self.system, i, n=self.options.get("n"))
             draw_singular_set(ax, self.system)
-            ax.plot([r[0]], [r[1]], "o", color="tab:green")
+            ax.plot([r[0]], [r[1]], "o", color=PALETTE["green"])
         self.ax.clear()
         _square(self.ax, 2.0)
         draw_system_naive(self.ax, self.system, np.zeros(3), r)
@@ -272,18 +260,18 @@ class GaitPanel(Panel):
         self.ax = axes[1, 1]
         self.paths = []
         for i, ax in enumerate(self.field_axes):
-            _style_shape_axes(ax, s, ROW_LABELS[i])
-            ConnectionFieldArtist(ax, s, i, n=self.options.get("n", 13), color="0.5")
+            style_shape_axes(ax, s, ROW_LABELS[i])
+            ConnectionFieldArtist(ax, s, i, n=self.options.get("n"), color="0.5")
             draw_singular_set(ax, s)
-            (line,) = ax.plot([], [], color="tab:blue", lw=2)
-            (start,) = ax.plot([], [], "o", color="tab:blue", ms=5)
+            (line,) = ax.plot([], [], color=PALETTE["blue"], lw=2)
+            (start,) = ax.plot([], [], "o", color=PALETTE["blue"], ms=5)
             self.paths.append((line, start))
         self.lim = self.options.get("lim", 1.3 * system_extent(s))
         # The window follows the motion through a transform, not through the axes limits: a new
         # limit would force a full redraw of all four axes instead of a blit.
         self.view = MovingView(self.ax, self.lim)
         self.ax.set_title("motion over one cycle", fontsize=9)
-        self.trail = TrailArtist(self.ax, color="tab:green", lw=2)
+        self.trail = TrailArtist(self.ax, color=PALETTE["green"], lw=2)
         self.start = SystemArtist(self.ax, s, styles={"link": dict(facecolor="0.8", alpha=0.5, edgecolor="0.5"),
                                                        "chassis": dict(facecolor="0.8", alpha=0.5, edgecolor="0.5")})
         self.body = SystemArtist(self.ax, s)
@@ -302,7 +290,7 @@ class GaitPanel(Panel):
             "center2": slider(c[1], lo2 / 2, hi2 / 2, description="centre alpha2"),
         }
         _thin_labels(self.field_axes, self.ax)
-        self.fig.subplots_adjust(left=0.08, right=0.98, bottom=0.07, top=0.95, wspace=0.3, hspace=0.3)
+
 
     def gait(self, v):
         return circle_gait(v["amplitude"], (v["center1"], v["center2"]))
@@ -372,16 +360,16 @@ class GaitPanel(Panel):
         path = gait(np.linspace(0.0, 1.0, 121))
         for i, ax in enumerate(self.field_axes):
             ax.clear()
-            _style_shape_axes(ax, self.system, ROW_LABELS[i])
-            ConnectionFieldArtist(ax, self.system, i, n=self.options.get("n", 13))
+            style_shape_axes(ax, self.system, ROW_LABELS[i])
+            ConnectionFieldArtist(ax, self.system, i, n=self.options.get("n"))
             draw_singular_set(ax, self.system)
-            ax.plot(path[:, 0], path[:, 1], color="tab:blue")
+            ax.plot(path[:, 0], path[:, 1], color=PALETTE["blue"])
         self.ax.clear()
         _square(self.ax, self.lim)
         try:
             g = net_displacement(self.system, gait)
             tr = trajectory(self.system, gait, 61)
-            self.ax.plot(tr.g[:, 0], tr.g[:, 1], color="tab:green")
+            self.ax.plot(tr.g[:, 0], tr.g[:, 1], color=PALETTE["green"])
             draw_system_naive(self.ax, self.system, g, tr.r[-1])
         except SingularShapeError:
             self.ax.set_title("singular")
