@@ -68,7 +68,7 @@ class HelixScene(Scene):
         (self.unit,) = ax2.plot([], [], color="k", lw=3.5, alpha=0.6)
         (self.centre,) = ax2.plot([], [], "+", color=PALETTE["vermillion"], ms=9)
         self.title3 = PathText(ax3, 0.5, 0.98, "", size=9, ha="center", va="top", coords="axes")
-        self.info = PathText(ax2, 0.03, 0.04, "", size=8, coords="axes")
+        self.info = PathText(ax2, 0.03, 0.03, "", size=8, va="bottom", coords="axes")
 
     def set(self, thetadot=1.0):
         paths, _ = se2_helices(np.array([thetadot]), self.T)
@@ -81,11 +81,11 @@ class HelixScene(Scene):
         self.title3.set_text(f"helix in (x, y, θ) for ξ = (1, 0, {thetadot:.2f})")
         if geo["straight"]:
             self.centre.set_visible(False)
-            self.info.set_text("dθ/dt = 0: a straight line (the circle's diameter is infinite)")
+            self.info.set_text("dθ/dt = 0: a straight line\n(the circle's diameter is infinite)")
         else:
             self.centre.set_visible(True)
             self.centre.set_data([geo["centre"][0]], [geo["centre"][1]])
-            self.info.set_text(f"diameter 2|v|/|dθ/dt| = {geo['diameter']:.2f};  one turn: t = "
+            self.info.set_text(f"diameter 2|v|/|dθ/dt| = {geo['diameter']:.2f}\none turn: t = "
                                f"{geo['period']:.2f}, θ rises 2π\nblack: exp(ξ), xy length |v| = 1")
 
 
@@ -261,7 +261,7 @@ class ExpFourWaysScene(Scene):
             PathText(a, 0.03, 0.30 - 0.07 * k, label, size=8, color=col, coords="axes")
         (self.arc,) = b.plot([], [], color="0.3", lw=2.5, alpha=0.5)
         (self.target,) = b.plot([], [], "k*", ms=12)
-        self.info = PathText(b, 0.02, 0.03, "", size=7.5, coords="axes")
+        self.info = PathText(b, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes", family="monospace")
         self._key = None
 
     def set(self, thetadot=1.0, n=8, side="left"):
@@ -286,6 +286,6 @@ class ExpFourWaysScene(Scene):
             self.err_marks[m].set_data([np.log2(n)], [np.log10(max(self.final_error[m], 1e-16))])
             pts = path.matrices[:, :2, 2] if m != "taylor" else path.matrices[1:, :2, 2]
             self.path_lines[m].set_data(pts[:, 0], pts[:, 1])
-        self.info.set_text("n = {}:  ".format(n) + "   ".join(
-            f"{m} {self.final_error[m]:.1e}" for m, _, _ in self.METHODS))
+        self.info.set_text(f"n = {n}, error:\n" + "\n".join(
+            f"{m:<8}{self.final_error[m]:.1e}" for m, _, _ in self.METHODS))
 

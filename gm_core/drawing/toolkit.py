@@ -30,7 +30,7 @@ from matplotlib.transforms import blended_transform_factory as _blend
 
 __all__ = [
     "DPI", "MAX_WIDTH_IN", "MIN_TEXT_PX", "MIN_TEXT_PT", "PALETTE", "STYLE", "apply_style",
-    "new_figure", "figure", "margins", "PathText", "readout", "ArrowSet", "arrow", "set_arrows", "title",
+    "new_figure", "figure", "margins", "freeze_layout", "PathText", "readout", "ArrowSet", "arrow", "set_arrows", "title",
     "xticks", "yticks", "axis_label", "plane", "plain_3d", "wire", "Scene", "TWO_PI",
 ]
 
@@ -114,9 +114,23 @@ def figure(figsize=(6, 4), dpi=DPI, layout="constrained"):
     return fig
 
 
+def freeze_layout(fig):
+    """Run the figure's layout engine once and keep the result: axes stop moving afterwards.
+
+    A live figure is redrawn by blitting over a cached background; a layout that re-ran on
+    every full draw could shift the axes when a title's text changes. Called by every panel
+    after its first update.
+    """
+    engine = fig.get_layout_engine()
+    if engine is not None and hasattr(engine, "execute"):
+        engine.execute(fig)
+        fig.set_layout_engine(None)
+    return fig
+
+
 def margins(fig, **kw):
     """Explicit margins (``subplots_adjust`` keywords) instead of constrained layout."""
-    fig.set_layout_engine("none")
+    fig.set_layout_engine(None)
     fig.subplots_adjust(**kw)
     return fig
 

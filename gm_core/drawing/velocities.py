@@ -204,7 +204,7 @@ class LiftedSE2Scene(Scene):
         self.vel = [ArrowSet(ax, color=c, n=4, width=0.007) for c in colors]
         (self.weld,) = ax.plot([], [], color=PALETTE["orange"], ls=":", lw=1.5)
         self.title = title(ax, size=8)
-        self.text = PathText(ax, 0.02, 0.03, "", size=7, va="bottom", coords="axes")
+        self.text = PathText(ax, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes", family="monospace")
 
     def set(self, theta=0.3, u=2.0, v=1.5, beta=1.0):
         g = np.array([self.G_XY[0], self.G_XY[1], theta])
@@ -222,8 +222,8 @@ class LiftedSE2Scene(Scene):
         self.body_vels, self.spatial_vels = np.array(xi), np.array(xs)
         self.title.set_text("grey: g     blue: hg with T_gL_h ġ     orange: gh with T_gR_h ġ")
         f = vec_text
-        self.text.set_text(f"body ξ:     g {f(xi[0])}  hg {f(xi[1])}  gh {f(xi[2])}\n"
-                           f"spatial ξˢ: g {f(xs[0])}  hg {f(xs[1])}  gh {f(xs[2])}")
+        self.text.set_text("    body ξ                spatial ξˢ\n" + "\n".join(
+            f"{name:<3}{f(b)}  {f(s)}" for name, b, s in zip(("g", "hg", "gh"), xi, xs)))
 
 
 class VelocityScene(Scene):

@@ -65,6 +65,10 @@ class Panel:
             c.continuous_update = True
             c.observe(self._on_change, names="value")
         self.update(**self.values())
+        if self.fig is not None:
+            from ..drawing.toolkit import freeze_layout
+
+            freeze_layout(self.fig)   # constrained layout once, then fixed (blitting needs still axes)
         self.blitter = None
         if self.blit and self.fig is not None:
             from ..drawing.blit import Blitter, can_blit
