@@ -36,3 +36,31 @@ def test_naive_update_draws_the_same_pose():
     p.naive_update(x=0.5, y=0.5, theta=0.3)
     assert len(p.ax.patches) == 1
     assert "FrameDemo" in all_panels()
+
+
+def test_set_survives_a_stale_echo_from_the_browser(monkeypatch):
+    """Run All: set() runs before the browser renders the slider; the slider's first echo (its
+    old value) must not overwrite the value set from code (issue 12, the start page race)."""
+    p = FrameDemo()
+    before = p.controls["theta"].value
+    p.set(x=0.0, y=2.0, theta=np.pi)
+    p.controls["theta"].value = before            # what a late initial echo does
+    assert p.controls["theta"].value == np.pi
+    np.testing.assert_allclose(p.frame.g, [0.0, 2.0, np.pi])
+    # after the echo window a student's drag back to that value is an ordinary change
+    monkeypatch.setattr(FrameDemo, "echo_window", 0.0)
+    p.controls["theta"].value = before
+    np.testing.assert_allclose(p.frame.g, [0.0, 2.0, before])
+
+
+def test_slider_values_sit_on_the_browser_grid():
+    """Initial values and values set from code lie on min + k * step (ends kept), so the browser
+    has nothing to snap and its echo equals the kernel's value."""
+    p = FrameDemo()
+    for c in p.controls.values():
+        k = (c.value - c.min) / c.step
+        assert abs(k - round(k)) < 1e-6 or c.value in (c.min, c.max)
+    p.set(x=0.123456)
+    assert abs(p.controls["x"].value - 0.12) < 1e-12
+    p.set(theta=np.pi)
+    assert p.controls["theta"].value == np.pi    # the end of the range is kept exactly

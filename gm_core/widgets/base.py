@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import importlib
 import pkgutil
+import time
 
 import ipywidgets as W
 import numpy as np
@@ -58,6 +59,7 @@ class Panel:
 
     def __init__(self, **options):
         self.options = options
+        self._pinned = {}
         self.controls: dict[str, W.ValueWidget] = {}
         self.fig = None
         self.build()
@@ -91,13 +93,28 @@ class Panel:
     def values(self):
         return {k: c.value for k, c in self.controls.items()}
 
+    #: Seconds after :meth:`set` during which a control change back to the value it had before
+    #: is treated as a stale echo from the browser (its first render) and undone.
+    echo_window = 5.0
+
     def set(self, **values):
-        """Set several controls at once and update once (what a test or a demo button does)."""
+        """Set several controls at once and update once (what a test, a demo or a notebook does).
+
+        The sliders themselves take the values (snapped to the slider's grid, as the browser
+        would snap them, so the browser's echo carries the same value), and for a few seconds a
+        change back to the old value (a slider's initial echo arriving late after Run All) is
+        ignored: a value set from code is never overwritten by a widget's first render.
+        """
+        unknown = [k for k in values if k not in self.controls]
+        if unknown:
+            raise ValueError(f"unknown control {unknown[0]!r}; this panel has {sorted(self.controls)}")
+        now = time.monotonic()
         with self.hold():
             for k, v in values.items():
-                if k not in self.controls:
-                    raise ValueError(f"unknown control {k!r}; this panel has {sorted(self.controls)}")
-                self.controls[k].value = v
+                c = self.controls[k]
+                v = snap(c, v)
+                self._pinned[k] = (c.value, v, now)
+                c.value = v
         self.refresh()
 
     def hold(self):
@@ -115,8 +132,22 @@ class Panel:
     _held = False
 
     def _on_change(self, change):
-        if not self._held:
-            self.refresh()
+        if self._held:
+            return
+        key = next((k for k, c in self.controls.items() if c is change["owner"]), None)
+        pinned = self._pinned.get(key)
+        if pinned is not None:
+            before, wanted, t = pinned
+            if time.monotonic() - t < self.echo_window and _same(change["owner"], change["new"], before) \
+                    and not _same(change["owner"], change["new"], wanted):
+                # a stale echo of the value before set(): put the programmatic value back
+                with self.hold():
+                    change["owner"].value = wanted
+                return
+            del self._pinned[key]
+        if _same(change["owner"], change["new"], change["old"], exact=True):
+            return   # an echo of the value the kernel already has (float round-off): nothing moved
+        self.refresh()
 
     def refresh(self, **values):
         """Update to the controls' values (overridden by ``values``) and show the new frame.
@@ -173,18 +204,40 @@ class Panel:
         display(self.widget)
 
 
+def snap(control, value):
+    """``value`` as the browser's slider would show it: on the grid min + k * step, inside
+    [min, max] (the ends themselves are kept). Non-numeric controls return ``value`` unchanged."""
+    step = getattr(control, "step", None)
+    lo, hi = getattr(control, "min", None), getattr(control, "max", None)
+    if not isinstance(value, (int, float, np.floating, np.integer)) or isinstance(value, bool) \
+            or step is None or lo is None or hi is None or not step:
+        return value
+    v = float(value)
+    if abs(v - lo) <= 1e-12 * max(1.0, abs(lo)) or abs(v - hi) <= 1e-12 * max(1.0, abs(hi)):
+        return type(control.value)(v) if isinstance(control.value, int) else v
+    v = min(max(lo + round((v - lo) / step) * step, lo), hi)
+    return int(round(v)) if isinstance(control.value, int) else float(round(v, 12))
+
+
+def _same(control, a, b, exact=False):
+    """True if two values of ``control`` are the same slider position (half a step apart at most;
+    ``exact``: equal up to float round-off)."""
+    try:
+        a, b = float(a), float(b)
+    except (TypeError, ValueError):
+        return a == b
+    step = float(getattr(control, "step", 0) or 0)
+    tol = 1e-9 * max(1.0, abs(a), abs(b)) if exact or not step else 0.5 * step
+    return abs(a - b) <= tol
+
+
 def slider(value, lo, hi, step=0.01, description="", readout_format=".2f", **kw):
-    """A FloatSlider with the course's defaults (continuous updates, readable description)."""
-    return W.FloatSlider(value=value, min=lo, max=hi, step=step, description=description,
+    """A FloatSlider with the course's defaults (continuous updates, readable description).
+
+    The initial value is snapped to the slider's grid (min + k * step), so the browser has
+    nothing to correct and sends no echo when it first renders the slider.
+    """
+    value = min(max(lo + round((value - lo) / step) * step, lo), hi) if step else value
+    return W.FloatSlider(value=round(value, 12), min=lo, max=hi, step=step, description=description,
                          readout_format=readout_format, continuous_update=True,
                          style={"description_width": "initial"}, **kw)
-
-
-def finite_or_flag(values, flag, message):
-    """Return True if every value is finite; otherwise show ``flag`` with ``message`` and return False."""
-    ok = bool(np.all(np.isfinite(values)))
-    if ok:
-        flag.hide()
-    else:
-        flag.show(message)
-    return ok

@@ -269,7 +269,7 @@ class HelixPanel(ScenePanel):
     scene_class = D.HelixScene
 
     def controls_spec(self):
-        return {"thetadot": slider(1.0, -3.0, 3.0, description="θ̇")}
+        return {"thetadot": slider(1.0, -3.0, 3.0, description="dθ/dt (turning rate)")}
 
 
 @register
@@ -303,6 +303,6 @@ class ExpFourWaysPanel(ScenePanel):
     scene_class = D.ExpFourWaysScene
 
     def controls_spec(self):
-        return {"thetadot": slider(1.0, -3.0, 3.0, description="θ̇ in ξ = (1, 0, θ̇)"),
+        return {"thetadot": slider(1.0, -3.0, 3.0, description="dθ/dt in ξ = (1, 0, dθ/dt)"),
                 "n": int_slider(8, 1, 64, description="steps / terms n"),
                 "side": W.Dropdown(options=["left", "right"], value="left", description="field")}
