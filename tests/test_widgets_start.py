@@ -54,13 +54,15 @@ def test_set_survives_a_stale_echo_from_the_browser(monkeypatch):
 
 
 def test_slider_values_sit_on_the_browser_grid():
-    """Initial values and values set from code lie on min + k * step (ends kept), so the browser
-    has nothing to snap and its echo equals the kernel's value."""
+    """Initial values lie on min + k * step, so the browser has nothing to snap; a value set
+    from code survives the browser's echo of its rounded slider position."""
     p = FrameDemo()
     for c in p.controls.values():
         k = (c.value - c.min) / c.step
         assert abs(k - round(k)) < 1e-6 or c.value in (c.min, c.max)
     p.set(x=0.123456)
-    assert abs(p.controls["x"].value - 0.12) < 1e-12
-    p.set(theta=np.pi)
-    assert p.controls["theta"].value == np.pi    # the end of the range is kept exactly
+    p.controls["x"].value = 0.12                 # the browser's echo of its rounded position
+    assert p.values()["x"] == 0.123456           # keeps the exact value set from code
+    np.testing.assert_allclose(p.frame.g[0], 0.123456)
+    p.controls["x"].value = 0.5                  # a real move is a real change
+    np.testing.assert_allclose(p.frame.g[0], 0.5)

@@ -26,7 +26,7 @@ import time
 import ipywidgets as W
 import numpy as np
 
-__all__ = ["Panel", "PANELS", "register", "all_panels"]
+__all__ = ["Panel", "ScenePanel", "PANELS", "register", "all_panels", "slider", "int_slider"]
 
 #: name -> Panel subclass, filled by @register.
 PANELS: dict[str, type] = {}
@@ -60,6 +60,7 @@ class Panel:
     def __init__(self, **options):
         self.options = options
         self._pinned = {}
+        self._exact = {}
         self.controls: dict[str, W.ValueWidget] = {}
         self.fig = None
         self.build()
@@ -91,7 +92,13 @@ class Panel:
 
     # -- shared -------------------------------------------------------------------
     def values(self):
-        return {k: c.value for k, c in self.controls.items()}
+        """The controls' values (a value set by :meth:`set` is reported exactly, not as rounded
+        by the browser's slider grid)."""
+        out = {k: c.value for k, c in self.controls.items()}
+        for k, v in self._exact.items():
+            if _same(self.controls[k], out[k], v):
+                out[k] = v
+        return out
 
     #: Seconds after :meth:`set` during which a control change back to the value it had before
     #: is treated as a stale echo from the browser (its first render) and undone.
@@ -100,10 +107,11 @@ class Panel:
     def set(self, **values):
         """Set several controls at once and update once (what a test, a demo or a notebook does).
 
-        The sliders themselves take the values (snapped to the slider's grid, as the browser
-        would snap them, so the browser's echo carries the same value), and for a few seconds a
+        The sliders themselves take the values. The browser shows a slider on its grid
+        (min + k * step) and may echo that rounded position back: an echo within half a step of
+        the value set here keeps the exact value (``values()`` reports it). For a few seconds a
         change back to the old value (a slider's initial echo arriving late after Run All) is
-        ignored: a value set from code is never overwritten by a widget's first render.
+        undone: a value set from code is never overwritten by a widget's first render.
         """
         unknown = [k for k in values if k not in self.controls]
         if unknown:
@@ -112,8 +120,8 @@ class Panel:
         with self.hold():
             for k, v in values.items():
                 c = self.controls[k]
-                v = snap(c, v)
                 self._pinned[k] = (c.value, v, now)
+                self._exact[k] = v
                 c.value = v
         self.refresh()
 
@@ -145,6 +153,10 @@ class Panel:
                     change["owner"].value = wanted
                 return
             del self._pinned[key]
+        if key in self._exact:
+            if _same(change["owner"], change["new"], self._exact[key]):
+                return   # the browser's rounding of a value set from code: keep the exact value
+            del self._exact[key]
         if _same(change["owner"], change["new"], change["old"], exact=True):
             return   # an echo of the value the kernel already has (float round-off): nothing moved
         self.refresh()
@@ -204,19 +216,51 @@ class Panel:
         display(self.widget)
 
 
-def snap(control, value):
-    """``value`` as the browser's slider would show it: on the grid min + k * step, inside
-    [min, max] (the ends themselves are kept). Non-numeric controls return ``value`` unchanged."""
-    step = getattr(control, "step", None)
-    lo, hi = getattr(control, "min", None), getattr(control, "max", None)
-    if not isinstance(value, (int, float, np.floating, np.integer)) or isinstance(value, bool) \
-            or step is None or lo is None or hi is None or not step:
-        return value
-    v = float(value)
-    if abs(v - lo) <= 1e-12 * max(1.0, abs(lo)) or abs(v - hi) <= 1e-12 * max(1.0, abs(hi)):
-        return type(control.value)(v) if isinstance(control.value, int) else v
-    v = min(max(lo + round((v - lo) / step) * step, lo), hi)
-    return int(round(v)) if isinstance(control.value, int) else float(round(v, 12))
+class ScenePanel(Panel):
+    """The one widget pattern: a drawing :class:`~gm_core.drawing.toolkit.Scene` (``scene_class``,
+    built with the panel's options) owns the figure and its update; the panel pairs it with
+    controls (``controls_spec()``).
+
+    ``update`` hands the control values to ``scene.set`` and asks for a redraw; ``naive_update``
+    is the scene's clear-and-replot baseline. Attributes the panel does not have are read from
+    the scene (``panel.art`` is ``panel.scene.art``), so tests and notebooks can inspect the
+    artists and the numbers the scene computed.
+    """
+
+    scene_class = None
+
+    def controls_spec(self):
+        raise NotImplementedError
+
+    def scene_options(self):
+        """Keyword arguments for ``scene_class`` (default: the panel's options)."""
+        return dict(self.options)
+
+    def build(self):
+        self.scene = self.scene_class(**self.scene_options())
+        self.fig = self.scene.fig
+        self.controls = self.controls_spec()
+
+    def update(self, **values):
+        self.scene.set(**values)
+        self.after_update(values)
+        self.fig.canvas.draw_idle()
+
+    def after_update(self, values):
+        """Hook for control-side effects of a change (e.g. disabling sliders); nothing by default."""
+
+    def naive_update(self, **values):
+        self.scene.replot(**values)
+        self.fig.canvas.draw_idle()
+
+    def __getattr__(self, name):
+        # only called for attributes the panel lacks; never recurse before the scene exists
+        if name.startswith("__") or name == "scene":
+            raise AttributeError(name)
+        scene = self.__dict__.get("scene")
+        if scene is None:
+            raise AttributeError(f"{type(self).__name__!s} has no attribute {name!r}")
+        return getattr(scene, name)
 
 
 def _same(control, a, b, exact=False):
@@ -229,6 +273,12 @@ def _same(control, a, b, exact=False):
     step = float(getattr(control, "step", 0) or 0)
     tol = 1e-9 * max(1.0, abs(a), abs(b)) if exact or not step else 0.5 * step
     return abs(a - b) <= tol
+
+
+def int_slider(value, lo, hi, description=""):
+    """An IntSlider with the course's defaults."""
+    return W.IntSlider(value=value, min=lo, max=hi, step=1, description=description,
+                       continuous_update=True, style={"description_width": "initial"})
 
 
 def slider(value, lo, hi, step=0.01, description="", readout_format=".2f", **kw):
