@@ -53,13 +53,14 @@ def test_set_survives_a_stale_echo_from_the_browser(monkeypatch):
     np.testing.assert_allclose(p.frame.g, [0.0, 2.0, before])
 
 
-def test_slider_values_sit_on_the_browser_grid():
-    """Initial values lie on min + k * step, so the browser has nothing to snap; a value set
-    from code survives the browser's echo of its rounded slider position."""
+def test_browser_rounding_keeps_exact_values():
+    """The browser shows sliders on their grid (min + k * step) and may echo the rounded position:
+    neither the starting values nor values set from code change because of such an echo."""
     p = FrameDemo()
-    for c in p.controls.values():
-        k = (c.value - c.min) / c.step
-        assert abs(k - round(k)) < 1e-6 or c.value in (c.min, c.max)
+    start = p.values()["theta"]                   # 0.8, off the grid -pi + k * 0.01
+    p.controls["theta"].value = -np.pi + round((start + np.pi) / 0.01) * 0.01   # the first render's echo
+    assert p.values()["theta"] == start
+    np.testing.assert_allclose(p.frame.g[2], start)
     p.set(x=0.123456)
     p.controls["x"].value = 0.12                 # the browser's echo of its rounded position
     assert p.values()["x"] == 0.123456           # keeps the exact value set from code

@@ -10,14 +10,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..locomotion import as_gait, trajectory
-from .base import TrailArtist, animate
-from .motion import SystemArtist, style_world_axes, system_extent
-from .toolkit import PALETTE, new_figure
+from .base import SingularFlag
+from .motion import SystemArtist, VelocityArtist, draw_system_naive, style_world_axes, system_extent
+from .toolkit import PALETTE, Scene, new_figure, readout
 
 __all__ = ["ROW_LABELS", "shape_grid", "connection_field", "ConnectionFieldArtist", "draw_singular_set",
            "ShapeCursorArtist", "style_shape_axes", "connection_fields_figure", "regimes_figure",
-           "poor_pictures_figure", "animate_gait"]
+           "poor_pictures_figure", "ConnectionFieldScene", "field_grid_axes"]
 
 ROW_LABELS = ("ξx (forward)", "ξy (sideways)", "ξθ (turning)")  # plain text: no mathtext parse cost
 
@@ -229,43 +228,93 @@ def poor_pictures_figure(system, row=2, n=6, figsize=(9, 3.4)):
     return fig, axes
 
 
-# ------------------------------------------------------------------------------ gaits
-def animate_gait(system, gait, n_frames=60, row=2, cycles=1, world_lim=None, interval=60, dpi=None):
-    """An animation (FuncAnimation): the gait on connection row ``row`` and the body moving in the plane.
+def field_grid_axes(figsize=(8, 7.5)):
+    """A 2 x 2 figure: three shape-space axes (one per connection row) and a world axes."""
+    fig, axes = new_figure(2, 2, figsize=figsize)
+    return fig, [axes[0, 0], axes[0, 1], axes[1, 0]], axes[1, 1]
 
-    Left: shape space with the field -A^row, the gait and a cursor at the current shape. Right: the
-    body at g(t) with its trail. Returns (anim, fig, traj). Use ``drawing.base.jshtml(anim)``.
-    Frames are rendered at the standard resolution (``dpi`` is accepted for compatibility and
-    ignored, so animation text is never smaller than on a live figure).
+
+def thin_labels(field_axes, body_ax, body_labels=True):
+    """Fewer texts, faster redraws: tick labels only on the outer edges of the 2 x 2 grid."""
+    top_left, top_right, bottom_left = field_axes
+    for ax in (top_left, top_right):
+        ax.tick_params(labelbottom=False)
+        ax.set_xlabel("")
+    top_right.tick_params(labelleft=False)
+    top_right.set_ylabel("")
+    if not body_labels:
+        body_ax.tick_params(labelbottom=False, labelleft=False)
+
+
+def _fmt(xi):
+    return f"ξ = ({xi[0]:+.3f}, {xi[1]:+.3f}, {xi[2]:+.3f})"
+
+
+class ConnectionFieldScene(Scene):
+    """The three rows of A as vector fields over shape space, a shape cursor, and the body there.
+
+    Values: ``alpha1``, ``alpha2`` (the shape) and ``alpha1_dot``, ``alpha2_dot`` (its velocity);
+    the fourth axes draws the body at that shape with its body velocity xi = -A(r) r_dot (3.10).
+    At a singular shape the velocity is hidden and a flag says why. Options: ``system`` (required),
+    ``n`` (field grid; default from the axes size), ``velocity_scale``.
     """
-    gait = as_gait(gait)
-    traj = trajectory(system, gait, n_frames, cycles=cycles)
-    fig, (axs, axw) = new_figure(1, 2, figsize=(8, 3.8))
-    style_shape_axes(axs, system, f"gait on {ROW_LABELS[row]}")
-    ConnectionFieldArtist(axs, system, row, color="0.5")
-    draw_singular_set(axs, system)
-    path = gait(np.linspace(0, gait.period, 200))
-    axs.plot(path[:, 0], path[:, 1], color=PALETTE["blue"], lw=2)
-    cursor = ShapeCursorArtist(axs)
-    body = SystemArtist(axw, system, traj.g[0], traj.r[0])
-    trail = TrailArtist(axw, color=PALETTE["green"])
-    size = system_extent(system)
-    lo = traj.g[:, :2].min(0) - 1.1 * size
-    hi = traj.g[:, :2].max(0) + 1.1 * size
-    c, half = (lo + hi) / 2, max(hi - lo) / 2
-    if world_lim is not None:
-        half = world_lim
-    style_world_axes(axw, half, c)
-    axw.set_title(system.name)
 
-    def update(k):
-        k = int(k)
-        body.set(traj.g[k], traj.r[k])
-        trail.set(traj.g[: k + 1, :2])
-        cursor.set(traj.r[k], gait.velocity(np.array([traj.t[k]]))[0] * 0.05)
-        return []
+    def __init__(self, system, n=None, velocity_scale=1.0, **options):
+        self.system, self.n, self.velocity_scale = system, n, velocity_scale
+        super().__init__(**options)
 
-    anim = animate(fig, update, range(n_frames), interval=interval)
-    return anim, fig, traj
+    def make_figure(self):
+        fig, self.field_axes, self.ax = field_grid_axes()
+        return fig, self.field_axes + [self.ax]
 
+    def decorate(self):
+        s = self.system
+        for i, ax in enumerate(self.field_axes):
+            style_shape_axes(ax, s, f"row {i + 1}: {ROW_LABELS[i]}")
+            draw_singular_set(ax, s)
+        style_world_axes(self.ax, 1.15 * system_extent(s))
+        self.ax.set_title("body at this shape; arrow: body velocity")
+        thin_labels(self.field_axes, self.ax, body_labels=False)
 
+    def create(self):
+        s = self.system
+        self.fields = [ConnectionFieldArtist(ax, s, i, n=self.n, color="0.35") for i, ax in enumerate(self.field_axes)]
+        self.cursors = [ShapeCursorArtist(ax) for ax in self.field_axes]
+        self.body = SystemArtist(self.ax, s)
+        self.vel = VelocityArtist(self.ax, scale=self.velocity_scale)
+        self.flag = SingularFlag(self.ax)
+        self.text = readout(self.ax, 0.02, 0.02)
+
+    def set(self, alpha1=0.0, alpha2=0.0, alpha1_dot=1.0, alpha2_dot=0.0):
+        r = np.array([alpha1, alpha2])
+        rd = np.array([alpha1_dot, alpha2_dot])
+        for c in self.cursors:
+            c.set(r, rd)
+        self.body.set(np.zeros(3), r)
+        self.flag.text.stale = True  # may appear on any change: a moving artist from the first frame
+        if self.system.is_singular(r):
+            self.xi = np.full(3, np.nan)
+            self.vel.set(np.zeros(3), self.xi)
+            self.flag.show("singular shape: A undefined")
+            self.text.set_text("ξ undefined")
+        else:
+            self.xi = self.system.body_velocity(r, rd)
+            self.flag.hide()
+            self.vel.set(np.zeros(3), self.xi)
+            self.text.set_text(_fmt(self.xi))
+
+    def replot(self, alpha1=0.0, alpha2=0.0, alpha1_dot=1.0, alpha2_dot=0.0):
+        r = np.array([alpha1, alpha2])
+        rd = np.array([alpha1_dot, alpha2_dot])
+        for i, ax in enumerate(self.field_axes):
+            ax.clear()
+            style_shape_axes(ax, self.system, ROW_LABELS[i])
+            ConnectionFieldArtist(ax, self.system, i, n=self.n)
+            draw_singular_set(ax, self.system)
+            ax.plot([r[0]], [r[1]], "o", color=PALETTE["green"])
+        self.ax.clear()
+        style_world_axes(self.ax, 2.0)
+        draw_system_naive(self.ax, self.system, np.zeros(3), r)
+        if not self.system.is_singular(r):
+            xi = self.system.body_velocity(r, rd)
+            self.ax.quiver([0], [0], [xi[0]], [xi[1]], angles="xy", scale_units="xy", scale=1.0)

@@ -8,12 +8,15 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._validate import SingularShapeError
+from ..examples import drive
 from ..groups import SE2
-from .base import BodyArtist, FrameArtist
-from .toolkit import PALETTE, PathText
+from ..systems import Ackerman, DifferentialDrive
+from .base import BodyArtist, FrameArtist, SingularFlag, TrailArtist
+from .toolkit import PALETTE, PathText, Scene, new_figure, readout
 
 __all__ = ["PART_STYLES", "SystemArtist", "system_extent", "draw_system_naive", "VelocityArtist",
-           "style_world_axes", "MovingView"]
+           "style_world_axes", "MovingView", "CarScene", "DiffDriveScene", "AckermanScene"]
 
 PART_STYLES = {
     "chassis": dict(facecolor=PALETTE["blue"], alpha=0.35, edgecolor="k"),
@@ -226,3 +229,110 @@ class MovingView:
             a.stale = True
 
 
+
+
+# ------------------------------------------------------------------------------ cars
+def _fmt(xi):
+    return f"ξ = ({xi[0]:+.3f}, {xi[1]:+.3f}, {xi[2]:+.3f})"
+
+
+class CarScene(Scene):
+    """A car whose shape moves at a constant rate (chapter 3): trail, start, body and velocity.
+
+    Subclasses give ``make_system()`` and ``shape_path(values) -> (r0, r_dot, duration)``. A
+    path that reaches a singular shape raises the flag and hides the motion (``message`` says
+    why). Options: ``system``, ``lim``.
+    """
+
+    lim = 4.0
+
+    def __init__(self, system=None, lim=None, **options):
+        self.system = system or self.make_system()
+        self.lim = float(lim or self.lim)
+        super().__init__(**options)
+
+    def make_system(self):
+        raise NotImplementedError
+
+    def shape_path(self, values):
+        raise NotImplementedError
+
+    def make_figure(self):
+        fig, ax = new_figure(figsize=(5.5, 5.0))
+        self.ax = ax
+        return fig, [ax]
+
+    def decorate(self):
+        style_world_axes(self.ax, self.lim)
+
+    def create(self):
+        ax = self.ax
+        self.trail = TrailArtist(ax, color=PALETTE["green"], lw=2)
+        self.start = SystemArtist(ax, self.system, styles={"chassis": dict(facecolor="0.8", alpha=0.4,
+                                                                           edgecolor="0.5")})
+        self.body = SystemArtist(ax, self.system)
+        self.vel = VelocityArtist(ax, scale=1.0)
+        self.flag = SingularFlag(ax)
+        self.text = readout(ax, 0.02, 0.02)
+
+    def compute(self, values):
+        r0, rd, T = self.shape_path(values)
+        traj = drive(self.system, r0, rd, T)
+        return traj, rd, self.system.body_velocity(traj.r[-1], rd)
+
+    def set(self, **values):
+        self.flag.text.stale = True  # may appear on any change: a moving artist from the first frame
+        self.text.stale = True
+        try:
+            self.traj, rd, self.xi = self.compute(values)
+        except SingularShapeError as e:
+            self.traj = None
+            self.flag.show("singular shape reached")
+            self.message = str(e)
+            self.trail.line.set_visible(False)
+            self.body.set_visible(False)
+            self.vel.set(np.zeros(3), np.full(3, np.nan))
+            self.text.set_text("")
+            return
+        self.flag.hide()
+        self.trail.line.set_visible(True)
+        self.body.set_visible(True)
+        self.start.set(self.traj.g[0], self.traj.r[0])
+        self.trail.set(self.traj.g[:, :2])
+        self.body.set(self.traj.g[-1], self.traj.r[-1])
+        self.vel.set(self.traj.g[-1], self.xi)
+        g = self.traj.g[-1]
+        self.text.set_text(f"{_fmt(self.xi)}\ng(T) = ({g[0]:+.2f}, {g[1]:+.2f}, {g[2]:+.2f})")
+
+    def replot(self, **values):
+        ax = self.ax
+        ax.clear()
+        style_world_axes(ax, self.lim)
+        try:
+            traj, rd, xi = self.compute(values)
+        except SingularShapeError:
+            ax.set_title("singular shape reached")
+            return
+        ax.plot(traj.g[:, 0], traj.g[:, 1], color=PALETTE["green"], lw=2)
+        draw_system_naive(ax, self.system, traj.g[-1], traj.r[-1])
+
+
+class DiffDriveScene(CarScene):
+    """Differential-drive car (3.8), (3.29): values ``wheel1_speed``, ``wheel2_speed``, ``duration``."""
+
+    def make_system(self):
+        return DifferentialDrive(wheel_radius=0.3, half_width=0.5)
+
+    def shape_path(self, v):
+        return np.zeros(2), np.array([v["wheel1_speed"], v["wheel2_speed"]]), v["duration"]
+
+
+class AckermanScene(CarScene):
+    """Kinematic-bicycle car (3.9): values ``wheel_speed``, ``steering``, ``steering_speed``, ``duration``."""
+
+    def make_system(self):
+        return Ackerman(wheel_radius=0.3, wheelbase=1.0)
+
+    def shape_path(self, v):
+        return (np.array([0.0, v["steering"]]), np.array([v["wheel_speed"], v["steering_speed"]]),
+                v["duration"])

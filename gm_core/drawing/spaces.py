@@ -13,7 +13,7 @@ from matplotlib.collections import LineCollection
 from ..manifolds import chart_speed, cylinder_xyz, polar_chart_velocity, sphere_xyz, torus_xyz, wrap_segments
 from .base import SingularFlag
 from .toolkit import (PALETTE, TWO_PI, PathText, Scene, arrow, axis_label, figure, margins, new_figure,
-                      plain_3d, plane, set_arrows, title, wire, xticks, yticks)
+                      plain_3d, set_arrows, title, wire, xticks, yticks)
 
 __all__ = ["configuration_space_gallery", "flattened_views", "TorusPathScene", "LoopsScene",
            "PoleChartScene"]
@@ -382,14 +382,11 @@ class PoleChartScene(Scene):
         self.pt_p.set_visible(north)
         self.arrow_p.set_visible(north)
         if north:
-            X, Y = np.cos(lat) * np.cos(lon), np.cos(lat) * np.sin(lon)
-            # d/dt of (X, Y) for dlat = cos h, and the east component sin h (no 1/cos(lat) here)
-            dX = -np.sin(lat) * np.cos(h)
-            dY = np.sin(h)
+            (X, Y), v = polar_chart_velocity(lat, lon, h)
             self.pt_p.set_data([X], [Y])
-            self.polar_vec = self.ARROW * np.array([dX, dY])
+            self.polar_vec = self.ARROW * v
             set_arrows(self.arrow_p, [X, Y], self.polar_vec)
-            self.p_note.set_text(f"chart speed {np.hypot(dX, dY):.2f} (finite)")
+            self.p_note.set_text(f"chart speed {np.hypot(*v):.2f} (finite)")
         else:
             self.p_note.set_text("(walker is on the southern half)")
 

@@ -24,7 +24,6 @@ import pkgutil
 import time
 
 import ipywidgets as W
-import numpy as np
 
 __all__ = ["Panel", "ScenePanel", "PANELS", "register", "all_panels", "slider", "int_slider"]
 
@@ -64,6 +63,9 @@ class Panel:
         self.controls: dict[str, W.ValueWidget] = {}
         self.fig = None
         self.build()
+        # The browser shows each slider on its grid (min + k * step) and may echo that rounded
+        # position when it first renders: the exact starting values are kept (see set()).
+        self._exact = {k: c.value for k, c in self.controls.items() if getattr(c, "step", None)}
         for c in self.controls.values():
             c.continuous_update = True
             c.observe(self._on_change, names="value")
@@ -282,12 +284,7 @@ def int_slider(value, lo, hi, description=""):
 
 
 def slider(value, lo, hi, step=0.01, description="", readout_format=".2f", **kw):
-    """A FloatSlider with the course's defaults (continuous updates, readable description).
-
-    The initial value is snapped to the slider's grid (min + k * step), so the browser has
-    nothing to correct and sends no echo when it first renders the slider.
-    """
-    value = min(max(lo + round((value - lo) / step) * step, lo), hi) if step else value
-    return W.FloatSlider(value=round(value, 12), min=lo, max=hi, step=step, description=description,
+    """A FloatSlider with the course's defaults (continuous updates, readable description)."""
+    return W.FloatSlider(value=value, min=lo, max=hi, step=step, description=description,
                          readout_format=readout_format, continuous_update=True,
                          style={"description_width": "initial"}, **kw)
