@@ -23,9 +23,11 @@ ROW_LABELS = ("ξx (forward)", "ξy (sideways)", "ξθ (turning)")  # plain text
 
 # ------------------------------------------------------------------------------ fields
 def shape_grid(system, n=21, limits=None):
-    """(a1, a2, r): a n x n grid over the system's shape window; r has shape (n, n, 2)."""
+    """(a1, a2, r): a grid over the system's shape window, ``n`` points per side (or ``(n1, n2)``:
+    n1 along alpha1, n2 along alpha2); r has shape (n2, n1, 2)."""
     (lo1, hi1), (lo2, hi2) = limits or system.shape_limits
-    a1, a2 = np.meshgrid(np.linspace(lo1, hi1, n), np.linspace(lo2, hi2, n), indexing="xy")
+    n1, n2 = (n, n) if np.ndim(n) == 0 else n
+    a1, a2 = np.meshgrid(np.linspace(lo1, hi1, int(n1)), np.linspace(lo2, hi2, int(n2)), indexing="xy")
     return a1, a2, np.stack([a1, a2], -1)
 
 
@@ -56,12 +58,24 @@ def connection_field(system, row, n=21, limits=None):
 MIN_ARROW_PX = 25.0
 
 
-def auto_grid(ax, lo=5, hi=15):
-    """Grid points per side for a field on ``ax``: spacing >= MIN_ARROW_PX / 0.9 pixels."""
+def auto_grid(ax, limits=None, lo=5, hi=15):
+    """Grid points ``(n1, n2)`` for a field over ``limits`` ((lo1, hi1), (lo2, hi2)) drawn on
+    ``ax`` with equal aspect: the same spacing both ways, at least MIN_ARROW_PX / 0.9 pixels
+    (at least ``lo`` points along the longer side, at most ``hi`` along either)."""
     fig = ax.figure
     bbox = ax.get_position(original=True)
-    px = min(bbox.width * fig.get_figwidth(), bbox.height * fig.get_figheight()) * fig.dpi
-    return int(np.clip(px // (MIN_ARROW_PX / 0.9 + 2) + 1, lo, hi))
+    w, h = bbox.width * fig.get_figwidth() * fig.dpi, bbox.height * fig.get_figheight() * fig.dpi
+    if limits is None:
+        (a0, a1), (b0, b1) = ax.get_xlim(), ax.get_ylim()
+    else:
+        (a0, a1), (b0, b1) = limits
+    pa, pb = abs(a1 - a0) or 1.0, abs(b1 - b0) or 1.0
+    unit = min(w / pa, h / pb)                      # pixels per data unit (equal aspect)
+    gap = MIN_ARROW_PX / 0.9 + 2                    # pixels between grid points
+    n_long = int(np.clip(unit * max(pa, pb) // gap + 1, lo, hi))
+    step = max(pa, pb) / (n_long - 1)               # data units between grid points
+    n_short = int(np.clip(round(min(pa, pb) / step) + 1, 2, hi))
+    return (n_long, n_short) if pa >= pb else (n_short, n_long)
 
 
 class ConnectionFieldArtist:
@@ -75,7 +89,7 @@ class ConnectionFieldArtist:
     """
 
     def __init__(self, ax, system, row, n=None, limits=None, clip=3.0, color="k", **kw):
-        n = auto_grid(ax) if n is None else int(n)
+        n = auto_grid(ax, limits or system.shape_limits) if n is None else n
         self.ax, self.n, self.limits, self.clip, self.row = ax, n, limits, float(clip), row
         self.system = system
         a1, a2, U, V = connection_field(system, row, n, limits)
@@ -93,10 +107,13 @@ class ConnectionFieldArtist:
         a1, a2, U, V = connection_field(self.system, self.row, self.n, self.limits)
         self.quiver.set_offsets(np.column_stack([a1.ravel(), a2.ravel()]))
         mag = np.ma.sqrt(U ** 2 + V ** 2)
-        spacing = min(np.ptp(a1) / (self.n - 1), np.ptp(a2) / (self.n - 1))
+        n1, n2 = a1.shape[1], a1.shape[0]
+        spacing = min(np.ptp(a1) / (n1 - 1), np.ptp(a2) / (n2 - 1))
         nonzero = np.ma.masked_equal(mag, 0.0)
         med = float(np.ma.median(nonzero)) if nonzero.count() else 0.0
-        cap = self.clip * med if med > 0 else (float(mag.max()) if mag.count() else 1.0)
+        top = float(mag.max()) if mag.count() else 0.0
+        # the longest drawn arrow is 0.9 grid spacings: the largest arrow, or clip x the median
+        cap = min(self.clip * med, top) if med > 0 else (top or 1.0)
         cap = cap if cap > 0 else 1.0
         self.factor = 0.9 * spacing / cap
         shrink = np.ma.where(mag > cap, cap / np.ma.where(mag > 0, mag, 1.0), 1.0)
