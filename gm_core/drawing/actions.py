@@ -12,7 +12,8 @@ from matplotlib.collections import LineCollection, PolyCollection
 from ..axioms import AXIOMS, axiom_residuals, powers
 from ..groups import ALL_GROUPS, S1, SE2, R2xS1
 from .base import BodyArtist, FrameArtist
-from .toolkit import PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, margins, new_figure, plane, set_arrows, title, xticks, yticks
+from .toolkit import (PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, margins, new_figure, plane, set_arrows,
+                      title, xticks, yticks)
 
 __all__ = ["BODY", "group_label", "GroupAxiomsScene", "SlideRuleScene", "CircleIsoScene",
            "LeftRightActionScene", "ForwardLeftScene", "BodyPointsScene"]
@@ -169,7 +170,8 @@ class CircleIsoScene(Scene):
 
     def create(self):
         ax_s, ax_r = self.axes
-        self.pts = ax_s.scatter([0, 0, 0], [0, 0, 0], c=[PALETTE["blue"], PALETTE["orange"], PALETTE["vermillion"]], s=[50, 50, 90],
+        self.pts = ax_s.scatter([0, 0, 0], [0, 0, 0], c=[PALETTE["blue"], PALETTE["orange"], PALETTE["vermillion"]],
+                                s=[50, 50, 90],
                                 zorder=5)
         self.vecs = ArrowSet(ax_r, color=[PALETTE["blue"], PALETTE["orange"], PALETTE["vermillion"]], n=3, width=0.012)
         self.check = ArrowSet(ax_r, color="k", width=0.005)

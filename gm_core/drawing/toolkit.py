@@ -30,7 +30,8 @@ from matplotlib.transforms import blended_transform_factory as _blend
 
 __all__ = [
     "DPI", "MAX_WIDTH_IN", "MIN_TEXT_PX", "MIN_TEXT_PT", "PALETTE", "STYLE", "apply_style",
-    "new_figure", "figure", "margins", "freeze_layout", "PathText", "readout", "ArrowSet", "arrow", "set_arrows", "title",
+    "new_figure", "figure", "margins", "freeze_layout", "PathText", "readout", "ArrowSet", "arrow", "set_arrows",
+    "title",
     "xticks", "yticks", "axis_label", "plane", "plain_3d", "wire", "Scene", "TWO_PI",
 ]
 
