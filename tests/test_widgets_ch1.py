@@ -379,3 +379,22 @@ def test_binomial_table_limits():
             assert abs(ratio - inv_fact) < 1e-3
     n, k, c, ratio, inv_fact, draft = rows[2]   # n = 10, k = 2
     assert c == 45 and draft == 50.0             # the draft's n^k/k! is not C(n, k)
+
+
+def test_jshtml_page_has_a_sized_first_frame_and_waits_for_its_elements():
+    """The player page shows frame 0 in the <img> itself, at the figure's pixel width (<= 900),
+    and starts the player only once its elements are in the document (issue 12: an animation
+    laid out at 0 x 0 in JupyterLab)."""
+    import base64
+    import re
+    import struct
+
+    from gm_core.drawing.base import jshtml
+
+    html = jshtml(D.puck_vs_arc_animation(frames=3)).data
+    img = re.search(r'<img id="_anim_img\w+" src="data:image/png;base64,([^"]+)" width="(\d+)"', html)
+    assert img, "first frame not embedded in the <img>"
+    png = base64.b64decode(img.group(1))
+    w, h = struct.unpack(">II", png[16:24])
+    assert int(img.group(2)) == w <= 900 and h > 0
+    assert "document.getElementById(img_id) === null" in html

@@ -136,14 +136,48 @@ def animate(fig, update, frames, interval=50, **kw):
     return anim
 
 
+def _robust_jshtml(html, width=None):
+    """Make matplotlib's to_jshtml page robust in JupyterLab (plain string edits of its output).
+
+    * the first frame becomes the ``<img>``'s own ``src`` (with its pixel width), so the image has
+      its size and a picture even before -- or without -- the player's script running;
+    * the player starts once its elements are in the document: JupyterLab may render an output
+      before attaching it (off-screen cells), and the stock script then finds no element and
+      leaves the image empty (0 x 0).
+    """
+    import re
+
+    m = re.search(r'frames\[0\] = "(.*?)"\n', html, flags=re.S)
+    if m:
+        first = m.group(1).replace("\\\n", "")
+        size = f' width="{int(width)}"' if width else ""
+        html = re.sub(r'<img id="(_anim_img\w+)">', lambda k: f'<img id="{k.group(1)}" src="{first}"{size} '
+                      'style="max-width: 100%; height: auto;">', html, count=1)
+    html = re.sub(r"setTimeout\(function\(\) \{\s*(anim\w+ = new Animation\(.*?\);)\s*\}, 0\);",
+                  lambda k: ("(function start(tries) {\n"
+                             "        if (document.getElementById(img_id) === null) {\n"
+                             "            if (tries < 6000) { setTimeout(function() { start(tries + 1); }, 100); }\n"
+                             "            return;\n"
+                             "        }\n"
+                             f"        {k.group(1)}\n"
+                             "    })(0);"), html, count=1, flags=re.S)
+    return html
+
+
 def jshtml(anim, default_mode="loop"):
-    """An IPython HTML object that plays ``anim`` in the page, with no live kernel (to_jshtml)."""
+    """An IPython HTML object that plays ``anim`` in the page, with no live kernel (to_jshtml).
+
+    Frames are rendered at the figure standard's resolution; the page shows its first frame at
+    full size even before the player script runs (see :func:`_robust_jshtml`).
+    """
     from IPython.display import HTML
 
     fig = getattr(anim, "gm_figure", None)
+    width = None
     if fig is not None:
         fig.set_dpi(DPI)          # frames at the standard's resolution: 1 inch = 100 CSS px
-    html = anim.to_jshtml(default_mode=default_mode)
+        width = fig.get_figwidth() * DPI
+    html = _robust_jshtml(anim.to_jshtml(default_mode=default_mode), width)
     if fig is not None:
         plt.close(fig)
     return HTML(html)
