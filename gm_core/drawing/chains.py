@@ -14,7 +14,7 @@ from .. import chains as C
 from ..chains import accessible_circle, circle_constraints, sample_accessible_manifold
 from ..groups import SE2
 from .base import FrameArtist
-from .toolkit import PALETTE, Scene, new_figure, readout
+from .toolkit import PALETTE, Scene, new_figure, readout, square_axes
 
 __all__ = ["link_outline", "ChainArtist", "ArrowsArtist", "draw_chain_naive", "draw_accessible_manifold",
            "square_axes", "ArmScene", "OffsetRPArmScene", "MobileChainScene", "BetaFrameScene",
@@ -168,14 +168,6 @@ def draw_accessible_manifold(ax3d, n=60, rng=None):
 
 
 # ====================================================================== scenes of chapter 2
-def square_axes(ax, lim, center=(0.0, 0.0)):
-    """Square world axes of half-width ``lim`` with a light grid."""
-    ax.set_xlim(center[0] - lim, center[0] + lim)
-    ax.set_ylim(center[1] - lim, center[1] + lim)
-    ax.set_aspect("equal")
-    ax.grid(True, alpha=0.3)
-
-
 class _ChainScene(Scene):
     """A chain on one square axes; subclasses set ``lim`` and create the chain's artists."""
 

@@ -13,7 +13,7 @@ from ..examples import drive
 from ..groups import SE2
 from ..systems import Ackerman, DifferentialDrive
 from .base import BodyArtist, FrameArtist, SingularFlag, TrailArtist
-from .toolkit import PALETTE, PathText, Scene, new_figure, readout
+from .toolkit import PALETTE, PathText, Scene, new_figure, readout, square_axes
 
 __all__ = ["PART_STYLES", "SystemArtist", "system_extent", "draw_system_naive", "VelocityArtist",
            "style_world_axes", "MovingView", "CarScene", "DiffDriveScene", "AckermanScene"]
@@ -111,16 +111,9 @@ class VelocityArtist:
 
 
 def style_world_axes(ax, half, center=(0.0, 0.0)):
-    """Square world axes of half-width ``half`` about ``center``, light grid, few ticks."""
-    from matplotlib.ticker import MaxNLocator
-
-    ax.set_xlim(center[0] - half, center[0] + half)
-    ax.set_ylim(center[1] - half, center[1] + half)
-    ax.set_aspect("equal")
-    ax.grid(True, alpha=0.3)
-    ax.xaxis.set_major_locator(MaxNLocator(4))
-    ax.yaxis.set_major_locator(MaxNLocator(4))
-    ax.tick_params(labelsize=8, pad=1)
+    """Square world axes of half-width ``half`` about ``center``, light grid, four ticks per axis."""
+    square_axes(ax, half, center, nticks=4)
+    ax.tick_params(pad=2)
 
 
 # ------------------------------------------------------------------------------ moving world view

@@ -32,7 +32,7 @@ __all__ = [
     "DPI", "MAX_WIDTH_IN", "MIN_TEXT_PX", "MIN_TEXT_PT", "PALETTE", "STYLE", "apply_style",
     "new_figure", "figure", "margins", "freeze_layout", "PathText", "readout", "ArrowSet", "arrow", "set_arrows",
     "title",
-    "xticks", "yticks", "axis_label", "plane", "plain_3d", "wire", "Scene", "TWO_PI",
+    "xticks", "yticks", "axis_label", "plane", "square_axes", "plain_3d", "wire", "Scene", "TWO_PI",
 ]
 
 TWO_PI = 2.0 * np.pi
@@ -415,6 +415,20 @@ def plane(ax, lim=2.5, grid=True, step=1.0):
         segs = [[(v, -lim), (v, lim)] for v in k] + [[(-lim, v), (lim, v)] for v in k]
         colors = ["0.6" if v == 0 else "0.88" for v in k] * 2
         ax.add_collection(LineCollection(segs, colors=colors, linewidths=0.7, zorder=0))
+
+
+def square_axes(ax, half, center=(0.0, 0.0), nticks=None):
+    """Square world axes of half-width ``half`` about ``center`` with a light grid
+    (``nticks``: at most that many ticks per axis, fewer labels redraw faster)."""
+    ax.set_xlim(center[0] - half, center[0] + half)
+    ax.set_ylim(center[1] - half, center[1] + half)
+    ax.set_aspect("equal")
+    ax.grid(True, alpha=0.3)
+    if nticks:
+        from matplotlib.ticker import MaxNLocator
+
+        ax.xaxis.set_major_locator(MaxNLocator(nticks))
+        ax.yaxis.set_major_locator(MaxNLocator(nticks))
 
 
 def plain_3d(ax, lim=None, labels=("x", "y", "z"), axes_lines=True):
