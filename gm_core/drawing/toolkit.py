@@ -122,10 +122,12 @@ def freeze_layout(fig):
     every full draw could shift the axes when a title's text changes. Called by every panel
     after its first update.
     """
+    from matplotlib.layout_engine import PlaceHolderLayoutEngine
+
     engine = fig.get_layout_engine()
-    if engine is not None and hasattr(engine, "execute"):
+    if engine is not None and not isinstance(engine, PlaceHolderLayoutEngine):
         engine.execute(fig)
-        fig.set_layout_engine(None)
+        fig.set_layout_engine("none")    # a placeholder engine: keeps the positions, never re-runs
     return fig
 
 
