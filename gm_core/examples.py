@@ -80,18 +80,10 @@ def binomial_table(ns=(5, 10, 100, 1000), kmax=5):
 
 # --------------------------------------------------------------------- constant-rate shapes
 def constant_rate_gait(r0, r_dot, duration):
-    """The shape path r(t) = r0 + t r_dot, 0 <= t <= duration, as a :class:`~gm_core.locomotion.Gait`.
+    """The open shape path r(t) = r0 + t r_dot as a Gait; the same as :func:`gm_core.gaits.constant_rate_path`."""
+    from .gaits import constant_rate_path
 
-    (Not closed: :func:`gm_core.locomotion.trajectory` integrates it over one "period" =
-    ``duration``.)
-    """
-    from .locomotion import Gait
-
-    r0 = as_array(r0, "r0", what=" (starting shape)")
-    rd = as_array(r_dot, "r_dot", r0.shape[-1:], what=" (shape velocity, same length as r0)")
-    duration = float(check_positive(duration, "duration"))
-    return Gait(lambda t: r0 + np.asarray(t, float)[..., None] * rd, duration,
-                lambda t: np.broadcast_to(rd, np.shape(t) + rd.shape), name="constant rate")
+    return constant_rate_path(r0, r_dot, duration)
 
 
 def drive(system, r0, r_dot, duration, n_frames=81):
