@@ -106,10 +106,12 @@ def slide_rule(a=2.0, b=3.0):
     """Two log scales sliding past each other: set a (slide) and b (cursor), read a*b on D."""
     import ipywidgets as W
 
-    sa = W.FloatLogSlider(value=a, base=10, min=0, max=1, step=0.001, description="a (slide)",
-                          readout_format=".3f", continuous_update=True)
-    sb = W.FloatLogSlider(value=b, base=10, min=0, max=1, step=0.001, description="b (cursor)",
-                          readout_format=".3f", continuous_update=True)
+    # Linear sliders on 1..10 in steps of 0.01: the values a student types or drags to (2, 3, 2.5)
+    # are exact, so the rule reads 2 x 3 = 6 (a log-spaced slider rounds 2 to 10**0.301 = 1.9999).
+    sa = W.FloatSlider(value=a, min=1.0, max=10.0, step=0.01, description="a (slide)",
+                       readout_format=".2f", continuous_update=True)
+    sb = W.FloatSlider(value=b, min=1.0, max=10.0, step=0.01, description="b (cursor)",
+                       readout_format=".2f", continuous_update=True)
     view = W.HTML()
     text = W.HTML()
 
