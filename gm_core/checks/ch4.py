@@ -106,11 +106,11 @@ ex4_1 = Exercise("4.1", "Which gait moves further? Reading a curvature map", [
     CustomPart(
         "b", "The x component of the Stokes estimate for gait A, from your own area sum (a number)",
         lambda: [_read_number], _judge_41b,
-        hints=["Evaluate constraint_curvature(swimmer(), grid) on a fine grid of cell centres over "
+        hints=["Evaluate constraint_curvature(LowReSwimmer(), grid) on a fine grid of cell centres over "
                "the square [-1, 1]^2.",
                "Keep the points with a1^2 + a2^2 <= 1, sum their x curvature (row 0) and multiply "
                "by the area of one cell."],
-        solution_text="About -0.156 (stokes_estimate(swimmer(), circle_gait(1.0))[0]); the exact "
+        solution_text="About -0.156 (stokes_estimate(LowReSwimmer(), circle_gait(1.0))[0]); the exact "
                       "net x displacement is about -0.149.",
         reference=-0.1557, wrong=[0.1557, -0.1485, 0.0, -0.1557 / 0.01 ** 2, -0.17],
         kind="number"),
