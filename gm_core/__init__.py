@@ -1,9 +1,9 @@
 """gm_core: the numeric core of the geometric mechanics course companion.
 
 The mathematics (this package's top level, ``groups``, ``calculus``, ``fields``, ``chains``,
-``locomotion``, ``systems``) uses numpy and scipy only. Drawing (``gm_core.drawing``) and widgets
-(``gm_core.widgets``) sit on top and are imported only when asked for, so the flow runs one way:
-math -> drawing -> widgets -> notebooks.
+``locomotion``, ``systems``, ``geometry``) uses numpy and scipy only. Drawing
+(``gm_core.drawing``) and widgets (``gm_core.widgets``) sit on top and are imported only when
+asked for, so the flow runs one way: math -> drawing -> widgets -> notebooks.
 """
 from __future__ import annotations
 
@@ -18,8 +18,8 @@ __all__ = [
 ]
 __version__ = "0.1.0"
 
-_SUBMODULES = {"groups", "calculus", "fields", "chains", "locomotion", "systems", "checks",
-               "drawing", "widgets", "errata", "testing"}
+_SUBMODULES = {"groups", "calculus", "fields", "chains", "locomotion", "systems", "geometry",
+               "checks", "drawing", "widgets", "errata", "testing"}
 
 
 def __getattr__(name):

@@ -175,3 +175,27 @@ def test_gait_through_a_singular_shape_is_refused():
         stokes_estimate(KinematicSnake(), circle_gait(0.5, (0.1, 0.0)))
     with pytest.raises(SingularShapeError, match="singular"):
         body_velocity_integral(KinematicSnake(), circle_gait(0.5, (0.1, 0.0)))
+
+
+# -- fixed resolution (the interactive panels' fast path) --------------------------------------
+@pytest.mark.parametrize("gait", GAITS, ids=lambda g: g.name)
+def test_fixed_samples_agree_with_refined_and_exact(gait):
+    """samples=(64, 12) / samples=256: the same formula once; theta against the exact net rotation."""
+    for system in (LowReSwimmer(), HighReSwimmer()):
+        fast = stokes_estimate(system, gait, samples=(64, 12), check=False)
+        np.testing.assert_allclose(fast, stokes_estimate(system, gait), atol=1e-7)
+        assert abs(fast[2] - net_displacement(system, gait)[2]) < 1e-8      # independent route
+        bvi = body_velocity_integral(system, gait, samples=256, check=False)
+        np.testing.assert_allclose(bvi, body_velocity_integral(system, gait), atol=1e-8)
+
+
+def test_fixed_samples_bad_input():
+    s, g = LowReSwimmer(), circle_gait(0.5)
+    for bad in ((64,), (64, 1), 64.0, "64", (True, 8)):
+        with pytest.raises(ValueError, match="samples must be"):
+            stokes_estimate(s, g, samples=bad)
+    for bad in ((64, 8), 1, 2.5):
+        with pytest.raises(ValueError, match="samples must be"):
+            body_velocity_integral(s, g, samples=bad)
+    with pytest.raises(SingularShapeError, match="singular"):
+        stokes_estimate(KinematicSnake(), circle_gait(0.5, (0.1, 0.0)), samples=(64, 8))

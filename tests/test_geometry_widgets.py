@@ -34,9 +34,9 @@ def figure_standard(fig):
     assert fig.get_layout_engine() is not None
 
 
-def test_panels_registered_and_update_in_place(stokes_panel):
+def test_panels_registered_and_update_in_place():
     assert {"GaitStokesPanel", "FrameFieldsPanel"} <= set(PANELS)
-    for p in (stokes_panel, Wc.FrameFieldsPanel()):
+    for p in (Wc.GaitStokesPanel(), Wc.FrameFieldsPanel()):  # fresh: naive_update clears the axes
         fig = p.fig
         n = [len(ax.get_children()) for ax in fig.axes]
         p.update(**p.sample_values(np.random.default_rng(0)))
@@ -52,11 +52,20 @@ def test_bars_show_exact_stokes_and_integral(stokes_panel, frame):
     p.set(**v)
     system = p.frames[frame]
     gait = Wc.shaped_gait(0.3, -0.2, 0.9, 0.5, 0.4, 0.25)
+    # the panel's fixed interactive resolutions against the library's refined (adaptive) values
     want = [net_displacement(system, gait), stokes_estimate(system, gait), body_velocity_integral(system, gait)]
-    for bars, w in zip(p.bars.values(), want):
-        np.testing.assert_allclose([r.get_height() for r in bars], w, atol=1e-6)
-    np.testing.assert_allclose(p.bars["exact g(T)"][2].get_height(), p.bars["Stokes ∬D(−A)"][2].get_height(),
-                               atol=1e-8)
+    for shown, w in zip(p.values_shown, want):
+        np.testing.assert_allclose(shown, w, atol=1e-7)
+    np.testing.assert_allclose(p.values_shown[0][2], p.values_shown[1][2], atol=1e-8)  # theta row is exact
+    # bars: each row divided by its largest |value|, the axis fixed (so the panel can blit)
+    heights = np.array([[r.get_height() for r in bars] for bars in p.bars.values()])
+    top = np.abs(np.array(want)).max(axis=0)
+    big = top > 1e-3 * top.max()
+    np.testing.assert_allclose(heights[:, big], (np.array(want) / top)[:, big], atol=1e-6)
+    assert np.abs(heights).max() <= 1.0 + 1e-12 and p.axb.get_ylim() == (-1.1, 1.45)
+    for w in want:   # the numbers table shows all nine values
+        for x in w:
+            assert f"{x:+.4f}" in p.numbers.value or f"{x:+.4f}" == "-0.0000"
     line = np.column_stack(p.gait_artist.line.get_data())
     np.testing.assert_allclose(line, gait(np.linspace(0, 1, line.shape[0])), atol=1e-12)
     img = p.map.image.get_array()
@@ -69,8 +78,20 @@ def test_gait_leaving_the_map_raises_the_flag(stokes_panel):
     p.set(c1=1.5, c2=1.5, a=1.5, b=1.5, frame="minimum perturbation")
     assert p.flag.visible
     assert all(r.get_height() == 0 for bars in p.bars.values() for r in bars)
+    assert "singular" in p.numbers.value and p.values_shown is None
     p.set(c1=0.0, c2=0.0, a=0.5, b=0.5)
-    assert not p.flag.visible
+    assert not p.flag.visible and "exact g(T)" in p.numbers.value
+
+
+def test_stokes_panel_widget_has_the_numbers(stokes_panel):
+    box = stokes_panel.widget
+    assert stokes_panel.numbers in box.children and stokes_panel.widget is box
+
+
+def test_bar_heights_keep_a_vanishing_row_small():
+    h = Wc.GaitStokesPanel.bar_heights([0.2, 1e-15, -0.1], [0.19, -2e-15, -0.1], [0.1, 0.0, -0.05])
+    np.testing.assert_allclose(h[:, 0], [1.0, 0.95, 0.5])
+    assert np.abs(h[:, 1]).max() < 1e-10 and np.allclose(h[:, 2], [-1, -1, -0.5])
 
 
 def test_frame_fields_show_minus_the_connection():

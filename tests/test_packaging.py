@@ -56,7 +56,7 @@ def test_lower_bounds_everywhere():
 def test_math_does_not_import_drawing_libraries():
     code = ("import sys, gm_core, gm_core.groups\n"
             "import importlib\n"
-            "for m in ('calculus', 'fields', 'chains', 'locomotion', 'systems'):\n"
+            "for m in ('calculus', 'fields', 'chains', 'locomotion', 'systems', 'geometry'):\n"
             "    try:\n        importlib.import_module('gm_core.' + m)\n"
             "    except ModuleNotFoundError as e:\n"
             "        if e.name != 'gm_core.' + m: raise\n"

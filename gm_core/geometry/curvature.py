@@ -184,7 +184,7 @@ def _stokes_once(system, gait, nt, ns, center, method):
     return (radial * cross[:, None]).sum(axis=0) * (T / nt)
 
 
-def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True):
+def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True, samples=None):
     """Area integral (3,) of the constraint curvature over the region the gait encloses.
 
     The region is counted with its winding number, so a clockwise gait gives the negative
@@ -193,12 +193,19 @@ def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True):
     ``oint (int_0^1 F(c + s (r - c)) s ds) (r - c) x r_dot dt``, trapezoidal in t (periodic)
     and Gauss-Legendre in s, refined until two results agree to ``rtol``. The theta row
     equals the exact net rotation; (x, y) are the leading-order estimate of g(T).
+
+    ``samples=(nt, ns)`` evaluates the same formula once at that fixed resolution instead of
+    refining (for interactive use: ``(64, 12)`` costs a few ms and, for gaits with a few Fourier
+    harmonics, agrees with the refined value to 1e-7 or better; tests/test_geometry.py checks it).
     """
     check_system(system)
     gait = closed_gait(gait, system)
     if check:
         check_gait(system, gait)
     center = _centroid(gait(np.linspace(0, gait.period, 1024, endpoint=False)))
+    if samples is not None:
+        nt, ns = _fixed_samples(samples, 2)
+        return _stokes_once(system, gait, nt, ns, center, method)
     nt, ns = 256, 16
     prev = _stokes_once(system, gait, nt, ns, center, method)
     while True:
@@ -209,11 +216,11 @@ def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True):
         prev = cur
 
 
-def body_velocity_integral(system, gait, *, rtol=1e-12, check=True):
+def body_velocity_integral(system, gait, *, rtol=1e-12, check=True, samples=None):
     """The naive estimate (3,): ``int_0^T xi dt = -oint A(r) dr`` (ignores the Lie bracket).
 
     Trapezoidal rule over the period (spectrally accurate for smooth periodic gaits), doubled
-    until two results agree to ``rtol``.
+    until two results agree to ``rtol``; ``samples=n`` uses n equal time steps once instead.
     """
     check_system(system)
     gait = closed_gait(gait, system)
@@ -228,6 +235,8 @@ def body_velocity_integral(system, gait, *, rtol=1e-12, check=True):
             raise SingularShapeError(f"the gait reaches a singular shape of {system.name}")
         return xi.sum(axis=0) * (T / n)
 
+    if samples is not None:
+        return once(_fixed_samples(samples, 1)[0])
     n = 512
     prev = once(n)
     while True:
@@ -236,6 +245,16 @@ def body_velocity_integral(system, gait, *, rtol=1e-12, check=True):
         if np.max(np.abs(cur - prev)) <= rtol * max(1.0, np.max(np.abs(cur))) or n >= 2 ** 17:
             return cur
         prev = cur
+
+
+def _fixed_samples(samples, count):
+    """``samples`` as ``count`` integers >= 2 (one int is accepted for count 1)."""
+    vals = np.atleast_1d(np.asarray(samples, dtype=object))
+    if vals.shape != (count,) or not all(isinstance(v, (int, np.integer)) and not isinstance(v, bool)
+                                         and v >= 2 for v in vals):
+        want = "an integer >= 2" if count == 1 else f"{count} integers >= 2, e.g. (64, 8)"
+        raise ValueError(f"samples must be {want}; got {samples!r}")
+    return [int(v) for v in vals]
 
 
 def closed_gait(gait, system=None, name="gait"):
