@@ -128,6 +128,7 @@ class RelativePoseScene(Scene):
     def decorate(self):
         square_axes(self.ax, self.lim)
         self.ax.set_xlim(-self.lim + 0.6, self.lim + 0.6)
+        self.notes.set_axis_off()
 
     def create(self):
         ax = self.ax
@@ -208,7 +209,7 @@ class BetaVelocityScene(_ThreeLinkScene):
     """
 
     figsize = (8.4, 4.4)
-    SCALE = 1.5
+    SCALE = 1.2
     COLORS = {"carried": PALETTE["blue"], "shape": PALETTE["orange"], "body": "k"}
 
     def make_figure(self):
@@ -218,6 +219,7 @@ class BetaVelocityScene(_ThreeLinkScene):
     def decorate(self):
         self.lim = 0.55 * sum(self.lengths)
         square_axes(self.ax, self.lim)
+        self.notes.set_axis_off()
 
     def create(self):
         ax = self.ax

@@ -51,6 +51,7 @@ class JacobianStepScene(Scene):
 
     def decorate(self):
         square_axes(self.ax, self.lim, center=(0.4, 0.4))
+        self.notes.set_axis_off()
 
     def create(self):
         ax, n = self.ax, self.n
@@ -129,7 +130,7 @@ class JacobianStepScene(Scene):
             f"  Ad⁻¹(f_j⁻¹ {tipname}) X_j dq_j/dt  (2.37)",
         ] + rows + [
             "",
-            f"sum of columns 1..{k} (black)",
+            f"sum of columns 1..{k} (black)" if k else "sum: no columns yet",
             f"     {_fmt(self.partial)}",
             "J dq/dt, all joints at once (grey)",
             f"     {_fmt(self.full)}",

@@ -257,11 +257,11 @@ class BetaVelocityPanel(ScenePanel):
         return {
             "alpha1": slider(0.8, -2.5, 2.5, description="α₁"),
             "alpha2": slider(0.4, -2.5, 2.5, description="α₂"),
-            "alpha1_dot": slider(1.2, -1.5, 1.5, description="α₁ rate"),
-            "alpha2_dot": slider(0.6, -1.5, 1.5, description="α₂ rate"),
-            "xi_x": slider(0.4, -1.0, 1.0, description="ξ₂ x"),
-            "xi_y": slider(0.0, -1.0, 1.0, description="ξ₂ y"),
-            "xi_theta": slider(0.4, -1.0, 1.0, description="ξ₂ θ"),
+            "alpha1_dot": slider(1.2, -1.2, 1.2, description="α₁ rate"),
+            "alpha2_dot": slider(0.6, -1.2, 1.2, description="α₂ rate"),
+            "xi_x": slider(0.4, -0.7, 0.7, description="ξ₂ x"),
+            "xi_y": slider(0.0, -0.7, 0.7, description="ξ₂ y"),
+            "xi_theta": slider(0.4, -0.7, 0.7, description="ξ₂ θ"),
         }
 
 
