@@ -21,13 +21,14 @@ import numpy as np
 
 from ._integers import check_int
 from ._validate import as_array, check_positive
-from .groups import SE2
+from .groups import SE2, matvec
 from .kinematics import (METHODS, Chain, Joint, Link, MobileChain, _lengths, finite_difference_jacobians,
-                         world_to_body_jacobian)
+                         relative_pose, transported_columns, world_to_body_jacobian)
 
 __all__ = [
     "Joint", "Link", "Chain", "MobileChain", "METHODS", "world_to_body_jacobian",
-    "finite_difference_jacobians", "single_link_frames", "rr_arm_frames", "rr_arm_jacobian",
+    "finite_difference_jacobians", "relative_pose", "transported_columns", "pin_constraints", "pinned_pair",
+    "beta_frame_velocity", "single_link_frames", "rr_arm_frames", "rr_arm_jacobian",
     "rp_arm_frames", "rp_arm_body_jacobians", "three_link_chain", "three_link_frames",
     "three_link_poses", "three_link_jacobians", "beta_frame_jacobian", "links_from_beta_frame", "com_frame",
     "com_frame_jacobians", "circle_constraints", "sphere_plane_constraints",
@@ -195,6 +196,38 @@ def _beta_args(beta, dbeta):
     return beta, dbeta
 
 
+def _v_beta_matrix(beta, dbeta):
+    """The map alpha_dot -> v_beta = T_beta R_{beta^-1} (d beta / d alpha) alpha_dot, ``(..., 3, n)``; book (2.61)."""
+    return SE2.right_lifted_action(SE2.inverse(beta), beta) @ dbeta
+
+
+def beta_frame_velocity(beta, dbeta, xi_base, alpha_dot):
+    """The body velocity of the frame g = g_base beta(alpha), split into its two causes; book (2.60)-(2.62), (2.67).
+
+    Returns a dict of ``(..., 3)`` arrays:
+
+    * ``"carried"`` = Ad_beta^-1 xi_base: the velocity g would have if it were welded to the
+      base link (the base link's motion, seen at g and in g's axes);
+    * ``"shape"`` = Ad_beta^-1 v_beta = T_beta L_{beta^-1} beta_dot: g sliding and turning
+      relative to the base link because the shape changes;
+    * ``"body"`` = carried + shape, the body velocity xi_g of (2.62);
+    * ``"v_beta"`` = T_beta R_{beta^-1} beta_dot, the velocity of (2.61) (expressed at the base
+      link, as a spatial velocity of beta).
+
+    beta ``(..., 3)``, dbeta = d beta / d alpha ``(..., 3, n)``, xi_base ``(..., 3)`` the base link's
+    body velocity, alpha_dot ``(..., n)``. The columns are those of :func:`beta_frame_jacobian`.
+    """
+    beta, dbeta = _beta_args(beta, dbeta)
+    n = dbeta.shape[-1]
+    xi_base = as_array(xi_base, "xi_base", (3,), what=" (body velocity of the base link)")
+    alpha_dot = as_array(alpha_dot, "alpha_dot", (n,), what=f" (one shape rate per column of dbeta: {n})")
+    J = beta_frame_jacobian(beta, dbeta)
+    carried = matvec(J[..., :, :3], xi_base)
+    shape = matvec(J[..., :, 3:], alpha_dot)
+    return {"carried": carried, "shape": shape, "body": carried + shape,
+            "v_beta": matvec(_v_beta_matrix(beta, dbeta), alpha_dot)}
+
+
 def beta_frame_jacobian(beta, dbeta):
     """Body-velocity Jacobian ``(..., 3, 3 + n)`` of the frame g = g_base beta(alpha); book (2.60)-(2.67).
 
@@ -203,11 +236,10 @@ def beta_frame_jacobian(beta, dbeta):
     """
     beta, dbeta = _beta_args(beta, dbeta)
     n = dbeta.shape[-1]
-    TR = SE2.right_lifted_action(SE2.inverse(beta), beta)  # (2.61)
     batch = np.broadcast_shapes(beta.shape[:-1], dbeta.shape[:-2])
     M = np.zeros(batch + (3, 3 + n))
     M[..., :, :3] = np.eye(3)
-    M[..., :, 3:] = TR @ dbeta
+    M[..., :, 3:] = _v_beta_matrix(beta, dbeta)
     return SE2.Ad_inv(beta) @ M
 
 
@@ -219,11 +251,10 @@ def links_from_beta_frame(jacobians, beta, dbeta):
     """
     beta, dbeta = _beta_args(beta, dbeta)
     n = dbeta.shape[-1]
-    TR = SE2.right_lifted_action(SE2.inverse(beta), beta)
     batch = np.broadcast_shapes(beta.shape[:-1], dbeta.shape[:-2])
     M = np.zeros(batch + (3 + n, 3 + n))
     M[..., :3, :3] = SE2.Ad(beta)
-    M[..., :3, 3:] = -(TR @ dbeta)
+    M[..., :3, 3:] = -_v_beta_matrix(beta, dbeta)
     M[..., 3:, 3:] = np.eye(n)
     return [np.asarray(J, dtype=float) @ M for J in jacobians]
 
@@ -269,6 +300,32 @@ def com_frame_jacobians(alpha, lengths=(1.0, 1.0, 1.0), weights=None):
 
 
 # ------------------------------------------------------------------ holonomic constraints
+def pin_constraints(g1, g2):
+    """Constraint values ``(..., 2)`` of two bodies pinned at their frame origins: (x1 - x2, y1 - y2); fig. 2.1.
+
+    g1, g2: poses ``(..., 3)``. The pair is a configuration of the pinned system exactly where
+    both values vanish; the two constraints take SE(2) x SE(2) (six numbers) down to the
+    four-dimensional accessible manifold SE(2) x S^1 (section 2.1).
+    """
+    g1 = as_array(g1, "g1", (3,), what=" (pose of body 1)")
+    g2 = as_array(g2, "g2", (3,), what=" (pose of body 2)")
+    return g1[..., :2] - g2[..., :2]
+
+
+def pinned_pair(g, alpha):
+    """Poses ``(..., 2, 3)`` of two bodies pinned at their frame origins, from (g, alpha) in SE(2) x S^1; fig. 2.1.
+
+    Body 1 is at g; body 2 shares its origin and is turned by alpha relative to it, g2 = g exp(alpha)
+    (the coordinates on the accessible manifold: no constraint needs enforcing).
+    """
+    g = as_array(g, "g", (3,), what=" (pose of body 1)")
+    alpha = as_array(alpha, "alpha", what=" (angle of body 2 relative to body 1)")
+    g, alpha = np.broadcast_arrays(g, alpha[..., None])
+    turn = np.zeros(g.shape)
+    turn[..., 2] = alpha[..., 0]
+    return np.stack([g, SE2.compose(g, turn)], axis=-2)
+
+
 def circle_constraints(p):
     """Constraint values ``(..., 2)``: f1 = z - 1 and f2 = sqrt(x^2 + y^2) - 1; book (2.i)-(2.ii). p: ``(..., 3)``."""
     p = as_array(p, "p", (3,), what=" (points x, y, z)")

@@ -33,7 +33,7 @@ from ._validate import as_array, check_positive
 from .groups import SE2, matvec
 
 __all__ = ["Joint", "Link", "Chain", "MobileChain", "METHODS", "world_to_body_jacobian",
-           "finite_difference_jacobians"]
+           "finite_difference_jacobians", "relative_pose", "transported_columns"]
 
 METHODS = ("direct", "world", "body")
 
@@ -407,3 +407,46 @@ def finite_difference_jacobians(fk, alpha, eps=1e-6):
         d[..., j] = eps
         cols.append(SE2.difference(fk(alpha + d), fk(alpha - d)) / (2 * eps))
     return np.stack(cols, axis=-1)
+
+
+# ------------------------------------------------------------------------ relative poses
+def relative_pose(g, base, group=SE2):
+    """The pose ``base^-1 g`` of frame g seen from frame ``base``, ``(..., dim)``; book (2.iii), g_{1,h} = h^-1 g_1.
+
+    With this notation poses chain by cancelling the frame in the middle, box "A note on
+    notation" (2.iv): ``compose(relative_pose(b, c), relative_pose(a, b)) == relative_pose(a, c)``
+    (the pose of b seen from c, then a seen from b, is a seen from c), and
+    ``inverse(relative_pose(a, b)) == relative_pose(b, a)``. ``group`` is any
+    :class:`~gm_core.groups.LieGroup` (default SE(2)); g, base: ``(..., group.dim)``.
+    """
+    dim = group.dim
+    g = as_array(g, "g", (dim,), what=f" (an element of {group.name})")
+    base = as_array(base, "base", (dim,), what=f" (an element of {group.name}: the frame g is seen from)")
+    return group.compose(group.inverse(base), g)
+
+
+# ------------------------------------------------------------ columns carried to the tip
+def transported_columns(chain, alpha):
+    """Each joint's unit velocity carried out along a fixed-base chain, column by column; book (2.33)-(2.37).
+
+    Returns ``(frames, columns)``: ``frames (..., 2n, 3)`` the poses f_1, h_1, f_2, h_2, ..., f_n,
+    h_n in order along the chain, and ``columns (..., n, 2n, 3)`` where ``columns[..., j, i]`` is the
+    body velocity of frame i when only joint j moves, at unit rate. Frames before joint j do not
+    move; from f_j outward the links move as one rigid body with f_j, whose body velocity is the
+    joint's axis X_j, so frame F has ``Ad^-1_{g_{F, f_j}} X_j`` with ``g_{F, f_j} = f_j^-1 F``
+    (:func:`relative_pose`). ``columns[..., j, -1]`` is column j of the end effector's body Jacobian,
+    and the sum of the columns times the joint rates is its body velocity (the iterative methods
+    of section 2.5 reach the same sum link by link).
+    """
+    if not isinstance(chain, Chain):
+        raise TypeError(f"chain must be a fixed-base gm_core.kinematics.Chain; got {type(chain).__name__}")
+    fr = chain.frames(alpha)
+    n = chain.n_joints
+    frames = np.stack([fr[k][..., i, :] for i in range(n) for k in ("f", "h")], axis=-2)
+    batch = frames.shape[:-2]
+    columns = np.zeros(batch + (n, 2 * n, 3))
+    for j, joint in enumerate(chain.joints):
+        outward = frames[..., 2 * j:, :]
+        rel = relative_pose(outward, frames[..., 2 * j, None, :])
+        columns[..., j, 2 * j:, :] = matvec(SE2.Ad_inv(rel), joint.axis)
+    return frames, columns

@@ -151,3 +151,109 @@ def test_three_link_velocity_panel():
         world = SE2.body_to_world(fr["g"][i], J[i] @ u)
         np.testing.assert_allclose(p.arrows.vectors[i], world[:2], atol=1e-12)
         np.testing.assert_allclose(p.arrows.points[i], fr["g"][i, :2], atol=1e-12)
+
+
+# ------------------------------------------------------------------ issue 13: frames and steps
+def test_new_ch2_panels_registered():
+    assert {"PinnedBodiesPanel", "RelativePosePanel", "BetaVelocityPanel", "JacobianStepPanel"} <= set(CH2_PANELS)
+
+
+def test_pinned_bodies_panel_follows_the_pin():
+    from gm_core.drawing.frames import BODY_OUTLINE
+
+    p = ch2.PinnedBodiesPanel()
+    p.set(pinned=True, x1=0.4, y1=-0.3, theta1=0.2, x2=1.0, y2=1.0, theta2=1.5)
+    pair = C.pinned_pair([0.4, -0.3, 0.2], 1.3)
+    for body, fa, g in zip(p.bodies, p.frames, pair):
+        np.testing.assert_allclose(body.patch.get_xy()[:len(BODY_OUTLINE)], SE2.act_on_points(g, BODY_OUTLINE),
+                                   atol=1e-12)
+        assert_frame_at(fa, g)
+    np.testing.assert_allclose(p.constraints, 0.0, atol=1e-15)
+    assert p.pin.get_visible() and not p.gap.get_visible()
+    assert p.controls["x2"].disabled and "+1.30" in p.text.get_text()
+    p.set(pinned=False)
+    g2 = np.array([1.0, 1.0, 1.5])
+    assert_frame_at(p.frames[1], g2)
+    np.testing.assert_allclose(p.constraints, C.pin_constraints(pair[0], g2))
+    np.testing.assert_allclose(np.c_[p.gap.get_data()], [[0.4, -0.3], [1.0, 1.0]])
+    assert p.gap.get_visible() and not p.pin.get_visible() and not p.controls["x2"].disabled
+    assert "-0.60" in p.text.get_text() and "-1.30" in p.text.get_text()
+
+
+def test_relative_pose_panel_draws_g_ab_and_checks_cancellation():
+    p = ch2.RelativePosePanel()
+    p.set(alpha1=0.7, alpha2=-1.1, frame="h2", seen_from="g2", via="g1")
+    fr = p.chain.frames([0.7, -1.1])
+    a, b, c = fr["h"][1], fr["g"][1], fr["g"][0]
+    rel = C.relative_pose(a, b)
+    assert SE2.isclose(p.rel, rel) and SE2.isclose(p.chained, rel) and SE2.isclose(p.swapped, SE2.inverse(rel))
+    np.testing.assert_allclose(p.arrow.points[0], b[:2], atol=1e-12)
+    np.testing.assert_allclose(p.arrow.vectors[0], a[:2] - b[:2], atol=1e-12)
+    np.testing.assert_allclose(p.route.vectors.sum(0), a[:2] - b[:2], atol=1e-12)     # b -> c -> a
+    # the dashed path runs x along b's first axis, then y along its second, and ends at a
+    xs, ys = p.coord_x.get_data()
+    np.testing.assert_allclose([xs[1], ys[1]], SE2.act_on_points(b, [rel[0], 0.0]), atol=1e-12)
+    xs, ys = p.coord_y.get_data()
+    np.testing.assert_allclose([xs[-1], ys[-1]], a[:2], atol=1e-12)
+    assert "%+.2f" % rel[0] in p.text.get_text()
+    p.set(seen_from="e", frame="g1")
+    assert SE2.isclose(p.rel, fr["g"][0])    # no second subscript: seen from the origin
+
+
+def test_beta_velocity_panel_arrows_match_the_split_and_finite_differences():
+    p = ch2.BetaVelocityPanel()
+    v = dict(alpha1=0.5, alpha2=-0.7, alpha1_dot=0.9, alpha2_dot=-0.4, xi_x=0.3, xi_y=-0.2, xi_theta=0.6)
+    p.set(**v)
+    a, ad = np.array([0.5, -0.7]), np.array([0.9, -0.4])
+    xi = np.array([0.3, -0.2, 0.6])
+    beta, dbeta = C.com_frame(a, p.lengths)
+    parts = C.beta_frame_velocity(beta, dbeta, xi, ad)
+    s = p.scene.SCALE
+    assert_frame_at(p.beta_art, beta)
+    for k in ("carried", "body"):
+        np.testing.assert_allclose(p.arrows[k].vectors[0], SE2.body_to_world(beta, parts[k])[:2], atol=1e-12)
+        np.testing.assert_allclose(p.arrows[k].points[0], beta[:2], atol=1e-12)
+    # head to tail: the shape part starts where the (drawn) carried arrow ends
+    np.testing.assert_allclose(p.arrows["shape"].points[0], beta[:2] + s * p.arrows["carried"].vectors[0])
+    # independent route: finite differences of the frame's world pose, middle link at e moving along exp(t xi)
+    eps = 1e-6
+    pose = lambda t: SE2.compose(SE2.exp(t * xi), C.com_frame(a + t * ad, p.lengths)[0])   # noqa: E731
+    g_dot = SE2.difference(pose(eps), pose(-eps)) / (2 * eps)
+    np.testing.assert_allclose(p.arrows["body"].vectors[0], g_dot[:2], atol=1e-7)
+    # each dotted path passes through the frame's origin, tangent to its own arrow
+    for path, k in ((p.path_carried, "carried"), (p.path_shape, "shape")):
+        x, y = path.get_data()
+        mid = len(x) // 2
+        np.testing.assert_allclose([x[mid], y[mid]], beta[:2], atol=1e-12)
+        d = np.array([x[mid + 1] - x[mid - 1], y[mid + 1] - y[mid - 1]])
+        w = SE2.body_to_world(beta, parts[k])[:2]
+        assert abs(d[0] * w[1] - d[1] * w[0]) < 1e-3 * np.hypot(*d) * np.hypot(*w) + 1e-12
+    np.testing.assert_allclose(p.link_vel.vectors[0], xi[:2])
+
+
+def test_jacobian_step_panel_accumulates_columns():
+    p = ch2.JacobianStepPanel()
+    q, qd = np.array([0.7, 0.4, -1.0]), np.array([0.5, -0.8, 1.3])
+    vals = {**{f"q{i + 1}": q[i] for i in range(3)}, **{f"q{i + 1}_dot": qd[i] for i in range(3)}}
+    Jb = p.chain.jacobians(q, method="direct", velocity="body")["h"][-1]
+    tip = p.chain.end_effector(q)
+    s = p.scene.scale
+    for k in range(4):
+        p.set(step=k, **vals)
+        np.testing.assert_allclose(p.partial, Jb[:, :k] @ qd[:k], atol=1e-12)
+        drawn = np.c_[p.steps.U, p.steps.V]
+        np.testing.assert_allclose(drawn[:k], s * SE2.body_to_world(tip, (Jb * qd).T[:k])[:, :2], atol=1e-12)
+        np.testing.assert_allclose(drawn[k:], 0.0)
+        np.testing.assert_allclose(np.c_[p.total.U, p.total.V][0], s * SE2.body_to_world(tip, p.partial)[:2],
+                                   atol=1e-12)
+        assert p.ring.get_visible() == (k > 0)
+        if k:   # frames before joint k still, frames from f_k on move with the joint's velocity
+            carried = np.c_[p.carried.U, p.carried.V]
+            np.testing.assert_allclose(carried[:2 * (k - 1)], 0.0)
+            np.testing.assert_allclose(carried[-1], drawn[k - 1], atol=1e-12)
+    # the last step is the whole end-effector velocity: finite differences of forward kinematics
+    fd = C.finite_difference_jacobians(p.chain.end_effector, q) @ qd
+    np.testing.assert_allclose(np.c_[p.total.U, p.total.V][0], s * fd[:2], atol=1e-6)
+    np.testing.assert_allclose(np.c_[p.target.U, p.target.V][0], s * fd[:2], atol=1e-6)
+    with pytest.raises(ValueError, match="step"):
+        p.scene.set(step=5, **vals)

@@ -10,11 +10,14 @@ import ipywidgets as W
 import numpy as np
 
 from ..drawing import chains as D
-from .base import ScenePanel, register, slider
+from ..drawing import frames as DF
+from ..drawing import jacobian_steps as DJ
+from .base import ScenePanel, int_slider, register, slider
 
 __all__ = ["SingleLinkPanel", "RRArmPanel", "RPArmPanel", "OffsetRPArmPanel", "MobileChainPanel",
            "TwoLinkMobilePanel", "ThreeLinkMobilePanel", "BetaFramePanel", "JacobianMethodsPanel",
-           "ThreeLinkVelocityPanel"]
+           "ThreeLinkVelocityPanel", "PinnedBodiesPanel", "RelativePosePanel", "BetaVelocityPanel",
+           "JacobianStepPanel"]
 
 PI = float(np.pi)
 
@@ -201,3 +204,81 @@ class ThreeLinkVelocityPanel(ScenePanel):
             "alpha1_dot": slider(0.0, -1.0, 1.0, description="α1 rate"),
             "alpha2_dot": slider(1.0, -1.0, 1.0, description="α2 rate"),
         }
+
+
+# ======================================================================= frames (issue 13)
+@register
+class PinnedBodiesPanel(ScenePanel):
+    """Two bodies, free or pinned at their frame origins: six numbers or four (fig. 2.1, section 2.1)."""
+
+    title = "Two bodies pinned together (fig. 2.1): the pin's two constraints remove two numbers"
+    scene_class = DF.PinnedBodiesScene
+
+    def controls_spec(self):
+        return {
+            "pinned": W.Checkbox(value=True, description="pin the frame origins together"),
+            "x1": slider(-0.3, -1.5, 1.5, description="x₁"), "y1": slider(-0.2, -1.5, 1.5, description="y₁"),
+            "theta1": slider(0.3, -PI, PI, description="θ₁"),
+            "x2": slider(0.6, -1.5, 1.5, description="x₂"), "y2": slider(0.5, -1.5, 1.5, description="y₂"),
+            "theta2": slider(1.6, -PI, PI, description="θ₂"),
+        }
+
+    def after_update(self, values):
+        for k in ("x2", "y2"):
+            self.controls[k].disabled = bool(values["pinned"])
+
+
+@register
+class RelativePosePanel(ScenePanel):
+    """Pick a frame, an observer and a frame in between: g_{a,b} = b^-1 a and its cancellation rules (2.iii)-(2.iv)."""
+
+    title = "The notation box of section 2.2: the pose of one frame seen from another, g_{a,b} = b⁻¹a"
+    scene_class = DF.RelativePoseScene
+
+    def controls_spec(self):
+        names = list(DF.RelativePoseScene.NAMES)
+        return {
+            "alpha1": slider(0.5, -PI, PI, description="α₁"),
+            "alpha2": slider(0.9, -PI, PI, description="α₂"),
+            "frame": W.Dropdown(options=names, value="h2", description="frame a"),
+            "seen_from": W.Dropdown(options=names, value="g1", description="seen from b"),
+            "via": W.Dropdown(options=names, value="h1", description="via c"),
+        }
+
+
+@register
+class BetaVelocityPanel(ScenePanel):
+    """The velocity of the centre-of-mass frame: carried by the middle link plus moved by the shape, (2.60)-(2.67)."""
+
+    title = "Velocity of a generalized body frame (fig. 2.9, section 2.5.6): ξ_β = Ad⁻¹_β (ξ₂ + v_β)"
+    scene_class = DF.BetaVelocityScene
+
+    def controls_spec(self):
+        return {
+            "alpha1": slider(0.8, -2.5, 2.5, description="α₁"),
+            "alpha2": slider(0.4, -2.5, 2.5, description="α₂"),
+            "alpha1_dot": slider(1.2, -1.2, 1.2, description="α₁ rate"),
+            "alpha2_dot": slider(0.6, -1.2, 1.2, description="α₂ rate"),
+            "xi_x": slider(0.4, -0.7, 0.7, description="ξ₂ x"),
+            "xi_y": slider(0.0, -0.7, 0.7, description="ξ₂ y"),
+            "xi_theta": slider(0.4, -0.7, 0.7, description="ξ₂ θ"),
+        }
+
+
+@register
+class JacobianStepPanel(ScenePanel):
+    """Step through a chain joint by joint: each joint's velocity carried to the tip, the Jacobian column by column."""
+
+    title = "The Jacobian one column at a time: step k moves joint k alone, (2.33)-(2.37)"
+    scene_class = DJ.JacobianStepScene
+
+    def controls_spec(self):
+        joints = self.scene.chain.joints
+        c = {"step": int_slider(1, 0, len(joints), description="step k")}
+        for i, jt in enumerate(joints):
+            lo, hi = (-PI, PI) if jt.kind == "revolute" else (0.0, 1.0)
+            c[f"q{i + 1}"] = slider(0.4 * (i + 1) if jt.kind == "revolute" else 0.3, lo, hi,
+                                    description=f"q{i + 1} ({jt.letter})")
+        for i in range(len(joints)):
+            c[f"q{i + 1}_dot"] = slider([0.8, 0.6, -1.0, 0.5, 0.5][i % 5], -2.0, 2.0, description=f"q{i + 1} rate")
+        return c
