@@ -10,16 +10,16 @@ from __future__ import annotations
 import importlib
 
 from ._validate import SingularShapeError
-from .groups import ALL_GROUPS, R, R2, R2xS1, RPlus, Rn, S1, SE2, SO2, LieGroup, wrap_angle
+from .groups import ALL_GROUPS, R, R2, R2xS1, RPlus, Rn, S1, SE2, SO2, LieGroup, matvec, wrap_angle
 
 __all__ = [
     "LieGroup", "Rn", "R", "R2", "RPlus", "SO2", "S1", "R2xS1", "SE2", "ALL_GROUPS", "wrap_angle",
-    "SingularShapeError",
+    "matvec", "SingularShapeError",
 ]
 __version__ = "0.1.0"
 
 _SUBMODULES = {"groups", "calculus", "fields", "chains", "locomotion", "systems", "checks",
-               "drawing", "widgets", "errata", "testing"}
+               "drawing", "widgets"}
 
 
 def __getattr__(name):

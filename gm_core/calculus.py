@@ -37,13 +37,12 @@ the draft prints n^k / k!, which is only its large-n limit (see :func:`binomial_
 from __future__ import annotations
 
 import math
-import numbers
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._validate import SingularShapeError, as_array
-from .groups import LieGroup, RPlus as _RPLUS, Rn, S1, check_group
+from ._validate import SingularShapeError, as_array, check_int, check_option
+from .groups import SE2, LieGroup, check_group
 
 __all__ = [
     "product_integral", "RunningProduct", "quotient_derivative",
@@ -59,20 +58,15 @@ DEFAULT_N = tuple(2 ** k for k in range(11))
 
 # ---------------------------------------------------------------------------------- checking
 def _check_side(side, name="side"):
-    if not isinstance(side, str) or side not in _SIDES:
-        raise ValueError(f"{name} must be 'left' or 'right'; got {side!r}")
-    return side
+    return check_option(side, name, _SIDES)
 
 
-def _check_int(n, name, minimum=1):
-    if isinstance(n, bool) or not isinstance(n, numbers.Integral):
-        if isinstance(n, float) and n.is_integer():
-            n = int(n)
-        else:
-            raise TypeError(f"{name} must be an integer >= {minimum}; got {type(n).__name__} {n!r}")
-    if n < minimum:
-        raise ValueError(f"{name} must be an integer >= {minimum}; got {n}")
-    return int(n)
+#: Largest number of steps, factors or series terms accepted (a Python loop runs over them).
+MAX_STEPS = 2**20
+
+
+def _check_int(n, name, minimum=1, maximum=MAX_STEPS):
+    return check_int(n, name, minimum=minimum, maximum=maximum)
 
 
 def _check_n_list(n, name="n"):
@@ -164,8 +158,7 @@ def product_integral(v, a, b, n, side="right", *, point="end", history=False):
     b = _check_scalar(b, "b")
     n = _check_int(n, "n")
     side = _check_side(side)
-    if point not in ("end", "start", "mid"):
-        raise ValueError(f"point must be 'end', 'start' or 'mid'; got {point!r}")
+    point = check_option(point, "point", ("end", "start", "mid"))
     dx = (b - a) / n
     offset = {"end": 1.0, "start": 0.0, "mid": 0.5}[point]
     nodes = a + (np.arange(n) + offset) * dx
@@ -240,8 +233,7 @@ def quotient_derivative(F, x, side="right", h=None, *, method="central"):
     if not callable(F):
         raise TypeError(f"F must be a callable x -> matrix; got {type(F).__name__}")
     side = _check_side(side)
-    if method not in ("central", "quotient"):
-        raise ValueError(f"method must be 'central' or 'quotient'; got {method!r}")
+    method = check_option(method, "method", ("central", "quotient"))
     xs = as_array(x, "x", what=" (a number or a 1-D array of numbers)")
     if xs.ndim > 1:
         raise ValueError(f"x must be a number or a 1-D array; got shape {xs.shape}")
@@ -285,29 +277,10 @@ def element_from_matrix(group, M):
     rotation blocks are scaled). This reads the translation columns as they are and the angle of
     a 2x2 block [[a, -b], [b, a]] + (anything symmetric) as atan2 of its rotational part, which is
     the angle of the nearest rotation (polar decomposition). Exact group matrices round-trip.
-    For (R+, x) the single entry is returned unchecked (a partial sum can be negative).
+    For (R+, x) the single entry is returned unchecked (a partial sum can be negative). The
+    reading is the group's own :meth:`~gm_core.groups.LieGroup.nearest_element`.
     """
-    group = check_group(group)
-    k = group.matrix_size
-    M = as_array(M, "M", (k, k), what=f", a {k}x{k} matrix for {group.name}")
-
-    def angle(B):
-        return np.arctan2(B[..., 1, 0] - B[..., 0, 1], B[..., 0, 0] + B[..., 1, 1])
-
-    name = type(group).__name__
-    if name == "_SE2":
-        return np.stack([M[..., 0, 2], M[..., 1, 2], angle(M[..., :2, :2])], -1)
-    if name == "_R2xS1":
-        return np.stack([M[..., 0, 2], M[..., 1, 2], angle(M[..., 3:5, 3:5])], -1)
-    if name == "_SO2":
-        return angle(M)[..., None]
-    if isinstance(group, S1):
-        return np.mod(angle(M)[..., None] * (group.period / (2 * np.pi)), group.period)
-    if name == "_RPlus":
-        return M[..., 0, :].copy()
-    if isinstance(group, Rn):
-        return M[..., : group.dim, group.dim].copy()
-    return group.from_matrix(M)
+    return check_group(group).nearest_element(M)
 
 
 # ---------------------------------------------------------------------------------- exp four ways
@@ -405,44 +378,35 @@ def binomial_terms(n, k):
     each term of the binomial expansion of (I + A/n)^n tends to A^k/k!. (The draft's
     coefficient n^k / k! is the large-n approximation of C(n, k), not equal to it.)
     """
-    n = _check_int(n, "n", minimum=0)
-    k = _check_int(k, "k", minimum=0)
+    n = _check_int(n, "n", minimum=0, maximum=10**12)
+    k = _check_int(k, "k", minimum=0, maximum=1000)
     if k > n:
         raise ValueError(f"k must be between 0 and n={n}; got {k}")
     c = math.comb(n, k)
     return c, c / n ** k if n else 1.0
 
 
-def _lifted(group, g, side):
-    e = group.identity()
-    if side == "left":
-        return group.left_lifted_action(g, e)      # T_e L_g, (1.46)
-    return group.right_lifted_action(g, e)         # T_e R_g, (1.47)
-
-
 def _euler_states(group, xi, n, side):
     """States g_0 = e, g_{j+1} = g_j + (1/n) T_e{L,R}_{g_j} xi, j < n; shape (n+1, dim).
 
-    On (R+, x) the lifted actions are multiplication by g, (1.24)-(1.25), so the steps are
-    g_{j+1} = g_j (1 + xi/n): exactly the cumulative product (1.49). With n <= -xi a step
-    overshoots to g <= 0, outside the group; those values are returned as they are (they show
-    the failure of too few steps) instead of being rejected by the group's checks.
+    Each step is the group's :meth:`~gm_core.groups.LieGroup.euler_step`. On (R+, x) the lifted
+    actions are multiplication by g, (1.24)-(1.25), so the steps are g_{j+1} = g_j (1 + xi/n):
+    exactly the cumulative product (1.49). With n <= -xi a step overshoots to g <= 0, outside the
+    group; those values are returned as they are (they show the failure of too few steps).
     """
     dt = 1.0 / n
-    if isinstance(group, type(_RPLUS)):
-        return np.cumprod(np.concatenate([[1.0], np.full(n, 1.0 + dt * xi[0])]))[:, None]
     g = group.identity()
-    out = np.empty((n + 1, group.dim))
+    out = np.empty((n + 1, group.param_dim))
     out[0] = g
     for j in range(n):
-        g = g + dt * (_lifted(group, g, side) @ xi)
+        g = group.euler_step(g, xi, dt, side)
         out[j + 1] = g
     return out
 
 
 def _state_matrices(group, G):
-    """group.matrix(G), except on (R+, x) where overshooting Euler states may be <= 0."""
-    return G[..., None].copy() if isinstance(group, type(_RPLUS)) else group.matrix(G)
+    """Matrices of Euler states, which may lie outside the group (see :func:`_euler_states`)."""
+    return group.coordinate_matrix(G)
 
 
 def _taylor_sums(A, n):
@@ -517,8 +481,7 @@ def exp_history(group, xi, n=DEFAULT_N, method="product", side="left"):
     xi = _check_xi(group, xi)
     ns = _check_n_list(n)
     side = _check_side(side)
-    if method not in EXP_METHODS:
-        raise ValueError(f"method must be one of {EXP_METHODS}; got {method!r}")
+    method = check_option(method, "method", EXP_METHODS)
     exact = group.exp(xi)
     exact_matrix = group.matrix(exact)
     A = group.hat(xi)
@@ -570,8 +533,6 @@ def se2_exp_study(thetadots=(0.5, 1.0, 2.0, 4.0), n=DEFAULT_N, speed=1.0):
     orders (``h.order()``) are about 1 for Euler and cumulative products; Taylor errors fall faster
     than any power of n, and more slowly (in n) the larger |thetadot| is.
     """
-    from .groups import SE2
-
     td = as_array(thetadots, "thetadots", what=" (rotation rates)")
     if td.ndim > 1:
         raise ValueError(f"thetadots must be a number or a 1-D array; got shape {td.shape}")
