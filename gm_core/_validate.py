@@ -29,9 +29,13 @@ def _describe(tail):
     return "(..., " + ", ".join(str(s) for s in tail) + ")" if tail else "a scalar or array"
 
 
+def _of_shape(tail):
+    return f" of shape {_describe(tail)}" if tail else ""
+
+
 def _refuse(name, tail, what, value, why):
     raise TypeError(
-        f"{name} must be a numeric array of shape {_describe(tail)}{what}; got "
+        f"{name} must be a numeric array{_of_shape(tail)}{what}; got "
         f"{type(value).__name__}{why}"
     ) from None
 

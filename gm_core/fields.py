@@ -35,8 +35,15 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ._validate import as_array, check_positive
+from ._validate import as_array, batch_shape, check_int, check_option, check_positive
 from .groups import LieGroup, R2xS1, SE2, check_group, matvec
+
+#: Largest configuration-space dimension of a :class:`VectorField`.
+MAX_FIELD_DIM = 10_000
+#: Keyword arguments :func:`integral_curve` passes on to scipy's solve_ivp.
+SOLVE_IVP_OPTIONS = frozenset({"method", "rtol", "atol", "dense_output", "events", "vectorized",
+                               "first_step", "max_step", "min_step", "jac", "jac_sparsity",
+                               "lband", "uband"})
 
 __all__ = [
     "VectorField", "IntegralCurve", "integral_curve", "left_invariant_field",
@@ -51,7 +58,7 @@ DEFAULT_METHOD = "DOP853"
 
 
 def _check_side(side):
-    if not isinstance(side, str) or side not in ("left", "right"):
+    if not isinstance(side, str) or side not in ("left", "right"):  # a longer message than check_option's
         raise ValueError(
             f"side must be 'left' (left-invariant field, body velocity, (1.46)) or 'right' "
             f"(right-invariant field, spatial velocity, (1.47)); got {side!r}"
@@ -87,8 +94,10 @@ class VectorField:
     def __init__(self, func, dim, *, name="X", vectorized=True, group=None):
         if not callable(func):
             raise TypeError(f"func must be a callable (q, t) -> q_dot; got {type(func).__name__}")
-        if isinstance(dim, bool) or not isinstance(dim, (int, np.integer)) or dim < 1:
-            raise ValueError(f"dim must be a positive integer; got {dim!r}")
+        if isinstance(dim, bool) or not isinstance(dim, (int, np.integer)):
+            raise TypeError(f"dim must be a positive integer; got {type(dim).__name__} {dim!r:.40}")
+        if not 1 <= dim <= MAX_FIELD_DIM:
+            raise ValueError(f"dim must be a positive integer (at most {MAX_FIELD_DIM}); got {dim!r}")
         self.func = func
         self.dim = int(dim)
         self.name = str(name)
@@ -99,8 +108,9 @@ class VectorField:
         return f"VectorField({self.name!r}, dim={self.dim})"
 
     def _eval(self, q, t):
+        what = f" (the value of field {self.name!r})"
         if self.vectorized:
-            out = np.asarray(self.func(q, t), dtype=float)
+            out = as_array(self.func(q, t), "X(q, t)", what=what, allow_nan=True)
             if out.shape != q.shape and out.ndim and out.shape[-1] == self.dim:
                 try:  # e.g. a constant field returning one (dim,) vector for every q
                     out = np.broadcast_to(out, q.shape)
@@ -108,7 +118,10 @@ class VectorField:
                     pass
         else:
             flat = q.reshape(-1, self.dim)
-            out = np.stack([np.asarray(self.func(p, t), dtype=float) for p in flat]).reshape(q.shape)
+            vals = [as_array(self.func(p, t), "X(q, t)", what=what, allow_nan=True) for p in flat]
+            if any(v.shape != (self.dim,) for v in vals):
+                raise ValueError(f"field {self.name!r} must return a vector of shape ({self.dim},) per point")
+            out = np.stack(vals).reshape(q.shape) if vals else np.empty(q.shape)
         if out.shape != q.shape:
             raise ValueError(
                 f"field {self.name!r} returned shape {out.shape} for q of shape {q.shape}; "
@@ -138,7 +151,12 @@ class VectorField:
         for i, v in enumerate(vals):
             if v.ndim != 1:
                 raise ValueError(f"axes_values[{i}] must be a 1-D array; got shape {v.shape}")
-        axes = tuple(range(len(vals))) if axes is None else tuple(int(a) for a in axes)
+        if axes is None:
+            axes = tuple(range(len(vals)))
+        else:
+            if isinstance(axes, (str, bytes)) or not hasattr(axes, "__iter__"):
+                raise TypeError(f"axes must be a sequence of coordinate indices; got {axes!r:.40}")
+            axes = tuple(check_int(a, "axes[i]", minimum=0, maximum=self.dim - 1) for a in axes)
         if len(axes) != len(vals) or len(set(axes)) != len(axes) or not all(0 <= a < self.dim for a in axes):
             raise ValueError(
                 f"axes must name {len(vals)} distinct coordinates in 0..{self.dim - 1}; got {axes}"
@@ -216,6 +234,10 @@ def integral_curve(field, q0, t_span, t_eval=None, **solve_ivp_kw):
     def rhs(t, y):
         return X._eval(y.reshape(shape), t).ravel()
 
+    unknown = sorted(set(solve_ivp_kw) - SOLVE_IVP_OPTIONS)
+    if unknown:
+        raise TypeError(f"integral_curve got unknown keyword argument(s) {', '.join(unknown)}; "
+                        f"solve_ivp options are {', '.join(sorted(SOLVE_IVP_OPTIONS))}")
     kw = {"method": DEFAULT_METHOD, "rtol": DEFAULT_RTOL, "atol": DEFAULT_ATOL}
     kw.update(solve_ivp_kw)
     sol = solve_ivp(rhs, (float(span[0]), float(span[1])), q0_arr.ravel(), t_eval=t_eval, **kw)
@@ -272,6 +294,7 @@ def group_geodesic(group, xi, t, side="left", g0=None, *, method="exp", **solve_
     """
     group = check_group(group)
     side = _check_side(side)
+    method = check_option(method, "method", ("exp", "integrate"))
     xi = as_array(xi, "xi", (group.dim,), what=f", a Lie-algebra vector of {group.name}")
     if xi.ndim != 1:
         raise ValueError(f"xi must be one vector of shape ({group.dim},); got shape {xi.shape}")
@@ -282,8 +305,6 @@ def group_geodesic(group, xi, t, side="left", g0=None, *, method="exp", **solve_
     if method == "exp":
         steps = group.exp(t[..., None] * xi)
         return group.compose(g0, steps) if side == "left" else group.compose(steps, g0)
-    if method != "integrate":
-        raise ValueError(f"method must be 'exp' or 'integrate'; got {method!r}")
     field = left_invariant_field(group, xi) if side == "left" else right_invariant_field(group, xi)
     flat = t.ravel()
     out = np.empty(flat.shape + (group.dim,))
@@ -330,7 +351,7 @@ class HelixGeometry:
 
     def circle_points(self, num=200):
         """Points (..., num, 2) around the full xy circle (NaN rows for straight paths)."""
-        phi = np.linspace(0.0, 2 * np.pi, int(num))
+        phi = np.linspace(0.0, 2 * np.pi, check_int(num, "num", minimum=2, maximum=10**6))
         r = np.where(self.straight, np.nan, self.radius)[..., None]
         return np.stack([self.centre[..., None, 0] + r * np.cos(phi),
                          self.centre[..., None, 1] + r * np.sin(phi)], -1)
@@ -358,10 +379,12 @@ def se2_helix(xi, side="left", g0=None):
         radius = np.where(straight, np.inf, speed / np.abs(wsafe))
         if g0 is not None:
             g0 = SE2._element(g0, "g0")
+            batch_shape(("xi", xi, 1), ("g0", g0, 1))
+            finite_c = np.where(straight[..., None], 0.0, c)      # straight paths have no centre
             if side == "left":
-                c = SE2.act_on_points(g0, c)
+                c = np.where(straight[..., None], np.nan, SE2.act_on_points(g0, finite_c))
             else:
-                radius = np.where(straight, np.inf, np.linalg.norm(g0[..., :2] - c, axis=-1))
+                radius = np.where(straight, np.inf, np.linalg.norm(g0[..., :2] - finite_c, axis=-1))
         period = np.where(straight, np.inf, 2 * np.pi / np.abs(wsafe))
         slope = np.where(speed > 0, w / np.where(speed > 0, speed, 1.0), np.copysign(np.inf, w))
         per_turn = np.where(straight, np.inf, 2 * np.pi * speed / np.abs(wsafe))
@@ -382,6 +405,7 @@ def se2_helices(thetadot, t, speed=1.0):
     thetadot = as_array(thetadot, "thetadot", what=" (rotation rates)")
     t = _time(t)
     speed = as_array(speed, "speed", what=" (forward speed)")
+    batch_shape(("thetadot", thetadot, 0), ("speed", speed, 0))
     xi = np.stack(np.broadcast_arrays(speed * np.ones_like(thetadot), np.zeros_like(thetadot),
                                       thetadot), -1)
     xi_b = xi.reshape(xi.shape[:-1] + (1,) * t.ndim + (3,))
