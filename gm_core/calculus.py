@@ -159,6 +159,8 @@ def product_integral(v, a, b, n, side="right", *, point="end", history=False):
     n = _check_int(n, "n")
     side = _check_side(side)
     point = check_option(point, "point", ("end", "start", "mid"))
+    if not isinstance(history, (bool, np.bool_)):
+        raise TypeError(f"history must be True or False; got {history!r:.40}")
     dx = (b - a) / n
     offset = {"end": 1.0, "start": 0.0, "mid": 0.5}[point]
     nodes = a + (np.arange(n) + offset) * dx
@@ -235,8 +237,8 @@ def quotient_derivative(F, x, side="right", h=None, *, method="central"):
     side = _check_side(side)
     method = check_option(method, "method", ("central", "quotient"))
     xs = as_array(x, "x", what=" (a number or a 1-D array of numbers)")
-    if xs.ndim > 1:
-        raise ValueError(f"x must be a number or a 1-D array; got shape {xs.shape}")
+    if xs.ndim > 1 or xs.size == 0:
+        raise ValueError(f"x must be a number or a non-empty 1-D array; got shape {xs.shape}")
     if h is not None:
         h_val = _check_scalar(h, "h")
         if h_val <= 0:
@@ -364,7 +366,12 @@ def convergence_order(n, error, floor=1e-13):
     error = as_array(error, "error")
     if n.shape != error.shape or n.ndim != 1:
         raise ValueError(f"n and error must be 1-D arrays of one length; got {n.shape} and {error.shape}")
-    keep = (error > floor) & (n > 0)
+    floor = _check_scalar(floor, "floor")
+    if floor < 0:
+        raise ValueError(f"floor must be a non-negative error level; got {floor!r}")
+    if np.any(error < 0) or np.any(n <= 0):
+        raise ValueError("n must be positive and error non-negative (errors are norms)")
+    keep = error > floor
     if keep.sum() < 2:
         raise ValueError("need at least two errors above the floor to fit a convergence order")
     slope = np.polyfit(np.log(n[keep]), np.log(error[keep]), 1)[0]

@@ -66,6 +66,13 @@ def _check_side(side):
     return side
 
 
+def _check_solve_ivp_kw(kw, where):
+    unknown = sorted(set(kw) - SOLVE_IVP_OPTIONS)
+    if unknown:
+        raise TypeError(f"{where} got unknown keyword argument(s) {', '.join(unknown)}; "
+                        f"solve_ivp options are {', '.join(sorted(SOLVE_IVP_OPTIONS))}")
+
+
 def _time(t, name="t"):
     t = as_array(t, name, what=" (times)")
     return t
@@ -234,10 +241,7 @@ def integral_curve(field, q0, t_span, t_eval=None, **solve_ivp_kw):
     def rhs(t, y):
         return X._eval(y.reshape(shape), t).ravel()
 
-    unknown = sorted(set(solve_ivp_kw) - SOLVE_IVP_OPTIONS)
-    if unknown:
-        raise TypeError(f"integral_curve got unknown keyword argument(s) {', '.join(unknown)}; "
-                        f"solve_ivp options are {', '.join(sorted(SOLVE_IVP_OPTIONS))}")
+    _check_solve_ivp_kw(solve_ivp_kw, "integral_curve")
     kw = {"method": DEFAULT_METHOD, "rtol": DEFAULT_RTOL, "atol": DEFAULT_ATOL}
     kw.update(solve_ivp_kw)
     sol = solve_ivp(rhs, (float(span[0]), float(span[1])), q0_arr.ravel(), t_eval=t_eval, **kw)
@@ -248,6 +252,13 @@ def integral_curve(field, q0, t_span, t_eval=None, **solve_ivp_kw):
 
 
 # ---------------------------------------------------------------------------------- invariant fields
+def _field_value(v, g, name):
+    if v.shape != np.shape(g):
+        raise ValueError(f"{name} (shape {v.shape[:-1] + v.shape[-1:]}) gives velocities of shape {v.shape} "
+                         f"at configurations of shape {np.shape(g)}: its batch must broadcast to g's")
+    return v
+
+
 def left_invariant_field(group, xi):
     """Left-invariant field X_L(g) = T_e L_g xi of the body velocity ``xi``, (1.46).
 
@@ -259,7 +270,7 @@ def left_invariant_field(group, xi):
     e = group.identity()
 
     def X_L(g, t=0.0):
-        return matvec(group.left_lifted_action(g, e), xi)
+        return _field_value(matvec(group.left_lifted_action(g, e), xi), g, "xi")
 
     return VectorField(X_L, group.dim, name=f"X_L[{group.name}]", group=group)
 
@@ -275,7 +286,7 @@ def right_invariant_field(group, xi_s):
     e = group.identity()
 
     def X_R(g, t=0.0):
-        return matvec(group.right_lifted_action(g, e), xi_s)
+        return _field_value(matvec(group.right_lifted_action(g, e), xi_s), g, "xi_s")
 
     return VectorField(X_R, group.dim, name=f"X_R[{group.name}]", group=group)
 
@@ -295,6 +306,10 @@ def group_geodesic(group, xi, t, side="left", g0=None, *, method="exp", **solve_
     group = check_group(group)
     side = _check_side(side)
     method = check_option(method, "method", ("exp", "integrate"))
+    _check_solve_ivp_kw(solve_ivp_kw, "group_geodesic")
+    if method == "exp" and solve_ivp_kw:
+        raise TypeError(f"group_geodesic got solve_ivp option(s) {', '.join(sorted(solve_ivp_kw))}, "
+                        f"which only apply with method='integrate'")
     xi = as_array(xi, "xi", (group.dim,), what=f", a Lie-algebra vector of {group.name}")
     if xi.ndim != 1:
         raise ValueError(f"xi must be one vector of shape ({group.dim},); got shape {xi.shape}")

@@ -280,7 +280,7 @@ class LieGroup(abc.ABC):
         Equal to :meth:`matrix` for elements; (R+, x) overrides it so that an Euler state that
         overshot to a number <= 0 still has a (1x1) matrix.
         """
-        return self.matrix(q)
+        return self.matrix(self._element(q, "q"))
 
     def euler_step(self, g, xi, dt, side="left"):
         """One forward-Euler step g + dt T_e L_g xi (``side="left"``, (1.46)) or g + dt T_e R_g xi
@@ -292,6 +292,7 @@ class LieGroup(abc.ABC):
         side = check_option(side, "side", ("left", "right"))
         g = self._element(g)
         xi = self._algebra(xi)
+        dt = _scalar(dt, "dt", " (a time step)")
         lifted = self.left_lifted_action if side == "left" else self.right_lifted_action
         return g + dt * _matvec(lifted(g, self.identity()), xi)
 
@@ -416,6 +417,13 @@ def _rng(rng):
                     f"non-negative int seed; got {type(rng).__name__}")
 
 
+def _scalar(x, name, what=""):
+    arr = as_array(x, name, what=what)
+    if arr.ndim != 0:
+        raise ValueError(f"{name} must be a single number{what}; got shape {arr.shape}")
+    return float(arr)
+
+
 def _scale(scale):
     s = as_array(scale, "scale", what=" (a positive size factor)")
     if s.ndim != 0 or s <= 0 or s > 1e100:
@@ -439,8 +447,9 @@ MATRIX_ATOL = 1e-8
 
 
 def _check_rotation(Rm, name):
-    RtR = np.swapaxes(Rm, -1, -2) @ Rm
-    det = Rm[..., 0, 0] * Rm[..., 1, 1] - Rm[..., 0, 1] * Rm[..., 1, 0]
+    with np.errstate(over="ignore", invalid="ignore"):     # huge entries fail the check below
+        RtR = np.swapaxes(Rm, -1, -2) @ Rm
+        det = Rm[..., 0, 0] * Rm[..., 1, 1] - Rm[..., 0, 1] * Rm[..., 1, 0]
     if not (np.all(np.abs(RtR - np.eye(2)) <= MATRIX_ATOL) and np.all(np.abs(det - 1.0) <= MATRIX_ATOL)):
         raise ValueError(
             f"{name} is not a rotation: its 2x2 rotation block must satisfy R^T R = I and det R = +1 "

@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array, check_option, check_shape
-from .base import LieGroup, _rng, _scale
+from .base import LieGroup, _rng, _scalar, _scale
 
 __all__ = ["RPlus"]
 
@@ -40,11 +40,18 @@ class _RPlus(LieGroup):
         g = self._element(g)
         h = self._element(h, "h")
         self._batch(("g", g), ("h", h))
-        return g * h
+        with np.errstate(over="ignore", under="ignore"):
+            out = g * h
+        self._check_result(out, "g and h", "g h")
+        return out
 
     def inverse(self, g):
         """1 / g."""
-        return 1.0 / self._element(g)
+        g = self._element(g)
+        with np.errstate(over="ignore"):
+            out = 1.0 / g
+        self._check_result(out, "g", "1/g")
+        return out
 
     def left_lifted_action(self, h, g):
         """T_g L_h = h (a 1x1 matrix), book (1.24); equal to T_g R_h, (1.25)."""
@@ -73,8 +80,17 @@ class _RPlus(LieGroup):
         return self._square(X, "X")[..., 0].copy()
 
     def exp(self, xi):
-        """e^xi."""
-        return np.exp(self._algebra(xi))
+        """e^xi; ValueError if it overflows or underflows to 0 (|xi| > about 708)."""
+        xi = self._algebra(xi)
+        with np.errstate(over="ignore", under="ignore"):
+            g = np.exp(xi)
+        self._check_result(g, "xi", "e^xi")
+        return g
+
+    def _check_result(self, g, name, what):
+        if not np.all((g > 0) & (g < np.inf)):
+            raise ValueError(f"{name} is out of range: {what} is not a positive float (it overflows "
+                             f"or underflows to 0), so it is no element of (R+, x)")
 
     def log(self, g):
         """ln g."""
@@ -99,6 +115,7 @@ class _RPlus(LieGroup):
         check_option(side, "side", ("left", "right"))
         g = as_array(g, "g", (1,), what=" (an Euler state of (R+, x), possibly <= 0)")
         xi = self._algebra(xi)
+        dt = _scalar(dt, "dt", " (a time step)")
         return g * (1.0 + dt * xi)
 
     def random(self, rng, size=(), scale=1.0):
