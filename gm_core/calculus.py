@@ -161,7 +161,10 @@ def product_integral(v, a, b, n, side="right", *, point="end", history=False):
     point = check_option(point, "point", ("end", "start", "mid"))
     if not isinstance(history, (bool, np.bool_)):
         raise TypeError(f"history must be True or False; got {history!r:.40}")
-    dx = (b - a) / n
+    with np.errstate(over="ignore"):
+        dx = (b - a) / n
+    if not np.isfinite(dx):
+        raise ValueError(f"a and b are too far apart: b - a overflows a float (a={a:g}, b={b:g})")
     offset = {"end": 1.0, "start": 0.0, "mid": 0.5}[point]
     nodes = a + (np.arange(n) + offset) * dx
     ends = a + np.arange(n + 1) * dx
@@ -177,36 +180,45 @@ def product_integral(v, a, b, n, side="right", *, point="end", history=False):
     size = V0.shape[-1]
     eye = np.eye(size)
 
-    if constant is not None and not history:
-        out = np.linalg.matrix_power(eye + constant * dx, n)
-        return float(out[0, 0]) if scalar else out
+    def compute():
+        if constant is not None and not history:
+            out = np.linalg.matrix_power(eye + constant * dx, n)
+            return float(out[0, 0]) if scalar else out
 
-    P = np.broadcast_to(eye, V0.shape).copy()
-    running = [P] if history else None
-    for k in range(n):
-        if constant is not None:
-            Vk = constant
-        elif k == 0:
-            Vk = V0
-        else:
-            Vk, _ = factor_value(k)
-            if Vk.shape[-1] != size:
-                raise ValueError(
-                    f"v(x) must keep one matrix size; got {size}x{size} at x={nodes[0]:g} and "
-                    f"shape {Vk.shape} at x={nodes[k]:g}"
-                )
-        step = eye + Vk * dx
-        P = P @ step if side == "right" else step @ P
+        P = np.broadcast_to(eye, V0.shape).copy()
+        running = [P] if history else None
+        for k in range(n):
+            if constant is not None:
+                Vk = constant
+            elif k == 0:
+                Vk = V0
+            else:
+                Vk, _ = factor_value(k)
+                if Vk.shape[-1] != size:
+                    raise ValueError(
+                        f"v(x) must keep one matrix size; got {size}x{size} at x={nodes[0]:g} and "
+                        f"shape {Vk.shape} at x={nodes[k]:g}"
+                    )
+            step = eye + Vk * dx
+            P = P @ step if side == "right" else step @ P
+            if history:
+                running.append(P)
         if history:
-            running.append(P)
-    if history:
-        prods = np.stack(running)
+            prods = np.stack(running)
+            if scalar:
+                prods = prods[..., 0, 0]
+            return RunningProduct(x=ends, products=prods, side=side)
         if scalar:
-            prods = prods[..., 0, 0]
-        return RunningProduct(x=ends, products=prods, side=side)
-    if scalar:
-        return float(P[0, 0])
-    return P
+            return float(P[0, 0])
+        return P
+
+    with np.errstate(over="ignore", invalid="ignore"):
+        result = compute()
+    values = result.products if history else result
+    if not np.all(np.isfinite(values)):
+        raise ValueError(f"the product overflowed: the factors (I + v dx) with v and dx = (b - a)/n = "
+                         f"{dx:g} are too large; shrink v or the interval [a, b], or raise n")
+    return result
 
 
 # ---------------------------------------------------------------------------------- quotient derivative
@@ -334,8 +346,7 @@ class ExpHistory:
     error: np.ndarray = field(init=False)
 
     def __post_init__(self):
-        err = np.linalg.norm(self.matrices - self.exact_matrix, axis=(-2, -1))
-        object.__setattr__(self, "error", err)
+        object.__setattr__(self, "error", _frobenius(self.matrices - self.exact_matrix))
 
     @property
     def elements(self):
@@ -356,6 +367,13 @@ class ExpHistory:
         return _PATHS[self.method](self.group, self.xi, n, self.side)
 
 
+def _frobenius(D):
+    """Frobenius norms over the last two axes, scaled so that entries near 1e300 do not overflow."""
+    big = np.max(np.abs(D), axis=(-2, -1), keepdims=True)
+    safe = np.where(big > 0, big, 1.0)
+    return np.linalg.norm(D / safe, axis=(-2, -1)) * big[..., 0, 0]
+
+
 def convergence_order(n, error, floor=1e-13):
     """Least-squares slope p of log(error) = c - p log(n), ignoring errors below ``floor``.
 
@@ -372,8 +390,9 @@ def convergence_order(n, error, floor=1e-13):
     if np.any(error < 0) or np.any(n <= 0):
         raise ValueError("n must be positive and error non-negative (errors are norms)")
     keep = error > floor
-    if keep.sum() < 2:
-        raise ValueError("need at least two errors above the floor to fit a convergence order")
+    if len(np.unique(n[keep])) < 2:
+        raise ValueError("n and error must hold at least two different n with errors above floor "
+                         "to fit a convergence order")
     slope = np.polyfit(np.log(n[keep]), np.log(error[keep]), 1)[0]
     return float(-slope)
 
@@ -385,7 +404,7 @@ def binomial_terms(n, k):
     each term of the binomial expansion of (I + A/n)^n tends to A^k/k!. (The draft's
     coefficient n^k / k! is the large-n approximation of C(n, k), not equal to it.)
     """
-    n = _check_int(n, "n", minimum=0, maximum=10**12)
+    n = _check_int(n, "n", minimum=0, maximum=10**9)
     k = _check_int(k, "k", minimum=0, maximum=1000)
     if k > n:
         raise ValueError(f"k must be between 0 and n={n}; got {k}")
@@ -492,15 +511,20 @@ def exp_history(group, xi, n=DEFAULT_N, method="product", side="left"):
     exact = group.exp(xi)
     exact_matrix = group.matrix(exact)
     A = group.hat(xi)
-    if method == "closed":
-        mats = np.broadcast_to(exact_matrix, (len(ns),) + exact_matrix.shape).copy()
-    elif method == "taylor":
-        mats = _taylor_sums(A, int(ns[-1]))[ns]
-    elif method == "product":
-        eye = np.eye(A.shape[-1])
-        mats = np.stack([np.linalg.matrix_power(eye + A / m, int(m)) for m in ns])
-    else:
-        mats = _state_matrices(group, np.stack([_euler_states(group, xi, int(m), side)[-1] for m in ns]))
+    with np.errstate(over="ignore", invalid="ignore"):
+        if method == "closed":
+            mats = np.broadcast_to(exact_matrix, (len(ns),) + exact_matrix.shape).copy()
+        elif method == "taylor":
+            mats = _taylor_sums(A, int(ns[-1]))[ns]
+        elif method == "product":
+            eye = np.eye(A.shape[-1])
+            mats = np.stack([np.linalg.matrix_power(eye + A / m, int(m)) for m in ns])
+        else:
+            mats = _state_matrices(group, np.stack([_euler_states(group, xi, int(m), side)[-1] for m in ns]))
+        error = _frobenius(mats - exact_matrix)
+    if not (np.all(np.isfinite(mats)) and np.all(np.isfinite(error))):
+        raise ValueError(f"xi is too large for method {method!r} with n up to {int(ns[-1])}: the "
+                         f"estimates of exp(xi) overflow a float")
     return ExpHistory(method=method, side=side, group=group, xi=xi, n=ns, matrices=mats,
                       exact=exact, exact_matrix=exact_matrix)
 
@@ -546,5 +570,8 @@ def se2_exp_study(thetadots=(0.5, 1.0, 2.0, 4.0), n=DEFAULT_N, speed=1.0):
     speed = _check_scalar(speed, "speed")
     _check_n_list(n)
     xis = [np.array([speed, 0.0, w]) for w in np.atleast_1d(td)]
-    return {side: {m: [exp_history(SE2, xi, n, m, side) for xi in xis] for m in EXP_METHODS}
-            for side in _SIDES}
+    try:
+        return {side: {m: [exp_history(SE2, xi, n, m, side) for xi in xis] for m in EXP_METHODS}
+                for side in _SIDES}
+    except ValueError as exc:
+        raise ValueError(f"thetadots and speed are too large: {exc}") from None

@@ -55,6 +55,8 @@ __all__ = [
 DEFAULT_RTOL = 1e-10
 DEFAULT_ATOL = 1e-12
 DEFAULT_METHOD = "DOP853"
+#: Default cap on field evaluations in :func:`integral_curve` (DOP853 uses 12 per step).
+MAX_EVALUATIONS = 50_000
 
 
 def _check_side(side):
@@ -169,6 +171,8 @@ class VectorField:
                 f"axes must name {len(vals)} distinct coordinates in 0..{self.dim - 1}; got {axes}"
             )
         base = np.zeros(self.dim) if at is None else as_array(at, "at", (self.dim,))
+        if base.ndim != 1:
+            raise ValueError(f"at must be one configuration of shape ({self.dim},); got shape {base.shape}")
         meshes = np.meshgrid(*vals, indexing="xy")
         q = np.broadcast_to(base, meshes[0].shape + (self.dim,)).copy()
         for a, m in zip(axes, meshes):
@@ -205,7 +209,11 @@ class IntegralCurve:
         yield self.q
 
 
-def integral_curve(field, q0, t_span, t_eval=None, **solve_ivp_kw):
+class _TooManyEvaluations(Exception):
+    pass
+
+
+def integral_curve(field, q0, t_span, t_eval=None, *, max_evaluations=MAX_EVALUATIONS, **solve_ivp_kw):
     """Integral curve of ``field`` from ``q0``: solves q_dot = X(q, t), q(t_span[0]) = q0, (1.15).
 
     ``field`` is a :class:`VectorField` (or a callable ``(q, t)`` if ``q0`` fixes the dimension).
@@ -213,7 +221,9 @@ def integral_curve(field, q0, t_span, t_eval=None, **solve_ivp_kw):
     system and ``q`` comes back with shape ``(len(t), ..., dim)``. ``t_span = (t0, t1)`` (t1 < t0
     integrates backwards); ``t_eval`` selects output times inside the span. Keyword arguments go
     to :func:`scipy.integrate.solve_ivp`; defaults are ``method="DOP853"``, ``rtol=1e-10``,
-    ``atol=1e-12``. Raises ``RuntimeError`` if the solver fails.
+    ``atol=1e-12``. Raises ``RuntimeError`` if the solver fails, and ``ValueError`` naming
+    ``t_span`` if it needs more than ``max_evaluations`` evaluations of the field (a span far
+    longer than the field's time scale would otherwise run for hours).
     """
     q0_arr = as_array(q0, "q0", what=" (a starting configuration)")
     if q0_arr.ndim == 0:
@@ -228,8 +238,8 @@ def integral_curve(field, q0, t_span, t_eval=None, **solve_ivp_kw):
     if t_eval is not None:
         t_eval = as_array(t_eval, "t_eval", what=" (output times)")
         t_eval = np.atleast_1d(t_eval)
-        if t_eval.ndim != 1:
-            raise ValueError(f"t_eval must be a 1-D array of times; got shape {t_eval.shape}")
+        if t_eval.ndim != 1 or t_eval.size == 0:
+            raise ValueError(f"t_eval must be a non-empty 1-D array of times; got shape {t_eval.shape}")
         lo, hi = min(span), max(span)
         tol = 1e-12 * max(1.0, abs(lo), abs(hi))
         if np.any(t_eval < lo - tol) or np.any(t_eval > hi + tol):
@@ -238,15 +248,31 @@ def integral_curve(field, q0, t_span, t_eval=None, **solve_ivp_kw):
     batch = q0_arr.shape[:-1]
     shape = q0_arr.shape
 
+    calls = [0]
+
     def rhs(t, y):
+        calls[0] += 1
+        if calls[0] > max_evaluations:
+            raise _TooManyEvaluations
         return X._eval(y.reshape(shape), t).ravel()
 
     _check_solve_ivp_kw(solve_ivp_kw, "integral_curve")
+    max_evaluations = check_int(max_evaluations, "max_evaluations", minimum=1, maximum=10**9)
     kw = {"method": DEFAULT_METHOD, "rtol": DEFAULT_RTOL, "atol": DEFAULT_ATOL}
     kw.update(solve_ivp_kw)
-    sol = solve_ivp(rhs, (float(span[0]), float(span[1])), q0_arr.ravel(), t_eval=t_eval, **kw)
+    try:
+        with np.errstate(over="ignore", invalid="ignore"):   # overflow shows as failure below
+            sol = solve_ivp(rhs, (float(span[0]), float(span[1])), q0_arr.ravel(), t_eval=t_eval, **kw)
+    except _TooManyEvaluations:
+        raise ValueError(
+            f"t_span ({span[0]:g}, {span[1]:g}) is too long for field {X.name!r} at these tolerances: the solver "
+            f"needed more than max_evaluations={max_evaluations} evaluations; shorten t_span or "
+            f"raise max_evaluations"
+        ) from None
     if not sol.success:
         raise RuntimeError(f"integral_curve: solve_ivp failed for field {X.name!r}: {sol.message}")
+    if not np.all(np.isfinite(sol.y)):
+        raise RuntimeError(f"integral_curve: the curve of field {X.name!r} from q0 overflowed (blew up)")
     q = sol.y.T.reshape((len(sol.t),) + batch + (X.dim,))
     return IntegralCurve(t=sol.t, q=q, solution=sol)
 
@@ -332,7 +358,10 @@ def group_geodesic(group, xi, t, side="left", g0=None, *, method="exp", **solve_
         vals, inv = np.unique(flat[mask], return_inverse=True)
         if backward:
             vals, inv = vals[::-1], len(vals) - 1 - inv
-        curve = integral_curve(field, g0, (0.0, float(vals[-1])), t_eval=vals, **solve_ivp_kw)
+        try:
+            curve = integral_curve(field, g0, (0.0, float(vals[-1])), t_eval=vals, **solve_ivp_kw)
+        except ValueError as exc:
+            raise ValueError(f"t reaches {vals[-1]:g}: {exc}") from None
         out[mask] = curve.q[inv]
     return out.reshape(t.shape + (group.dim,))
 
@@ -475,5 +504,10 @@ def rplus_geodesics(xi, t, g0=1.0):
     if g0.ndim != 0:
         raise ValueError(f"g0 must be a single positive number (an element of (R+, x)); got shape {g0.shape}")
     xi_b = xi.reshape(xi.shape + (1,) * t.ndim)
-    g = g0 * np.exp(xi_b * t)
-    return g, xi_b * g
+    with np.errstate(over="ignore", invalid="ignore"):
+        g = g0 * np.exp(xi_b * t)
+        g_dot = xi_b * g
+    if not (np.isfinite(g).all() and np.isfinite(g_dot).all()):
+        raise ValueError("xi and t are too large together: g0 exp(xi t) overflows a float "
+                         "(keep |xi t| below about 700)")
+    return g, g_dot

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_shape
+from .._validate import as_array, check_shape
 from .base import (
     TWO_PI, LieGroup, _angle_of_block, _check_entries, _check_rotation, _eye, _mod_period, _rng,
     _rot, _scale, _wrap, wrap_periodic,
@@ -178,11 +178,12 @@ class S1(_Additive):
     matrix_size = 2
 
     def __init__(self, period=TWO_PI):
-        if isinstance(period, (bool, np.bool_)) or not isinstance(period, (int, float, np.integer, np.floating)):
+        if isinstance(period, (str, bytes)) or period is None:
             raise TypeError(f"period must be a positive number; got {type(period).__name__} {period!r:.40}")
-        if not np.isfinite(period) or period <= 0 or period > 1e300:
-            raise ValueError(f"period must be a positive number (at most 1e300); got {period!r}")
-        self.period = float(period)
+        k = as_array(period, "period", what=" (a positive number)")
+        if k.ndim != 0 or not 0 < k <= 1e300:
+            raise ValueError(f"period must be a positive number (at most 1e300); got {period!r:.40}")
+        self.period = float(k)
         self.periods = (self.period,)
         radians = self.period == TWO_PI
         self.name = "(S^1, + mod 2pi)" if radians else f"(S^1, + mod {period:g})"
