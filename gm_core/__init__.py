@@ -10,7 +10,7 @@ from __future__ import annotations
 import importlib
 
 from ._validate import SingularShapeError
-from .groups import ALL_GROUPS, R, R2, R2xS1, RPlus, Rn, S1, SE2, SO2, LieGroup, matvec, wrap_angle
+from .groups import ALL_GROUPS, R2, S1, SE2, SO2, LieGroup, R, R2xS1, Rn, RPlus, matvec, wrap_angle
 
 __all__ = [
     "LieGroup", "Rn", "R", "R2", "RPlus", "SO2", "S1", "R2xS1", "SE2", "ALL_GROUPS", "wrap_angle",

@@ -36,7 +36,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ._validate import as_array, batch_shape, check_int, check_option, check_positive
-from .groups import LieGroup, R2xS1, SE2, check_group, matvec
+from .groups import SE2, R2xS1, check_group, matvec
 
 #: Largest configuration-space dimension of a :class:`VectorField`.
 MAX_FIELD_DIM = 10_000

@@ -39,7 +39,8 @@ class Case:
     strings, ``flags`` are booleans, ``callables`` are functions, ``objects`` are passed through
     untouched except for type errors (groups, rngs); everything else is a numeric array.
     ``also_raises`` lists further documented exception types (e.g. ``RuntimeError`` when a
-    solver fails), whose messages need not name an argument; ``also_valid`` maps an argument to values that are valid too (a default None, an int seed);
+    solver fails), whose messages need not name an argument; ``also_valid`` maps an argument
+    to values that are valid too (a default None, an int seed);
     ``batch`` lists array arguments whose leading axes broadcast together, ``nan_ok`` arguments
     that may hold NaN, ``out_tail`` the trailing shape of an array result, ``finite`` whether
     every number in the result must be finite, ``extra_kw`` whether unknown keywords are checked.

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from gm_core import ALL_GROUPS, R2, S1, SE2, SO2, R2xS1, RPlus, Rn, matvec, wrap_angle
+from gm_core import ALL_GROUPS, R2, S1, SE2, SO2, R2xS1, Rn, RPlus, matvec, wrap_angle
 
 
 @pytest.mark.parametrize("bad,exc,words", [

@@ -13,7 +13,7 @@ from fuzzkit import Case, baseline, cases_table, mutations, run_case
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gm_core import ALL_GROUPS, SE2, Rn, S1, matvec, wrap_angle
+from gm_core import ALL_GROUPS, S1, SE2, Rn, matvec, wrap_angle
 from gm_core import calculus as C
 from gm_core import fields as F
 from gm_core.groups import check_group

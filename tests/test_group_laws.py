@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gm_core import ALL_GROUPS, LieGroup, RPlus, S1, SE2
+from gm_core import ALL_GROUPS, S1, SE2, LieGroup, RPlus
 from gm_core.groups import MAX_RN_DIM, Rn
 
 settings.register_profile("laws", max_examples=25, deadline=None)

@@ -36,7 +36,7 @@ R^2 x S^1), ``rplus.py`` ((R+, x)), ``se2.py`` (SE(2)). A new group subclasses
 """
 from __future__ import annotations
 
-from .additive import MAX_RN_DIM, R2xS1, Rn, S1, SO2
+from .additive import MAX_RN_DIM, S1, SO2, R2xS1, Rn
 from .base import TWO_PI, LieGroup, check_group, matvec, wrap_angle, wrap_periodic
 from .rplus import RPlus
 from .se2 import SE2

@@ -8,8 +8,18 @@ import numpy as np
 
 from .._validate import as_array, check_shape
 from .base import (
-    TWO_PI, LieGroup, _angle_of_block, _check_entries, _check_rotation, _eye, _mod_period, _rng,
-    _rot, _scale, _wrap, wrap_periodic,
+    TWO_PI,
+    LieGroup,
+    _angle_of_block,
+    _check_entries,
+    _check_rotation,
+    _eye,
+    _mod_period,
+    _rng,
+    _rot,
+    _scale,
+    _wrap,
+    wrap_periodic,
 )
 
 __all__ = ["Rn", "S1", "MAX_RN_DIM"]
