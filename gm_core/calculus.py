@@ -62,7 +62,7 @@ def _check_side(side, name="side"):
 
 
 #: Largest number of steps, factors or series terms accepted (a Python loop runs over them).
-MAX_STEPS = 2**20
+MAX_STEPS = 10**5
 
 
 def _check_int(n, name, minimum=1, maximum=MAX_STEPS):

@@ -13,8 +13,7 @@ from hypothesis import strategies as st
 from gm_core import ALL_GROUPS, S1, SE2, LieGroup, RPlus
 from gm_core.groups import MAX_RN_DIM, Rn
 
-settings.register_profile("laws", max_examples=25, deadline=None)
-settings.load_profile("laws")
+LAWS = settings(max_examples=25, deadline=None)   # per test: no global profile is loaded here
 
 BATCH = 3
 over_groups = pytest.mark.parametrize("G", list(ALL_GROUPS.values()), ids=list(ALL_GROUPS))
@@ -98,6 +97,7 @@ def test_membership_is_group_specific():
 
 # ------------------------------------------------------------------ group axioms
 @over_groups
+@LAWS
 @given(data=st.data())
 def test_associativity(G, data):
     a, b, c = (data.draw(elements(G)) for _ in range(3))
@@ -105,6 +105,7 @@ def test_associativity(G, data):
 
 
 @over_groups
+@LAWS
 @given(data=st.data())
 def test_identity_and_inverse(G, data):
     g = data.draw(elements(G))
@@ -117,6 +118,7 @@ def test_identity_and_inverse(G, data):
 
 
 @over_groups
+@LAWS
 @given(data=st.data())
 def test_exp_log_round_trip(G, data):
     g = data.draw(elements(G))
@@ -126,6 +128,7 @@ def test_exp_log_round_trip(G, data):
 
 
 @over_groups
+@LAWS
 @given(data=st.data())
 def test_hat_vee_round_trip(G, data):
     xi = data.draw(algebra(G))
@@ -133,6 +136,7 @@ def test_hat_vee_round_trip(G, data):
 
 
 @over_groups
+@LAWS
 @given(data=st.data())
 def test_adjoint_is_a_homomorphism(G, data):
     g, h = data.draw(elements(G)), data.draw(elements(G))
@@ -142,6 +146,7 @@ def test_adjoint_is_a_homomorphism(G, data):
 
 # ------------------------------------------------------------------ bracket and ad
 @over_groups
+@LAWS
 @given(data=st.data())
 def test_bracket_is_antisymmetric_and_satisfies_jacobi(G, data):
     x, y, z = (data.draw(algebra(G)) for _ in range(3))
@@ -153,6 +158,7 @@ def test_bracket_is_antisymmetric_and_satisfies_jacobi(G, data):
 
 
 @over_groups
+@LAWS
 @given(data=st.data())
 def test_bracket_and_ad_equal_the_matrix_commutator(G, data):
     x, y = data.draw(algebra(G)), data.draw(algebra(G))
@@ -162,6 +168,7 @@ def test_bracket_and_ad_equal_the_matrix_commutator(G, data):
 
 
 @over_groups
+@LAWS
 @given(data=st.data())
 def test_bracket_is_the_derivative_of_Ad_along_exp(G, data):
     """[xi, eta] = d/dt Ad(exp(t xi)) eta at t = 0, by central differences."""
