@@ -1,7 +1,8 @@
 """gm_core: the numeric core of the geometric mechanics course companion.
 
-The mathematics (this package's top level, ``groups``, ``calculus``, ``fields``, ``chains``,
-``locomotion``, ``systems``, ``geometry``) uses numpy and scipy only. Drawing
+The mathematics (this package's top level, ``groups``, ``calculus``, ``fields``, ``kinematics``,
+``chains``, ``connection``, ``gaits``, ``locomotion``, ``systems``, ``fluids``, ``geometry``,
+``manifolds``, ``axioms``, ``examples``) uses numpy and scipy only. Drawing
 (``gm_core.drawing``) and widgets (``gm_core.widgets``) sit on top and are imported only when
 asked for, so the flow runs one way: math -> drawing -> widgets -> notebooks.
 """
@@ -10,16 +11,17 @@ from __future__ import annotations
 import importlib
 
 from ._validate import SingularShapeError
-from .groups import ALL_GROUPS, R, R2, R2xS1, RPlus, Rn, S1, SE2, SO2, LieGroup, wrap_angle
+from .groups import ALL_GROUPS, R2, S1, SE2, SO2, LieGroup, R, R2xS1, Rn, RPlus, matvec, wrap_angle
 
 __all__ = [
     "LieGroup", "Rn", "R", "R2", "RPlus", "SO2", "S1", "R2xS1", "SE2", "ALL_GROUPS", "wrap_angle",
-    "SingularShapeError",
+    "matvec", "SingularShapeError",
 ]
 __version__ = "0.1.0"
 
-_SUBMODULES = {"groups", "calculus", "fields", "chains", "locomotion", "systems", "geometry",
-               "checks", "drawing", "widgets", "errata", "testing"}
+_SUBMODULES = {"groups", "calculus", "fields", "chains", "kinematics", "connection", "gaits",
+               "locomotion", "systems", "fluids", "geometry", "manifolds", "axioms", "examples",
+               "checks", "grade", "drawing", "widgets"}
 
 
 def __getattr__(name):

@@ -37,13 +37,12 @@ the draft prints n^k / k!, which is only its large-n limit (see :func:`binomial_
 from __future__ import annotations
 
 import math
-import numbers
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._validate import SingularShapeError, as_array
-from .groups import LieGroup, RPlus as _RPLUS, Rn, S1, check_group
+from ._validate import SingularShapeError, as_array, check_int, check_option
+from .groups import SE2, LieGroup, check_group
 
 __all__ = [
     "product_integral", "RunningProduct", "quotient_derivative",
@@ -59,20 +58,15 @@ DEFAULT_N = tuple(2 ** k for k in range(11))
 
 # ---------------------------------------------------------------------------------- checking
 def _check_side(side, name="side"):
-    if not isinstance(side, str) or side not in _SIDES:
-        raise ValueError(f"{name} must be 'left' or 'right'; got {side!r}")
-    return side
+    return check_option(side, name, _SIDES)
 
 
-def _check_int(n, name, minimum=1):
-    if isinstance(n, bool) or not isinstance(n, numbers.Integral):
-        if isinstance(n, float) and n.is_integer():
-            n = int(n)
-        else:
-            raise TypeError(f"{name} must be an integer >= {minimum}; got {type(n).__name__} {n!r}")
-    if n < minimum:
-        raise ValueError(f"{name} must be an integer >= {minimum}; got {n}")
-    return int(n)
+#: Largest number of steps, factors or series terms accepted (a Python loop runs over them).
+MAX_STEPS = 10**5
+
+
+def _check_int(n, name, minimum=1, maximum=MAX_STEPS):
+    return check_int(n, name, minimum=minimum, maximum=maximum)
 
 
 def _check_n_list(n, name="n"):
@@ -164,9 +158,13 @@ def product_integral(v, a, b, n, side="right", *, point="end", history=False):
     b = _check_scalar(b, "b")
     n = _check_int(n, "n")
     side = _check_side(side)
-    if point not in ("end", "start", "mid"):
-        raise ValueError(f"point must be 'end', 'start' or 'mid'; got {point!r}")
-    dx = (b - a) / n
+    point = check_option(point, "point", ("end", "start", "mid"))
+    if not isinstance(history, (bool, np.bool_)):
+        raise TypeError(f"history must be True or False; got {history!r:.40}")
+    with np.errstate(over="ignore"):
+        dx = (b - a) / n
+    if not np.isfinite(dx):
+        raise ValueError(f"a and b are too far apart: b - a overflows a float (a={a:g}, b={b:g})")
     offset = {"end": 1.0, "start": 0.0, "mid": 0.5}[point]
     nodes = a + (np.arange(n) + offset) * dx
     ends = a + np.arange(n + 1) * dx
@@ -182,36 +180,45 @@ def product_integral(v, a, b, n, side="right", *, point="end", history=False):
     size = V0.shape[-1]
     eye = np.eye(size)
 
-    if constant is not None and not history:
-        out = np.linalg.matrix_power(eye + constant * dx, n)
-        return float(out[0, 0]) if scalar else out
+    def compute():
+        if constant is not None and not history:
+            out = np.linalg.matrix_power(eye + constant * dx, n)
+            return float(out[0, 0]) if scalar else out
 
-    P = np.broadcast_to(eye, V0.shape).copy()
-    running = [P] if history else None
-    for k in range(n):
-        if constant is not None:
-            Vk = constant
-        elif k == 0:
-            Vk = V0
-        else:
-            Vk, _ = factor_value(k)
-            if Vk.shape[-1] != size:
-                raise ValueError(
-                    f"v(x) must keep one matrix size; got {size}x{size} at x={nodes[0]:g} and "
-                    f"shape {Vk.shape} at x={nodes[k]:g}"
-                )
-        step = eye + Vk * dx
-        P = P @ step if side == "right" else step @ P
+        P = np.broadcast_to(eye, V0.shape).copy()
+        running = [P] if history else None
+        for k in range(n):
+            if constant is not None:
+                Vk = constant
+            elif k == 0:
+                Vk = V0
+            else:
+                Vk, _ = factor_value(k)
+                if Vk.shape[-1] != size:
+                    raise ValueError(
+                        f"v(x) must keep one matrix size; got {size}x{size} at x={nodes[0]:g} and "
+                        f"shape {Vk.shape} at x={nodes[k]:g}"
+                    )
+            step = eye + Vk * dx
+            P = P @ step if side == "right" else step @ P
+            if history:
+                running.append(P)
         if history:
-            running.append(P)
-    if history:
-        prods = np.stack(running)
+            prods = np.stack(running)
+            if scalar:
+                prods = prods[..., 0, 0]
+            return RunningProduct(x=ends, products=prods, side=side)
         if scalar:
-            prods = prods[..., 0, 0]
-        return RunningProduct(x=ends, products=prods, side=side)
-    if scalar:
-        return float(P[0, 0])
-    return P
+            return float(P[0, 0])
+        return P
+
+    with np.errstate(over="ignore", invalid="ignore"):
+        result = compute()
+    values = result.products if history else result
+    if not np.all(np.isfinite(values)):
+        raise ValueError(f"the product overflowed: the factors (I + v dx) with v and dx = (b - a)/n = "
+                         f"{dx:g} are too large; shrink v or the interval [a, b], or raise n")
+    return result
 
 
 # ---------------------------------------------------------------------------------- quotient derivative
@@ -240,11 +247,10 @@ def quotient_derivative(F, x, side="right", h=None, *, method="central"):
     if not callable(F):
         raise TypeError(f"F must be a callable x -> matrix; got {type(F).__name__}")
     side = _check_side(side)
-    if method not in ("central", "quotient"):
-        raise ValueError(f"method must be 'central' or 'quotient'; got {method!r}")
+    method = check_option(method, "method", ("central", "quotient"))
     xs = as_array(x, "x", what=" (a number or a 1-D array of numbers)")
-    if xs.ndim > 1:
-        raise ValueError(f"x must be a number or a 1-D array; got shape {xs.shape}")
+    if xs.ndim > 1 or xs.size == 0:
+        raise ValueError(f"x must be a number or a non-empty 1-D array; got shape {xs.shape}")
     if h is not None:
         h_val = _check_scalar(h, "h")
         if h_val <= 0:
@@ -285,29 +291,10 @@ def element_from_matrix(group, M):
     rotation blocks are scaled). This reads the translation columns as they are and the angle of
     a 2x2 block [[a, -b], [b, a]] + (anything symmetric) as atan2 of its rotational part, which is
     the angle of the nearest rotation (polar decomposition). Exact group matrices round-trip.
-    For (R+, x) the single entry is returned unchecked (a partial sum can be negative).
+    For (R+, x) the single entry is returned unchecked (a partial sum can be negative). The
+    reading is the group's own :meth:`~gm_core.groups.LieGroup.nearest_element`.
     """
-    group = check_group(group)
-    k = group.matrix_size
-    M = as_array(M, "M", (k, k), what=f", a {k}x{k} matrix for {group.name}")
-
-    def angle(B):
-        return np.arctan2(B[..., 1, 0] - B[..., 0, 1], B[..., 0, 0] + B[..., 1, 1])
-
-    name = type(group).__name__
-    if name == "_SE2":
-        return np.stack([M[..., 0, 2], M[..., 1, 2], angle(M[..., :2, :2])], -1)
-    if name == "_R2xS1":
-        return np.stack([M[..., 0, 2], M[..., 1, 2], angle(M[..., 3:5, 3:5])], -1)
-    if name == "_SO2":
-        return angle(M)[..., None]
-    if isinstance(group, S1):
-        return np.mod(angle(M)[..., None] * (group.period / (2 * np.pi)), group.period)
-    if name == "_RPlus":
-        return M[..., 0, :].copy()
-    if isinstance(group, Rn):
-        return M[..., : group.dim, group.dim].copy()
-    return group.from_matrix(M)
+    return check_group(group).nearest_element(M)
 
 
 # ---------------------------------------------------------------------------------- exp four ways
@@ -359,8 +346,7 @@ class ExpHistory:
     error: np.ndarray = field(init=False)
 
     def __post_init__(self):
-        err = np.linalg.norm(self.matrices - self.exact_matrix, axis=(-2, -1))
-        object.__setattr__(self, "error", err)
+        object.__setattr__(self, "error", _frobenius(self.matrices - self.exact_matrix))
 
     @property
     def elements(self):
@@ -381,6 +367,13 @@ class ExpHistory:
         return _PATHS[self.method](self.group, self.xi, n, self.side)
 
 
+def _frobenius(D):
+    """Frobenius norms over the last two axes, scaled so that entries near 1e300 do not overflow."""
+    big = np.max(np.abs(D), axis=(-2, -1), keepdims=True)
+    safe = np.where(big > 0, big, 1.0)
+    return np.linalg.norm(D / safe, axis=(-2, -1)) * big[..., 0, 0]
+
+
 def convergence_order(n, error, floor=1e-13):
     """Least-squares slope p of log(error) = c - p log(n), ignoring errors below ``floor``.
 
@@ -391,9 +384,15 @@ def convergence_order(n, error, floor=1e-13):
     error = as_array(error, "error")
     if n.shape != error.shape or n.ndim != 1:
         raise ValueError(f"n and error must be 1-D arrays of one length; got {n.shape} and {error.shape}")
-    keep = (error > floor) & (n > 0)
-    if keep.sum() < 2:
-        raise ValueError("need at least two errors above the floor to fit a convergence order")
+    floor = _check_scalar(floor, "floor")
+    if floor < 0:
+        raise ValueError(f"floor must be a non-negative error level; got {floor!r}")
+    if np.any(error < 0) or np.any(n <= 0):
+        raise ValueError("n must be positive and error non-negative (errors are norms)")
+    keep = error > floor
+    if len(np.unique(n[keep])) < 2:
+        raise ValueError("n and error must hold at least two different n with errors above floor "
+                         "to fit a convergence order")
     slope = np.polyfit(np.log(n[keep]), np.log(error[keep]), 1)[0]
     return float(-slope)
 
@@ -405,44 +404,35 @@ def binomial_terms(n, k):
     each term of the binomial expansion of (I + A/n)^n tends to A^k/k!. (The draft's
     coefficient n^k / k! is the large-n approximation of C(n, k), not equal to it.)
     """
-    n = _check_int(n, "n", minimum=0)
-    k = _check_int(k, "k", minimum=0)
+    n = _check_int(n, "n", minimum=0, maximum=10**9)
+    k = _check_int(k, "k", minimum=0, maximum=1000)
     if k > n:
         raise ValueError(f"k must be between 0 and n={n}; got {k}")
     c = math.comb(n, k)
     return c, c / n ** k if n else 1.0
 
 
-def _lifted(group, g, side):
-    e = group.identity()
-    if side == "left":
-        return group.left_lifted_action(g, e)      # T_e L_g, (1.46)
-    return group.right_lifted_action(g, e)         # T_e R_g, (1.47)
-
-
 def _euler_states(group, xi, n, side):
     """States g_0 = e, g_{j+1} = g_j + (1/n) T_e{L,R}_{g_j} xi, j < n; shape (n+1, dim).
 
-    On (R+, x) the lifted actions are multiplication by g, (1.24)-(1.25), so the steps are
-    g_{j+1} = g_j (1 + xi/n): exactly the cumulative product (1.49). With n <= -xi a step
-    overshoots to g <= 0, outside the group; those values are returned as they are (they show
-    the failure of too few steps) instead of being rejected by the group's checks.
+    Each step is the group's :meth:`~gm_core.groups.LieGroup.euler_step`. On (R+, x) the lifted
+    actions are multiplication by g, (1.24)-(1.25), so the steps are g_{j+1} = g_j (1 + xi/n):
+    exactly the cumulative product (1.49). With n <= -xi a step overshoots to g <= 0, outside the
+    group; those values are returned as they are (they show the failure of too few steps).
     """
     dt = 1.0 / n
-    if isinstance(group, type(_RPLUS)):
-        return np.cumprod(np.concatenate([[1.0], np.full(n, 1.0 + dt * xi[0])]))[:, None]
     g = group.identity()
-    out = np.empty((n + 1, group.dim))
+    out = np.empty((n + 1, group.param_dim))
     out[0] = g
     for j in range(n):
-        g = g + dt * (_lifted(group, g, side) @ xi)
+        g = group.euler_step(g, xi, dt, side)
         out[j + 1] = g
     return out
 
 
 def _state_matrices(group, G):
-    """group.matrix(G), except on (R+, x) where overshooting Euler states may be <= 0."""
-    return G[..., None].copy() if isinstance(group, type(_RPLUS)) else group.matrix(G)
+    """Matrices of Euler states, which may lie outside the group (see :func:`_euler_states`)."""
+    return group.coordinate_matrix(G)
 
 
 def _taylor_sums(A, n):
@@ -517,20 +507,24 @@ def exp_history(group, xi, n=DEFAULT_N, method="product", side="left"):
     xi = _check_xi(group, xi)
     ns = _check_n_list(n)
     side = _check_side(side)
-    if method not in EXP_METHODS:
-        raise ValueError(f"method must be one of {EXP_METHODS}; got {method!r}")
+    method = check_option(method, "method", EXP_METHODS)
     exact = group.exp(xi)
     exact_matrix = group.matrix(exact)
     A = group.hat(xi)
-    if method == "closed":
-        mats = np.broadcast_to(exact_matrix, (len(ns),) + exact_matrix.shape).copy()
-    elif method == "taylor":
-        mats = _taylor_sums(A, int(ns[-1]))[ns]
-    elif method == "product":
-        eye = np.eye(A.shape[-1])
-        mats = np.stack([np.linalg.matrix_power(eye + A / m, int(m)) for m in ns])
-    else:
-        mats = _state_matrices(group, np.stack([_euler_states(group, xi, int(m), side)[-1] for m in ns]))
+    with np.errstate(over="ignore", invalid="ignore"):
+        if method == "closed":
+            mats = np.broadcast_to(exact_matrix, (len(ns),) + exact_matrix.shape).copy()
+        elif method == "taylor":
+            mats = _taylor_sums(A, int(ns[-1]))[ns]
+        elif method == "product":
+            eye = np.eye(A.shape[-1])
+            mats = np.stack([np.linalg.matrix_power(eye + A / m, int(m)) for m in ns])
+        else:
+            mats = _state_matrices(group, np.stack([_euler_states(group, xi, int(m), side)[-1] for m in ns]))
+        error = _frobenius(mats - exact_matrix)
+    if not (np.all(np.isfinite(mats)) and np.all(np.isfinite(error))):
+        raise ValueError(f"xi is too large for method {method!r} with n up to {int(ns[-1])}: the "
+                         f"estimates of exp(xi) overflow a float")
     return ExpHistory(method=method, side=side, group=group, xi=xi, n=ns, matrices=mats,
                       exact=exact, exact_matrix=exact_matrix)
 
@@ -570,13 +564,14 @@ def se2_exp_study(thetadots=(0.5, 1.0, 2.0, 4.0), n=DEFAULT_N, speed=1.0):
     orders (``h.order()``) are about 1 for Euler and cumulative products; Taylor errors fall faster
     than any power of n, and more slowly (in n) the larger |thetadot| is.
     """
-    from .groups import SE2
-
     td = as_array(thetadots, "thetadots", what=" (rotation rates)")
     if td.ndim > 1:
         raise ValueError(f"thetadots must be a number or a 1-D array; got shape {td.shape}")
     speed = _check_scalar(speed, "speed")
     _check_n_list(n)
     xis = [np.array([speed, 0.0, w]) for w in np.atleast_1d(td)]
-    return {side: {m: [exp_history(SE2, xi, n, m, side) for xi in xis] for m in EXP_METHODS}
-            for side in _SIDES}
+    try:
+        return {side: {m: [exp_history(SE2, xi, n, m, side) for xi in xis] for m in EXP_METHODS}
+                for side in _SIDES}
+    except ValueError as exc:
+        raise ValueError(f"thetadots and speed are too large: {exc}") from None

@@ -19,11 +19,20 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._integers import check_int
-from ._validate import as_array, check_positive
+from ._validate import as_array, check_int, check_positive
 from .groups import SE2, matvec
-from .kinematics import (METHODS, Chain, Joint, Link, MobileChain, _lengths, finite_difference_jacobians,
-                         relative_pose, transported_columns, world_to_body_jacobian)
+from .kinematics import (
+    METHODS,
+    Chain,
+    Joint,
+    Link,
+    MobileChain,
+    _lengths,
+    finite_difference_jacobians,
+    relative_pose,
+    transported_columns,
+    world_to_body_jacobian,
+)
 
 __all__ = [
     "Joint", "Link", "Chain", "MobileChain", "METHODS", "world_to_body_jacobian",
@@ -346,9 +355,9 @@ def sample_accessible_manifold(constraints, n=200, rng=None, box=2.0, dim=3, ite
     """
     if not callable(constraints):
         raise TypeError("constraints must be a function p (..., dim) -> values (..., k)")
-    n = check_int(n, "n", low=1, high=10 ** 7, what=" (the number of random starting points)")
-    dim = check_int(dim, "dim", low=1, high=1000, what=" (the dimension of the ambient space)")
-    iters = check_int(iters, "iters", low=1, high=10 ** 6, what=" (Gauss-Newton iterations)")
+    n = check_int(n, "n", minimum=1, maximum=10 ** 7, what=" (the number of random starting points)")
+    dim = check_int(dim, "dim", minimum=1, maximum=1000, what=" (the dimension of the ambient space)")
+    iters = check_int(iters, "iters", minimum=1, maximum=10 ** 6, what=" (Gauss-Newton iterations)")
     box = float(check_positive(box, "box"))
     tol = float(check_positive(tol, "tol"))
     if rng is None:
@@ -370,6 +379,6 @@ def sample_accessible_manifold(constraints, n=200, rng=None, box=2.0, dim=3, ite
 
 def accessible_circle(n=100):
     """Points ``(n, 3)`` of the accessible manifold of (2.i)-(2.ii): the unit circle in the plane z = 1."""
-    n = check_int(n, "n", low=2, high=10 ** 7, what=" (the number of points)")
+    n = check_int(n, "n", minimum=2, maximum=10 ** 7, what=" (the number of points)")
     t = np.linspace(0.0, 2 * np.pi, n)
     return np.stack([np.cos(t), np.sin(t), np.ones_like(t)], -1)

@@ -12,8 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._integers import check_int
-from ._validate import as_array
+from ._validate import as_array, check_int
 
 __all__ = ["SINGULAR_TOL", "pfaffian_determinant", "connection_from_pfaffian", "metric_from_jacobians",
            "connection_from_mass_matrix"]
@@ -73,7 +72,7 @@ def connection_from_pfaffian(omega, *, n_position=3):
     (3.10). Where ``omega_xi`` is singular the result is NaN (no warning): see
     :func:`pfaffian_determinant`.
     """
-    n_position = check_int(n_position, "n_position", low=1, high=64, what=" (rows of the Pfaffian)")
+    n_position = check_int(n_position, "n_position", minimum=1, maximum=64, what=" (rows of the Pfaffian)")
     omega = as_array(omega, "omega", allow_nan=True)
     if omega.ndim < 2 or omega.shape[-2] != n_position or omega.shape[-1] <= n_position:
         raise ValueError(f"omega must have shape (..., {n_position}, {n_position} + n) with n >= 1 "
@@ -133,7 +132,7 @@ def metric_from_jacobians(jacobians, inertias, *, rows=None):
         M[k:k + Mi.shape[0], k:k + Mi.shape[0]] = Mi
         k += Mi.shape[0]
     if rows is not None:
-        rows = check_int(rows, "rows", low=1, high=J.shape[-1], what=" (how many rows of the matrix to return)")
+        rows = check_int(rows, "rows", minimum=1, maximum=J.shape[-1], what=" (how many rows of the matrix to return)")
     left = J if rows is None else J[..., :rows]
     if np.count_nonzero(M - np.diag(np.diag(M))) == 0:
         return np.swapaxes(left * np.diag(M)[:, None], -1, -2) @ J
@@ -147,7 +146,7 @@ def connection_from_mass_matrix(M, *, n_position=3):
     the body momentum is ``I xi + (I A) r_dot`` with ``I`` the top-left (locked) block, so zero
     momentum gives ``xi = -A r_dot``. The top three rows of ``M`` are therefore a Pfaffian.
     """
-    n_position = check_int(n_position, "n_position", low=1, high=64, what=" (rows of the locked inertia)")
+    n_position = check_int(n_position, "n_position", minimum=1, maximum=64, what=" (rows of the locked inertia)")
     M = as_array(M, "M", allow_nan=True)
     if M.ndim < 2 or M.shape[-1] != M.shape[-2] or M.shape[-1] <= n_position:
         raise ValueError(f"M must be a square (..., 3 + n, 3 + n) mass matrix; got shape {M.shape}")

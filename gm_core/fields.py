@@ -35,8 +35,15 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ._validate import as_array, check_positive
-from .groups import LieGroup, R2xS1, SE2, check_group, matvec
+from ._validate import as_array, batch_shape, check_int, check_option, check_positive
+from .groups import SE2, R2xS1, check_group, matvec
+
+#: Largest configuration-space dimension of a :class:`VectorField`.
+MAX_FIELD_DIM = 10_000
+#: Keyword arguments :func:`integral_curve` passes on to scipy's solve_ivp.
+SOLVE_IVP_OPTIONS = frozenset({"method", "rtol", "atol", "dense_output", "events", "vectorized",
+                               "first_step", "max_step", "min_step", "jac", "jac_sparsity",
+                               "lband", "uband"})
 
 __all__ = [
     "VectorField", "IntegralCurve", "integral_curve", "left_invariant_field",
@@ -48,15 +55,24 @@ __all__ = [
 DEFAULT_RTOL = 1e-10
 DEFAULT_ATOL = 1e-12
 DEFAULT_METHOD = "DOP853"
+#: Default cap on field evaluations in :func:`integral_curve` (DOP853 uses 12 per step).
+MAX_EVALUATIONS = 50_000
 
 
 def _check_side(side):
-    if not isinstance(side, str) or side not in ("left", "right"):
+    if not isinstance(side, str) or side not in ("left", "right"):  # a longer message than check_option's
         raise ValueError(
             f"side must be 'left' (left-invariant field, body velocity, (1.46)) or 'right' "
             f"(right-invariant field, spatial velocity, (1.47)); got {side!r}"
         )
     return side
+
+
+def _check_solve_ivp_kw(kw, where):
+    unknown = sorted(set(kw) - SOLVE_IVP_OPTIONS)
+    if unknown:
+        raise TypeError(f"{where} got unknown keyword argument(s) {', '.join(unknown)}; "
+                        f"solve_ivp options are {', '.join(sorted(SOLVE_IVP_OPTIONS))}")
 
 
 def _time(t, name="t"):
@@ -87,8 +103,10 @@ class VectorField:
     def __init__(self, func, dim, *, name="X", vectorized=True, group=None):
         if not callable(func):
             raise TypeError(f"func must be a callable (q, t) -> q_dot; got {type(func).__name__}")
-        if isinstance(dim, bool) or not isinstance(dim, (int, np.integer)) or dim < 1:
-            raise ValueError(f"dim must be a positive integer; got {dim!r}")
+        if isinstance(dim, bool) or not isinstance(dim, (int, np.integer)):
+            raise TypeError(f"dim must be a positive integer; got {type(dim).__name__} {dim!r:.40}")
+        if not 1 <= dim <= MAX_FIELD_DIM:
+            raise ValueError(f"dim must be a positive integer (at most {MAX_FIELD_DIM}); got {dim!r}")
         self.func = func
         self.dim = int(dim)
         self.name = str(name)
@@ -99,8 +117,9 @@ class VectorField:
         return f"VectorField({self.name!r}, dim={self.dim})"
 
     def _eval(self, q, t):
+        what = f" (the value of field {self.name!r})"
         if self.vectorized:
-            out = np.asarray(self.func(q, t), dtype=float)
+            out = as_array(self.func(q, t), "X(q, t)", what=what, allow_nan=True)
             if out.shape != q.shape and out.ndim and out.shape[-1] == self.dim:
                 try:  # e.g. a constant field returning one (dim,) vector for every q
                     out = np.broadcast_to(out, q.shape)
@@ -108,7 +127,10 @@ class VectorField:
                     pass
         else:
             flat = q.reshape(-1, self.dim)
-            out = np.stack([np.asarray(self.func(p, t), dtype=float) for p in flat]).reshape(q.shape)
+            vals = [as_array(self.func(p, t), "X(q, t)", what=what, allow_nan=True) for p in flat]
+            if any(v.shape != (self.dim,) for v in vals):
+                raise ValueError(f"field {self.name!r} must return a vector of shape ({self.dim},) per point")
+            out = np.stack(vals).reshape(q.shape) if vals else np.empty(q.shape)
         if out.shape != q.shape:
             raise ValueError(
                 f"field {self.name!r} returned shape {out.shape} for q of shape {q.shape}; "
@@ -138,12 +160,19 @@ class VectorField:
         for i, v in enumerate(vals):
             if v.ndim != 1:
                 raise ValueError(f"axes_values[{i}] must be a 1-D array; got shape {v.shape}")
-        axes = tuple(range(len(vals))) if axes is None else tuple(int(a) for a in axes)
+        if axes is None:
+            axes = tuple(range(len(vals)))
+        else:
+            if isinstance(axes, (str, bytes)) or not hasattr(axes, "__iter__"):
+                raise TypeError(f"axes must be a sequence of coordinate indices; got {axes!r:.40}")
+            axes = tuple(check_int(a, "axes[i]", minimum=0, maximum=self.dim - 1) for a in axes)
         if len(axes) != len(vals) or len(set(axes)) != len(axes) or not all(0 <= a < self.dim for a in axes):
             raise ValueError(
                 f"axes must name {len(vals)} distinct coordinates in 0..{self.dim - 1}; got {axes}"
             )
         base = np.zeros(self.dim) if at is None else as_array(at, "at", (self.dim,))
+        if base.ndim != 1:
+            raise ValueError(f"at must be one configuration of shape ({self.dim},); got shape {base.shape}")
         meshes = np.meshgrid(*vals, indexing="xy")
         q = np.broadcast_to(base, meshes[0].shape + (self.dim,)).copy()
         for a, m in zip(axes, meshes):
@@ -180,7 +209,11 @@ class IntegralCurve:
         yield self.q
 
 
-def integral_curve(field, q0, t_span, t_eval=None, **solve_ivp_kw):
+class _TooManyEvaluations(Exception):
+    pass
+
+
+def integral_curve(field, q0, t_span, t_eval=None, *, max_evaluations=MAX_EVALUATIONS, **solve_ivp_kw):
     """Integral curve of ``field`` from ``q0``: solves q_dot = X(q, t), q(t_span[0]) = q0, (1.15).
 
     ``field`` is a :class:`VectorField` (or a callable ``(q, t)`` if ``q0`` fixes the dimension).
@@ -188,7 +221,9 @@ def integral_curve(field, q0, t_span, t_eval=None, **solve_ivp_kw):
     system and ``q`` comes back with shape ``(len(t), ..., dim)``. ``t_span = (t0, t1)`` (t1 < t0
     integrates backwards); ``t_eval`` selects output times inside the span. Keyword arguments go
     to :func:`scipy.integrate.solve_ivp`; defaults are ``method="DOP853"``, ``rtol=1e-10``,
-    ``atol=1e-12``. Raises ``RuntimeError`` if the solver fails.
+    ``atol=1e-12``. Raises ``RuntimeError`` if the solver fails, and ``ValueError`` naming
+    ``t_span`` if it needs more than ``max_evaluations`` evaluations of the field (a span far
+    longer than the field's time scale would otherwise run for hours).
     """
     q0_arr = as_array(q0, "q0", what=" (a starting configuration)")
     if q0_arr.ndim == 0:
@@ -203,8 +238,8 @@ def integral_curve(field, q0, t_span, t_eval=None, **solve_ivp_kw):
     if t_eval is not None:
         t_eval = as_array(t_eval, "t_eval", what=" (output times)")
         t_eval = np.atleast_1d(t_eval)
-        if t_eval.ndim != 1:
-            raise ValueError(f"t_eval must be a 1-D array of times; got shape {t_eval.shape}")
+        if t_eval.ndim != 1 or t_eval.size == 0:
+            raise ValueError(f"t_eval must be a non-empty 1-D array of times; got shape {t_eval.shape}")
         lo, hi = min(span), max(span)
         tol = 1e-12 * max(1.0, abs(lo), abs(hi))
         if np.any(t_eval < lo - tol) or np.any(t_eval > hi + tol):
@@ -213,19 +248,43 @@ def integral_curve(field, q0, t_span, t_eval=None, **solve_ivp_kw):
     batch = q0_arr.shape[:-1]
     shape = q0_arr.shape
 
+    calls = [0]
+
     def rhs(t, y):
+        calls[0] += 1
+        if calls[0] > max_evaluations:
+            raise _TooManyEvaluations
         return X._eval(y.reshape(shape), t).ravel()
 
+    _check_solve_ivp_kw(solve_ivp_kw, "integral_curve")
+    max_evaluations = check_int(max_evaluations, "max_evaluations", minimum=1, maximum=10**9)
     kw = {"method": DEFAULT_METHOD, "rtol": DEFAULT_RTOL, "atol": DEFAULT_ATOL}
     kw.update(solve_ivp_kw)
-    sol = solve_ivp(rhs, (float(span[0]), float(span[1])), q0_arr.ravel(), t_eval=t_eval, **kw)
+    try:
+        with np.errstate(over="ignore", invalid="ignore"):   # overflow shows as failure below
+            sol = solve_ivp(rhs, (float(span[0]), float(span[1])), q0_arr.ravel(), t_eval=t_eval, **kw)
+    except _TooManyEvaluations:
+        raise ValueError(
+            f"t_span ({span[0]:g}, {span[1]:g}) is too long for field {X.name!r} at these tolerances: the solver "
+            f"needed more than max_evaluations={max_evaluations} evaluations; shorten t_span or "
+            f"raise max_evaluations"
+        ) from None
     if not sol.success:
         raise RuntimeError(f"integral_curve: solve_ivp failed for field {X.name!r}: {sol.message}")
+    if not np.all(np.isfinite(sol.y)):
+        raise RuntimeError(f"integral_curve: the curve of field {X.name!r} from q0 overflowed (blew up)")
     q = sol.y.T.reshape((len(sol.t),) + batch + (X.dim,))
     return IntegralCurve(t=sol.t, q=q, solution=sol)
 
 
 # ---------------------------------------------------------------------------------- invariant fields
+def _field_value(v, g, name):
+    if v.shape != np.shape(g):
+        raise ValueError(f"{name} (shape {v.shape[:-1] + v.shape[-1:]}) gives velocities of shape {v.shape} "
+                         f"at configurations of shape {np.shape(g)}: its batch must broadcast to g's")
+    return v
+
+
 def left_invariant_field(group, xi):
     """Left-invariant field X_L(g) = T_e L_g xi of the body velocity ``xi``, (1.46).
 
@@ -237,7 +296,7 @@ def left_invariant_field(group, xi):
     e = group.identity()
 
     def X_L(g, t=0.0):
-        return matvec(group.left_lifted_action(g, e), xi)
+        return _field_value(matvec(group.left_lifted_action(g, e), xi), g, "xi")
 
     return VectorField(X_L, group.dim, name=f"X_L[{group.name}]", group=group)
 
@@ -253,7 +312,7 @@ def right_invariant_field(group, xi_s):
     e = group.identity()
 
     def X_R(g, t=0.0):
-        return matvec(group.right_lifted_action(g, e), xi_s)
+        return _field_value(matvec(group.right_lifted_action(g, e), xi_s), g, "xi_s")
 
     return VectorField(X_R, group.dim, name=f"X_R[{group.name}]", group=group)
 
@@ -272,6 +331,11 @@ def group_geodesic(group, xi, t, side="left", g0=None, *, method="exp", **solve_
     """
     group = check_group(group)
     side = _check_side(side)
+    method = check_option(method, "method", ("exp", "integrate"))
+    _check_solve_ivp_kw(solve_ivp_kw, "group_geodesic")
+    if method == "exp" and solve_ivp_kw:
+        raise TypeError(f"group_geodesic got solve_ivp option(s) {', '.join(sorted(solve_ivp_kw))}, "
+                        f"which only apply with method='integrate'")
     xi = as_array(xi, "xi", (group.dim,), what=f", a Lie-algebra vector of {group.name}")
     if xi.ndim != 1:
         raise ValueError(f"xi must be one vector of shape ({group.dim},); got shape {xi.shape}")
@@ -282,8 +346,6 @@ def group_geodesic(group, xi, t, side="left", g0=None, *, method="exp", **solve_
     if method == "exp":
         steps = group.exp(t[..., None] * xi)
         return group.compose(g0, steps) if side == "left" else group.compose(steps, g0)
-    if method != "integrate":
-        raise ValueError(f"method must be 'exp' or 'integrate'; got {method!r}")
     field = left_invariant_field(group, xi) if side == "left" else right_invariant_field(group, xi)
     flat = t.ravel()
     out = np.empty(flat.shape + (group.dim,))
@@ -296,7 +358,10 @@ def group_geodesic(group, xi, t, side="left", g0=None, *, method="exp", **solve_
         vals, inv = np.unique(flat[mask], return_inverse=True)
         if backward:
             vals, inv = vals[::-1], len(vals) - 1 - inv
-        curve = integral_curve(field, g0, (0.0, float(vals[-1])), t_eval=vals, **solve_ivp_kw)
+        try:
+            curve = integral_curve(field, g0, (0.0, float(vals[-1])), t_eval=vals, **solve_ivp_kw)
+        except ValueError as exc:
+            raise ValueError(f"t reaches {vals[-1]:g}: {exc}") from None
         out[mask] = curve.q[inv]
     return out.reshape(t.shape + (group.dim,))
 
@@ -330,7 +395,7 @@ class HelixGeometry:
 
     def circle_points(self, num=200):
         """Points (..., num, 2) around the full xy circle (NaN rows for straight paths)."""
-        phi = np.linspace(0.0, 2 * np.pi, int(num))
+        phi = np.linspace(0.0, 2 * np.pi, check_int(num, "num", minimum=2, maximum=10**6))
         r = np.where(self.straight, np.nan, self.radius)[..., None]
         return np.stack([self.centre[..., None, 0] + r * np.cos(phi),
                          self.centre[..., None, 1] + r * np.sin(phi)], -1)
@@ -358,10 +423,12 @@ def se2_helix(xi, side="left", g0=None):
         radius = np.where(straight, np.inf, speed / np.abs(wsafe))
         if g0 is not None:
             g0 = SE2._element(g0, "g0")
+            batch_shape(("xi", xi, 1), ("g0", g0, 1))
+            finite_c = np.where(straight[..., None], 0.0, c)      # straight paths have no centre
             if side == "left":
-                c = SE2.act_on_points(g0, c)
+                c = np.where(straight[..., None], np.nan, SE2.act_on_points(g0, finite_c))
             else:
-                radius = np.where(straight, np.inf, np.linalg.norm(g0[..., :2] - c, axis=-1))
+                radius = np.where(straight, np.inf, np.linalg.norm(g0[..., :2] - finite_c, axis=-1))
         period = np.where(straight, np.inf, 2 * np.pi / np.abs(wsafe))
         slope = np.where(speed > 0, w / np.where(speed > 0, speed, 1.0), np.copysign(np.inf, w))
         per_turn = np.where(straight, np.inf, 2 * np.pi * speed / np.abs(wsafe))
@@ -382,6 +449,7 @@ def se2_helices(thetadot, t, speed=1.0):
     thetadot = as_array(thetadot, "thetadot", what=" (rotation rates)")
     t = _time(t)
     speed = as_array(speed, "speed", what=" (forward speed)")
+    batch_shape(("thetadot", thetadot, 0), ("speed", speed, 0))
     xi = np.stack(np.broadcast_arrays(speed * np.ones_like(thetadot), np.zeros_like(thetadot),
                                       thetadot), -1)
     xi_b = xi.reshape(xi.shape[:-1] + (1,) * t.ndim + (3,))
@@ -436,5 +504,10 @@ def rplus_geodesics(xi, t, g0=1.0):
     if g0.ndim != 0:
         raise ValueError(f"g0 must be a single positive number (an element of (R+, x)); got shape {g0.shape}")
     xi_b = xi.reshape(xi.shape + (1,) * t.ndim)
-    g = g0 * np.exp(xi_b * t)
-    return g, xi_b * g
+    with np.errstate(over="ignore", invalid="ignore"):
+        g = g0 * np.exp(xi_b * t)
+        g_dot = xi_b * g
+    if not (np.isfinite(g).all() and np.isfinite(g_dot).all()):
+        raise ValueError("xi and t are too large together: g0 exp(xi t) overflows a float "
+                         "(keep |xi t| below about 700)")
+    return g, g_dot

@@ -18,8 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._integers import check_int
-from ._validate import as_array, check_positive
+from ._validate import as_array, check_int, check_positive
 
 __all__ = ["slender_link_drag", "drag_wrench", "ellipse_added_mass", "added_mass_bem"]
 
@@ -61,7 +60,7 @@ def drag_wrench(poses, velocities, lengths, drag_ratio=2.0, *, nodes=5):
         raise ValueError(f"poses and velocities must have the same shape (..., k, 3); got "
                          f"{np.shape(poses)} and {np.shape(velocities)}") from None
     k = float(check_positive(drag_ratio, "drag_ratio"))
-    nodes = check_int(nodes, "nodes", low=1, high=100, what=" (Gauss-Legendre points per link)")
+    nodes = check_int(nodes, "nodes", minimum=1, maximum=100, what=" (Gauss-Legendre points per link)")
     s0, w0 = np.polynomial.legendre.leggauss(nodes)
     s = s0 * (L[:, None] / 2)                     # (k, q) points along each link
     ws = w0 * (L[:, None] / 2)
@@ -127,8 +126,8 @@ def added_mass_bem(a, b, fluid_density=1.0, *, n=600, m=300):
     """
     a, b = _semi_axes(a, b)
     rho = float(check_positive(fluid_density, "fluid_density"))
-    n = check_int(n, "n", low=8, high=20000, what=" (surface points)")
-    m = check_int(m, "m", low=4, high=20000, what=" (interior sources)")
+    n = check_int(n, "n", minimum=8, maximum=20000, what=" (surface points)")
+    m = check_int(m, "m", minimum=4, maximum=20000, what=" (interior sources)")
     if m > n:
         raise ValueError(f"m (sources, {m}) must not exceed n (surface points, {n})")
     t = np.linspace(0, 2 * np.pi, n, endpoint=False)

@@ -30,11 +30,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._integers import check_int
-from ._validate import SingularShapeError, as_array, check_positive
-from .connection import (SINGULAR_TOL, connection_from_mass_matrix, connection_from_pfaffian, metric_from_jacobians,  # noqa: F401 - SINGULAR_TOL kept here too
-                         pfaffian_determinant)
-from .gaits import CircleGait, Gait, GaitWarning, as_gait, circle_gait, constant_rate_path
+from ._validate import SingularShapeError, as_array, check_int, check_positive
+from .connection import (  # noqa: F401 - SINGULAR_TOL kept here too
+    SINGULAR_TOL,
+    connection_from_mass_matrix,
+    connection_from_pfaffian,
+    metric_from_jacobians,
+    pfaffian_determinant,
+)
+from .gaits import (
+    CircleGait,
+    Gait,
+    GaitWarning,
+    as_gait,
+    circle_gait,
+    constant_rate_path,
+)
 from .groups import SE2, matvec
 
 __all__ = [
@@ -174,7 +185,7 @@ def check_gait(system, gait, *, samples=None):
         samples = DENSE_SAMPLES if gait.feature_time is None else max(MIN_SAMPLES, SAMPLES_PER_FEATURE * per)
         samples = min(samples, _MAX_SAMPLES)
     else:
-        samples = check_int(samples, "samples", low=16, high=_MAX_SAMPLES, what=" (times sampled per period)")
+        samples = check_int(samples, "samples", minimum=16, maximum=_MAX_SAMPLES, what=" (times sampled per period)")
     s = np.linspace(0.0, 1.0, samples + 1)
     d = np.concatenate([system.singularity(gait(s[i:i + _CHUNK] * T)) for i in range(0, s.size, _CHUNK)])
     _scan(system, gait, s, d)
@@ -345,7 +356,7 @@ def net_displacement(system, gait, *, steps=None, check=True, rtol=1e-10):
         raise ValueError(f"rtol must be a relative tolerance in [1e-14, 1) (double precision cannot "
                          f"do better than ~1e-14); got {rtol!r}")
     if steps is not None:
-        steps = check_int(steps, "steps", low=1, high=MAX_STEPS, what=" (equal Magnus steps per period)")
+        steps = check_int(steps, "steps", minimum=1, maximum=MAX_STEPS, what=" (equal Magnus steps per period)")
     with_det = bool(check) and bool(getattr(system, "may_be_singular", False))
     if check:
         gait.require_closed("net_displacement (pass check=False to integrate an open shape path over [0, T])")
@@ -384,8 +395,8 @@ def trajectory(system, gait, n_frames=101, *, cycles=1, g0=(0.0, 0.0, 0.0), subs
     """
     gait = as_gait(gait)
     _check_shapes(system, gait)
-    n_frames = check_int(n_frames, "n_frames", low=2, high=10 ** 6, what=" (frames to return)")
-    cycles = check_int(cycles, "cycles", low=1, high=10 ** 4, what=" (periods to integrate)")
+    n_frames = check_int(n_frames, "n_frames", minimum=2, maximum=10 ** 6, what=" (frames to return)")
+    cycles = check_int(cycles, "cycles", minimum=1, maximum=10 ** 4, what=" (periods to integrate)")
     g0 = as_array(g0, "g0", (3,), what=" (the starting position (x, y, theta))")
     if g0.ndim != 1:
         raise ValueError(f"g0 must be one pose (3,); got shape {g0.shape}")
@@ -393,7 +404,7 @@ def trajectory(system, gait, n_frames=101, *, cycles=1, g0=(0.0, 0.0, 0.0), subs
     if substeps is None:
         substeps = max(1, -(-4096 * cycles // intervals))
     else:
-        substeps = check_int(substeps, "substeps", low=1, high=10 ** 6, what=" (Magnus steps between frames)")
+        substeps = check_int(substeps, "substeps", minimum=1, maximum=10 ** 6, what=" (Magnus steps between frames)")
     if intervals * substeps > MAX_STEPS:
         raise ValueError(f"n_frames - 1 = {intervals} times substeps = {substeps} is more than "
                          f"{MAX_STEPS} integration steps; use fewer frames or substeps")

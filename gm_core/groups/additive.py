@@ -1,0 +1,300 @@
+"""The commutative groups whose operation is (modular) addition: (R^n, +), SO(2), (S^1, + mod k),
+(R^2 x S^1, +). Their lifted actions and adjoints are identity matrices, book (1.22), so left and
+right coincide, (1.3); their bracket is zero.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .._validate import as_array, check_shape
+from .base import (
+    TWO_PI,
+    LieGroup,
+    _angle_of_block,
+    _check_entries,
+    _check_rotation,
+    _eye,
+    _mod_period,
+    _rng,
+    _rot,
+    _scale,
+    _wrap,
+    wrap_periodic,
+)
+
+__all__ = ["Rn", "S1", "MAX_RN_DIM"]
+
+#: Largest n accepted by :class:`Rn` (its matrices are (n+1) x (n+1)).
+MAX_RN_DIM = 1000
+
+
+class _Additive(LieGroup):
+    """Groups whose operation is (modular) addition of coordinates."""
+
+    def _identity_coords(self):
+        return np.zeros(self.param_dim)
+
+    def compose(self, g, h):
+        """g + h, coordinate-wise (angles are not wrapped), book (1.3)."""
+        g = self._element(g)
+        h = self._element(h, "h")
+        self._batch(("g", g), ("h", h))
+        return g + h
+
+    def inverse(self, g):
+        """-g, book (1.v)."""
+        return -self._element(g)
+
+    def left_lifted_action(self, h, g):
+        """The identity matrix: translations do not turn velocities, book (1.22)."""
+        return _eye(self.param_dim, self._batch(("h", self._element(h, "h")), ("g", self._element(g))))
+
+    right_lifted_action = left_lifted_action
+
+    def Ad(self, g):
+        """The identity matrix: body and spatial velocities coincide in a commutative group."""
+        return _eye(self.tangent_dim, self._element(g).shape[:-1])
+
+    Ad_inv = Ad
+
+    def bracket(self, xi1, xi2):
+        """Zero: the group is commutative."""
+        xi1 = self._algebra(xi1, "xi1")
+        xi2 = self._algebra(xi2, "xi2")
+        return np.zeros(self._batch(("xi1", xi1), ("xi2", xi2)) + (self.tangent_dim,))
+
+    def exp(self, xi):
+        """exp(xi) = xi: the coordinates are exponential coordinates."""
+        return self._algebra(xi).copy()
+
+    def log(self, g):
+        """g with its periodic coordinates reduced into (-k/2, k/2]."""
+        g = self._element(g).copy()
+        for j, p in enumerate(self.periods):
+            if p is not None:
+                g[..., j] = wrap_periodic(g[..., j], p)
+        return g
+
+
+class Rn(_Additive):
+    """The additive group (R^n, +); lifted actions are identities, book (1.22).
+
+    ``n`` is an integer between 1 and :data:`MAX_RN_DIM`.
+    """
+
+    def __init__(self, n=1):
+        if isinstance(n, (bool, np.bool_)) or not isinstance(n, (int, np.integer)):
+            raise TypeError(f"n must be a positive integer (at most {MAX_RN_DIM}); got "
+                            f"{type(n).__name__} {n!r:.40}")
+        if not 1 <= n <= MAX_RN_DIM:
+            raise ValueError(f"n must be a positive integer (at most {MAX_RN_DIM}); got {n!r}")
+        n = int(n)
+        self.param_dim = self.tangent_dim = n
+        self.matrix_size = n + 1
+        self.name = "(R, +)" if n == 1 else f"(R^{n}, +)"
+        self.label = "R" if n == 1 else ("R²" if n == 2 else f"R^{n}")
+        self.coords = ("x",) if n == 1 else tuple(f"x{i + 1}" for i in range(n))
+        self.periods = (None,) * n
+        super().__init__()
+
+    def hat(self, xi):
+        """The translation generator [[0, xi], [0, 0]], ``(..., n+1, n+1)``."""
+        xi = self._algebra(xi)
+        n = self.param_dim
+        X = np.zeros(xi.shape[:-1] + (n + 1, n + 1))
+        X[..., :n, n] = xi
+        return X
+
+    def vee(self, X):
+        X = self._square(X, "X")
+        n = self.param_dim
+        expected = np.zeros_like(X)
+        expected[..., :n, n] = X[..., :n, n]
+        _check_entries(X, expected, "X", f"a translation generator [[0, xi], [0, 0]] of {self.name}")
+        return X[..., :n, n].copy()
+
+    def matrix(self, g):
+        """The translation matrix [[I, g], [0, 1]], ``(..., n+1, n+1)``."""
+        g = self._element(g)
+        n = self.param_dim
+        G = _eye(n + 1, g.shape[:-1])
+        G[..., :n, n] = g
+        return G
+
+    def from_matrix(self, G):
+        G = self._square(G, "G")
+        n = self.param_dim
+        expected = _eye(n + 1, G.shape[:-2])
+        expected[..., :n, n] = G[..., :n, n]
+        _check_entries(G, expected, "G", f"a translation matrix [[I, g], [0, 1]] of {self.name}")
+        return G[..., :n, n].copy()
+
+    def nearest_element(self, M):
+        """The translation column of ``M``, as it is."""
+        M = self._square(M, "M")
+        return M[..., : self.param_dim, self.param_dim].copy()
+
+
+class _SO2(_Additive):
+    """Rotations of the plane, elements stored as the angle theta, shape ``(..., 1)``; book (1.1)."""
+
+    name = "SO(2)"
+    label = "SO(2)"
+    coords = ("theta",)
+    periods = (TWO_PI,)
+    param_dim = tangent_dim = 1
+    matrix_size = 2
+
+    def hat(self, xi):
+        """[[0, -w], [w, 0]], ``(..., 2, 2)``."""
+        w = self._algebra(xi)[..., 0]
+        z = np.zeros_like(w)
+        return np.stack([np.stack([z, -w], -1), np.stack([w, z], -1)], -2)
+
+    def vee(self, X):
+        X = self._square(X, "X")
+        if not np.all(np.abs(X + np.swapaxes(X, -1, -2)) <= 1e-9):
+            raise ValueError("X must be skew-symmetric [[0, -w], [w, 0]] to be in the algebra so(2)")
+        return X[..., 1, 0:1].copy()
+
+    def log(self, g):
+        """theta reduced into (-pi, pi], exactly for every finite theta."""
+        return _wrap(self._element(g)).copy()
+
+    def matrix(self, g):
+        """R(theta) = [[cos, -sin], [sin, cos]], book (1.1)."""
+        return _rot(self._element(g)[..., 0])
+
+    def from_matrix(self, G):
+        G = self._square(G, "G")
+        _check_rotation(G, "G")
+        return np.arctan2(G[..., 1, 0], G[..., 0, 0])[..., None]
+
+    def nearest_element(self, M):
+        """The angle of the nearest rotation to ``M``."""
+        return _angle_of_block(self._square(M, "M"))[..., None]
+
+
+class S1(_Additive):
+    """The circle with modular addition (S^1, + mod k), elements in [0, k), book section 1.2.
+
+    ``period`` is the cycle length k (2 pi for radians, 1 for cycles, as in fig. 1.2). With
+    ``period = 2 pi`` reductions use the true 2 pi (see :func:`wrap_angle`); any other period is
+    reduced by exactly that number.
+    """
+
+    coords = ("a",)
+    param_dim = tangent_dim = 1
+    matrix_size = 2
+
+    def __init__(self, period=TWO_PI):
+        if isinstance(period, (str, bytes)) or period is None:
+            raise TypeError(f"period must be a positive number; got {type(period).__name__} {period!r:.40}")
+        k = as_array(period, "period", what=" (a positive number)")
+        if k.ndim != 0 or not 0 < k <= 1e300:
+            raise ValueError(f"period must be a positive number (at most 1e300); got {period!r:.40}")
+        self.period = float(k)
+        self.periods = (self.period,)
+        radians = self.period == TWO_PI
+        self.name = "(S^1, + mod 2pi)" if radians else f"(S^1, + mod {period:g})"
+        self.label = "S¹ (2π)" if radians else f"S¹ ({period:g})"
+        self._scale = TWO_PI / self.period
+        super().__init__()
+
+    def _in_domain(self, g):
+        return np.all((g >= 0) & (g < self.period), axis=-1)
+
+    def project(self, g):
+        """The representative of ``g`` in [0, k)."""
+        return _mod_period(self._element(g), self.period)
+
+    def compose(self, g, h):
+        """(a + b) mod k."""
+        return _mod_period(super().compose(g, h), self.period)
+
+    def inverse(self, g):
+        """(-a) mod k."""
+        return _mod_period(-self._element(g), self.period)
+
+    def hat(self, xi):
+        """so(2) generator of the rotation rate 2 pi xi / k, ``(..., 2, 2)``."""
+        return SO2.hat(self._algebra(xi) * self._scale)
+
+    def vee(self, X):
+        return SO2.vee(X) / self._scale
+
+    def exp(self, xi):
+        """xi mod k."""
+        return _mod_period(self._algebra(xi), self.period)
+
+    def matrix(self, g):
+        """The rotation R(2 pi a / k): the isomorphism S^1 -> SO(2) of (1.xiv)-(1.xvi)."""
+        return _rot(self._element(g)[..., 0] * self._scale)
+
+    def from_matrix(self, G):
+        return _mod_period(SO2.from_matrix(G) / self._scale, self.period)
+
+    def nearest_element(self, M):
+        return _mod_period(SO2.nearest_element(M) / self._scale, self.period)
+
+    def random(self, rng, size=(), scale=1.0):
+        """Uniform on [0, k) (``scale`` is accepted for the common interface and ignored: the
+        circle has no size to stretch)."""
+        rng = _rng(rng)
+        _scale(scale)
+        return rng.uniform(0.0, self.period, check_shape(size, "size") + (1,))
+
+
+class _R2xS1(_Additive):
+    """The direct product (R^2 x S^1, +): coordinates add independently, book section 1.3.3."""
+
+    name = "(R^2 x S^1, +)"
+    label = "R²×S¹"
+    coords = ("x", "y", "theta")
+    periods = (None, None, TWO_PI)
+    param_dim = tangent_dim = 3
+    matrix_size = 5
+
+    def hat(self, xi):
+        """Block-diagonal algebra matrix: a translation block and an so(2) block, ``(..., 5, 5)``."""
+        xi = self._algebra(xi)
+        X = np.zeros(xi.shape[:-1] + (5, 5))
+        X[..., 0, 2] = xi[..., 0]
+        X[..., 1, 2] = xi[..., 1]
+        X[..., 3, 4] = -xi[..., 2]
+        X[..., 4, 3] = xi[..., 2]
+        return X
+
+    def vee(self, X):
+        X = self._square(X, "X")
+        out = np.stack([X[..., 0, 2], X[..., 1, 2], X[..., 4, 3]], -1)
+        _check_entries(X, self.hat(out), "X", "a block-diagonal generator of (R^2 x S^1, +) (see hat)")
+        return out
+
+    def matrix(self, g):
+        """Block-diagonal ``(..., 5, 5)``: translation [[I, (x, y)], [0, 1]] beside R(theta)."""
+        g = self._element(g)
+        G = _eye(5, g.shape[:-1])
+        G[..., 0, 2] = g[..., 0]
+        G[..., 1, 2] = g[..., 1]
+        G[..., 3:5, 3:5] = _rot(g[..., 2])
+        return G
+
+    def from_matrix(self, G):
+        G = self._square(G, "G")
+        _check_rotation(G[..., 3:5, 3:5], "G")
+        out = np.stack([G[..., 0, 2], G[..., 1, 2], np.arctan2(G[..., 4, 3], G[..., 3, 3])], -1)
+        expected = _eye(5, G.shape[:-2])
+        expected[..., 0, 2] = G[..., 0, 2]
+        expected[..., 1, 2] = G[..., 1, 2]
+        expected[..., 3:5, 3:5] = G[..., 3:5, 3:5]
+        _check_entries(G, expected, "G", "block-diagonal [[I, (x, y)], [0, 1]] beside a rotation R(theta)")
+        return out
+
+    def nearest_element(self, M):
+        M = self._square(M, "M")
+        return np.stack([M[..., 0, 2], M[..., 1, 2], _angle_of_block(M[..., 3:5, 3:5])], -1)
+
+
+SO2 = _SO2()
+R2xS1 = _R2xS1()

@@ -1,0 +1,133 @@
+"""The multiplicative group (R+, x) of positive numbers, book (1.23)-(1.25) (numpy only)."""
+from __future__ import annotations
+
+import numpy as np
+
+from .._validate import as_array, check_option, check_shape
+from .base import LieGroup, _rng, _scalar, _scale
+
+__all__ = ["RPlus"]
+
+
+class _RPlus(LieGroup):
+    """The multiplicative group (R+, x): T_g L_h = T_g R_h = h, book (1.23)-(1.25).
+
+    Elements are positive numbers, shape ``(..., 1)``; every method refuses g <= 0 by name
+    (:meth:`contains` tells without raising).
+    """
+
+    name = "(R+, x)"
+    label = "R⁺"
+    coords = ("g",)
+    periods = (None,)
+    param_dim = tangent_dim = 1
+    matrix_size = 1
+
+    def _element(self, g, name="g"):
+        g = super()._element(g, name)
+        if np.any(g <= 0):
+            raise ValueError(f"{name} must be positive: elements of (R+, x) are numbers > 0")
+        return g
+
+    def _in_domain(self, g):
+        return np.all(g > 0, axis=-1)
+
+    def _identity_coords(self):
+        return np.ones(1)
+
+    def compose(self, g, h):
+        """g h, book (1.23)."""
+        g = self._element(g)
+        h = self._element(h, "h")
+        self._batch(("g", g), ("h", h))
+        with np.errstate(over="ignore", under="ignore"):
+            out = g * h
+        self._check_result(out, "g and h", "g h")
+        return out
+
+    def inverse(self, g):
+        """1 / g."""
+        g = self._element(g)
+        with np.errstate(over="ignore"):
+            out = 1.0 / g
+        self._check_result(out, "g", "1/g")
+        return out
+
+    def left_lifted_action(self, h, g):
+        """T_g L_h = h (a 1x1 matrix), book (1.24); equal to T_g R_h, (1.25)."""
+        h = self._element(h, "h")
+        g = self._element(g)
+        return np.broadcast_to(h, self._batch(("h", h), ("g", g)) + (1,))[..., None].copy()
+
+    right_lifted_action = left_lifted_action
+
+    def Ad(self, g):
+        """1: the group is commutative."""
+        return np.ones(self._element(g).shape[:-1] + (1, 1))
+
+    Ad_inv = Ad
+
+    def bracket(self, xi1, xi2):
+        """Zero: the group is commutative."""
+        xi1 = self._algebra(xi1, "xi1")
+        xi2 = self._algebra(xi2, "xi2")
+        return np.zeros(self._batch(("xi1", xi1), ("xi2", xi2)) + (1,))
+
+    def hat(self, xi):
+        return self._algebra(xi)[..., None].copy()
+
+    def vee(self, X):
+        return self._square(X, "X")[..., 0].copy()
+
+    def exp(self, xi):
+        """e^xi; ValueError if it overflows or underflows to 0 (|xi| > about 708)."""
+        xi = self._algebra(xi)
+        with np.errstate(over="ignore", under="ignore"):
+            g = np.exp(xi)
+        self._check_result(g, "xi", "e^xi")
+        return g
+
+    def _check_result(self, g, name, what):
+        if not np.all((g > 0) & (g < np.inf)):
+            raise ValueError(f"{name} is out of range: {what} is not a positive float (it overflows "
+                             f"or underflows to 0), so it is no element of (R+, x)")
+
+    def log(self, g):
+        """ln g."""
+        return np.log(self._element(g))
+
+    def matrix(self, g):
+        return self._element(g)[..., None].copy()
+
+    def from_matrix(self, G):
+        return self._element(self._square(G, "G")[..., 0], "G").copy()
+
+    def nearest_element(self, M):
+        """The single entry of ``M``, unchecked: a partial sum or an Euler product may be <= 0."""
+        return self._square(M, "M")[..., 0].copy()
+
+    def coordinate_matrix(self, q):
+        """[[q]] for any finite number q, including overshooting Euler states q <= 0."""
+        return as_array(q, "q", (1,), what=" (coordinates of (R+, x), possibly <= 0)")[..., None].copy()
+
+    def euler_step(self, g, xi, dt, side="left"):
+        """g (1 + dt xi): the Euler step of g_dot = g xi (both sides, (1.24)-(1.25)); g may be <= 0."""
+        check_option(side, "side", ("left", "right"))
+        g = as_array(g, "g", (1,), what=" (an Euler state of (R+, x), possibly <= 0)")
+        xi = self._algebra(xi)
+        dt = _scalar(dt, "dt", " (a time step)")
+        return g * (1.0 + dt * xi)
+
+    def random(self, rng, size=(), scale=1.0):
+        """e^u with u uniform in (-2 scale, 2 scale)."""
+        rng = _rng(rng)
+        size = check_shape(size, "size")
+        scale = _scale(scale)
+        g = np.exp(rng.uniform(-2.0, 2.0, size + (1,)))
+        return g ** scale if scale != 1.0 else g
+
+    def _fd_step(self, g, eps):
+        return eps * g
+
+
+RPlus = _RPlus()
