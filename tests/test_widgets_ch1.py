@@ -413,3 +413,66 @@ def test_jshtml_page_has_a_sized_first_frame_and_waits_for_its_elements():
     w, h = struct.unpack(">II", png[16:24])
     assert int(img.group(2)) == w <= 900 and h > 0
     assert "document.getElementById(img_id) === null" in html
+
+
+# ----------------------------------------------------------- observers, frames (section 1.5)
+def _arrow(a):
+    return np.asarray(a.get_offsets())[0], np.array([a.U[0], a.V[0]])
+
+
+def test_observer_panel_body_velocity_stays_spatial_velocity_moves():
+    from gm_core.frames import icr
+
+    p = W.ObserverPanel()
+    g = p.scene.G
+    xi = np.array([0.8, 0.3, 0.6])
+    seen = []
+    for h in ((-1.5, -1.0, 0.0), (0.5, -2.0, 1.2), (2.0, 2.0, -2.0)):
+        p.set(hx=h[0], hy=h[1], htheta=h[2], vx=xi[0], vy=xi[1], w=xi[2])
+        sc = p.scene
+        assert sc.readout.get_text().startswith("ξ  = (+0.80, +0.30, +0.60)")     # same for every h
+        # the vermillion arrow at h is the velocity of the body point over h's origin (first principles)
+        o, v = _arrow(sc.v_spatial)
+        assert np.allclose(o, h[:2])
+        g_dot = SE2.body_to_world(g, xi)
+        lever = np.array(h[:2]) - g[:2]
+        assert np.allclose(v, g_dot[:2] + xi[2] * np.array([-lever[1], lever[0]]))
+        # ... and written in h's axes it is Ad_{h^-1 g} xi, the matrix route
+        M = np.linalg.inv(SE2.matrix(np.array(h))) @ SE2.matrix(g)
+        assert np.allclose(sc.xi_s, SE2.vee(M @ SE2.hat(xi) @ np.linalg.inv(M)))
+        assert sc.mismatch < 1e-12
+        # the ICR star is one page point, the same from the body's and the observer's numbers
+        x, y = sc.icr_mark.get_data()
+        star = np.array([x[0], y[0]])
+        assert np.allclose(star, SE2.act_on_points(g, icr(xi)[0]))
+        assert np.allclose(star, SE2.act_on_points(np.array(h), icr(sc.xi_s)[0]))
+        seen.append(sc.xi_s.copy())
+    assert np.ptp(np.array(seen), axis=0)[:2].min() > 0.1                      # xi^s did change
+    p.set(w=0.0)
+    assert p.scene.at_infinity and not p.scene.icr_mark.get_visible()
+    assert "ICR at infinity" in p.scene.icr_note.get_text()
+
+
+def test_frames_panel_same_arrow_different_numbers():
+    p = W.FramesPanel()
+    p.set(t=2.5, bx=-1.0, by=2.0, btheta=0.7)
+    sc = p.scene
+    b = np.array([-1.0, 2.0, 0.7])
+    (tip, v), (tip_b, v_b) = sc.in_a, sc.in_b
+    # frame B's numbers, mapped back through B, give the same point and the same arrow
+    assert np.allclose(SE2.act_on_points(b, tip_b), tip)
+    assert np.allclose(SE2.matrix(b)[:2, :2] @ v_b, v)
+    assert not np.allclose(tip_b, tip) and not np.allclose(v_b, v)
+    # the arrow drawn is the nose's velocity: finite differences of its path
+    eps = 1e-6
+
+    def nose(t):
+        g = SE2.compose(sc.G0, SE2.exp(t * sc.XI))
+        return SE2.act_on_points(g, sc.TIP)
+
+    o, arrow_v = _arrow(sc.tip_velocity)
+    assert np.allclose(o, nose(2.5)) and np.allclose(arrow_v, (nose(2.5 + eps) - nose(2.5 - eps)) / (2 * eps),
+                                                      atol=1e-6)
+    # against the instantaneous body frame, the body moves with its body velocity
+    assert np.allclose(sc.seen_from_instant, sc.XI)
+    assert np.allclose(sc.inst.g, sc.g) and np.allclose(sc.body_frame.g, sc.g)

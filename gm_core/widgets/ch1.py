@@ -12,6 +12,7 @@ import numpy as np
 
 from ..drawing import ch1 as D
 from ..drawing import group_or_not as G
+from ..drawing import observer as O
 from .base import ScenePanel, int_slider, register, slider
 
 __all__ = [
@@ -19,6 +20,7 @@ __all__ = [
     "GroupAxiomsPanel", "SlideRulePanel", "CircleIsoPanel", "LeftRightActionPanel",
     "ForwardLeftPanel", "BodyPointsPanel",
     "VectorFieldPanel", "LiftedScalarPanel", "LiftedSE2Panel", "VelocityPanel", "AdjointPanel",
+    "ObserverPanel", "FramesPanel",
     "HelixPanel", "PuckArcPanel", "RPlusGeodesicPanel", "ExpFourWaysPanel",
 ]
 
@@ -238,6 +240,34 @@ class AdjointPanel(ScenePanel):
     def controls_spec(self):
         c = _se2_sliders(1.0, -0.5, 0.8, lim=2.5, labels=("g: x", "g: y", "g: θ"))
         c.update(_xi_sliders(0.5, 0.2, 0.7))
+        return c
+
+
+@register
+class ObserverPanel(ScenePanel):
+    """The adjoint as a change of observer: move h, ξ stays, ξˢ changes; the ICR is one point."""
+
+    title = "Change the observer: the body velocity stays, the spatial velocity changes"
+    scene_class = O.ObserverScene
+
+    def controls_spec(self):
+        c = _se2_sliders(-1.5, -1.0, 0.0, names=("hx", "hy", "htheta"), lim=2.5,
+                         labels=("observer h: x", "observer h: y", "observer h: θ"))
+        c.update(_xi_sliders(0.8, 0.3, 0.6))
+        return c
+
+
+@register
+class FramesPanel(ScenePanel):
+    """The "Frames" box: one reference frame, two coordinate frames, the instantaneous body frame."""
+
+    title = "Reference frame, coordinate frames, and the instantaneous body frame"
+    scene_class = O.FramesScene
+
+    def controls_spec(self):
+        c = {"t": slider(1.2, 0.0, 6.0, description="time t")}
+        c.update(_se2_sliders(-1.8, 1.2, -0.5, names=("bx", "by", "btheta"), lim=2.5,
+                              labels=("frame B: x", "frame B: y", "frame B: θ")))
         return c
 
 
