@@ -476,3 +476,63 @@ def test_frames_panel_same_arrow_different_numbers():
     # against the instantaneous body frame, the body moves with its body velocity
     assert np.allclose(sc.seen_from_instant, sc.XI)
     assert np.allclose(sc.inst.g, sc.g) and np.allclose(sc.body_frame.g, sc.g)
+
+
+# ----------------------------------------------------- tangent spaces (figs 1.11-1.12), fig. 1.16
+def test_tangent_space_panel_velocity_lies_in_the_tangent_spaces():
+    from gm_core.manifolds import sphere_xyz
+
+    p = W.TangentSpacePanel()
+    for s, speed in ((0.8, 1.0), (2.9, -1.5), (5.5, 0.7)):
+        p.set(s=s, speed=speed)
+        sc = p.scene
+        # circle: the arrow starts at the point and is tangent (perpendicular to the radius)
+        o, v = np.asarray(sc.arrows2.get_offsets())[0], np.array([sc.arrows2.U[0], sc.arrows2.V[0]])
+        assert np.allclose(o, [np.cos(s), np.sin(s)]) and abs(o @ v) < 1e-12
+        assert np.isclose(np.linalg.norm(v), sc.ARROW * abs(speed))
+        # the tangent line passes through the point along the arrow
+        x, y = sc.tangent_line.get_data()
+        d = np.array([x[1] - x[0], y[1] - y[0]])
+        assert np.isclose(d[0] * v[1] - d[1] * v[0], 0.0) and np.allclose([(x[0] + x[1]) / 2, (y[0] + y[1]) / 2], o)
+        # sphere: the velocity is the finite-difference derivative of the drawn curve ...
+        eps = 1e-6
+
+        def curve(u):
+            return sphere_xyz(sc.AMP * np.sin(2 * u), u)
+
+        fd = (curve(s + eps) - curve(s - eps)) / (2 * eps) * speed
+        assert np.allclose(sc.sphere_v, fd, atol=1e-6)
+        # ... it lies in the tangent plane patch, whose corners are all tangent to the sphere at p
+        P = sc.sphere_p
+        assert abs(P @ sc.sphere_v) < 1e-12
+        assert np.allclose((sc.plane_corners - P) @ P, 0.0)
+        shaft = sc.arrow_segments[0]                                    # what the Line3DCollection was given
+        assert np.allclose(shaft[0], P) and np.allclose(shaft[1] - shaft[0], sc.ARROW * sc.sphere_v)
+
+
+def test_surface_geodesics_panel_matches_the_exact_curves():
+    p = W.SurfaceGeodesicsPanel()
+    for heading in (0.0, 15.0, 60.0, 90.0, -40.0):
+        p.set(heading_deg=heading, length=3 * np.pi)
+        sc = p.scene
+        h = np.deg2rad(heading)
+        # sphere: every point on the great circle through p0 = (1, 0, 0) in the plane normal to
+        # p0 x v0 (independent route: the plane equation), at unit speed
+        S = sc.sph_points
+        normal = np.cross([1.0, 0.0, 0.0], [0.0, np.cos(h), np.sin(h)])
+        assert np.allclose(S @ normal, 0.0, atol=1e-12) and np.allclose(np.linalg.norm(S, axis=1), 1.0)
+        assert np.allclose(np.linalg.norm(sc.sph_velocity, axis=1), 1.0)
+        xs, ys, zs = sc.sph_curve.get_data_3d()
+        assert np.allclose(np.c_[xs, ys, zs], S)
+        # cylinder: height rises linearly with the angle travelled (a straight line unrolled)
+        C = sc.cyl_points
+        assert np.all(np.abs(C[:, 2]) <= sc.H + 1e-9)
+        ang = np.unwrap(np.arctan2(C[:, 1], C[:, 0]))
+        assert np.allclose(C[:, 2], np.sin(h) * sc.cyl_t) and np.allclose(ang, np.cos(h) * sc.cyl_t, atol=1e-9)
+        for seg in sc.flat_segments:                                     # straight pieces on the flat strip
+            d = np.diff(seg, axis=0)
+            assert np.allclose(d[:, 0] * np.sin(h) - d[:, 1] * np.cos(h), 0.0, atol=1e-12)
+    p.set(heading_deg=0.0)
+    assert "loop" in p.scene.readout.get_text()
+    p.set(heading_deg=90.0)
+    assert "axial line" in p.scene.readout.get_text()

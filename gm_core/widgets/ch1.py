@@ -13,15 +13,16 @@ import numpy as np
 from ..drawing import ch1 as D
 from ..drawing import group_or_not as G
 from ..drawing import observer as O
+from ..drawing import tangent as T
 from .base import ScenePanel, int_slider, register, slider
 
 __all__ = [
     "show", "TorusPathPanel", "LoopsPanel", "PoleChartPanel",
     "GroupAxiomsPanel", "SlideRulePanel", "CircleIsoPanel", "LeftRightActionPanel",
     "ForwardLeftPanel", "BodyPointsPanel",
-    "VectorFieldPanel", "LiftedScalarPanel", "LiftedSE2Panel", "VelocityPanel", "AdjointPanel",
+    "TangentSpacePanel", "VectorFieldPanel", "LiftedScalarPanel", "LiftedSE2Panel", "VelocityPanel", "AdjointPanel",
     "ObserverPanel", "FramesPanel",
-    "HelixPanel", "PuckArcPanel", "RPlusGeodesicPanel", "ExpFourWaysPanel",
+    "SurfaceGeodesicsPanel", "HelixPanel", "PuckArcPanel", "RPlusGeodesicPanel", "ExpFourWaysPanel",
 ]
 
 PI = np.pi
@@ -172,6 +173,20 @@ class BodyPointsPanel(ScenePanel):
 
 # ============================================================================== 1.4-1.5 velocities
 @register
+class TangentSpacePanel(ScenePanel):
+    """Figs 1.11-1.12: velocities are arrows in the tangent space at the moving point."""
+
+    title = "Velocities live in tangent spaces (figs 1.11-1.12)"
+    scene_class = T.TangentSpaceScene
+    # the 3D view turns with the point: only a full draw sorts the sphere's curve by depth
+    blit = False
+
+    def controls_spec(self):
+        return {"s": slider(0.8, 0.0, 2 * PI, description="where along the curve s"),
+                "speed": slider(1.0, -2.0, 2.0, description="speed ds/dt")}
+
+
+@register
 class VectorFieldPanel(ScenePanel):
     """Figs. 1.13-1.14: integral curves of a vector field from a movable start point."""
 
@@ -272,6 +287,21 @@ class FramesPanel(ScenePanel):
 
 
 # ============================================================================== 1.6 geodesics, exp
+@register
+class SurfaceGeodesicsPanel(ScenePanel):
+    """Fig. 1.16: geodesics of the cylinder (loops, helices, lines) and of the sphere (great circles)."""
+
+    title = "Straightest lines on the cylinder and the sphere (fig. 1.16)"
+    scene_class = D.SurfaceGeodesicsScene
+    # curves wind behind the surfaces' wireframes: only a full 3D draw sorts them by depth
+    blit = False
+
+    def controls_spec(self):
+        return {"heading_deg": slider(15.0, -90.0, 90.0, step=1.0, description="heading (° up from around)",
+                                      readout_format=".0f"),
+                "length": slider(3 * PI, 0.1, 4 * PI, description="distance travelled")}
+
+
 @register
 class HelixPanel(ScenePanel):
     """Fig. 1.18: SE(2) geodesic helices and their circular shadows."""
