@@ -56,11 +56,11 @@ class ObserverScene(Scene):
         tx.set_axis_off()
         tx.set_xlim(0, 1)
         tx.set_ylim(0, 1)
-        title(tx, "Ad as conjugation: g ξ^ g⁻¹ = (Ad_g ξ)^, g = h⁻¹g_body")
-        PathText(tx, 0.02, 0.93, "ξ^  (body, same for every h)", size=8, weight="bold")
-        PathText(tx, 0.52, 0.93, "g = h⁻¹ g_body", size=8, weight="bold")
-        PathText(tx, 0.02, 0.53, "g ξ^ g⁻¹  (matrix products)", size=8, weight="bold")
-        PathText(tx, 0.52, 0.53, "(Ad_g ξ)^  (1.43)", size=8, weight="bold")
+        title(tx, "what h measures; Ad as conjugation, g ξ^ g⁻¹ = (Ad_g ξ)^")
+        PathText(tx, 0.02, 0.70, "ξ^  (body, same for every h)", size=8, weight="bold")
+        PathText(tx, 0.52, 0.70, "g = h⁻¹ g_body", size=8, weight="bold")
+        PathText(tx, 0.02, 0.40, "g ξ^ g⁻¹  (matrix products)", size=8, weight="bold")
+        PathText(tx, 0.52, 0.40, "(Ad_g ξ)^  (1.43)", size=8, weight="bold")
 
     def create(self):
         ax, tx = self.axes
@@ -75,11 +75,12 @@ class ObserverScene(Scene):
         (self.icr_mark,) = ax.plot([], [], "*", color=PALETTE["orange"], ms=14, mec="k", mew=0.6, zorder=7)
         self.icr_note = PathText(ax, 0.5, 0.965, "", size=8.5, ha="center", va="top", coords="axes",
                                  color=PALETTE["vermillion"], weight="bold")
-        self.readout = readout(ax, 0.02, 0.02, "", size=7.5)
+        # the numbers go beside the picture, so no arrow ever runs under them
+        self.readout = readout(tx, 0.02, 0.96, "", size=8, va="top")
         self.blocks = [PathText(tx, x, y, "", size=8, va="top", family="monospace", color=c)
-                       for x, y, c in ((0.02, 0.88, "k"), (0.52, 0.88, PALETTE["purple"]),
-                                       (0.02, 0.48, PALETTE["blue"]), (0.52, 0.48, PALETTE["green"]))]
-        self.check = PathText(tx, 0.02, 0.1, "", size=8, va="bottom", family="monospace")
+                       for x, y, c in ((0.02, 0.65, "k"), (0.52, 0.65, PALETTE["purple"]),
+                                       (0.02, 0.35, PALETTE["blue"]), (0.52, 0.35, PALETTE["green"]))]
+        self.check = PathText(tx, 0.02, 0.04, "", size=8, va="bottom", family="monospace")
 
     def set(self, hx=-1.5, hy=-1.0, htheta=0.0, vx=0.8, vy=0.3, w=0.6):
         g = self.G
@@ -120,7 +121,8 @@ class ObserverScene(Scene):
         icr_line = ("ICR: at infinity" if self.at_infinity else
                     f"ICR: ({p_body[0]:+.2f}, {p_body[1]:+.2f}) in body frame,\n"
                     f"     ({p_h[0]:+.2f}, {p_h[1]:+.2f}) in h's frame")
-        self.readout.set_text(f"ξ  = {f(xi)}  body (stays)\nξˢ = {f(self.xi_s)}  seen from h\n{icr_line}")
+        self.readout.set_text(f"ξ  = {f(xi)}  body velocity (stays)\nξˢ = {f(self.xi_s)}  spatial, seen from h\n"
+                              f"{icr_line}")
         conj, hat_ad = conjugation(self.g_rel, xi)
         self.conj, self.hat_ad = conj, hat_ad
         for blk, M in zip(self.blocks, (SE2.hat(xi), SE2.matrix(self.g_rel), conj, hat_ad)):
