@@ -58,7 +58,7 @@ def icr(xi, tol=1e-9):
     far = np.abs(w) <= tol
     safe = np.where(far, 1.0, w)
     p = np.stack([-xi[..., 1] / safe, xi[..., 0] / safe], -1)
-    p = np.where(far[..., None], 0.0, p)
+    p = np.where(far[..., None], 0.0, p) + 0.0          # + 0.0 turns -0.0 into 0.0 for readouts
     return p, far
 
 

@@ -140,3 +140,24 @@ def test_try_elements_writes_the_axioms_at_the_users_numbers():
     a, b = S.element(0.5, 0), S.element(-1.0, 1)
     M = SE2.matrix(a) @ SE2.matrix(b)                        # independent route: matrix product
     assert S.equal(SE2.from_matrix(M), S.op(a, b))
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+small = st.integers(-50, 50).map(float)
+
+
+@settings(max_examples=80, deadline=None)
+@given(small, small, small)
+def test_try_elements_agrees_with_plain_arithmetic(a, b, c):
+    """Property: the axioms written out at any numbers match arithmetic done here by hand."""
+    t = try_elements("(ℝ, −)", a, b, c)
+    # (a - b) - c and a - (b - c) differ by 2c: subtraction is associative only when c = 0
+    assert t["associativity"].startswith("✓" if c == 0 else "✗")
+    t = try_elements("(ℤ, ×)", a, b, c)
+    assert t["closure"] == f"✓ a × b = {int(a * b)}"
+    has_inverse = a in (1.0, -1.0)
+    assert t["inverse"].startswith("✓" if has_inverse else "✗")
+    t = try_elements("(ℤ, +)", a, b, c)
+    assert all(s.startswith("✓") for s in t.values())
