@@ -536,3 +536,15 @@ def test_surface_geodesics_panel_matches_the_exact_curves():
     assert "loop" in p.scene.readout.get_text()
     p.set(heading_deg=90.0)
     assert "axial line" in p.scene.readout.get_text()
+
+
+def test_tangent_space_panel_line_point_and_its_velocity():
+    p = W.TangentSpacePanel()
+    p.set(s=2.0, speed=1.5)
+    sc = p.scene
+    h = 1e-6
+    x = lambda s: sc.LINE_RATE * (s - np.pi)                    # noqa: E731 (the drawn position rule)
+    xs, ys = sc.points2.get_data()
+    assert np.isclose(xs[1], x(2.0)) and np.isclose(ys[1], sc.LINE_Y)
+    # the arrow on the line is dx/dt = dx/ds * ds/dt, by finite differences, and lies along the line
+    assert np.isclose(sc.arrows2.U[1], (x(2.0 + h) - x(2.0 - h)) / (2 * h) * 1.5) and sc.arrows2.V[1] == 0.0

@@ -48,6 +48,7 @@ class TangentSpaceScene(Scene):
     HALF = 0.6          # half-size of the drawn tangent plane patch
     ARROW = 0.55        # drawn length per unit speed
     LINE_Y = -1.45      # where the line R^1 is drawn, below the circle
+    LINE_RATE = 0.6     # the point on R^1 sits at x = LINE_RATE (s - pi)
 
     def make_figure(self):
         fig = figure(figsize=(9, 4.3))
@@ -105,11 +106,11 @@ class TangentSpaceScene(Scene):
         tdir = np.array([-np.sin(s), np.cos(s)])
         self.tangent_line.set_data(*np.stack([p - 1.0 * tdir, p + 1.0 * tdir], 1))
         self.label_line.set_position(p + 1.18 * tdir - [0.0, 0.08])
-        x = 1.8 * np.cos(s / 2)                         # a point sliding to and fro on the line R^1
+        x = self.LINE_RATE * (s - np.pi)                # a point sliding along the line R^1 as s grows
         self.line_p = x
-        self.line_v = -0.9 * np.sin(s / 2) * speed      # its velocity dx/dt (with ds/dt = speed)
+        self.line_v = self.LINE_RATE * speed            # its velocity dx/dt (with ds/dt = speed)
         self.points2.set_data([p[0], x], [p[1], self.LINE_Y])
-        set_arrows(self.arrows2, [p, [x, self.LINE_Y + 0.15]], self.ARROW * np.array([v, [self.line_v, 0.0]]))
+        set_arrows(self.arrows2, [p, [x, self.LINE_Y + 0.15]], np.array([self.ARROW * v, [self.line_v, 0.0]]))
         self.readout2.set_text(f"circle: p = {vec_text(p)}\n        v = {vec_text(v)}, p·v = {_num(p @ v)}\n"
                                f"line:   x = {x:+.2f}, ẋ = {self.line_v:+.2f}")
         # sphere (fig. 1.12): lat = AMP sin(2 lon), lon = s, moving at rate speed in lon
