@@ -548,3 +548,19 @@ def test_tangent_space_panel_line_point_and_its_velocity():
     assert np.isclose(xs[1], x(2.0)) and np.isclose(ys[1], sc.LINE_Y)
     # the arrow on the line is dx/dt = dx/ds * ds/dt, by finite differences, and lies along the line
     assert np.isclose(sc.arrows2.U[1], (x(2.0 + h) - x(2.0 - h)) / (2 * h) * 1.5) and sc.arrows2.V[1] == 0.0
+
+
+def test_velocity_panel_marks_the_icr_at_rest():
+    p = W.VelocityPanel()
+    p.set(x=1.2, y=0.6, theta=0.7, vx=0.8, vy=0.3, w=0.6)
+    sc = p.scene
+    x, y = sc.icr_marks[0].get_data()
+    star = np.array([x[0], y[0]])
+    # first principles: the plane point at the star has zero velocity, g_dot_xy + w x (star - g_xy) = 0
+    lever = star - np.array([1.2, 0.6])
+    assert np.allclose(sc.g_dot[:2] + 0.6 * np.array([-lever[1], lever[0]]), 0.0)
+    assert np.allclose(sc.icr_marks[1].get_data(), sc.icr_marks[0].get_data())   # same point in (d)
+    assert "ICR ★" in sc.texts[0].get_text()
+    p.set(w=0.0)
+    assert not any(m.get_visible() for m in sc.icr_marks)
+    assert "ICR at infinity" in sc.texts[0].get_text()
