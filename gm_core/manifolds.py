@@ -12,6 +12,11 @@ sphere_xyz            S^2 at latitude / longitude                               
 wrap_segments         a path on the flat torus/cylinder cut where it crosses a seam    fig. 1.5
 chart_speed           (dlat/dt, dlon/dt) of a unit-speed walker; inf at the poles      sec. 1.1
 polar_chart_velocity  the same walker in the polar chart of the northern half          sec. 1.1
+circle_point_velocity a point moving on a circle and its velocity on the tangent line   fig. 1.11
+sphere_tangent_basis  east and north unit vectors spanning the tangent plane T_pS^2     fig. 1.12
+sphere_velocity       velocity in T_pS^2 of a walker with rates (dlat/dt, dlon/dt)     fig. 1.12
+great_circle          geodesic of the sphere from p with velocity v (exact formula)    fig. 1.16
+cylinder_geodesic     geodesic of the cylinder: a helix, a loop or an axial line       fig. 1.16
 """
 from __future__ import annotations
 
@@ -20,7 +25,8 @@ import numpy as np
 from ._validate import as_array, check_positive
 
 __all__ = ["cylinder_xyz", "torus_xyz", "sphere_xyz", "wrap_segments", "chart_speed",
-           "polar_chart_velocity"]
+           "polar_chart_velocity", "circle_point_velocity", "sphere_tangent_basis", "sphere_velocity",
+           "great_circle", "cylinder_geodesic"]
 
 TWO_PI = 2.0 * np.pi
 
@@ -120,3 +126,73 @@ def polar_chart_velocity(lat, lon, heading):
     dY = -s * dlat * np.sin(lon) + east * np.cos(lon)
     pos = np.stack([c * np.cos(lon), c * np.sin(lon)], -1)
     return pos, np.stack([dX, dY], -1)
+
+
+# ------------------------------------------------------------------ tangent spaces (figs 1.11-1.12)
+def circle_point_velocity(a, a_dot=1.0, radius=1.0):
+    """Position and velocity ``(..., 2)`` of a point at angle ``a`` on a circle of ``radius``,
+    turning at rate ``a_dot``: p = r (cos a, sin a), v = r a_dot (-sin a, cos a), which lies on
+    the tangent line at p (v . p = 0), fig. 1.11."""
+    a = as_array(a, "a")
+    a_dot = as_array(a_dot, "a_dot")
+    radius = float(check_positive(radius, "radius"))
+    a, a_dot = np.broadcast_arrays(a, a_dot)
+    c, s = np.cos(a), np.sin(a)
+    return radius * np.stack([c, s], -1), (radius * a_dot)[..., None] * np.stack([-s, c], -1)
+
+
+def sphere_tangent_basis(lat, lon):
+    """Unit vectors ``(east, north)``, each ``(..., 3)``, spanning the tangent plane of the
+    sphere at latitude ``lat``, longitude ``lon`` (fig. 1.12): east = d/dlon of
+    :func:`sphere_xyz` divided by cos(lat), north = d/dlat. At a pole "east" and "north" lose
+    their meaning (east is still returned, a unit vector of that plane, for lon given)."""
+    lat, lon = _pair(lat, lon, "lat", "lon")
+    east = np.stack([-np.sin(lon), np.cos(lon), np.zeros_like(lon)], -1)
+    north = np.stack([-np.sin(lat) * np.cos(lon), -np.sin(lat) * np.sin(lon), np.cos(lat)], -1)
+    return east, north
+
+
+def sphere_velocity(lat, lon, lat_dot, lon_dot, radius=1.0):
+    """Velocity ``(..., 3)`` in T_pS^2 of a point moving with coordinate rates ``lat_dot``,
+    ``lon_dot``: r (cos(lat) lon_dot east + lat_dot north), the chain rule on :func:`sphere_xyz`."""
+    east, north = sphere_tangent_basis(lat, lon)
+    lat = as_array(lat, "lat")
+    lat_dot = as_array(lat_dot, "lat_dot")
+    lon_dot = as_array(lon_dot, "lon_dot")
+    radius = float(check_positive(radius, "radius"))
+    return radius * ((np.cos(lat) * lon_dot)[..., None] * east + lat_dot[..., None] * north)
+
+
+# -------------------------------------------------------------------------- geodesics (fig. 1.16)
+def great_circle(p, v, t, radius=1.0, tol=1e-9):
+    """Points and velocities ``(len(t), 3)`` of the sphere's geodesic that starts at ``p`` (on the
+    sphere of ``radius``) with tangent velocity ``v``: with speed c = |v| and unit direction u,
+    p(t) = p cos(c t / r) + r u sin(c t / r), a great circle run at constant speed, fig. 1.16.
+
+    ``p`` off the sphere or ``v`` not tangent (p . v != 0) is a ValueError.
+    """
+    p = as_array(p, "p", (3,), what=" (a point on the sphere)")
+    v = as_array(v, "v", (3,), what=" (a tangent velocity)")
+    t = as_array(t, "t")
+    radius = float(check_positive(radius, "radius"))
+    if abs(np.linalg.norm(p) - radius) > tol * radius:
+        raise ValueError(f"p must lie on the sphere of radius {radius}; |p| = {np.linalg.norm(p):.6g}")
+    if abs(p @ v) > tol * radius * max(1.0, np.linalg.norm(v)):
+        raise ValueError(f"v must be tangent to the sphere at p (p . v = 0); got p . v = {p @ v:.3g}")
+    c = float(np.linalg.norm(v))
+    if c == 0.0:
+        return np.broadcast_to(p, t.shape + (3,)).copy(), np.zeros(t.shape + (3,))
+    u = v / c
+    k = (c / radius) * t[..., None]
+    return p * np.cos(k) + radius * u * np.sin(k), c * (u * np.cos(k) - p / radius * np.sin(k))
+
+
+def cylinder_geodesic(s0, a0, s_dot, a_dot, t, radius=1.0):
+    """Points ``(len(t), 3)`` of the cylinder's geodesic from height ``s0``, angle ``a0`` with
+    constant rates ``s_dot``, ``a_dot``: unrolled, the cylinder is flat, so a geodesic is a
+    straight line in (r a, s) -- a loop (s_dot = 0), an axial line (a_dot = 0) or a helix,
+    fig. 1.16. Speed sqrt(s_dot^2 + (r a_dot)^2)."""
+    t = as_array(t, "t")
+    s0, a0, s_dot, a_dot = (float(as_array(x, n)) for x, n in
+                            ((s0, "s0"), (a0, "a0"), (s_dot, "s_dot"), (a_dot, "a_dot")))
+    return cylinder_xyz(s0 + s_dot * t, a0 + a_dot * t, radius)

@@ -100,3 +100,94 @@ def test_wrap_segments_against_a_brute_force_walk():
     # period 0: no wrapping in that coordinate (the cylinder's height)
     segs = wrap_segments(a, 10 * b, 2 * np.pi, 0)
     assert np.allclose(np.concatenate(segs)[:, 1], 10 * b)
+
+
+# ------------------------------------------------- tangent spaces (figs 1.11-1.12), geodesics (1.16)
+from gm_core.manifolds import (circle_point_velocity, cylinder_geodesic, great_circle,  # noqa: E402
+                               sphere_tangent_basis, sphere_velocity)
+
+
+def _fd(f, t, h=1e-6):
+    return (f(t + h) - f(t - h)) / (2 * h)
+
+
+def test_circle_velocity_is_tangent_and_is_the_derivative():
+    a = np.linspace(0, 6, 13)
+    p, v = circle_point_velocity(a, 1.7, radius=2.0)
+    assert np.allclose(np.sum(p * v, -1), 0.0)                        # on the tangent line
+    fd = _fd(lambda t: circle_point_velocity(1.7 * t, 0.0, radius=2.0)[0], a / 1.7)
+    assert np.allclose(v, fd, atol=1e-6)
+    assert np.allclose(np.linalg.norm(v, axis=-1), 2.0 * 1.7)
+
+
+def test_sphere_tangent_basis_against_finite_differences():
+    lat, lon = np.meshgrid(np.linspace(-1.4, 1.4, 7), np.linspace(-3, 3, 9))
+    east, north = sphere_tangent_basis(lat, lon)
+    d_lon = _fd(lambda x: sphere_xyz(lat, x), lon)
+    d_lat = _fd(lambda x: sphere_xyz(x, lon), lat)
+    assert np.allclose(east * np.cos(lat)[..., None], d_lon, atol=1e-6)
+    assert np.allclose(north, d_lat, atol=1e-6)
+    p = sphere_xyz(lat, lon)
+    for u in (east, north):                                             # unit, tangent, orthogonal
+        assert np.allclose(np.linalg.norm(u, axis=-1), 1.0) and np.allclose(np.sum(u * p, -1), 0.0)
+    assert np.allclose(np.sum(east * north, -1), 0.0)
+
+
+def test_sphere_velocity_is_the_chain_rule():
+    t = np.linspace(0, 5, 11)
+
+    def curve(t):
+        return sphere_xyz(0.6 * np.sin(t), t, radius=1.5)
+
+    v = sphere_velocity(0.6 * np.sin(t), t, 0.6 * np.cos(t), 1.0, radius=1.5)
+    assert np.allclose(v, _fd(curve, t), atol=1e-6)
+    assert np.allclose(np.sum(v * curve(t), -1), 0.0)
+
+
+def test_great_circle_is_a_geodesic():
+    """Constant speed, acceleration normal to the sphere (no tangential part), and it stays in
+    the plane through the centre spanned by p and v: the exact great circle."""
+    rng = np.random.default_rng(4)
+    for _ in range(5):
+        r = rng.uniform(0.5, 2.0)
+        p = sphere_xyz(rng.uniform(-1.4, 1.4), rng.uniform(-3, 3), radius=r)
+        e, n = sphere_tangent_basis(np.arcsin(p[2] / r), np.arctan2(p[1], p[0]))
+        v = rng.normal() * e + rng.normal() * n
+        t = np.linspace(0, 4, 41)
+        P, V = great_circle(p, v, t, radius=r)
+        assert np.allclose(np.linalg.norm(P, axis=-1), r)                               # on the sphere
+        assert np.allclose(np.linalg.norm(V, axis=-1), np.linalg.norm(v))               # constant speed
+        assert np.allclose(V, _fd(lambda s: great_circle(p, v, s, radius=r)[0], t), atol=1e-6)
+        h = 1e-4
+        acc = (great_circle(p, v, t + h, radius=r)[0] - 2 * P + great_circle(p, v, t - h, radius=r)[0]) / h ** 2
+        tangential = acc - np.sum(acc * P, -1, keepdims=True) * P / r ** 2
+        assert np.max(np.abs(tangential)) < 1e-5                                          # geodesic equation
+        normal = np.cross(p, v)
+        assert np.allclose(P @ normal, 0.0, atol=1e-9)                                    # plane through 0
+        ang = np.arccos(np.clip(P @ p / r ** 2, -1, 1))                                   # arc length = speed t
+        k = np.linalg.norm(v) * t / r
+        assert np.allclose(ang, np.where(k % (2 * np.pi) <= np.pi, k % (2 * np.pi), 2 * np.pi - k % (2 * np.pi)),
+                           atol=1e-6)
+
+
+def test_great_circle_refuses_bad_starts():
+    with pytest.raises(ValueError, match="p must lie on the sphere"):
+        great_circle([1.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0])
+    with pytest.raises(ValueError, match="v must be tangent"):
+        great_circle([1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0])
+
+
+@pytest.mark.parametrize("s_dot, a_dot", [(0.0, 1.0), (1.0, 0.0), (0.4, 1.3), (-0.7, -0.5)])
+def test_cylinder_geodesic_constant_speed_zero_tangential_acceleration(s_dot, a_dot):
+    r = 1.3
+    t = np.linspace(0, 5, 31)
+    P = cylinder_geodesic(0.2, 0.4, s_dot, a_dot, t, radius=r)
+    V = _fd(lambda s: cylinder_geodesic(0.2, 0.4, s_dot, a_dot, s, radius=r), t)
+    assert np.allclose(np.linalg.norm(V, axis=-1), np.hypot(s_dot, r * a_dot), atol=1e-6)
+    h = 1e-4
+    acc = (cylinder_geodesic(0.2, 0.4, s_dot, a_dot, t + h, radius=r) - 2 * P
+           + cylinder_geodesic(0.2, 0.4, s_dot, a_dot, t - h, radius=r)) / h ** 2
+    radial = np.stack([P[:, 0], P[:, 1], 0 * t], -1) / r                     # the surface normal
+    tangential = acc - np.sum(acc * radial, -1, keepdims=True) * radial
+    assert np.max(np.abs(tangential)) < 1e-5
+    assert np.allclose(np.hypot(P[:, 0], P[:, 1]), r)

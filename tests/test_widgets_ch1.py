@@ -119,16 +119,31 @@ def test_loops_sphere_contracts_torus_does_not():
 
 
 # ---------------------------------------------------------------------- 1.2-1.3 groups
-def test_group_axioms_panel_bars_match_direct_computation():
-    p = slide(W.GroupAxiomsPanel(), seed=7, scale=2.0)
-    rng = np.random.default_rng(7)
-    for k, G in D.ALL_GROUPS.items():
-        direct = D.axiom_residuals(G, rng, scale=2.0)
-        assert direct == p.scene.results[k]
-        assert direct["closure"] and max(direct[a] for a in D.AXIOMS) < 1e-9
-    rect = p.scene.bars["associativity"][list(D.ALL_GROUPS).index("SE2")]
-    top = rect.get_y() + rect.get_height()
-    assert np.isclose(top, max(p.scene.results["SE2"]["associativity"], D.GroupAxiomsScene.FLOOR))
+def test_group_or_not_badges_follow_the_verdicts():
+    from matplotlib.colors import to_rgba
+
+    from gm_core.drawing.toolkit import PALETTE
+
+    assert W.GroupOrNotPanel is W.GroupAxiomsPanel and D.GroupAxiomsScene is W.GroupAxiomsPanel.scene_class
+    p = slide(W.GroupAxiomsPanel(), structure="(ℝ, −)", a=3.0, b=2.0, c=1.0)
+    sc = p.scene
+    assert not sc.is_group
+    colours = [tuple(b.get_facecolor()) for b in sc.badges]
+    assert colours[0] == to_rgba(PALETTE["green"])                      # closure holds for subtraction
+    assert colours[1:] == [to_rgba(PALETTE["vermillion"])] * 3            # the other three fail
+    assert [m.get_text() for m in sc.marks] == ["✓", "✗", "✗", "✗"]
+    # the associativity row shows the numbers: (3 - 2) - 1 = 0 against 3 - (2 - 1) = 2
+    assert "(3 − 2) − 1 = 0" in sc.whys[1].get_text() and "3 − (2 − 1) = 2" in sc.whys[1].get_text()
+    assert sc.tries[1].get_text() == f"✗ (a−b)−c = {(3 - 2) - 1}, a−(b−c) = {3 - (2 - 1)}"
+    assert "NOT a group" in sc.title.get_text()
+    p.set(structure="(ℤ, ×)", a=2.0, b=3.0, c=1.0)
+    assert [m.get_text() for m in sc.marks] == ["✓", "✓", "✓", "✗"]
+    assert "2 × x = 1" in sc.whys[3].get_text() and sc.tries[0].get_text() == f"✓ a × b = {2 * 3}"
+    p.set(structure="(ℝ⁺, +)")
+    assert [m.get_text() for m in sc.marks] == ["✓", "✓", "✗", "✗"]
+    for name in ("(ℤ, +)", "(ℝ⁺, ×)", "SE(2)"):
+        p.set(structure=name)
+        assert sc.is_group and all(tuple(b.get_facecolor()) == to_rgba(PALETTE["green"]) for b in sc.badges)
 
 
 def test_slide_rule_reads_the_product():
@@ -398,3 +413,154 @@ def test_jshtml_page_has_a_sized_first_frame_and_waits_for_its_elements():
     w, h = struct.unpack(">II", png[16:24])
     assert int(img.group(2)) == w <= 900 and h > 0
     assert "document.getElementById(img_id) === null" in html
+
+
+# ----------------------------------------------------------- observers, frames (section 1.5)
+def _arrow(a):
+    return np.asarray(a.get_offsets())[0], np.array([a.U[0], a.V[0]])
+
+
+def test_observer_panel_body_velocity_stays_spatial_velocity_moves():
+    from gm_core.frames import icr
+
+    p = W.ObserverPanel()
+    g = p.scene.G
+    xi = np.array([0.8, 0.3, 0.6])
+    seen = []
+    for h in ((-1.5, -1.0, 0.0), (0.5, -2.0, 1.2), (2.0, 2.0, -2.0)):
+        p.set(hx=h[0], hy=h[1], htheta=h[2], vx=xi[0], vy=xi[1], w=xi[2])
+        sc = p.scene
+        assert sc.readout.get_text().startswith("ξ  = (+0.80, +0.30, +0.60)")     # same for every h
+        # the vermillion arrow at h is the velocity of the body point over h's origin (first principles)
+        o, v = _arrow(sc.v_spatial)
+        assert np.allclose(o, h[:2])
+        g_dot = SE2.body_to_world(g, xi)
+        lever = np.array(h[:2]) - g[:2]
+        assert np.allclose(v, g_dot[:2] + xi[2] * np.array([-lever[1], lever[0]]))
+        # ... and written in h's axes it is Ad_{h^-1 g} xi, the matrix route
+        M = np.linalg.inv(SE2.matrix(np.array(h))) @ SE2.matrix(g)
+        assert np.allclose(sc.xi_s, SE2.vee(M @ SE2.hat(xi) @ np.linalg.inv(M)))
+        assert sc.mismatch < 1e-12
+        # the ICR star is one page point, the same from the body's and the observer's numbers
+        x, y = sc.icr_mark.get_data()
+        star = np.array([x[0], y[0]])
+        assert np.allclose(star, SE2.act_on_points(g, icr(xi)[0]))
+        assert np.allclose(star, SE2.act_on_points(np.array(h), icr(sc.xi_s)[0]))
+        seen.append(sc.xi_s.copy())
+    assert np.ptp(np.array(seen), axis=0)[:2].min() > 0.1                      # xi^s did change
+    p.set(w=0.0)
+    assert p.scene.at_infinity and not p.scene.icr_mark.get_visible()
+    assert "ICR at infinity" in p.scene.icr_note.get_text()
+
+
+def test_frames_panel_same_arrow_different_numbers():
+    p = W.FramesPanel()
+    p.set(t=2.5, bx=-1.0, by=2.0, btheta=0.7)
+    sc = p.scene
+    b = np.array([-1.0, 2.0, 0.7])
+    (tip, v), (tip_b, v_b) = sc.in_a, sc.in_b
+    # frame B's numbers, mapped back through B, give the same point and the same arrow
+    assert np.allclose(SE2.act_on_points(b, tip_b), tip)
+    assert np.allclose(SE2.matrix(b)[:2, :2] @ v_b, v)
+    assert not np.allclose(tip_b, tip) and not np.allclose(v_b, v)
+    # the arrow drawn is the nose's velocity: finite differences of its path
+    eps = 1e-6
+
+    def nose(t):
+        g = SE2.compose(sc.G0, SE2.exp(t * sc.XI))
+        return SE2.act_on_points(g, sc.TIP)
+
+    o, arrow_v = _arrow(sc.tip_velocity)
+    assert np.allclose(o, nose(2.5)) and np.allclose(arrow_v, (nose(2.5 + eps) - nose(2.5 - eps)) / (2 * eps),
+                                                      atol=1e-6)
+    # against the instantaneous body frame, the body moves with its body velocity
+    assert np.allclose(sc.seen_from_instant, sc.XI)
+    assert np.allclose(sc.inst.g, sc.g) and np.allclose(sc.body_frame.g, sc.g)
+
+
+# ----------------------------------------------------- tangent spaces (figs 1.11-1.12), fig. 1.16
+def test_tangent_space_panel_velocity_lies_in_the_tangent_spaces():
+    from gm_core.manifolds import sphere_xyz
+
+    p = W.TangentSpacePanel()
+    for s, speed in ((0.8, 1.0), (2.9, -1.5), (5.5, 0.7)):
+        p.set(s=s, speed=speed)
+        sc = p.scene
+        # circle: the arrow starts at the point and is tangent (perpendicular to the radius)
+        o, v = np.asarray(sc.arrows2.get_offsets())[0], np.array([sc.arrows2.U[0], sc.arrows2.V[0]])
+        assert np.allclose(o, [np.cos(s), np.sin(s)]) and abs(o @ v) < 1e-12
+        assert np.isclose(np.linalg.norm(v), sc.ARROW * abs(speed))
+        # the tangent line passes through the point along the arrow
+        x, y = sc.tangent_line.get_data()
+        d = np.array([x[1] - x[0], y[1] - y[0]])
+        assert np.isclose(d[0] * v[1] - d[1] * v[0], 0.0) and np.allclose([(x[0] + x[1]) / 2, (y[0] + y[1]) / 2], o)
+        # sphere: the velocity is the finite-difference derivative of the drawn curve ...
+        eps = 1e-6
+
+        def curve(u):
+            return sphere_xyz(sc.AMP * np.sin(2 * u), u)
+
+        fd = (curve(s + eps) - curve(s - eps)) / (2 * eps) * speed
+        assert np.allclose(sc.sphere_v, fd, atol=1e-6)
+        # ... it lies in the tangent plane patch, whose corners are all tangent to the sphere at p
+        P = sc.sphere_p
+        assert abs(P @ sc.sphere_v) < 1e-12
+        assert np.allclose((sc.plane_corners - P) @ P, 0.0)
+        shaft = sc.arrow_segments[0]                                    # what the Line3DCollection was given
+        assert np.allclose(shaft[0], P) and np.allclose(shaft[1] - shaft[0], sc.ARROW * sc.sphere_v)
+
+
+def test_surface_geodesics_panel_matches_the_exact_curves():
+    p = W.SurfaceGeodesicsPanel()
+    for heading in (0.0, 15.0, 60.0, 90.0, -40.0):
+        p.set(heading_deg=heading, length=3 * np.pi)
+        sc = p.scene
+        h = np.deg2rad(heading)
+        # sphere: every point on the great circle through p0 = (1, 0, 0) in the plane normal to
+        # p0 x v0 (independent route: the plane equation), at unit speed
+        S = sc.sph_points
+        normal = np.cross([1.0, 0.0, 0.0], [0.0, np.cos(h), np.sin(h)])
+        assert np.allclose(S @ normal, 0.0, atol=1e-12) and np.allclose(np.linalg.norm(S, axis=1), 1.0)
+        assert np.allclose(np.linalg.norm(sc.sph_velocity, axis=1), 1.0)
+        xs, ys, zs = sc.sph_curve.get_data_3d()
+        assert np.allclose(np.c_[xs, ys, zs], S)
+        # cylinder: height rises linearly with the angle travelled (a straight line unrolled)
+        C = sc.cyl_points
+        assert np.all(np.abs(C[:, 2]) <= sc.H + 1e-9)
+        ang = np.unwrap(np.arctan2(C[:, 1], C[:, 0]))
+        assert np.allclose(C[:, 2], np.sin(h) * sc.cyl_t) and np.allclose(ang, np.cos(h) * sc.cyl_t, atol=1e-9)
+        for seg in sc.flat_segments:                                     # straight pieces on the flat strip
+            d = np.diff(seg, axis=0)
+            assert np.allclose(d[:, 0] * np.sin(h) - d[:, 1] * np.cos(h), 0.0, atol=1e-12)
+    p.set(heading_deg=0.0)
+    assert "loop" in p.scene.readout.get_text()
+    p.set(heading_deg=90.0)
+    assert "axial line" in p.scene.readout.get_text()
+
+
+def test_tangent_space_panel_line_point_and_its_velocity():
+    p = W.TangentSpacePanel()
+    p.set(s=2.0, speed=1.5)
+    sc = p.scene
+    h = 1e-6
+    x = lambda s: sc.LINE_RATE * (s - np.pi)                    # noqa: E731 (the drawn position rule)
+    xs, ys = sc.points2.get_data()
+    assert np.isclose(xs[1], x(2.0)) and np.isclose(ys[1], sc.LINE_Y)
+    # the arrow on the line is dx/dt = dx/ds * ds/dt, by finite differences, and lies along the line
+    assert np.isclose(sc.arrows2.U[1], (x(2.0 + h) - x(2.0 - h)) / (2 * h) * 1.5) and sc.arrows2.V[1] == 0.0
+
+
+def test_velocity_panel_marks_the_icr_at_rest():
+    p = W.VelocityPanel()
+    p.set(x=1.2, y=0.6, theta=0.7, vx=0.8, vy=0.3, w=0.6)
+    sc = p.scene
+    x, y = sc.icr_marks[0].get_data()
+    star = np.array([x[0], y[0]])
+    # first principles: the plane point at the star has zero velocity, g_dot_xy + w x (star - g_xy) = 0
+    lever = star - np.array([1.2, 0.6])
+    assert np.allclose(sc.g_dot[:2] + 0.6 * np.array([-lever[1], lever[0]]), 0.0)
+    assert np.allclose(sc.icr_marks[1].get_data(), sc.icr_marks[0].get_data())   # same point in (d)
+    assert "ICR ★" in sc.texts[0].get_text()
+    p.set(w=0.0)
+    assert not any(m.get_visible() for m in sc.icr_marks)
+    assert "ICR at infinity" in sc.texts[0].get_text()

@@ -12,13 +12,105 @@ from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from ..calculus import exp_history
 from ..fields import puck_vs_arc, rplus_geodesics, se2_helix, se2_helices
 from ..groups import SE2, RPlus
+from ..manifolds import cylinder_geodesic, cylinder_xyz, great_circle, sphere_tangent_basis, sphere_xyz, wrap_segments
 from .actions import BODY
 from .base import BodyArtist, FrameArtist, TrailArtist, animate
-from .toolkit import (PALETTE, PathText, Scene, arrow, figure, margins, new_figure, plain_3d, plane, set_arrows,
-                      title, xticks, yticks, axis_label)
+from .toolkit import (PALETTE, TWO_PI, PathText, Scene, arrow, axis_label, figure, margins, new_figure, plain_3d,
+                      plane, readout, set_arrows, title, wire, xticks, yticks)
 
-__all__ = ["helix_geometry", "HelixScene", "PuckArcScene", "puck_vs_arc_animation", "RPlusGeodesicScene",
+__all__ = ["SurfaceGeodesicsScene", "helix_geometry", "HelixScene", "PuckArcScene", "puck_vs_arc_animation", "RPlusGeodesicScene",
            "ExpFourWaysScene"]
+
+
+# ================================================================= 1.6.1 geodesics of surfaces
+class SurfaceGeodesicsScene(Scene):
+    """Fig. 1.16: straightest lines on the cylinder and on the sphere, started the same way.
+
+    Values ``heading_deg`` (the starting direction, measured from "around" -- the cylinder's
+    circle, the sphere's equator -- towards "up") and ``length`` (distance travelled at unit
+    speed). On the cylinder the geodesic is a loop, a helix or an axial line, and the flattened
+    cylinder shows it as a straight line (the cylinder is flat); on the sphere it is a great
+    circle whatever the heading. Both from :mod:`gm_core.manifolds`.
+    """
+
+    H = 3.0            # the drawn piece of the cylinder: heights |s| <= H (it goes on forever)
+    N = 300
+
+    def make_figure(self):
+        fig = figure(figsize=(9, 3.6))
+        ax_c = fig.add_subplot(1, 3, 1, projection="3d")
+        ax_f = fig.add_subplot(1, 3, 2)
+        ax_s = fig.add_subplot(1, 3, 3, projection="3d")
+        margins(fig, left=0.0, right=1.0, bottom=0.12, top=0.9, wspace=0.08)
+        return fig, [ax_c, ax_f, ax_s]
+
+    def decorate(self):
+        ax_c, ax_f, ax_s = self.axes
+        A, S = np.meshgrid(np.linspace(0, TWO_PI, 19), np.linspace(-self.H, self.H, 7))
+        P = cylinder_xyz(S, A)
+        wire(ax_c, P[..., 0], P[..., 1], P[..., 2], color="0.8", behind=True)
+        plain_3d(ax_c, axes_lines=False)
+        ax_c.set_xlim(-1.2, 1.2)
+        ax_c.set_ylim(-1.2, 1.2)
+        ax_c.set_zlim(-self.H, self.H)
+        ax_c.set_box_aspect((1, 1, 2.0), zoom=1.1)
+        ax_c.view_init(elev=18, azim=-60)
+        title(ax_c, "cylinder: loop, helix or line")
+        ax_f.set_xlim(-0.2, TWO_PI + 0.2)
+        ax_f.set_ylim(-self.H - 0.1, self.H + 0.1)
+        for x in (0.0, TWO_PI):
+            ax_f.plot([x, x], [-self.H, self.H], color=PALETTE["vermillion"], lw=1.5)
+        axis_label(ax_f, "x", "angle a (left edge = right edge)",
+                   ticks=xticks(ax_f, [0, np.pi, TWO_PI], ["0", "π", "2π"]))
+        axis_label(ax_f, "y", "s", ticks=yticks(ax_f, [-3, 0, 3], ["−3", "0", "3"]))
+        title(ax_f, "flattened cylinder: straight")
+        lat, lon = np.meshgrid(np.linspace(-np.pi / 2, np.pi / 2, 9), np.linspace(0, TWO_PI, 17))
+        P = sphere_xyz(lat, lon)
+        wire(ax_s, P[..., 0], P[..., 1], P[..., 2], color="0.8", behind=True)
+        plain_3d(ax_s, lim=1.0, axes_lines=False)
+        ax_s.set_box_aspect((1, 1, 1), zoom=1.2)
+        ax_s.view_init(elev=18, azim=-60)
+        title(ax_s, "sphere: a great circle")
+
+    def create(self):
+        ax_c, ax_f, ax_s = self.axes
+        col = PALETTE["blue"]
+        (self.cyl_curve,) = ax_c.plot([], [], [], color=col, lw=2, zorder=3)
+        (self.cyl_start,) = ax_c.plot([], [], [], "o", color="k", ms=5, zorder=4)
+        from matplotlib.collections import LineCollection
+
+        self.flat = LineCollection([], colors=col, linewidths=2)
+        ax_f.add_collection(self.flat)
+        (self.flat_start,) = ax_f.plot([], [], "o", color="k", ms=5)
+        (self.sph_curve,) = ax_s.plot([], [], [], color=col, lw=2, zorder=3)
+        (self.sph_start,) = ax_s.plot([], [], [], "o", color="k", ms=5, zorder=4)
+        self.readout = readout(ax_f, 0.07, 1.0, "", size=7.5, va="top", offset=(0, -4))
+
+    def set(self, heading_deg=15.0, length=3 * np.pi):
+        h = np.deg2rad(heading_deg)
+        t = np.linspace(0.0, length, self.N)
+        # cylinder (radius 1): unit speed split between going around (cos h) and going up (sin h)
+        s_dot, a_dot = np.sin(h), np.cos(h)
+        inside = np.abs(s_dot * t) <= self.H + 1e-12        # stop where it leaves the drawn piece
+        n = int(np.argmin(inside)) if not inside.all() else len(t)
+        self.cyl_t = t[:max(n, 2)]
+        C = cylinder_geodesic(0.0, 0.0, s_dot, a_dot, self.cyl_t)
+        self.cyl_points = C
+        self.cyl_curve.set_data_3d(C[:, 0], C[:, 1], C[:, 2])
+        self.cyl_start.set_data_3d([1.0], [0.0], [0.0])
+        self.flat_segments = wrap_segments(a_dot * self.cyl_t, s_dot * self.cyl_t, TWO_PI, 0)
+        self.flat.set_segments(self.flat_segments)
+        self.flat_start.set_data([0.0], [0.0])
+        # sphere (radius 1): start on the equator at longitude 0, heading h from east towards north
+        east, north = sphere_tangent_basis(0.0, 0.0)
+        p0 = sphere_xyz(0.0, 0.0)
+        self.sph_points, self.sph_velocity = great_circle(p0, np.cos(h) * east + np.sin(h) * north, t)
+        S = self.sph_points
+        self.sph_curve.set_data_3d(S[:, 0], S[:, 1], S[:, 2])
+        self.sph_start.set_data_3d([p0[0]], [p0[1]], [p0[2]])
+        turn = "loop" if abs(s_dot) < 1e-9 else ("axial line" if abs(a_dot) < 1e-9 else
+                                                f"helix, rises {TWO_PI * abs(np.tan(h)):.2f} a turn")
+        self.readout.set_text(f"heading {heading_deg:.0f}°, length {length:.2f}\ncylinder: {turn}")
 
 
 # ============================================================================ 1.6 geodesics, exp

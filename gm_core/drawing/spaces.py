@@ -113,8 +113,8 @@ def _identified_edges(ax, w, h, kind):
     else:  # the cylinder's R direction goes on forever
         ax.plot([0, w], [0, 0], ls=":", color="0.5")
         ax.plot([0, w], [h, h], ls=":", color="0.5")
-    if kind == "sphere":
-        return
+    # every kind glues its left edge to its right edge: the cylinder's and torus's angle, the
+    # sphere chart's longitude seam (lambda = -180 deg is lambda = +180 deg)
     mark(0, 0, 0, h, 1, PALETTE["vermillion"])
     mark(w, 0, 0, h, 1, PALETTE["vermillion"])
     if kind == "torus":
@@ -155,13 +155,19 @@ def flattened_views():
     ax.plot([0, TWO_PI], [0, 0], color="darkred", lw=4, alpha=0.6)
     ax.text(np.pi, np.pi - 0.25, "whole edge = north pole", ha="center", fontsize=8.5, color="darkred")
     ax.text(np.pi, 0.12, "whole edge = south pole", ha="center", fontsize=8.5, color="darkred")
-    ax.set_title("sphere, latitude/longitude chart\n(edges collapse at the poles)")
-    ax.set_xlabel("longitude")
-    ax.set_ylabel("colatitude")
+    # the longitude seam: the left edge (lambda = -180 deg) and the right edge (+180 deg) are one meridian
+    for x in (0.0, TWO_PI):
+        ax.plot([x, x], [0, np.pi], color=PALETTE["vermillion"], lw=3, alpha=0.5, solid_capstyle="butt")
+    ax.text(np.pi, np.pi / 2, "left edge = right edge:\nthe seam λ = ±180°", ha="center", va="center",
+            fontsize=8.5, color=PALETTE["vermillion"])
+    ax.set_title("sphere, latitude/longitude chart\n(seam glued, edges collapse at the poles)")
+    ax.set_xlabel("longitude λ")
+    ax.set_ylabel("latitude φ")
     for ax in axes:
         ax.set_aspect("equal")
         ax.set_xticks([0, np.pi, TWO_PI], ["0", "π", "2π"])
-    axes[2].set_yticks([0, np.pi / 2, np.pi], ["0", "π/2", "π"])
+    axes[2].set_xticks([0, np.pi, TWO_PI], ["−180°", "0", "180°"])
+    axes[2].set_yticks([0, np.pi / 2, np.pi], ["−90°", "0", "90°"])   # bottom edge: the south pole
     axes[1].set_yticks([0, np.pi, TWO_PI], ["0", "π", "2π"])
     return fig
 

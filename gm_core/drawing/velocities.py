@@ -11,6 +11,7 @@ from matplotlib.collections import LineCollection
 
 from ..examples import FIELDS, point_velocities
 from ..fields import integral_curve
+from ..frames import icr
 from ..groups import SE2, RPlus
 from .actions import BODY
 from .base import BodyArtist, FrameArtist
@@ -256,7 +257,10 @@ class VelocityScene(Scene):
         self.spatial_parts = ArrowSet(d, color=["0.55", PALETTE["purple"]], n=2, width=0.008)
         self.spatial = ArrowSet(d, color=PALETTE["vermillion"], width=0.012)
         (self.lever,) = d.plot([], [], color=PALETTE["purple"], ls=":", lw=1.5)
-        self.texts = [PathText(ax, 0.03, 0.04, "", size=8, coords="axes") for ax in self.axes]
+        # the instantaneous centre of rotation: the one point of the moving plane at rest (a, d)
+        self.icr_marks = [ax.plot([], [], "*", color=PALETTE["orange"], ms=12, mec="k", mew=0.5, zorder=7)[0]
+                          for ax in (a, d)]
+        self.texts = [PathText(ax, 0.03, 0.02, "", size=8, coords="axes", va="bottom") for ax in self.axes]
 
     def set(self, x=1.2, y=0.6, theta=0.7, vx=0.8, vy=0.3, w=0.6):
         g = np.array([x, y, theta])
@@ -279,8 +283,17 @@ class VelocityScene(Scene):
         set_arrows(self.spatial_parts, [[0, 0], self.g_dot[:2]], self.spatial_parts_vecs)
         set_arrows(self.spatial, [0, 0], self.xi_s[:2])
         self.lever.set_data([x, 0], [y, 0])
+        p, far = icr(xi)
+        self.icr_world = None if far else SE2.act_on_points(g, p)
+        shown = not far and np.max(np.abs(self.icr_world)) <= self.LIM
+        for m in self.icr_marks:
+            m.set_visible(bool(shown))
+            if shown:
+                m.set_data([self.icr_world[0]], [self.icr_world[1]])
         f = vec_text
-        self.texts[0].set_text(f"ġ = {f(self.g_dot)}")
+        where = ("ICR at infinity: pure translation" if far else
+                 f"ICR ★ ({self.icr_world[0]:+.2f}, {self.icr_world[1]:+.2f})" + ("" if shown else ", off view"))
+        self.texts[0].set_text(f"ġ = {f(self.g_dot)}\n{where}")
         self.texts[1].set_text(f"ξ = {f(xi)}  (red: ξˣ, green: ξʸ)")
         self.texts[2].set_text(f"ξ = T_gL_g⁻¹ ġ = {f(SE2.world_to_body(g, self.g_dot))}")
         self.texts[3].set_text(f"ξˢ = {f(self.xi_s)} = ġ + ξᶿ × l")

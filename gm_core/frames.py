@@ -1,0 +1,77 @@
+"""Frames and observers on SE(2) (book section 1.5, the "Frames" box and (1.38)-(1.45)).
+
+numpy only. The body velocity of a rigid body does not depend on who watches it; its spatial
+velocity does: an observer whose coordinate frame sits at ``h`` sees the body at ``h^-1 g`` and
+so measures ``xi^s_h = Ad_{h^-1 g} xi``. The instantaneous centre of rotation (ICR) is the one
+point of the moving plane with zero velocity; written in any frame it is the same point.
+
+name                   what it is                                                      book
+---------------------  --------------------------------------------------------------  --------------
+relative_pose          h^-1 g: the body as seen from the observer's frame h             (1.10), ch. 2
+observed_velocity      xi^s seen by the observer at h: Ad_{h^-1 g} xi                    (1.40)-(1.43)
+icr                    (-v_y / w, v_x / w) for xi = (v_x, v_y, w), flagged at w = 0      sec. 1.5
+point_in_frame         coordinates of a world point in the frame g (g^-1 p)             (1.12)
+conjugation            g xi^ g^-1 and (Ad_g xi)^: Ad as conjugation, for display         (1.40)
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ._validate import as_array
+from .groups import SE2, matvec
+
+__all__ = ["relative_pose", "observed_velocity", "icr", "point_in_frame", "conjugation"]
+
+
+def _se2(g, name):
+    return as_array(g, name, (3,), what=" (an SE(2) element (x, y, theta))")
+
+
+def relative_pose(h, g):
+    """``h^-1 g`` (``(..., 3)``): the pose g written in the coordinate frame at h."""
+    return SE2.compose(SE2.inverse(_se2(h, "h")), _se2(g, "g"))
+
+
+def observed_velocity(g, xi, h=(0.0, 0.0, 0.0)):
+    """Spatial velocity ``(..., 3)`` of a body at ``g`` with body velocity ``xi``, measured by an
+    observer whose coordinate frame is at ``h``: Ad_{h^-1 g} xi, (1.43).
+
+    With ``h = e`` this is the book's spatial velocity xi^s = Ad_g xi. The body velocity xi is
+    the same for every observer; the spatial velocity is the velocity of the body point that is
+    momentarily over the observer's origin, written in the observer's axes.
+    """
+    xi = as_array(xi, "xi", (3,), what=" (a body velocity (v_x, v_y, omega))")
+    return matvec(SE2.Ad(relative_pose(h, g)), xi)
+
+
+def icr(xi, tol=1e-9):
+    """Instantaneous centre of rotation of the velocity ``xi = (v_x, v_y, w)``, in the frame
+    ``xi`` is written in: ``(point (..., 2), at_infinity (...,) bool)``.
+
+    A point p of the moving plane has velocity (v_x - w p_y, v_y + w p_x) (the translation plus
+    w times the lever arm turned a quarter turn), which vanishes at p = (-v_y / w, v_x / w).
+    When |w| <= tol there is no such point (pure translation: the centre is "at infinity") and
+    the point returned is 0 with ``at_infinity`` True; never inf or NaN.
+    """
+    xi = as_array(xi, "xi", (3,), what=" (a velocity (v_x, v_y, omega))")
+    w = xi[..., 2]
+    far = np.abs(w) <= tol
+    safe = np.where(far, 1.0, w)
+    p = np.stack([-xi[..., 1] / safe, xi[..., 0] / safe], -1)
+    p = np.where(far[..., None], 0.0, p) + 0.0          # + 0.0 turns -0.0 into 0.0 for readouts
+    return p, far
+
+
+def point_in_frame(g, p):
+    """Coordinates ``(..., 2)`` of the world point ``p`` in the frame at ``g`` (inverse of (1.12))."""
+    p = as_array(p, "p", (2,), what=" (a point (x, y))")
+    return SE2.act_on_points(SE2.inverse(_se2(g, "g")), p)
+
+
+def conjugation(g, xi):
+    """Ad as conjugation, for display: ``(g xi^ g^-1, (Ad_g xi)^)``, two ``(..., 3, 3)`` matrices
+    that agree (the first from matrix products, the second from the closed form (1.43))."""
+    g = _se2(g, "g")
+    xi = as_array(xi, "xi", (3,), what=" (a Lie-algebra element (v_x, v_y, omega))")
+    M = SE2.matrix(g)
+    return M @ SE2.hat(xi) @ np.linalg.inv(M), SE2.hat(matvec(SE2.Ad(g), xi))
