@@ -156,3 +156,26 @@ def test_static_figures_and_animation():
     assert "<script" in html.data
     import matplotlib.pyplot as plt
     plt.close("all")
+
+
+def test_singular_set_of_the_snake_includes_the_fold_lines_on_the_window_edge():
+    # D = 4 sin((a1 - a2)/2) cos(a1/2) cos(a2/2) for equal links: zero on a1 = a2 and on a_i = +-pi
+    import matplotlib.pyplot as plt
+
+    from gm_core.drawing.connection import draw_singular_set
+
+    snake = KinematicSnake()
+    fig, ax = plt.subplots()
+    cs = draw_singular_set(ax, snake)
+    pts = np.vstack([p.vertices for p in cs.get_paths() if len(p.vertices)])
+    on_diag = np.abs(pts[:, 0] - pts[:, 1]) < 1e-6
+    assert on_diag.any()
+    for k in (0, 1):
+        for edge in (-np.pi, np.pi):
+            near = np.abs(pts[:, k] - edge) < 0.02
+            # the fold line runs along the whole edge, not just a corner
+            assert np.ptp(pts[near, 1 - k]) > 5.5, (k, edge)
+    # and every vertex drawn is singular: D is (nearly) zero there
+    d = snake.singularity(pts)
+    assert np.max(np.abs(d)) < 0.05
+    plt.close(fig)
