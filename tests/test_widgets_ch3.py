@@ -179,3 +179,108 @@ def test_singular_set_of_the_snake_includes_the_fold_lines_on_the_window_edge():
     d = snake.singularity(pts)
     assert np.max(np.abs(d)) < 0.05
     plt.close(fig)
+
+
+# ------------------------------------------------------------------------- gaits for every system
+@pytest.mark.parametrize("name", sorted(ALL_SYSTEMS()))
+@pytest.mark.parametrize("family", ["ellipse", "serpenoid", "figure eight"])
+def test_gait_panel_families_for_every_system(name, family):
+    from gm_core.gaits import family_gait
+    from gm_core.locomotion import SingularShapeError
+
+    system = ALL_SYSTEMS()[name]
+    p = ch3.GaitPanel(system=system)
+    (lo1, hi1), (lo2, hi2) = system.shape_limits
+    c = (0.1 * hi1, -0.3 * hi2) if name != "KinematicSnake" else (0.5, -1.2)
+    size = 0.25 * min(hi1 - lo1, hi2 - lo2) if name != "KinematicSnake" else 0.6
+    p.set(family=family, amplitude=size, center1=c[0], center2=c[1], aspect=0.5, angle=0.4)
+    gait = family_gait(family, size, c, 0.5, 0.4)
+    path = np.column_stack(p.paths[0][0].get_data())
+    np.testing.assert_allclose(path, gait(np.linspace(0, 1, len(path))), atol=1e-12)
+    try:
+        g = net_displacement(p.system, gait)
+    except SingularShapeError:
+        assert p.flag.visible and p.net is None
+        return
+    assert not p.flag.visible
+    np.testing.assert_allclose(p.net, g, atol=1e-7)
+    assert "net displacement per cycle" in p.text.get_text()
+    assert_body_at(p.body, p.system, p.traj.g[-1], p.traj.r[-1])
+
+
+def test_gait_panel_floating_snake_body_frame_choice():
+    p = ch3.GaitPanel(system=FloatingSnake())
+    assert set(p.controls["frame"].options) == {"centre of mass", "middle link"}
+    p.set(family="ellipse", amplitude=1.0, center1=0.6, center2=0.4, aspect=0.5, angle=0.3, frame="centre of mass")
+    g_com = p.net.copy()
+    # the centre-of-mass frame: the translation rows of A vanish, so the fields show no arrows there
+    assert np.allclose(np.ma.filled(p.fields[0].U, 0.0), 0.0)
+    p.set(frame="middle link")
+    g_mid = p.net.copy()
+    assert p.system.frame == "middle"
+    gait = p.scene.gait(p.values())
+    np.testing.assert_allclose(g_mid, net_displacement(FloatingSnake(frame="middle"), gait), atol=1e-7)
+    # the same physical motion seen from two frames: same rotation, different translation
+    assert np.isclose(g_com[2], g_mid[2], atol=1e-9) and abs(g_com[2]) > 1e-2
+    assert not np.allclose(g_com[:2], g_mid[:2], atol=1e-3)
+    assert np.abs(np.ma.filled(p.fields[0].U, 0.0)).max() > 1e-3
+
+
+def _mouse(fig, name, ax, xy, button=1):
+    from matplotlib.backend_bases import MouseEvent
+
+    x, y = ax.transData.transform(xy)
+    ev = MouseEvent(name, fig.canvas, x, y, button=button)
+    fig.canvas.callbacks.process(name, ev)
+    return ev
+
+
+def test_gait_panel_drawn_loop_is_edited_by_dragging_a_control_point():
+    from gm_core.gaits import Gait
+
+    p = ch3.GaitPanel(system=LowReSwimmer())
+    p.set(amplitude=1.0, center1=0.0, center2=0.0)
+    p.set(family="drawn")
+    pts0 = p.points.copy()
+    np.testing.assert_allclose(np.linalg.norm(pts0, axis=1), 1.0, atol=1e-12)   # seeded from the circle
+    np.testing.assert_allclose(p.net, net_displacement(p.system, Gait.from_samples(pts0)), atol=1e-7)
+    ax = p.field_axes[2]
+    fig = p.fig
+    _mouse(fig, "button_press_event", ax, pts0[2] + 0.02)          # near point 2: grabbed
+    assert p.scene._grab == 2
+    _mouse(fig, "motion_notify_event", ax, (0.3, 1.8))
+    _mouse(fig, "button_release_event", ax, (0.3, 1.8))
+    assert p.scene._grab is None
+    want = pts0.copy()
+    want[2] = (0.3, 1.8)
+    np.testing.assert_allclose(p.points, want, atol=1e-9)
+    np.testing.assert_allclose(p.net, net_displacement(p.system, Gait.from_samples(want)), atol=1e-7)
+    dots = np.column_stack(p.handles[0].get_data())
+    np.testing.assert_allclose(dots, want, atol=1e-9)
+    # a press far from every point grabs nothing; dragging then moves nothing
+    _mouse(fig, "button_press_event", ax, (-2.5, -2.5))
+    _mouse(fig, "motion_notify_event", ax, (0.0, 0.0))
+    np.testing.assert_allclose(p.points, want, atol=1e-9)
+
+
+def test_gait_panel_drawn_loop_across_the_singular_line_raises_the_flag():
+    p = ch3.GaitPanel(system=KinematicSnake())
+    p.set(amplitude=0.6, center1=0.5, center2=-1.2)
+    p.set(family="drawn")
+    assert not p.flag.visible
+    ax = p.field_axes[0]
+    k = 0
+    _mouse(p.fig, "button_press_event", ax, p.points[k])
+    _mouse(p.fig, "motion_notify_event", ax, (-1.0, 1.0))          # across alpha1 = alpha2
+    _mouse(p.fig, "button_release_event", ax, (-1.0, 1.0))
+    assert p.flag.visible and p.net is None and "singular" in p.message
+    assert not p.trail.line.get_visible()
+
+
+def test_gait_panel_animation_plays_without_kernel():
+    p = ch3.GaitPanel(system=LowReSwimmer())
+    p.set(family="figure eight", amplitude=1.0, aspect=0.8, angle=0.0)
+    html = p.animation(n_frames=12, cycles=1)
+    assert "<script" in html.data
+    import matplotlib.pyplot as plt
+    plt.close("all")
