@@ -13,6 +13,7 @@ from gm_core import SE2  # noqa: E402
 from gm_core.drawing import ch3 as D  # noqa: E402
 from gm_core.locomotion import circle_gait, net_displacement  # noqa: E402
 from gm_core.systems import ALL_SYSTEMS, FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer  # noqa: E402
+from gm_core.drawing import nonholonomy as D_nh  # noqa: E402
 from gm_core.widgets import ch3  # noqa: E402
 from gm_core.widgets.base import PANELS, all_panels  # noqa: E402
 
@@ -30,7 +31,8 @@ def assert_body_at(art, system, g, r, atol=1e-9):
 
 
 def test_ch3_panels_registered():
-    assert {"DiffDriveCarPanel", "AckermanCarPanel", "ConnectionFieldPanel", "GaitPanel"} <= set(CH3_PANELS)
+    assert {"DiffDriveCarPanel", "AckermanCarPanel", "ConnectionFieldPanel", "GaitPanel",
+            "ParallelParkPanel"} <= set(CH3_PANELS)
 
 
 @pytest.mark.parametrize("name", CH3_PANELS)
@@ -284,3 +286,25 @@ def test_gait_panel_animation_plays_without_kernel():
     assert "<script" in html.data
     import matplotlib.pyplot as plt
     plt.close("all")
+
+
+def test_parallel_park_panel_shows_the_sideways_net_and_the_closed_radial_loop():
+    from gm_core.systems.rolling_disk import bracket_estimate, parallel_park_displacement
+
+    p = ch3.ParallelParkPanel()
+    p.set(d=0.5, phi=0.4)
+    g0 = np.array([0.0, -0.4, 0.0])
+    np.testing.assert_allclose(p.net, parallel_park_displacement(0.5, 0.4), atol=1e-14)
+    np.testing.assert_allclose(p.g_end, SE2.compose(g0, p.net), atol=1e-12)
+    np.testing.assert_allclose(p.disk.patch.get_xy()[:4], SE2.act_on_points(p.g_end, D_nh.DISK_OUTLINE), atol=1e-12)
+    np.testing.assert_allclose(p.net_arrow.U, p.g_end[0] - g0[0], atol=1e-12)
+    assert np.isclose(p.estimate[1], -0.2) and np.isclose(p.net[1], p.estimate[1], rtol=0.1)
+    np.testing.assert_allclose(p.estimate, bracket_estimate(0.5, 0.4))
+    assert "net" in p.text.get_text()
+    # the integrable constraint: the loop closes exactly and stays on the unit circle
+    np.testing.assert_allclose(p.q[-1], p.q[0], atol=1e-14)
+    np.testing.assert_allclose(np.hypot(*p.q.T), 1.0, atol=1e-14)
+    # the drive segment of the disk is along its heading (theta = 0 at the start)
+    seg = np.column_stack(p.segments[0].get_data())
+    np.testing.assert_allclose(seg[:, 1], -0.4, atol=1e-14)
+    np.testing.assert_allclose(seg[-1, 0], 0.5, atol=1e-14)

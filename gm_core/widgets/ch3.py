@@ -15,11 +15,12 @@ from ..drawing.connection import ConnectionFieldScene
 from ..drawing.base import jshtml
 from ..drawing.gaits import GAIT_SHAPES, GaitScene
 from ..drawing.motion import AckermanScene, DiffDriveScene
+from ..drawing.nonholonomy import ParallelParkScene
 from ..examples import drive
 from ..systems import FloatingSnake, KinematicSnake
 from .base import ScenePanel, register, slider
 
-__all__ = ["drive", "DiffDriveCarPanel", "AckermanCarPanel", "ConnectionFieldPanel", "GaitPanel", "body_frames"]
+__all__ = ["drive", "DiffDriveCarPanel", "AckermanCarPanel", "ConnectionFieldPanel", "GaitPanel", "body_frames", "ParallelParkPanel"]
 
 PI = float(np.pi)
 
@@ -155,3 +156,19 @@ class GaitPanel(ScenePanel):
         """The current gait as a kernel-free animation (HTML): body in the world, cursor on row ``row``."""
         anim, fig, traj = self.scene.animation(n_frames=n_frames, cycles=cycles, row=row)
         return jshtml(anim)
+
+
+# ======================================================================= nonholonomy
+@register
+class ParallelParkPanel(ScenePanel):
+    """A rolling disk parallel-parks by a loop of allowed moves; the integrable constraint (3.viii) cannot.
+
+    Sliders: the drive distance d and the turn angle φ of the loop drive–turn–back–turn back.
+    """
+
+    title = "Nonholonomy: parallel parking a rolling disk"
+    scene_class = ParallelParkScene
+
+    def controls_spec(self):
+        return {"d": slider(0.8, -1.2, 1.2, description="drive distance d"),
+                "phi": slider(0.6, -1.5, 1.5, description="turn angle φ")}
