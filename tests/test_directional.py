@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from gm_core.systems.directional import RATE_MAPS, rate_map, rate_map_properties, replay
+from gm_core.systems.directional import PATH_SCALE, RATE_MAPS, rate_map, rate_map_properties, replay
 
 A, B, C, D = list(RATE_MAPS)
 
@@ -40,8 +40,8 @@ def test_replay_at_another_pace_and_backwards(name):
         np.testing.assert_allclose(x3, 3 * x1, atol=1e-12)      # degree 2: three times as far
     # the linear example integrates exactly: x = b(r(s) - r(0))
     if name == B:
-        r_end = np.array([np.cos(1.5 * np.pi), 0.6 * np.sin(1.5 * np.pi)])
-        assert np.isclose(x1[-1], rate_map(B)(r_end - np.array([1.0, 0.0])), atol=1e-12)
+        r_end = PATH_SCALE * np.array([np.cos(1.5 * np.pi), 0.6 * np.sin(1.5 * np.pi)])
+        assert np.isclose(x1[-1], rate_map(B)(r_end - np.array([PATH_SCALE, 0.0])), atol=1e-12)
 
 
 def test_bad_names_and_paces():

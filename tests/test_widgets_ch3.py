@@ -32,7 +32,7 @@ def assert_body_at(art, system, g, r, atol=1e-9):
 
 def test_ch3_panels_registered():
     assert {"DiffDriveCarPanel", "AckermanCarPanel", "ConnectionFieldPanel", "GaitPanel",
-            "ParallelParkPanel"} <= set(CH3_PANELS)
+            "ParallelParkPanel", "PacingSquarePanel", "DirectionalLinearityPanel"} <= set(CH3_PANELS)
 
 
 @pytest.mark.parametrize("name", CH3_PANELS)
@@ -308,3 +308,34 @@ def test_parallel_park_panel_shows_the_sideways_net_and_the_closed_radial_loop()
     seg = np.column_stack(p.segments[0].get_data())
     np.testing.assert_allclose(seg[:, 1], -0.4, atol=1e-14)
     np.testing.assert_allclose(seg[-1, 0], 0.5, atol=1e-14)
+
+
+def test_pacing_square_panel_markers_commute_as_in_fig_3_1():
+    from gm_core.gaits import circle_gait as cg, sine_pacing
+    from gm_core.locomotion import displacement_until
+
+    p = ch3.PacingSquarePanel()
+    p.set(unevenness=0.6, t=0.3)
+    tau, _ = sine_pacing(0.6)
+    want = displacement_until(p.system, cg(1.0), float(tau(0.3)))
+    np.testing.assert_allclose(p.g_top, want, atol=1e-12)
+    np.testing.assert_allclose(p.g_bot, p.g_top, atol=1e-7)       # (3.4)
+    np.testing.assert_allclose(p.markers[3].get_data(), [[p.g_bot[0]], [p.g_bot[1]]], atol=1e-12)
+    np.testing.assert_allclose(p.markers[0].get_data(), p.markers[2].get_data(), atol=1e-12)  # same shape
+    # the dots of the repaced row are the repaced loop at equal time steps
+    rep = np.column_stack(p.dots[2].get_data())
+    np.testing.assert_allclose(rep[3], cg(1.0)(np.array([float(tau(3 / 24))]))[0], atol=1e-12)
+
+
+def test_directional_panel_numbers_prove_or_refute_each_property():
+    from gm_core.systems.directional import RATE_MAPS
+
+    A, B, C, D_ = list(RATE_MAPS)
+    p = ch3.DirectionalLinearityPanel()
+    for ex, same_pace, returns in [(A, True, True), (B, True, True), (C, False, True), (D_, True, False)]:
+        p.set(example=ex, pace=2.5)
+        x1, xk, back = p.ends
+        assert np.isclose(x1, xk, atol=1e-12) == same_pace, ex
+        assert np.isclose(back, 0.0, atol=1e-12) == returns, ex
+        np.testing.assert_allclose(p.xk.get_data()[1][-1], xk)
+        assert f"{xk:+.3f}" in p.text.get_text()

@@ -13,7 +13,7 @@ Each example is a map b from a shape velocity a = r_dot (..., 2) to a position v
 
 Replaying a shape path at another pace k (:func:`replay`) leaves x's path unchanged exactly when
 b(k a) = k b(a) for k > 0 (3.ii): (a), (b), (d). Running it backwards retraces x's path exactly
-when in addition b(-a) = -b(a) (3.iii): (a), (b).
+when b(-a) = -b(a) (3.iii): (a), (b), (c); only (a) and (b) do both.
 """
 from __future__ import annotations
 
@@ -49,11 +49,15 @@ def rate_map(name):
     return RATE_MAPS[name]
 
 
+#: Size of the demo shape path (its shape speed |dr/ds| is about 1 at pace 1).
+PATH_SCALE = 0.25
+
+
 def _unit_path(s):
-    """The shape path used by the demos: r(s) = (cos 3 pi s / 2, sin 3 pi s / 2) * (1, 0.6), s in [0, 1]."""
+    """The demo shape path r(s) = c (cos 3 pi s / 2, 0.6 sin 3 pi s / 2), c = PATH_SCALE, s in [0, 1]; (r, dr/ds)."""
     w = 1.5 * np.pi * s
-    r = np.stack([np.cos(w), 0.6 * np.sin(w)], -1)
-    rd = 1.5 * np.pi * np.stack([-np.sin(w), 0.6 * np.cos(w)], -1)
+    r = PATH_SCALE * np.stack([np.cos(w), 0.6 * np.sin(w)], -1)
+    rd = PATH_SCALE * 1.5 * np.pi * np.stack([-np.sin(w), 0.6 * np.cos(w)], -1)
     return r, rd
 
 

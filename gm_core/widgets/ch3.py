@@ -16,11 +16,14 @@ from ..drawing.base import jshtml
 from ..drawing.gaits import GAIT_SHAPES, GaitScene
 from ..drawing.motion import AckermanScene, DiffDriveScene
 from ..drawing.nonholonomy import ParallelParkScene
+from ..drawing.pacing import DirectionalScene, PacingSquareScene
+from ..systems.directional import RATE_MAPS
 from ..examples import drive
 from ..systems import FloatingSnake, KinematicSnake
 from .base import ScenePanel, register, slider
 
-__all__ = ["drive", "DiffDriveCarPanel", "AckermanCarPanel", "ConnectionFieldPanel", "GaitPanel", "body_frames", "ParallelParkPanel"]
+__all__ = ["drive", "DiffDriveCarPanel", "AckermanCarPanel", "ConnectionFieldPanel", "GaitPanel", "body_frames", "ParallelParkPanel",
+           "PacingSquarePanel", "DirectionalLinearityPanel"]
 
 PI = float(np.pi)
 
@@ -172,3 +175,32 @@ class ParallelParkPanel(ScenePanel):
     def controls_spec(self):
         return {"d": slider(0.8, -1.2, 1.2, description="drive distance d"),
                 "phi": slider(0.6, -1.5, 1.5, description="turn angle φ")}
+
+
+# ======================================================================= pacing (section 3.1)
+@register
+class PacingSquarePanel(ScenePanel):
+    """Fig. 3.1 live: repace a shape loop and watch its position path get repaced the same way, (3.3)-(3.4).
+
+    Sliders: the unevenness a of the pacing τ(t) = t − a sin(2πt)/2π and the time t.
+    Options: ``system``, ``gait``.
+    """
+
+    title = "Fig. 3.1: repace the shape path, the position path follows"
+    scene_class = PacingSquareScene
+
+    def controls_spec(self):
+        return {"unevenness": slider(0.7, -0.9, 0.9, description="pacing unevenness a"),
+                "t": slider(0.4, 0.0, 1.0, description="time t")}
+
+
+@register
+class DirectionalLinearityPanel(ScenePanel):
+    """The box on directional linearity ((3.i)-(3.iv)): four maps b, each replayed at pace k and backwards."""
+
+    title = "Directional linearity: four examples"
+    scene_class = DirectionalScene
+
+    def controls_spec(self):
+        return {"example": W.Dropdown(options=list(RATE_MAPS), value=list(RATE_MAPS)[0], description="example"),
+                "pace": slider(2.0, 0.25, 3.0, description="pace k")}
