@@ -5,10 +5,12 @@ Trajectories come from :func:`gm_core.locomotion.trajectory` (fourth-order Magnu
 """
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from .._validate import SingularShapeError
-from ..gaits import GAIT_FAMILIES, Gait, family_gait
+from ..gaits import GAIT_FAMILIES, Gait, GaitWarning, family_gait
 from ..locomotion import as_gait, net_displacement, trajectory
 from .base import SingularFlag, TrailArtist, animate
 from .connection import (ROW_LABELS, ConnectionFieldArtist, ShapeCursorArtist, draw_singular_set, field_grid_axes,
@@ -118,7 +120,10 @@ class GaitScene(Scene):
         if fam == "drawn":
             if self.points is None:
                 self.seed_points(dict(v, family="circle"))
-            return Gait.from_samples(self.points, name="drawn loop")
+            with warnings.catch_warnings():
+                # the control points are a closed loop by construction: no "open path" warning
+                warnings.simplefilter("ignore", GaitWarning)
+                return Gait.from_samples(self.points, name="drawn loop")
         return family_gait(fam, v["amplitude"], (v["center1"], v["center2"]), v.get("aspect", 1.0),
                            v.get("angle", 0.0))
 
