@@ -67,7 +67,9 @@ class PacingSquareScene(Scene):
             ax.set_ylabel("α₂", labelpad=1)
         for ax, ttl in ((ax_g, "its position path"), (ax_g2, "position path of ψ′")):
             ax.plot(self.base.g[:, 0], self.base.g[:, 1], color="0.75", lw=1)
-            ax.set(xlim=(c[0] - half, c[0] + half), ylim=(c[1] - half, c[1] + half), aspect="equal", title=ttl)
+            # room below the path for the readout
+            ax.set(xlim=(c[0] - 1.3 * half, c[0] + 1.3 * half), ylim=(c[1] - 1.6 * half, c[1] + 1.0 * half),
+                   aspect="equal", title=ttl)
             ax.set_xlabel("x", labelpad=1)
             ax.set_ylabel("y", labelpad=1)
             ax.grid(True, alpha=0.3)
@@ -121,8 +123,8 @@ class PacingSquareScene(Scene):
         self.frames[0].set(self.g_top)
         self.frames[1].set(self.g_bot)
         gt, gb = self.g_top, self.g_bot
-        self.text_top.set_text(f"ψ at time τ(t) = {s:.3f}:\n({gt[0]:+.4f}, {gt[1]:+.4f}, {gt[2]:+.4f})")
-        self.text_bot.set_text(f"ψ′ at time t = {ts:.3f}:\n({gb[0]:+.4f}, {gb[1]:+.4f}, {gb[2]:+.4f})")
+        self.text_top.set_text(f"run ψ, at time τ(t) = {s:.3f}:\n({gt[0]:+.4f}, {gt[1]:+.4f}, {gt[2]:+.4f})")
+        self.text_bot.set_text(f"run ψ′, at time t = {ts:.3f}:\n({gb[0]:+.4f}, {gb[1]:+.4f}, {gb[2]:+.4f})")
 
 
 class DirectionalScene(Scene):
