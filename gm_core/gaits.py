@@ -18,7 +18,8 @@ import numpy as np
 
 from ._validate import as_array, check_positive
 
-__all__ = ["Gait", "CircleGait", "circle_gait", "constant_rate_path", "as_gait", "GaitWarning", "CLOSURE_RTOL"]
+__all__ = ["Gait", "CircleGait", "circle_gait", "constant_rate_path", "as_gait", "GaitWarning", "CLOSURE_RTOL",
+           "ellipse_gait", "serpenoid_gait", "GAIT_FAMILIES", "family_gait", "sine_pacing"]
 
 #: A gait is closed when |r(T) - r(0)| <= CLOSURE_RTOL * max(1, max |r|).
 CLOSURE_RTOL = 1e-8
@@ -218,6 +219,110 @@ def circle_gait(amplitude, center=(0.0, 0.0), period=1.0):
     ``center`` is c; the circle is traversed counterclockwise once per ``period``.
     """
     return CircleGait(amplitude, center, period)
+
+
+def ellipse_gait(a, b, tilt=0.0, center=(0.0, 0.0), period=1.0):
+    """Tilted ellipse ``r(t) = c + R(tilt) (a cos w, b sin w)``, w = 2 pi t / T, with exact velocity.
+
+    ``a``, ``b`` are the semi-axes (positive), ``tilt`` the angle of the a-axis from the alpha1
+    axis; traversed counterclockwise (for a, b > 0) once per period.
+    """
+    a = float(check_positive(a, "a"))
+    b = float(check_positive(b, "b"))
+    tilt = float(as_array(tilt, "tilt", what=" (the ellipse's tilt angle in radians)"))
+    c = as_array(center, "center", (2,), what=" (the gait's centre in shape space)")
+    if c.ndim != 1:
+        raise ValueError(f"center must have shape (2,); got shape {c.shape}")
+    T = float(check_positive(period, "period"))
+    ct, st = np.cos(tilt), np.sin(tilt)
+    Rm = np.array([[ct, -st], [st, ct]])
+
+    def r(t):
+        w = 2 * np.pi * (np.asarray(t, float) / T)
+        return c + np.stack([a * np.cos(w), b * np.sin(w)], -1) @ Rm.T
+
+    def r_dot(t):
+        w = 2 * np.pi * (np.asarray(t, float) / T)
+        return (2 * np.pi / T) * np.stack([-a * np.sin(w), b * np.cos(w)], -1) @ Rm.T
+
+    return Gait(r, T, r_dot, name=f"ellipse {a:g} x {b:g} tilted {tilt:g}", feature_time=T)
+
+
+def serpenoid_gait(amplitude, phase=np.pi / 2, frequency=1, center=(0.0, 0.0), period=1.0):
+    """Serpenoid family ``r(t) = c + A (sin w, sin(k w + phase))``, w = 2 pi t / T, exact velocity.
+
+    The joint angles of a serpenoid wave are two sinusoids with a phase lag. With ``frequency``
+    k = 1 the loop is an ellipse (a circle for phase = pi/2, a segment traced back and forth for
+    phase = 0); with k = 2 and phase 0 it is a figure eight (a lemniscate of Gerono), whose two
+    lobes are circled in opposite senses (phase pi/2 folds it onto an arc traced back and forth). ``amplitude`` is a number or a pair (A1, A2).
+    """
+    A = check_positive(amplitude, "amplitude")
+    if A.ndim > 1 or A.size not in (1, 2):
+        raise ValueError(f"amplitude must be a number or a pair (A1, A2); got shape {A.shape}")
+    A = np.broadcast_to(A, (2,)).astype(float)
+    if isinstance(frequency, bool) or int(frequency) != frequency or frequency < 1:
+        raise ValueError(f"frequency must be a positive integer (so the loop closes); got {frequency!r}")
+    k = int(frequency)
+    ph = float(as_array(phase, "phase", what=" (the phase lag of the second joint in radians)"))
+    c = as_array(center, "center", (2,), what=" (the gait's centre in shape space)")
+    if c.ndim != 1:
+        raise ValueError(f"center must have shape (2,); got shape {c.shape}")
+    T = float(check_positive(period, "period"))
+
+    def r(t):
+        w = 2 * np.pi * (np.asarray(t, float) / T)
+        return c + A * np.stack([np.sin(w), np.sin(k * w + ph)], -1)
+
+    def r_dot(t):
+        w = 2 * np.pi * (np.asarray(t, float) / T)
+        return (2 * np.pi / T) * A * np.stack([np.cos(w), k * np.cos(k * w + ph)], -1)
+
+    name = "figure eight" if k == 2 else f"serpenoid k={k}"
+    return Gait(r, T, r_dot, name=f"{name}, phase {ph:g}", feature_time=T / k)
+
+
+#: The gait shapes a panel offers, with the parameters each takes from (size, aspect, angle):
+#: size = radius or amplitude, aspect = b / a (ellipse) or A2 / A1, angle = tilt or phase.
+GAIT_FAMILIES = ("circle", "ellipse", "serpenoid", "figure eight")
+
+
+def family_gait(family, size, center=(0.0, 0.0), aspect=1.0, angle=0.0, period=1.0):
+    """A gait of one of :data:`GAIT_FAMILIES` from three common parameters (for panels).
+
+    ``circle``: radius ``size``; ``ellipse``: semi-axes (size, aspect * size) tilted by
+    ``angle``; ``serpenoid``: amplitudes (size, aspect * size), phase ``angle``; ``figure eight``:
+    the same with the second joint at twice the frequency.
+    """
+    if family == "circle":
+        return circle_gait(size, center, period)
+    if family == "ellipse":
+        return ellipse_gait(size, aspect * size, angle, center, period)
+    if family == "serpenoid":
+        return serpenoid_gait((size, aspect * size), angle, 1, center, period)
+    if family == "figure eight":
+        return serpenoid_gait((size, aspect * size), angle, 2, center, period)
+    raise ValueError(f"family must be one of {GAIT_FAMILIES}; got {family!r}")
+
+
+def sine_pacing(a, period=1.0):
+    """(tau, tau_dot): the pacing ``tau(t) = t - a T/(2 pi) sin(2 pi t / T)`` of [0, T] onto itself.
+
+    Increasing for |a| < 1 (its rate 1 - a cos(2 pi t / T) stays positive); a > 0 lingers near
+    t = 0 and T and hurries through the middle. For :meth:`Gait.reparameterized`, (3.3).
+    """
+    a = float(as_array(a, "a", what=" (the pacing's unevenness)"))
+    if not abs(a) < 1:
+        raise ValueError(f"a must satisfy |a| < 1 so that the pacing is increasing; got {a!r}")
+    T = float(check_positive(period, "period"))
+
+    def tau(t):
+        t = np.asarray(t, float)
+        return t - a * T / (2 * np.pi) * np.sin(2 * np.pi * t / T)
+
+    def tau_dot(t):
+        return 1 - a * np.cos(2 * np.pi * np.asarray(t, float) / T)
+
+    return tau, tau_dot
 
 
 def constant_rate_path(r0, r_dot, duration, *, name="constant rate"):

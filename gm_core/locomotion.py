@@ -51,7 +51,7 @@ from .groups import SE2, matvec
 __all__ = [
     "connection_from_pfaffian", "connection_from_mass_matrix", "metric_from_jacobians",
     "pfaffian_determinant", "body_velocity", "connection_curl", "Gait", "CircleGait", "circle_gait",
-    "constant_rate_path", "as_gait", "check_gait", "net_displacement", "trajectory", "Trajectory", "se2_bracket",
+    "constant_rate_path", "as_gait", "check_gait", "net_displacement", "trajectory", "displacement_until", "Trajectory", "se2_bracket",
     "SingularShapeError", "AccuracyWarning", "GaitWarning",
 ]
 
@@ -421,3 +421,26 @@ def trajectory(system, gait, n_frames=101, *, cycles=1, g0=(0.0, 0.0, 0.0), subs
     P = _cumulative(SE2.exp(om))[substeps - 1::substeps]
     g = np.vstack([g0[None], SE2.compose(g0, P)])
     return Trajectory(t=t, g=g, r=gait(t))
+
+
+def displacement_until(system, gait, t, *, steps=256, g0=(0.0, 0.0, 0.0)):
+    """Position g(t) (3,) after the first ``t`` time units of ``gait``, from g(0) = g0.
+
+    Takes ``steps`` equal fourth-order Magnus steps over [0, t] (no error control; the gait
+    need not be closed, and t may be any time in (0, T]). The shape path is checked for singular
+    shapes at the integrator's nodes only. For the pacing square of fig. 3.1: the position after
+    time t of a repaced gait equals that after time tau(t) of the original, (3.4).
+    """
+    gait = as_gait(gait)
+    _check_shapes(system, gait)
+    t = float(check_positive(t, "t"))
+    if t > gait.period * (1 + 1e-12):
+        raise ValueError(f"t must be in (0, T] with T = {gait.period:g} the gait's period; got {t!r}")
+    steps = check_int(steps, "steps", low=1, high=MAX_STEPS, what=" (equal Magnus steps)")
+    g0 = as_array(g0, "g0", (3,), what=" (the starting position (x, y, theta))")
+    part = Gait(gait, period=min(t, gait.period), velocity=gait.velocity, name=gait.name)
+    edges = np.linspace(0.0, 1.0, steps + 1)
+    om, sq, d = _increments(system, part, edges[:-1], edges[1:], bool(getattr(system, "may_be_singular", False)))
+    if d is not None:
+        _scan(system, part, sq, d)
+    return SE2.compose(g0, _product(SE2.exp(om)))

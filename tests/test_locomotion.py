@@ -285,3 +285,30 @@ def test_connection_is_invariant_under_row_operations(seed):
     np.testing.assert_allclose(connection_from_pfaffian(M @ om), A, rtol=1e-6, atol=1e-6 * np.abs(A).max())
     S = np.diag([1.0, 1.0, 1.0, 2.0, -3.0])
     np.testing.assert_allclose(connection_from_pfaffian(om @ S), A * [2.0, -3.0], rtol=1e-9, atol=1e-9 * np.abs(A).max())
+
+
+def test_displacement_until_matches_trajectory_frames_and_the_pacing_square():
+    from gm_core.gaits import ellipse_gait, sine_pacing
+    from gm_core.locomotion import displacement_until
+    from gm_core.systems import LowReSwimmer
+
+    sw = LowReSwimmer()
+    gait = ellipse_gait(1.0, 0.6, 0.4, (0.1, -0.2))
+    tr = trajectory(sw, gait, 9)
+    for k in (2, 5, 8):
+        np.testing.assert_allclose(displacement_until(sw, gait, tr.t[k], steps=512), tr.g[k], atol=1e-9)
+    # independent route: solve_ivp of g_dot = T_e L_g xi over [0, t]
+    t_end = 0.37
+    def f(t, g):
+        xi = sw.body_velocity(gait(np.array([t]))[0], gait.velocity(np.array([t]))[0])
+        return SE2.body_to_world(g, xi)
+    sol = solve_ivp(f, (0.0, t_end), np.zeros(3), method="DOP853", rtol=1e-12, atol=1e-14)
+    np.testing.assert_allclose(displacement_until(sw, gait, t_end), sol.y[:, -1], atol=1e-9)
+    # (3.4): the repaced gait at time t sits where the original was at tau(t)
+    tau, tau_dot = sine_pacing(0.7)
+    rep = gait.reparameterized(tau, tau_dot)
+    for t in (0.2, 0.55, 0.9):
+        np.testing.assert_allclose(displacement_until(sw, rep, t, steps=1024),
+                                   displacement_until(sw, gait, float(tau(t)), steps=1024), atol=1e-8)
+    with pytest.raises(ValueError, match="t must be"):
+        displacement_until(sw, gait, 2.0)

@@ -417,3 +417,75 @@ def test_bad_shapes_name_the_argument(name):
         s.connection("shape")
     with pytest.raises(ValueError, match="r_dot"):
         s.body_velocity([0.1, 0.2], [1.0])
+
+
+# ------------------------------------------------------------------ nonholonomy: rolling disk vs (3.viii)
+def test_rolling_disk_moves_obey_the_no_slide_constraint():
+    from gm_core.systems.rolling_disk import disk_constraint_world, disk_moves_path, parallel_park_moves
+
+    t, g = disk_moves_path(parallel_park_moves(0.7, 0.9), n_per_move=200)
+    # world velocity by finite differences inside each move: no sideways component (3.v)
+    gd = np.gradient(g, t, axis=0)
+    inner = np.ones(len(t), bool)
+    inner[::200] = False
+    inner[1::200] = False
+    inner[-1] = False
+    assert np.max(np.abs(disk_constraint_world(g[inner], gd[inner]))) < 1e-4
+
+
+def test_parallel_parking_moves_the_disk_sideways_exactly_as_the_group_commutator():
+    from gm_core.systems.rolling_disk import disk_moves_path, parallel_park_displacement, parallel_park_moves
+
+    d, phi = 0.8, 0.5
+    net = parallel_park_displacement(d, phi)
+    # elementary geometry: forward d, turn, back d along the turned heading, turn back
+    np.testing.assert_allclose(net, [d * (1 - np.cos(phi)), -d * np.sin(phi), 0.0], atol=1e-14)
+    _, g = disk_moves_path(parallel_park_moves(d, phi))
+    np.testing.assert_allclose(g[-1], net, atol=1e-12)
+    assert abs(net[1]) > 0.3     # a sideways displacement the velocity constraint forbids instantaneously
+
+
+@pytest.mark.parametrize("eps", [0.2, 0.1, 0.05])
+def test_small_parking_loops_match_the_area_times_lie_bracket(eps):
+    from scipy.linalg import expm, logm
+
+    from gm_core.systems.rolling_disk import DISK_DRIVE, DISK_TURN, bracket_estimate, parallel_park_displacement
+
+    d, phi = 1.3 * eps, 0.8 * eps
+    net = parallel_park_displacement(d, phi)
+    est = bracket_estimate(d, phi)
+    # independent route: matrix exponentials and the matrix commutator of the hat matrices
+    X, Y = SE2.hat(DISK_DRIVE), SE2.hat(DISK_TURN)
+    M = expm(d * X) @ expm(phi * Y) @ expm(-d * X) @ expm(-phi * Y)
+    np.testing.assert_allclose(SE2.matrix(net), M, atol=1e-14)
+    np.testing.assert_allclose(SE2.hat(est), d * phi * (X @ Y - Y @ X), atol=1e-15)
+    # the estimate is right to third order in the loop size: log(net) - area [X, Y] = O(eps^3)
+    err = np.max(np.abs(np.real(logm(M)) - SE2.hat(est)))
+    assert err < 2.0 * eps ** 3
+    assert abs(est[1]) > 0.9 * (d * phi) and np.isclose(net[1], est[1], rtol=3 * eps)
+
+
+def test_radial_constraint_loop_returns_exactly_to_the_start_on_its_circle():
+    from gm_core.systems.rolling_disk import radial_loop_moves, radial_point_path
+
+    q0 = (0.6, 0.8)
+    for a, b in [(0.9, 0.4), (0.05, 0.02), (2.5, -1.7)]:
+        q = radial_point_path(radial_loop_moves(a, b), q0)
+        np.testing.assert_allclose(q[-1], q0, atol=1e-14)
+        np.testing.assert_allclose(np.hypot(q[:, 0], q[:, 1]), 1.0, atol=1e-14)   # the level set (3.ix)
+        # allowed velocities: x x' + y y' = 0 (3.viii), by central differences along the path
+        # (inside each move, where the steps on both sides are equal)
+        dq = (q[2:] - q[:-2]) / 2
+        inner = np.arange(1, len(q) - 1) % 25 != 0
+        assert np.max(np.abs(np.einsum("ij,ij->i", q[1:-1], dq)[inner])) < 1e-12
+
+
+def test_rolling_disk_bad_input_names_the_argument():
+    from gm_core.systems.rolling_disk import disk_moves_path, parallel_park_moves, radial_point_path
+
+    with pytest.raises(ValueError, match="moves"):
+        disk_moves_path([[1.0, 0.0, -1.0]])
+    with pytest.raises(TypeError, match="d"):
+        parallel_park_moves("far", 0.3)
+    with pytest.raises(ValueError, match="q0"):
+        radial_point_path([[1.0, 0.5]], q0=(0.0, 0.0))

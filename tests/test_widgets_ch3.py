@@ -13,6 +13,7 @@ from gm_core import SE2  # noqa: E402
 from gm_core.drawing import ch3 as D  # noqa: E402
 from gm_core.locomotion import circle_gait, net_displacement  # noqa: E402
 from gm_core.systems import ALL_SYSTEMS, FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer  # noqa: E402
+from gm_core.drawing import nonholonomy as D_nh  # noqa: E402
 from gm_core.widgets import ch3  # noqa: E402
 from gm_core.widgets.base import PANELS, all_panels  # noqa: E402
 
@@ -30,7 +31,8 @@ def assert_body_at(art, system, g, r, atol=1e-9):
 
 
 def test_ch3_panels_registered():
-    assert {"DiffDriveCarPanel", "AckermanCarPanel", "ConnectionFieldPanel", "GaitPanel"} <= set(CH3_PANELS)
+    assert {"DiffDriveCarPanel", "AckermanCarPanel", "ConnectionFieldPanel", "GaitPanel",
+            "ParallelParkPanel", "PacingSquarePanel", "DirectionalLinearityPanel"} <= set(CH3_PANELS)
 
 
 @pytest.mark.parametrize("name", CH3_PANELS)
@@ -156,3 +158,184 @@ def test_static_figures_and_animation():
     assert "<script" in html.data
     import matplotlib.pyplot as plt
     plt.close("all")
+
+
+def test_singular_set_of_the_snake_includes_the_fold_lines_on_the_window_edge():
+    # D = 4 sin((a1 - a2)/2) cos(a1/2) cos(a2/2) for equal links: zero on a1 = a2 and on a_i = +-pi
+    import matplotlib.pyplot as plt
+
+    from gm_core.drawing.connection import draw_singular_set
+
+    snake = KinematicSnake()
+    fig, ax = plt.subplots()
+    cs = draw_singular_set(ax, snake)
+    pts = np.vstack([p.vertices for p in cs.get_paths() if len(p.vertices)])
+    on_diag = np.abs(pts[:, 0] - pts[:, 1]) < 1e-6
+    assert on_diag.any()
+    for k in (0, 1):
+        for edge in (-np.pi, np.pi):
+            near = np.abs(pts[:, k] - edge) < 0.02
+            # the fold line runs along the whole edge, not just a corner
+            assert np.ptp(pts[near, 1 - k]) > 5.5, (k, edge)
+    # and every vertex drawn is singular: D is (nearly) zero there
+    d = snake.singularity(pts)
+    assert np.max(np.abs(d)) < 0.05
+    plt.close(fig)
+
+
+# ------------------------------------------------------------------------- gaits for every system
+@pytest.mark.parametrize("name", sorted(ALL_SYSTEMS()))
+@pytest.mark.parametrize("family", ["ellipse", "serpenoid", "figure eight"])
+def test_gait_panel_families_for_every_system(name, family):
+    from gm_core.gaits import family_gait
+    from gm_core.locomotion import SingularShapeError
+
+    system = ALL_SYSTEMS()[name]
+    p = ch3.GaitPanel(system=system)
+    (lo1, hi1), (lo2, hi2) = system.shape_limits
+    c = (0.1 * hi1, -0.3 * hi2) if name != "KinematicSnake" else (0.5, -1.2)
+    size = 0.25 * min(hi1 - lo1, hi2 - lo2) if name != "KinematicSnake" else 0.6
+    p.set(family=family, amplitude=size, center1=c[0], center2=c[1], aspect=0.5, angle=0.4)
+    gait = family_gait(family, size, c, 0.5, 0.4)
+    path = np.column_stack(p.paths[0][0].get_data())
+    np.testing.assert_allclose(path, gait(np.linspace(0, 1, len(path))), atol=1e-12)
+    try:
+        g = net_displacement(p.system, gait)
+    except SingularShapeError:
+        assert p.flag.visible and p.net is None
+        return
+    assert not p.flag.visible
+    np.testing.assert_allclose(p.net, g, atol=1e-7)
+    assert "net displacement per cycle" in p.text.get_text()
+    assert_body_at(p.body, p.system, p.traj.g[-1], p.traj.r[-1])
+
+
+def test_gait_panel_floating_snake_body_frame_choice():
+    p = ch3.GaitPanel(system=FloatingSnake())
+    assert set(p.controls["frame"].options) == {"centre of mass", "middle link"}
+    p.set(family="ellipse", amplitude=1.0, center1=0.6, center2=0.4, aspect=0.5, angle=0.3, frame="centre of mass")
+    g_com = p.net.copy()
+    # the centre-of-mass frame: the translation rows of A vanish, so the fields show no arrows there
+    assert np.allclose(np.ma.filled(p.fields[0].U, 0.0), 0.0)
+    p.set(frame="middle link")
+    g_mid = p.net.copy()
+    assert p.system.frame == "middle"
+    gait = p.scene.gait(p.values())
+    np.testing.assert_allclose(g_mid, net_displacement(FloatingSnake(frame="middle"), gait), atol=1e-7)
+    # the same physical motion seen from two frames: same rotation, different translation
+    assert np.isclose(g_com[2], g_mid[2], atol=1e-9) and abs(g_com[2]) > 1e-2
+    assert not np.allclose(g_com[:2], g_mid[:2], atol=1e-3)
+    assert np.abs(np.ma.filled(p.fields[0].U, 0.0)).max() > 1e-3
+
+
+def _mouse(fig, name, ax, xy, button=1):
+    from matplotlib.backend_bases import MouseEvent
+
+    x, y = ax.transData.transform(xy)
+    ev = MouseEvent(name, fig.canvas, x, y, button=button)
+    fig.canvas.callbacks.process(name, ev)
+    return ev
+
+
+def test_gait_panel_drawn_loop_is_edited_by_dragging_a_control_point():
+    from gm_core.gaits import Gait
+
+    p = ch3.GaitPanel(system=LowReSwimmer())
+    p.set(amplitude=1.0, center1=0.0, center2=0.0)
+    p.set(family="drawn")
+    pts0 = p.points.copy()
+    np.testing.assert_allclose(np.linalg.norm(pts0, axis=1), 1.0, atol=1e-12)   # seeded from the circle
+    np.testing.assert_allclose(p.net, net_displacement(p.system, Gait.from_samples(pts0)), atol=1e-7)
+    ax = p.field_axes[2]
+    fig = p.fig
+    _mouse(fig, "button_press_event", ax, pts0[2] + 0.02)          # near point 2: grabbed
+    assert p.scene._grab == 2
+    _mouse(fig, "motion_notify_event", ax, (0.3, 1.8))
+    _mouse(fig, "button_release_event", ax, (0.3, 1.8))
+    assert p.scene._grab is None
+    want = pts0.copy()
+    want[2] = (0.3, 1.8)
+    np.testing.assert_allclose(p.points, want, atol=1e-9)
+    np.testing.assert_allclose(p.net, net_displacement(p.system, Gait.from_samples(want)), atol=1e-7)
+    dots = np.column_stack(p.handles[0].get_data())
+    np.testing.assert_allclose(dots, want, atol=1e-9)
+    # a press far from every point grabs nothing; dragging then moves nothing
+    _mouse(fig, "button_press_event", ax, (-2.5, -2.5))
+    _mouse(fig, "motion_notify_event", ax, (0.0, 0.0))
+    np.testing.assert_allclose(p.points, want, atol=1e-9)
+
+
+def test_gait_panel_drawn_loop_across_the_singular_line_raises_the_flag():
+    p = ch3.GaitPanel(system=KinematicSnake())
+    p.set(amplitude=0.6, center1=0.5, center2=-1.2)
+    p.set(family="drawn")
+    assert not p.flag.visible
+    ax = p.field_axes[0]
+    k = 0
+    _mouse(p.fig, "button_press_event", ax, p.points[k])
+    _mouse(p.fig, "motion_notify_event", ax, (-1.0, 1.0))          # across alpha1 = alpha2
+    _mouse(p.fig, "button_release_event", ax, (-1.0, 1.0))
+    assert p.flag.visible and p.net is None and "singular" in p.message
+    assert not p.trail.line.get_visible()
+
+
+def test_gait_panel_animation_plays_without_kernel():
+    p = ch3.GaitPanel(system=LowReSwimmer())
+    p.set(family="figure eight", amplitude=1.0, aspect=0.8, angle=0.0)
+    html = p.animation(n_frames=12, cycles=1)
+    assert "<script" in html.data
+    import matplotlib.pyplot as plt
+    plt.close("all")
+
+
+def test_parallel_park_panel_shows_the_sideways_net_and_the_closed_radial_loop():
+    from gm_core.systems.rolling_disk import bracket_estimate, parallel_park_displacement
+
+    p = ch3.ParallelParkPanel()
+    p.set(d=0.5, phi=0.4)
+    g0 = np.array([0.0, -0.4, 0.0])
+    np.testing.assert_allclose(p.net, parallel_park_displacement(0.5, 0.4), atol=1e-14)
+    np.testing.assert_allclose(p.g_end, SE2.compose(g0, p.net), atol=1e-12)
+    np.testing.assert_allclose(p.disk.patch.get_xy()[:4], SE2.act_on_points(p.g_end, D_nh.DISK_OUTLINE), atol=1e-12)
+    np.testing.assert_allclose(p.net_arrow.U, p.g_end[0] - g0[0], atol=1e-12)
+    assert np.isclose(p.estimate[1], -0.2) and np.isclose(p.net[1], p.estimate[1], rtol=0.1)
+    np.testing.assert_allclose(p.estimate, bracket_estimate(0.5, 0.4))
+    assert "net" in p.text.get_text()
+    # the integrable constraint: the loop closes exactly and stays on the unit circle
+    np.testing.assert_allclose(p.q[-1], p.q[0], atol=1e-14)
+    np.testing.assert_allclose(np.hypot(*p.q.T), 1.0, atol=1e-14)
+    # the drive segment of the disk is along its heading (theta = 0 at the start)
+    seg = np.column_stack(p.segments[0].get_data())
+    np.testing.assert_allclose(seg[:, 1], -0.4, atol=1e-14)
+    np.testing.assert_allclose(seg[-1, 0], 0.5, atol=1e-14)
+
+
+def test_pacing_square_panel_markers_commute_as_in_fig_3_1():
+    from gm_core.gaits import circle_gait as cg, sine_pacing
+    from gm_core.locomotion import displacement_until
+
+    p = ch3.PacingSquarePanel()
+    p.set(unevenness=0.6, t=0.3)
+    tau, _ = sine_pacing(0.6)
+    want = displacement_until(p.system, cg(1.0), float(tau(0.3)))
+    np.testing.assert_allclose(p.g_top, want, atol=1e-12)
+    np.testing.assert_allclose(p.g_bot, p.g_top, atol=1e-7)       # (3.4)
+    np.testing.assert_allclose(p.markers[3].get_data(), [[p.g_bot[0]], [p.g_bot[1]]], atol=1e-12)
+    np.testing.assert_allclose(p.markers[0].get_data(), p.markers[2].get_data(), atol=1e-12)  # same shape
+    # the dots of the repaced row are the repaced loop at equal time steps
+    rep = np.column_stack(p.dots[2].get_data())
+    np.testing.assert_allclose(rep[3], cg(1.0)(np.array([float(tau(3 / 24))]))[0], atol=1e-12)
+
+
+def test_directional_panel_numbers_prove_or_refute_each_property():
+    from gm_core.systems.directional import RATE_MAPS
+
+    A, B, C, D_ = list(RATE_MAPS)
+    p = ch3.DirectionalLinearityPanel()
+    for ex, same_pace, returns in [(A, True, True), (B, True, True), (C, False, True), (D_, True, False)]:
+        p.set(example=ex, pace=2.5)
+        x1, xk, back = p.ends
+        assert np.isclose(x1, xk, atol=1e-12) == same_pace, ex
+        assert np.isclose(back, 0.0, atol=1e-12) == returns, ex
+        np.testing.assert_allclose(p.xk.get_data()[1][-1], xk)
+        assert f"{xk:+.3f}" in p.text.get_text()

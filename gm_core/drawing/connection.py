@@ -9,13 +9,14 @@ singular shape) are masked, never passed to matplotlib as NaN.
 from __future__ import annotations
 
 import numpy as np
+from matplotlib.patches import Rectangle
 
 from .base import SingularFlag
 from .motion import SystemArtist, VelocityArtist, draw_system_naive, style_world_axes, system_extent
 from .toolkit import PALETTE, Scene, new_figure, readout
 
 __all__ = ["ROW_LABELS", "shape_grid", "connection_field", "ConnectionFieldArtist", "draw_singular_set",
-           "ShapeCursorArtist", "style_shape_axes", "connection_fields_figure", "regimes_figure",
+           "ShapeCursorArtist", "style_shape_axes", "singular_contour_grid", "SHAPE_PAD", "connection_fields_figure", "regimes_figure",
            "poor_pictures_figure", "ConnectionFieldScene", "field_grid_axes"]
 
 ROW_LABELS = ("ξx (forward)", "ξy (sideways)", "ξθ (turning)")  # plain text: no mathtext parse cost
@@ -123,17 +124,44 @@ class ConnectionFieldArtist:
         return self
 
 
+#: Shape-space windows are drawn this fraction wider on each side, so that singular lines on the
+#: window's edge (the kinematic snake's fold lines alpha_i = +-pi) are drawn whole, not half-clipped.
+SHAPE_PAD = 0.03
+
+
+def _padded(limits, pad):
+    return tuple((lo - pad * (hi - lo), hi + pad * (hi - lo)) for lo, hi in limits)
+
+
+def singular_contour_grid(system, n=161, limits=None, pad=2 * SHAPE_PAD):
+    """(a1, a2, d): the scaled det omega_xi over the shape window widened by ``pad`` on each side.
+
+    Sampling beyond the window matters: a singular line on the window's edge (the kinematic
+    snake's alpha_i = +-pi, where D = 4 sin((a1 - a2)/2) cos(a1/2) cos(a2/2) for equal links)
+    is a sign change of d only when both of its sides are sampled.
+    """
+    a1, a2, r = shape_grid(system, n, _padded(limits or system.shape_limits, pad))
+    return a1, a2, system.singularity(r)
+
+
 def draw_singular_set(ax, system, n=161, limits=None, **style):
-    """Draw the singular shapes (det omega_xi = 0) as red lines; returns the contour set or None."""
+    """Draw every singular shape (det omega_xi = 0) as red lines; returns the contour set or None.
+
+    The zero contour is taken over a slightly wider window than the axes show (see
+    :func:`singular_contour_grid`), so singular lines lying on the window's edge are drawn too.
+    """
     if not system.may_be_singular:
         return None
-    a1, a2, r = shape_grid(system, n, limits)
-    d = system.singularity(r)
+    a1, a2, d = singular_contour_grid(system, n, limits)
     if not (np.nanmin(d) < 0 < np.nanmax(d)):
         return None
     style.setdefault("colors", "crimson")
     style.setdefault("linewidths", 2.0)
-    return ax.contour(a1, a2, d, levels=[0.0], **style)
+    cs = ax.contour(a1, a2, d, levels=[0.0], **style)
+    # show the edge lines whole, but not the stubs of the wider sampling window beyond them
+    (x0, x1), (y0, y1) = _padded(limits or system.shape_limits, SHAPE_PAD / 3)
+    cs.set_clip_path(Rectangle((x0, y0), x1 - x0, y1 - y0, transform=ax.transData))
+    return cs
 
 
 class ShapeCursorArtist:
@@ -162,8 +190,9 @@ def _tick_label(v):
 def style_shape_axes(ax, system, title=None):
     """Shape-space axes: equal aspect, three ticks per axis (few labels keep redraws cheap)."""
     (lo1, hi1), (lo2, hi2) = system.shape_limits
-    ax.set_xlim(lo1, hi1)
-    ax.set_ylim(lo2, hi2)
+    (x0, x1), (y0, y1) = _padded(system.shape_limits, SHAPE_PAD)
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
     ax.set_aspect("equal")
     ax.set_xticks([lo1, 0.0, hi1], [_tick_label(v) for v in (lo1, 0.0, hi1)])
     ax.set_yticks([lo2, 0.0, hi2], [_tick_label(v) for v in (lo2, 0.0, hi2)])

@@ -5,37 +5,62 @@ Trajectories come from :func:`gm_core.locomotion.trajectory` (fourth-order Magnu
 """
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from .._validate import SingularShapeError
-from ..locomotion import as_gait, circle_gait, net_displacement, trajectory
+from ..gaits import GAIT_FAMILIES, Gait, GaitWarning, family_gait
+from ..locomotion import as_gait, net_displacement, trajectory
 from .base import SingularFlag, TrailArtist, animate
 from .connection import (ROW_LABELS, ConnectionFieldArtist, ShapeCursorArtist, draw_singular_set, field_grid_axes,
                          style_shape_axes, thin_labels)
 from .motion import MovingView, SystemArtist, draw_system_naive, style_world_axes, system_extent
 from .toolkit import PALETTE, Scene, new_figure, readout
 
-__all__ = ["GaitScene", "animate_gait"]
+__all__ = ["GaitScene", "GAIT_SHAPES", "animate_gait"]
+
+
+#: The gait shapes of :class:`GaitScene`: the families of :mod:`gm_core.gaits` and a loop drawn
+#: with the mouse ("drawn": drag the dots on any shape-space axes).
+GAIT_SHAPES = GAIT_FAMILIES + ("drawn",)
 
 
 class GaitScene(Scene):
-    """A circular gait on the three connection fields and the motion it produces over one cycle.
+    """A gait on the three connection fields and the motion it produces over one cycle.
 
-    Values: ``amplitude`` (radius), ``center1``, ``center2`` (centre in shape space). The world
-    axes show the trail of the body frame over one period, the body at start and at g(T), and
-    the net displacement ``net``. A gait that meets a singular shape raises the flag and hides
-    the motion. Options: ``system`` (required), ``n`` (field grid), ``lim`` (world half-width).
+    Values: ``family`` (one of :data:`GAIT_SHAPES`), ``amplitude`` (radius / semi-axis /
+    amplitude), ``center1``, ``center2`` (centre in shape space), ``aspect`` (ratio of the second
+    semi-axis or amplitude to the first), ``angle`` (ellipse tilt, serpenoid phase) and, when
+    the scene was given several body frames, ``frame``. The world axes show the trail of the
+    body frame over one period, the body at start and at g(T), and the net displacement per
+    cycle ``net``. A gait that meets a singular shape raises the flag and hides the motion.
+
+    With ``family="drawn"`` the loop is a periodic spline (:meth:`Gait.from_samples`) through
+    control points drawn as dots on the shape axes; drag one with the mouse (ipympl delivers
+    button_press / motion_notify / button_release events) and the motion follows. Options:
+    ``system`` (required), ``frames`` (dict name -> system: the same system with different body
+    frames), ``n`` (field grid), ``lim`` (world half-width), ``n_points`` (control points).
     """
 
     #: Magnus steps between two of the 61 frames: 720 per cycle put g(T) within ~1e-10 of
     #: net_displacement's converged value on the course's gaits (1e-12 relative), far below a pixel.
     substeps = 12
     cache_size = 256
+    #: a press within this many pixels of a control point grabs it
+    pick_px = 12.0
 
-    def __init__(self, system, n=None, lim=None, **options):
+    def __init__(self, system, frames=None, n=None, lim=None, n_points=8, **options):
+        self.frames = dict(frames or {})
         self.system, self.n = system, n
         self.lim = lim or 1.3 * system_extent(system)
         self._cache = {}
+        self.n_points = int(n_points)
+        self.points = None          # control points of the drawn loop (K, 2), seeded on first use
+        self._grab = None
+        self._values = {}
+        #: called (with no arguments) after a mouse edit; a panel sets it to its refresh
+        self.on_edit = None
         super().__init__(**options)
 
     def make_figure(self):
@@ -44,19 +69,22 @@ class GaitScene(Scene):
 
     def decorate(self):
         s = self.system
+        self.fields = []
         for i, ax in enumerate(self.field_axes):
             style_shape_axes(ax, s, ROW_LABELS[i])
-            ConnectionFieldArtist(ax, s, i, n=self.n, color="0.5")
+            self.fields.append(ConnectionFieldArtist(ax, s, i, n=self.n, color="0.5"))
             draw_singular_set(ax, s)
         thin_labels(self.field_axes, self.ax)
 
     def create(self):
         s = self.system
-        self.paths = []
+        self.paths, self.handles = [], []
         for ax in self.field_axes:
             (line,) = ax.plot([], [], color=PALETTE["blue"], lw=2)
             (start,) = ax.plot([], [], "o", color=PALETTE["blue"], ms=5)
+            (dots,) = ax.plot([], [], "o", color=PALETTE["orange"], mec="k", ms=7, zorder=8)
             self.paths.append((line, start))
+            self.handles.append(dots)
         # The window follows the motion through a transform, not through the axes limits: a new
         # limit would force a full redraw of all four axes instead of a blit.
         self.view = MovingView(self.ax, self.lim)
@@ -70,19 +98,50 @@ class GaitScene(Scene):
         self.flag = SingularFlag(self.ax)
         self.text = readout(self.ax, 0.02, 0.02)
         self._moving = [self.trail.line, self.start.frame.quiver, self.body.frame.quiver, self.flag.text,
-                        self.text] + [b.patch for art in (self.start, self.body) for b in art.bodies]
+                        self.text] + [b.patch for art in (self.start, self.body) for b in art.bodies] + self.handles
+        canvas = self.fig.canvas
+        self._cids = [canvas.mpl_connect("button_press_event", self.on_press),
+                      canvas.mpl_connect("motion_notify_event", self.on_motion),
+                      canvas.mpl_connect("button_release_event", self.on_release)]
 
-    @staticmethod
-    def gait(v):
-        return circle_gait(v["amplitude"], (v["center1"], v["center2"]))
+    # -- the gait ------------------------------------------------------------------------------
+    def seed_points(self, v=None):
+        """Control points of the drawn loop: K samples of the current family's gait (a circle at first)."""
+        v = dict(self._values if v is None else v)
+        fam = v.get("family", "circle")
+        v["family"] = "circle" if fam == "drawn" else fam
+        g = self.gait(v)
+        self.points = g(np.arange(self.n_points) / self.n_points * g.period)
+        return self.points
+
+    def gait(self, v):
+        """The :class:`~gm_core.gaits.Gait` for the values ``v`` (see the class docstring)."""
+        fam = v.get("family", "circle")
+        if fam == "drawn":
+            if self.points is None:
+                self.seed_points(dict(v, family="circle"))
+            with warnings.catch_warnings():
+                # the control points are a closed loop by construction: no "open path" warning
+                warnings.simplefilter("ignore", GaitWarning)
+                return Gait.from_samples(self.points, name="drawn loop")
+        return family_gait(fam, v["amplitude"], (v["center1"], v["center2"]), v.get("aspect", 1.0),
+                           v.get("angle", 0.0))
+
+    def _key(self, v):
+        fam = v.get("family", "circle")
+        frame = v.get("frame")
+        if fam == "drawn":
+            return ("drawn", frame, self.points.tobytes())
+        return (fam, frame, float(v["amplitude"]), float(v["center1"]), float(v["center2"]),
+                float(v.get("aspect", 1.0)), float(v.get("angle", 0.0)))
 
     def motion(self, v):
         """(gait, trajectory, error) for the values; the trajectory is None (and ``error`` the
         SingularShapeError) when the gait meets a singular shape. Cached by gait parameters."""
-        key = (float(v["amplitude"]), float(v["center1"]), float(v["center2"]))
+        gait = self.gait(v)
+        key = self._key(v)
         hit = self._cache.get(key)
         if hit is None:
-            gait = self.gait(v)
             try:
                 hit = (gait, trajectory(self.system, gait, 61, substeps=self.substeps), None)
             except SingularShapeError as e:
@@ -92,19 +151,38 @@ class GaitScene(Scene):
             self._cache[key] = hit
         return hit
 
+    def _use_frame(self, frame):
+        if frame is None or not self.frames:
+            return
+        system = self.frames[frame]
+        if system is self.system:
+            return
+        self.system = system
+        for f in self.fields:
+            f.set(system)
+        self.start.system = self.body.system = system
+
     def _fit_view(self, g):
         """Centre the window on the trail, at least the default size, with room for the body."""
         lo, hi = g[:, :2].min(0), g[:, :2].max(0)
         half = max(self.lim, 0.5 * float(np.max(hi - lo)) + 0.9 * self.lim)
         self.view.set((lo + hi) / 2, half)
 
-    def set(self, amplitude=1.0, center1=0.0, center2=0.0):
-        v = dict(amplitude=amplitude, center1=center1, center2=center2)
+    def set(self, family="circle", amplitude=1.0, center1=0.0, center2=0.0, aspect=0.6, angle=0.0, frame=None):
+        v = dict(family=family, amplitude=amplitude, center1=center1, center2=center2, aspect=aspect,
+                 angle=angle, frame=frame)
+        if family == "drawn" and self.points is None:
+            self.seed_points(dict(self._values or v, family=self._values.get("family", "circle")))
+        self._values = v
+        self._use_frame(frame)
         gait, self.traj, err = self.motion(v)
-        path = gait(np.linspace(0.0, 1.0, 121))
+        path = gait(np.linspace(0.0, gait.period, 161))
         for line, start in self.paths:
             line.set_data(path[:, 0], path[:, 1])
             start.set_data([path[0, 0]], [path[0, 1]])
+        pts = self.points if family == "drawn" else np.empty((0, 2))
+        for dots in self.handles:
+            dots.set_data(pts[:, 0], pts[:, 1])
         # Everything that can change (the flag appears, the body is hidden) is marked changed on
         # every update, so the blitter learns the moving artists on the first frame.
         self.view.touch()
@@ -119,6 +197,7 @@ class GaitScene(Scene):
             self.text.set_text("no motion: the connection is\nundefined on the red line")
             return
         self.flag.hide()
+        self.message = ""
         self.trail.line.set_visible(True)
         self.body.set_visible(True)
         self.net = self.traj.g[-1]
@@ -127,11 +206,55 @@ class GaitScene(Scene):
         self.trail.set(self.traj.g[:, :2])
         self.body.set(self.traj.g[-1], self.traj.r[-1])
         d = self.net
-        self.text.set_text(f"net displacement g(T) =\n({d[0]:+.4f}, {d[1]:+.4f}, {d[2]:+.4f})")
+        self.text.set_text(f"net displacement per cycle\n(x, y, θ) = ({d[0]:+.3f}, {d[1]:+.3f}, {d[2]:+.3f})")
 
-    def replot(self, amplitude=1.0, center1=0.0, center2=0.0):
-        gait = self.gait(dict(amplitude=amplitude, center1=center1, center2=center2))
-        path = gait(np.linspace(0.0, 1.0, 121))
+    # -- mouse editing of the drawn loop -------------------------------------------------------
+    def _nearest(self, event):
+        if self._values.get("family") != "drawn" or event.inaxes not in self.field_axes or self.points is None:
+            return None
+        px = event.inaxes.transData.transform(self.points)
+        d = np.hypot(px[:, 0] - event.x, px[:, 1] - event.y)
+        k = int(np.argmin(d))
+        return k if d[k] <= self.pick_px else None
+
+    def on_press(self, event):
+        """Grab the control point under the mouse (left button, drawn loop only)."""
+        if getattr(event, "button", 1) not in (1, None):
+            return
+        self._grab = self._nearest(event)
+
+    def on_motion(self, event):
+        """Move the grabbed control point to the mouse (clamped to the shape window) and update."""
+        if self._grab is None or event.inaxes not in self.field_axes or event.xdata is None:
+            return
+        (lo1, hi1), (lo2, hi2) = self.system.shape_limits
+        pts = self.points.copy()
+        pts[self._grab] = (np.clip(event.xdata, lo1, hi1), np.clip(event.ydata, lo2, hi2))
+        self.points = pts
+        self._edited()
+
+    def on_release(self, event):
+        """Let go of the control point."""
+        if self._grab is not None:
+            self._grab = None
+            self._edited()
+
+    def _edited(self):
+        if self.on_edit is not None:
+            self.on_edit()
+        else:
+            self.set(**self._values)
+            self.fig.canvas.draw_idle()
+
+    def animation(self, n_frames=60, cycles=2, row=2):
+        """A kernel-free animation (FuncAnimation) of the current gait in the world: see :func:`animate_gait`."""
+        return animate_gait(self.system, self.gait(self._values), n_frames=n_frames, cycles=cycles, row=row)
+
+    def replot(self, family="circle", amplitude=1.0, center1=0.0, center2=0.0, aspect=0.6, angle=0.0, frame=None):
+        self._use_frame(frame)
+        v = dict(family=family, amplitude=amplitude, center1=center1, center2=center2, aspect=aspect, angle=angle)
+        gait = self.gait(v)
+        path = gait(np.linspace(0.0, gait.period, 161))
         for i, ax in enumerate(self.field_axes):
             ax.clear()
             style_shape_axes(ax, self.system, ROW_LABELS[i])
