@@ -7,7 +7,7 @@ point of the moving plane with zero velocity; written in any frame it is the sam
 
 name                   what it is                                                      book
 ---------------------  --------------------------------------------------------------  --------------
-relative_pose          h^-1 g: the body as seen from the observer's frame h             (1.10), ch. 2
+relative_pose          h^-1 g: the body as seen from the observer's frame h (from kinematics) (1.10), (2.iii)
 observed_velocity      xi^s seen by the observer at h: Ad_{h^-1 g} xi                    (1.40)-(1.43)
 icr                    (-v_y / w, v_x / w) for xi = (v_x, v_y, w), flagged at w = 0      sec. 1.5
 point_in_frame         coordinates of a world point in the frame g (g^-1 p)             (1.12)
@@ -19,17 +19,13 @@ import numpy as np
 
 from ._validate import as_array
 from .groups import SE2, matvec
+from .kinematics import relative_pose
 
 __all__ = ["relative_pose", "observed_velocity", "icr", "point_in_frame", "conjugation"]
 
 
 def _se2(g, name):
     return as_array(g, name, (3,), what=" (an SE(2) element (x, y, theta))")
-
-
-def relative_pose(h, g):
-    """``h^-1 g`` (``(..., 3)``): the pose g written in the coordinate frame at h."""
-    return SE2.compose(SE2.inverse(_se2(h, "h")), _se2(g, "g"))
 
 
 def observed_velocity(g, xi, h=(0.0, 0.0, 0.0)):
@@ -40,8 +36,9 @@ def observed_velocity(g, xi, h=(0.0, 0.0, 0.0)):
     the same for every observer; the spatial velocity is the velocity of the body point that is
     momentarily over the observer's origin, written in the observer's axes.
     """
+    g, h = _se2(g, "g"), _se2(h, "h")
     xi = as_array(xi, "xi", (3,), what=" (a body velocity (v_x, v_y, omega))")
-    return matvec(SE2.Ad(relative_pose(h, g)), xi)
+    return matvec(SE2.Ad(relative_pose(g, h)), xi)
 
 
 def icr(xi, tol=1e-9):

@@ -69,7 +69,7 @@ def test_icr_at_infinity_is_flagged_not_inf():
 
 def test_relative_pose_and_bad_input():
     g, h = np.array([1.0, 2.0, 0.5]), np.array([-1.0, 0.5, 1.0])
-    assert np.allclose(SE2.matrix(relative_pose(h, g)), np.linalg.inv(SE2.matrix(h)) @ SE2.matrix(g))
+    assert np.allclose(SE2.matrix(relative_pose(g, h)), np.linalg.inv(SE2.matrix(h)) @ SE2.matrix(g))
     with pytest.raises(ValueError, match="xi"):
         icr([1.0, 2.0])
     with pytest.raises(TypeError, match="h"):

@@ -88,7 +88,7 @@ class ObserverScene(Scene):
         self.xi = xi = np.array([vx, vy, w])
         self.h = h
         self.xi_s = observed_velocity(g, xi, h)               # Ad_{h^-1 g} xi
-        self.g_rel = relative_pose(h, g)
+        self.g_rel = relative_pose(g, h)
         self.observer.set(h)
         self.observer_label.set_position(h[:2])
         # velocity of the body's origin, drawn in the page: R(theta) (v_x, v_y)
@@ -207,7 +207,7 @@ class FramesScene(Scene):
         later = SE2.compose(g, SE2.exp(self.DT * self.XI))
         self.ghost.set(later)
         self.ghost_frame.set(later)
-        self.seen_from_instant = SE2.log(relative_pose(g, later)) / self.DT
+        self.seen_from_instant = SE2.log(relative_pose(later, g)) / self.DT
         f = vec_text
         self.readout.set_text(
             f"nose in A: {f(self.in_a[0])} moving {f(self.in_a[1])}\n"
