@@ -4,8 +4,9 @@ Used by ``tests/browser/`` (pytest fixtures in conftest.py) and by ``benchmarks/
 
 * :class:`LabServer` copies the course (book/, exercises/, solutions/) to a temporary folder and
   starts ``python -m jupyterlab`` on 127.0.0.1 (free port, random token, fresh runtime/config/data
-  dirs, news and update checks off, a user-settings dir that turns off notebook windowing and the
-  news toast). The kernel imports ``gm_core`` from the tree these tests live in (PYTHONPATH), so a
+  dirs, the course's own JupyterLab defaults from jupyter/overrides.json (news prompt and update
+  check off, installed by tools/lab_settings.py as `make lab` does), a user-settings dir that turns
+  off notebook windowing). The kernel imports ``gm_core`` from the tree these tests live in (PYTHONPATH), so a
   scratch copy of the repository tests its own code. Stop it with :meth:`LabServer.stop`
   (sessions and kernels deleted over the REST API, then SIGTERM/SIGKILL to the server's process
   group, whose id is the server's PID).
@@ -93,11 +94,12 @@ def interactive_notebooks(root: Path = ROOT) -> list[Path]:
 # --------------------------------------------------------------------------------------------
 
 # Per-user settings for the test server (JupyterLab reads <user_settings_dir>/<ext>/<plugin>.jupyterlab-settings).
+# The news prompt is NOT turned off here: the server gets the course's own JupyterLab defaults
+# (jupyter/overrides.json, installed by tools/lab_settings.py exactly as `make lab` installs them),
+# so the tests see what a student sees and test_lab_is_quiet proves the course's file works.
 LAB_SETTINGS = {
     # render every cell (windowing would detach off-screen outputs, canvases included)
     ("@jupyterlab/notebook-extension", "tracker"): {"windowingMode": "none"},
-    # no "Would you like to get notified about official Jupyter news?" toast
-    ("@jupyterlab/apputils-extension", "notification"): {"fetchNews": "false", "checkForUpdates": False},
 }
 
 
@@ -136,6 +138,21 @@ class LabServer:
             target.parent.mkdir(parents=True, exist_ok=True)
             target.write_text(json.dumps(nb, indent=1), encoding="utf-8")
 
+    def _app_settings(self) -> Path:
+        """JupyterLab's application settings dir for the server: this Python's own (page_config
+        etc.) plus the course's overrides, installed by the same tool `make lab` uses."""
+        sys.path.insert(0, str(self.source_root / "tools"))
+        try:
+            import lab_settings
+        finally:
+            sys.path.pop(0)
+        app_settings = self.workdir / "lab-app-settings"
+        default = lab_settings.default_settings_dir()
+        if default.is_dir():
+            shutil.copytree(default, app_settings, dirs_exist_ok=True)
+        lab_settings.install(app_settings)
+        return app_settings
+
     def _write_settings(self) -> Path:
         settings = self.workdir / "lab-user-settings"
         for (ext, plugin), values in LAB_SETTINGS.items():
@@ -168,8 +185,7 @@ class LabServer:
             f"--IdentityProvider.token={self.token}",
             f"--ServerApp.root_dir={self.course}",
             "--ServerApp.open_browser=False",
-            "--LabApp.news_url=None",
-            "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
+            f"--LabApp.app_settings_dir={self.workdir / 'lab-app-settings'}",
             f"--LabApp.user_settings_dir={settings}",
             f"--LabApp.workspaces_dir={self.workdir / 'workspaces'}",
             "--LabApp.expose_app_in_browser=True",
@@ -180,6 +196,7 @@ class LabServer:
     def start(self):
         self._copy_course()
         settings = self._write_settings()
+        self._app_settings()
         (self.workdir / "workspaces").mkdir(exist_ok=True)
         last_err = None
         for _attempt in range(3):  # a port can be taken between free_port() and bind: retry
