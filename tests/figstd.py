@@ -37,6 +37,8 @@ MIN_ARROW_PX = 25.0
 MIN_FIELD_ARROWS = 3
 OVERLAP_TOL_PX = 1.0
 EDGE_TOL_PX = 0.5
+#: padding of ``bbox_inches="tight"`` (savefig.pad_inches), used for ``%matplotlib inline`` figures
+TIGHT_PAD_IN = 0.1
 
 __all__ = ["check_figure", "breaches", "FrameChecker", "figure_name", "MAX_WIDTH_PX", "MIN_TEXT_PX", "MIN_ARROW_PX"]
 
@@ -147,23 +149,29 @@ def _quiver_longest_px(q: Quiver) -> float | None:
     return best
 
 
-def check_figure(fig, where: str = "") -> list[str]:
+def check_figure(fig, where: str = "", tight: bool = False) -> list[str]:
     """Every breach of the figure standard in ``fig``, one message each (empty list: it complies).
 
-    Each message reads ``"<where>: figure '<name>': <what>"``."""
+    ``tight=True`` measures the figure as ``%matplotlib inline`` shows it: saved with
+    ``bbox_inches="tight"`` (0.1 in padding), so its width is that of its drawn contents and no
+    text can be cut by the edge. Each message reads ``"<where>: figure '<name>': <what>"``."""
     name = (f"{where}: " if where else "") + f"figure {figure_name(fig)!r}"
-    return [f"{name}: {m}" for m in breaches(fig)]
+    return [f"{name}: {m}" for m in breaches(fig, tight=tight)]
 
 
-def breaches(fig) -> list[str]:
+def breaches(fig, tight: bool = False) -> list[str]:
     """The breaches of ``fig`` without the figure's name (see :func:`check_figure`)."""
     out = []
     dpi = fig.dpi
-    width_px = fig.get_figwidth() * dpi
-    if width_px > MAX_WIDTH_PX + 0.5:
-        out.append(f"{width_px:.0f} px wide (> {MAX_WIDTH_PX} px: "
-                   f"{fig.get_figwidth():.2f} in x {dpi:.0f} dpi)")
     renderer = _draw(fig)
+    if tight:
+        width_px = (fig.get_tightbbox(renderer).width + 2 * TIGHT_PAD_IN) * dpi
+        how = "as shown inline, tight bounding box"
+    else:
+        width_px = fig.get_figwidth() * dpi
+        how = f"{fig.get_figwidth():.2f} in x {dpi:.0f} dpi"
+    if width_px > MAX_WIDTH_PX + 0.5:
+        out.append(f"{width_px:.0f} px wide (> {MAX_WIDTH_PX} px: {how})")
     roles = _roles(fig)
     W, H = renderer.width, renderer.height
     boxes = []
@@ -179,7 +187,7 @@ def breaches(fig) -> list[str]:
             continue
         cut = {"left": -bb.x0, "right": bb.x1 - W, "bottom": -bb.y0, "top": bb.y1 - H}
         cut = {k: v for k, v in cut.items() if v > EDGE_TOL_PX}
-        if cut:
+        if cut and not tight:
             out.append(f"{desc} is cut by the figure edge ("
                        + ", ".join(f"{k} by {v:.0f} px" for k, v in cut.items()) + ")")
         if role == "readout":

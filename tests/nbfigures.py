@@ -52,6 +52,19 @@ class NotebookFigures:
                 self.breaches.append(m)
 
 
+def shows_inline(path: Path) -> bool:
+    """True when the notebook uses ``%matplotlib inline`` (figures shown as tight-cropped PNGs)."""
+    return any(re.search(r"^\s*%matplotlib\s+inline\b", src, re.M) for src in _sources(path))
+
+
+def _sources(path: Path):
+    nb = json.loads(path.read_text(encoding="utf-8"))
+    for cell in nb.get("cells", []):
+        if cell.get("cell_type") == "code":
+            src = cell.get("source", "")
+            yield "".join(src) if isinstance(src, list) else src
+
+
 def _code_cells(path: Path):
     nb = json.loads(path.read_text(encoding="utf-8"))
     k = 0
@@ -97,6 +110,7 @@ def run_notebook(path: Path, visit=None, root: Path = ROOT) -> NotebookFigures:
     path = Path(path)
     rel = path.relative_to(root).as_posix() if path.is_relative_to(root) else path.name
     res = NotebookFigures(rel)
+    tight = shows_inline(path)
     plt.close("all")
     shell = _shell()
     seen: dict[int, str] = {}  # figure number -> where it appeared
@@ -132,11 +146,11 @@ def run_notebook(path: Path, visit=None, root: Path = ROOT) -> NotebookFigures:
                     if num not in seen:
                         seen[num] = f"{rel} In[{k}]"
                         res.figures += 1
-                        res.add(figstd.check_figure(plt.figure(num), seen[num]))
+                        res.add(figstd.check_figure(plt.figure(num), seen[num], tight=tight))
         for num in plt.get_fignums():
             fig = plt.figure(num)
             where = seen.get(num, rel)
-            res.add(figstd.check_figure(fig, where))  # its final state (duplicates dropped)
+            res.add(figstd.check_figure(fig, where, tight=tight))  # its final state (duplicates dropped)
             if visit is not None:
                 visit(where, fig, "figure")
     finally:
