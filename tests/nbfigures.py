@@ -45,6 +45,8 @@ class NotebookFigures:
     errors: list[str] = field(default_factory=list)
     figures: int = 0
     animations: int = 0
+    #: what ``epilogue`` printed (run after the last cell, see run_notebook)
+    epilogue: str = ""
 
     def add(self, messages):
         for m in messages:
@@ -102,9 +104,11 @@ def _shell():
     return shell
 
 
-def run_notebook(path: Path, visit=None, root: Path = ROOT) -> NotebookFigures:
+def run_notebook(path: Path, visit=None, root: Path = ROOT, epilogue: str | None = None) -> NotebookFigures:
     """Execute ``path`` and check its figures; ``visit(where, fig_or_anim, kind)`` sees each one
-    in its final state (kind "figure" or "animation")."""
+    in its final state (kind "figure" or "animation"). ``epilogue`` is code run after the last
+    cell in the notebook's namespace; what it prints is kept in ``.epilogue`` (the browser tests
+    compare the kernel state after Run All in JupyterLab with this cell-by-cell run)."""
     from IPython.utils.capture import capture_output
 
     path = Path(path)
@@ -147,6 +151,13 @@ def run_notebook(path: Path, visit=None, root: Path = ROOT) -> NotebookFigures:
                         seen[num] = f"{rel} In[{k}]"
                         res.figures += 1
                         res.add(figstd.check_figure(plt.figure(num), seen[num], tight=tight))
+        if epilogue is not None:
+            with capture_output() as cap:
+                r = shell.run_cell(epilogue, store_history=False)
+            err = r.error_before_exec or r.error_in_exec
+            if err is not None:
+                res.errors.append(f"{rel} epilogue raised {type(err).__name__}: {err}")
+            res.epilogue = cap.stdout
         for num in plt.get_fignums():
             fig = plt.figure(num)
             where = seen.get(num, rel)

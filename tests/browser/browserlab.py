@@ -665,6 +665,10 @@ class NotebookPage:
         if fresh:
             t0 = self.timings.mark("load page", t0)
         self.wait_until(lambda s: s["phase"] == "panel", "JupyterLab to show the notebook", timeout)
+        if fresh:  # the student's layout: the file browser open beside the notebook
+            import labview
+            if not labview.show_file_browser(self.page):
+                self.fail("could not open the file browser in the left sidebar")
         t0 = self.timings.mark("lab ready", t0)
         self.wait_until(lambda s: s["phase"] == "panel" and s.get("ready") and s.get("kernel") == "idle"
                         and s.get("connection") == "connected",
@@ -812,17 +816,21 @@ class NotebookPage:
         self.timings.mark("close", t0)
 
 
-def check_interactive_notebook(lab: LabBrowser, relpath: str, change_timeout: float = 20.0, on_open=None):
+def check_interactive_notebook(lab: LabBrowser, relpath: str, change_timeout: float = 20.0, on_open=None,
+                               after_run=None):
     """The whole browser check of one chapter notebook; returns (SliderResult, timings dict).
 
     ``on_open()`` is called once the notebook has an idle kernel (the tests prestart the next
-    notebook's kernel there)."""
+    notebook's kernel there); ``after_run(nbp)`` right after Run All, before any slider moves
+    (the layout and panel-state checks of test_notebooks_in_lab)."""
     with NotebookPage(lab, relpath) as nbp:
         nbp.open()
         if on_open is not None:
             on_open()
         nbp.run_all()
         nbp.check_no_errors()
+        if after_run is not None:
+            after_run(nbp)
         sel = nbp.find_panel(0)
         # A panel whose canvas never stands still (an animation) cannot show the slider's effect:
         # then the next panels (up to three) are used instead.
