@@ -98,8 +98,10 @@ def _catch_animations(on_animation):
 
 def _shell():
     from IPython.core.interactiveshell import InteractiveShell
+    from traitlets.config import Config
 
-    shell = InteractiveShell.instance()
+    # one plain (kernel-less) shell for every notebook, no history database written
+    shell = InteractiveShell.instance(config=Config({"HistoryManager": {"enabled": False}}))
     shell.reset(new_session=False)
     return shell
 

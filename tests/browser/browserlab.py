@@ -5,8 +5,8 @@ Used by ``tests/browser/`` (pytest fixtures in conftest.py) and by ``benchmarks/
 * :class:`LabServer` copies the course (book/, exercises/, solutions/) to a temporary folder and
   starts ``python -m jupyterlab`` on 127.0.0.1 (free port, random token, fresh runtime/config/data
   dirs, the course's own JupyterLab defaults from jupyter/overrides.json (news prompt and update
-  check off, installed by tools/lab_settings.py as `make lab` does), a user-settings dir that turns
-  off notebook windowing). The kernel imports ``gm_core`` from the tree these tests live in (PYTHONPATH), so a
+  check off, installed by tools/lab_settings.py as `make lab` does), and no user settings of its
+  own: the student's JupyterLab). The kernel imports ``gm_core`` from the tree these tests live in (PYTHONPATH), so a
   scratch copy of the repository tests its own code. Stop it with :meth:`LabServer.stop`
   (sessions and kernels deleted over the REST API, then SIGTERM/SIGKILL to the server's process
   group, whose id is the server's PID).
@@ -94,13 +94,12 @@ def interactive_notebooks(root: Path = ROOT) -> list[Path]:
 # --------------------------------------------------------------------------------------------
 
 # Per-user settings for the test server (JupyterLab reads <user_settings_dir>/<ext>/<plugin>.jupyterlab-settings).
-# The news prompt is NOT turned off here: the server gets the course's own JupyterLab defaults
-# (jupyter/overrides.json, installed by tools/lab_settings.py exactly as `make lab` installs them),
-# so the tests see what a student sees and test_lab_is_quiet proves the course's file works.
-LAB_SETTINGS = {
-    # render every cell (windowing would detach off-screen outputs, canvases included)
-    ("@jupyterlab/notebook-extension", "tracker"): {"windowingMode": "none"},
-}
+# Empty on purpose: the server gets exactly the student's settings, JupyterLab's defaults plus the
+# course's own (jupyter/overrides.json, installed by tools/lab_settings.py as `make lab` does), so
+# the tests see what a student sees (notebook windowing included: JupyterLab 4's default
+# "contentVisibility" lays off-screen outputs out differently, e.g. a jshtml animation's image)
+# and test_student_view.py proves the course's file silences the news prompt.
+LAB_SETTINGS: dict = {}
 
 
 def free_port() -> int:

@@ -6,8 +6,9 @@ Helpers for tests/browser/test_student_view.py and tools/screenshots.py, on top 
   browser panel open, as after a fresh ``make lab``): the notebook gets what is left, ~930 px of
   output width.
 * :func:`layout_problems`: after Run All, every output area whose content overflows it
-  (``scrollWidth > clientWidth``), every ipympl canvas or image wider than its output area, and
-  every jshtml animation whose ``<img>`` is laid out at zero size or never got a frame.
+  (``scrollWidth > clientWidth``), every ipympl canvas or image wider than its output area (or
+  scaled down to fit it, which shrinks its text), and every jshtml animation whose ``<img>`` is
+  laid out at zero size or never got a frame.
 * :func:`kernel_panel_state` / :func:`expected_panel_state`: the values and titles/readouts of
   every Panel bound to a name in the notebook, read from the live kernel after Run All, and from
   a cell-by-cell run of the same notebook in this process (tests/nbfigures.py): they must agree
@@ -167,6 +168,10 @@ _LAYOUT_JS = r"""
       if (isAnim && (r.width < 1 || r.height < 1 || !m.naturalWidth))
         problems.push(`${where(out)}: animation image is ${px(r.width)} x ${px(r.height)} px laid out` +
                       ` (natural ${m.naturalWidth} x ${m.naturalHeight}): the student sees no picture`);
+      const natural = m.tagName === 'IMG' ? Number(m.getAttribute('width')) || m.naturalWidth : 0;
+      if (natural > w + 1 && r.width <= w + 1)
+        problems.push(`${where(out)}: ${isAnim ? 'animation image' : 'image'} is ${natural} px wide, shown` +
+                      ` scaled down to ${px(r.width)} px to fit its output area (${w} px): its text shrinks`);
       if (r.width > w + 1 || r.right > box.right + 1)
         problems.push(`${where(out)}: ${isAnim ? 'animation image' : m.tagName.toLowerCase()} is ${px(r.width)} px wide,` +
                       ` its output area ${w} px (right edge ${px(r.right)} > ${px(box.right)})`);
@@ -223,7 +228,8 @@ LAYOUT_SELFCHECK_PATH = "_browser_selfcheck/layout.ipynb"
 def layout_selfcheck_notebook() -> dict:
     """A notebook with one breach of each kind :func:`layout_problems` must find, and a good
     figure: In[2] a 1200 px ipympl canvas, In[3] an animation image that never gets a frame,
-    In[4] an HTML block wider than the output area, In[5] a 500 px canvas (fine)."""
+    In[4] an HTML block wider than the output area, In[5] a 500 px canvas (fine), In[6] a
+    1200 px PNG (as %matplotlib inline shows a figure) that the output area scales down."""
     def code(i, src):
         return {"cell_type": "code", "execution_count": None, "id": f"layout-{i}", "metadata": {},
                 "outputs": [], "source": src}
@@ -238,6 +244,11 @@ def layout_selfcheck_notebook() -> dict:
         code(3, "HTML('<div class=\"animation\"><img id=\"_anim_imgselfcheck\"></div>')"),
         code(4, "HTML('<div style=\"width: 1500px; background: #eee\">a block wider than the notebook</div>')"),
         code(5, "canvas(5)"),
+        code(6, "import io\nfrom IPython.display import Image\n"
+                "with plt.ioff():\n"
+                "    fig, ax = plt.subplots(figsize=(12, 2), dpi=100)\n"
+                "buf = io.BytesIO()\nfig.savefig(buf, format='png')\nplt.close(fig)\n"
+                "Image(buf.getvalue())"),
     ]
     return {"cells": cells, "metadata": {"kernelspec": {"display_name": "Python 3", "language": "python",
                                                         "name": "python3"}},

@@ -4,8 +4,9 @@
   news?" prompt, because the course's own settings (jupyter/overrides.json, installed by
   tools/lab_settings.py exactly as `make lab` and Binder's postBuild install it) say so;
   ``test_news_prompt_detector`` proves the check would see the prompt (user setting "Ask").
-* ``test_layout_detector``: a generated notebook with a too-wide canvas, a blank animation image
-  and an overflowing block, plus a good canvas: labview.layout_problems names exactly the three.
+* ``test_layout_detector``: a generated notebook with a too-wide canvas, a blank animation image,
+  an overflowing block and a scaled-down image, plus a good canvas: labview.layout_problems names
+  exactly the four.
 * ``test_figures_fit``: every notebook that draws and is not covered by
   test_notebooks_in_lab.py (exercises and solutions with ``%matplotlib inline``, static chapters):
   Run All at 1366 x 768 with the file browser open, then no output overflows its area, no image or
@@ -89,6 +90,7 @@ def test_layout_detector(lab, record_timing):
     assert any(p.startswith("In[3]") and "the student sees no picture" in p for p in problems), text
     assert any(p.startswith("In[4]") and "output overflows its area" in p for p in problems), text
     assert not any(p.startswith("In[5]") for p in problems), text
+    assert any(p.startswith("In[6]") and "image is 1200 px wide, shown scaled down" in p for p in problems), text
     assert 850 <= counts["minWidth"] <= 1000, f"output width at 1366 px with the file browser: {counts}"
 
 
