@@ -109,6 +109,17 @@ _MARK_FIGURES_JS = r"""
 """
 
 
+def _window_shot(nbp, rel: str, d: Path) -> dict | None:
+    """The 1366 x 768 window as the student sees it, scrolled to the first figure."""
+    st = nbp.read_status()
+    if not nbp.page.evaluate(_MARK_FIGURES_JS, st["panelId"]):
+        return None
+    nbp.page.locator('[data-gm-shot="0"]').scroll_into_view_if_needed()
+    name = f"{_slug(rel)}-window.png"
+    nbp.page.screenshot(path=str(d / name))
+    return {"png": f"browser/{name}", "caption": f"{rel}: the 1366 x 768 window", "problems": []}
+
+
 def browser(out: Path, only: str | None) -> list[dict]:
     from playwright.sync_api import sync_playwright
 
@@ -139,6 +150,13 @@ def browser(out: Path, only: str | None) -> list[dict]:
                     problems, counts = labview.layout_problems(nbp)
                     notes += problems
                     st = nbp.check_no_errors()
+                    if shots_window := _window_shot(nbp, rel, d):
+                        shots.append(shots_window)
+                    # a taller window for the pictures (same width, so the same layout): an output
+                    # taller than 768 px is then captured whole, without JupyterLab's bars over it
+                    width, _ = labview.STUDENT_WINDOW
+                    nbp.page.set_viewport_size({"width": width, "height": 2400})
+                    nbp.page.wait_for_timeout(500)
                     for fig in nbp.page.evaluate(_MARK_FIGURES_JS, st["panelId"]):
                         name = f"{_slug(rel)}-{fig['index']:02d}-{_slug(fig['cell'])}.png"
                         loc = nbp.page.locator(f'[data-gm-shot="{fig["index"]}"]')
@@ -147,12 +165,9 @@ def browser(out: Path, only: str | None) -> list[dict]:
                         mine = [p for p in problems if p.startswith(fig["cell"] + " ")]
                         shots.append({"png": f"browser/{name}", "caption": f"{rel} {fig['cell']} ({fig['kind']})",
                                       "problems": mine})
-                    if shots:  # the window as the student sees it, at the first figure
-                        nbp.page.locator('[data-gm-shot="0"]').scroll_into_view_if_needed()
-                        name = f"{_slug(rel)}-window.png"
-                        nbp.page.screenshot(path=str(d / name))
-                        shots.insert(0, {"png": f"browser/{name}", "caption": f"{rel}: the 1366 x 768 window",
-                                         "problems": []})
+                    nbp.page.set_viewport_size(dict(zip(("width", "height"), labview.STUDENT_WINDOW)))
+                    if len(shots) == 1:  # a window shot but no figure
+                        shots.clear()
             except AssertionError as e:  # a notebook that fails is reported, the others still shot
                 notes.append(f"FAILED: {e}"[:2000])
             print(f"browser {rel}: {len(shots)} pictures, {len(notes)} problems "
