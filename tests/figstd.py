@@ -44,18 +44,36 @@ __all__ = ["check_figure", "breaches", "FrameChecker", "figure_name", "MAX_WIDTH
 
 
 class _RecordingRenderer(RendererAgg):
-    """An Agg renderer that remembers every Text artist it was asked to draw."""
+    """An Agg renderer that remembers every Text artist it draws, with its extent at that moment.
 
-    def __init__(self, width, height, dpi):
+    matplotlib hands ``draw_text`` the artist only for one-line texts, so each Text gets a
+    temporary gid (public ``set_gid``) that ``Text.draw`` passes to ``open_group``: the renderer
+    then knows which text it is drawing, one line or several, mathtext included."""
+
+    PREFIX = "gm-figstd-text-"
+
+    def __init__(self, width, height, dpi, by_gid):
         super().__init__(width, height, dpi)
+        self.by_gid = by_gid
         self.texts: list[tuple[Text, object]] = []
         self._seen: set[int] = set()
+        self._stack: list[Text | None] = []
+
+    def open_group(self, s, gid=None):
+        self._stack.append(self.by_gid.get(gid) if s == "text" else None)
+        return super().open_group(s, gid)
+
+    def close_group(self, s):
+        if self._stack:
+            self._stack.pop()
+        return super().close_group(s)
 
     def draw_text(self, gc, x, y, s, prop, angle, ismath=False, mtext=None):
-        if mtext is not None and id(mtext) not in self._seen and str(s).strip():
-            self._seen.add(id(mtext))
+        t = mtext if mtext is not None else next((a for a in reversed(self._stack) if a is not None), None)
+        if t is not None and id(t) not in self._seen and str(s).strip():
+            self._seen.add(id(t))
             # the extent is taken now: a 3D text is at its projected position only while drawn
-            self.texts.append((mtext, mtext.get_window_extent(self).frozen()))
+            self.texts.append((t, t.get_window_extent(self).frozen()))
         return super().draw_text(gc, x, y, s, prop, angle, ismath=ismath, mtext=mtext)
 
 
@@ -125,8 +143,19 @@ def figure_name(fig) -> str:
 def _draw(fig):
     """Lay the figure out and draw it into a recording renderer; returns the renderer."""
     w, h = fig.get_size_inches() * fig.dpi
-    renderer = _RecordingRenderer(int(round(w)), int(round(h)), fig.dpi)
-    fig.draw(renderer)
+    texts = fig.findobj(Text)
+    saved = [(t, t.get_gid()) for t in texts]
+    by_gid = {}
+    for t in texts:
+        gid = f"{_RecordingRenderer.PREFIX}{id(t)}"
+        by_gid[gid] = t
+        t.set_gid(gid)
+    renderer = _RecordingRenderer(int(round(w)), int(round(h)), fig.dpi, by_gid)
+    try:
+        fig.draw(renderer)
+    finally:
+        for t, gid in saved:
+            t.set_gid(gid)
     return renderer
 
 

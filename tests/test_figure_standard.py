@@ -76,6 +76,14 @@ def test_checker_finds_text_cut_by_the_figure_edge():
     assert len(msgs) == 1 and "'cut off here' is cut by the figure edge (right by" in msgs[0], _kinds(msgs)
 
 
+def test_checker_sees_multiline_and_math_texts():
+    fig, ax = _good()
+    ax.set_title("torus $\\mathbb{T}^2$\n(both pairs of edges glued)", fontsize=6)
+    msgs = figstd.check_figure(fig)
+    # one message, for the whole two-line title (matplotlib hands the renderer no artist for it)
+    assert [m for m in msgs if "is 8.3 px" in m and "title 'torus $" in m and "(both pairs of edg" in m], _kinds(msgs)
+
+
 def test_checker_finds_overlapping_texts():
     fig, ax = _good()
     ax.set_ylabel("a long label " * 6)  # the y label cannot fit beside the axes: it crosses the tick labels
