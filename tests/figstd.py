@@ -10,7 +10,8 @@ returns one line per breach, naming the figure (``where``) and the text:
 * no text is sliced by the figure edge: its window extent lies inside the figure;
 * no two texts overlap (tick labels, axis labels, titles, legends, readouts), beyond
   ``OVERLAP_TOL_PX`` in both directions;
-* readouts (texts placed on an axes with ``ax.text``/``ax.annotate``) lie inside their axes;
+* readouts (texts placed on an axes with ``ax.text``/``ax.annotate`` and anchored inside it) lie
+  wholly inside their axes (a caption anchored outside its axes is judged as any other text);
 * every vector field (a quiver of ``MIN_FIELD_ARROWS`` arrows or more; an SE(2) frame's two
   arrows are not a field) has a longest arrow of at least ``MIN_ARROW_PX`` (25) px.
 
@@ -159,6 +160,19 @@ def _draw(fig):
     return renderer
 
 
+def _anchor(t: Text, bb) -> tuple[float, float]:
+    """The display point a text is aligned to (its ha/va corner of the drawn extent)."""
+    ha, va = t.get_horizontalalignment(), t.get_verticalalignment()
+    x = {"left": bb.x0, "right": bb.x1}.get(ha, (bb.x0 + bb.x1) / 2)
+    y = {"top": bb.y1, "bottom": bb.y0, "baseline": bb.y0}.get(va, (bb.y0 + bb.y1) / 2)
+    return x, y
+
+
+def _inside(point, box, tol: float = 1.0) -> bool:
+    x, y = point
+    return box.x0 - tol <= x <= box.x1 + tol and box.y0 - tol <= y <= box.y1 + tol
+
+
 def _quiver_longest_px(q: Quiver) -> float | None:
     """Length in display px of the longest arrow of a drawn quiver (None when it has no arrows)."""
     paths = q.get_paths()
@@ -219,8 +233,8 @@ def breaches(fig, tight: bool = False) -> list[str]:
         if cut and not tight:
             out.append(f"{desc} is cut by the figure edge ("
                        + ", ".join(f"{k} by {v:.0f} px" for k, v in cut.items()) + ")")
-        if role == "readout":
-            ab = ax.get_window_extent(renderer)
+        ab = ax.get_window_extent(renderer) if role == "readout" else None
+        if ab is not None and _inside(_anchor(t, bb), ab):  # anchored outside: a caption, not a readout
             past = {"left": ab.x0 - bb.x0, "right": bb.x1 - ab.x1, "bottom": ab.y0 - bb.y0, "top": bb.y1 - ab.y1}
             past = {k: v for k, v in past.items() if v > EDGE_TOL_PX}
             if past:

@@ -111,6 +111,12 @@ def test_checker_finds_a_readout_running_past_its_axes():
         _kinds(msgs)
 
 
+def test_checker_leaves_captions_outside_the_axes_to_the_other_rules():
+    fig, ax = _good()
+    ax.text(0.5, -0.2, "a caption below the axes", transform=ax.transAxes, ha="center", va="top")
+    assert figstd.check_figure(fig) == []
+
+
 def test_checker_finds_arrows_too_short_to_show_direction():
     fig, ax = _good()
     x, y = np.meshgrid(np.linspace(0, 1, 30), np.linspace(0, 1, 30))
