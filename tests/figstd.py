@@ -9,7 +9,8 @@ returns one line per breach, naming the figure (``where``) and the text:
 * no text is smaller than ``MIN_TEXT_PX`` (10) px: font size in points x dpi / 72;
 * no text is sliced by the figure edge: its window extent lies inside the figure;
 * no two texts overlap (tick labels, axis labels, titles, legends, readouts), beyond
-  ``OVERLAP_TOL_PX`` in both directions;
+  ``OVERLAP_TOL_PX`` in both directions, and no axis label sits in the row (x) or column (y) of
+  its own tick labels (2D axes);
 * readouts (texts placed on an axes with ``ax.text``/``ax.annotate`` and anchored inside it) lie
   wholly inside their axes (a caption anchored outside its axes is judged as any other text);
 * every vector field (a quiver of ``MIN_FIELD_ARROWS`` arrows or more; an SE(2) frame's two
@@ -160,6 +161,33 @@ def _draw(fig):
     return renderer
 
 
+def _labels_in_tick_rows(boxes, roles) -> list[str]:
+    """An x (y) axis label must sit below/above (beside) its tick labels, never in their row
+    (column), where it reads as one more tick: "0  longitude λ"."""
+    out = []
+    by_axes: dict[int, dict[str, list]] = {}
+    for t, desc, bb in boxes:
+        role, ax = roles.get(id(t), ("text", None))
+        if ax is None or getattr(ax, "name", "") == "3d" or role[:1] not in "xy":
+            continue
+        slot = by_axes.setdefault(id(ax), {})
+        if role.endswith("tick label"):
+            slot.setdefault(role[0] + "ticks", []).append(bb)
+        elif role.endswith("-axis label"):
+            slot.setdefault(role[0] + "label", []).append((desc, bb))
+    for slot in by_axes.values():
+        for axis, lo, hi in (("x", "y0", "y1"), ("y", "x0", "x1")):
+            ticks = slot.get(axis + "ticks", [])
+            for desc, bb in slot.get(axis + "label", []):
+                for tb in ticks:
+                    shared = min(getattr(bb, hi), getattr(tb, hi)) - max(getattr(bb, lo), getattr(tb, lo))
+                    if shared > OVERLAP_TOL_PX:
+                        where = "row" if axis == "x" else "column"
+                        out.append(f"{desc} sits in the {where} of its tick labels (reads as one more tick)")
+                        break
+    return out
+
+
 def _anchor(t: Text, bb) -> tuple[float, float]:
     """The display point a text is aligned to (its ha/va corner of the drawn extent)."""
     ha, va = t.get_horizontalalignment(), t.get_verticalalignment()
@@ -246,6 +274,7 @@ def breaches(fig, tight: bool = False) -> list[str]:
         oy = min(b1.y1, b2.y1) - max(b1.y0, b2.y0)
         if ox > OVERLAP_TOL_PX and oy > OVERLAP_TOL_PX:
             out.append(f"{d1} overlaps {d2} ({ox:.0f} x {oy:.0f} px)")
+    out += _labels_in_tick_rows(boxes, roles)
     fields = [q for q in fig.findobj(Quiver) if q.get_visible() and len(q.get_paths()) >= MIN_FIELD_ARROWS]
     for i, q in enumerate(fields, 1):
         longest = _quiver_longest_px(q)

@@ -103,6 +103,14 @@ def test_checker_finds_tick_labels_meeting_at_a_corner():
     assert any("y tick label" in m and "overlaps" in m and "x tick label" in m for m in msgs), _kinds(msgs)
 
 
+def test_checker_finds_an_axis_label_in_the_row_of_its_tick_labels():
+    fig, ax = _good()
+    ax.set_xlabel("longitude λ", labelpad=-14)  # pulled up into the tick labels' row: "0  longitude λ"
+    ax.xaxis.set_label_coords(0.62, -0.03)
+    msgs = figstd.check_figure(fig)
+    assert any("x-axis label 'longitude λ' sits in the row of its tick labels" in m for m in msgs), _kinds(msgs)
+
+
 def test_checker_finds_a_readout_running_past_its_axes():
     fig, ax = _good()
     ax.text(0.9, 0.5, "θ = 3.14159 rad, long readout", transform=ax.transAxes)
