@@ -324,3 +324,34 @@ def test_joint_elements():
     # a joint element is exp(q X): the one-parameter subgroup of its axis
     for j in (C.Joint("R"), C.Joint("P")):
         np.testing.assert_allclose(SE2.exp(0.7 * j.axis), j.element(0.7), atol=1e-15)
+
+
+# ------------------------------------------------------------------ link-centre poses (one copy)
+def test_three_link_poses_are_the_chain_product():
+    rng = np.random.default_rng(12)
+    L = (0.9, 1.3, 0.6)
+    a = rng.uniform(-3, 3, (7, 2))
+    P = C.three_link_poses(a, L)
+    for k in range(7):
+        a1, a2 = a[k]
+        g1 = SE2.compose(SE2.compose([-L[1] / 2, 0, 0], [0, 0, -a1]), [-L[0] / 2, 0, 0])   # (2.12), walking back
+        g3 = SE2.compose(SE2.compose([L[1] / 2, 0, 0], [0, 0, a2]), [L[2] / 2, 0, 0])
+        assert SE2.isclose(P[k], np.stack([g1, np.zeros(3), g3]), atol=1e-14).all()
+    # the centre-of-mass frame is the weighted mean of these poses
+    beta, _ = C.com_frame(a, L, weights=(1.0, 2.0, 3.0))
+    np.testing.assert_allclose(beta, np.einsum("i,...ij->...j", np.array([1, 2, 3]) / 6, P), atol=1e-15)
+
+
+def test_three_link_poses_and_sampling_bad_input():
+    with pytest.raises(ValueError, match="alpha"):
+        C.three_link_poses([0.1, 0.2, 0.3])
+    with pytest.raises(ValueError, match="lengths"):
+        C.three_link_poses([0.1, 0.2], (1, 1))
+    with pytest.raises(TypeError, match="alpha"):
+        C.com_frame(None)
+    with pytest.raises(TypeError, match="n must be an integer"):
+        C.sample_accessible_manifold(C.circle_constraints, n=2.5)
+    with pytest.raises(ValueError, match="box"):
+        C.sample_accessible_manifold(C.circle_constraints, box=-1)
+    with pytest.raises(TypeError, match="rng"):
+        C.sample_accessible_manifold(C.circle_constraints, rng=3)

@@ -7,15 +7,10 @@ from scipy.integrate import solve_ivp
 from scipy.linalg import expm
 
 from gm_core import SE2
-from gm_core.checks import ex1_2, ex1_3, ex1_4, ex1_5, reset_progress
+from gm_core.checks import ex1_2, ex1_3, ex1_4, ex1_5
 from gm_core.checks.ch1 import EXP_METHODS, _exp_ref, _helix_ref
 
-
-@pytest.fixture(autouse=True)
-def clean():
-    reset_progress()
-    yield
-    reset_progress()
+pytestmark = pytest.mark.usefixtures("clean")
 
 
 def test_exp_reference_matches_expm_on_checker_inputs():

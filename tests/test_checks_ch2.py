@@ -4,15 +4,9 @@ import pytest
 import sympy as sp
 
 from gm_core import SE2, chains
-from gm_core.checks import ex2_1, ex2_2, ex2_3, ex2_4, reset_progress
-from gm_core.checks import ch2
+from gm_core.checks import ch2, ex2_1, ex2_2, ex2_3, ex2_4
 
-
-@pytest.fixture(autouse=True)
-def clean():
-    reset_progress()
-    yield
-    reset_progress()
+pytestmark = pytest.mark.usefixtures("clean")
 
 
 def test_constraint_answers_in_several_forms():
@@ -41,16 +35,26 @@ def test_rp_arm_references_against_chains_and_finite_differences():
         assert np.allclose(fd, ch2._rp_world(*args), atol=1e-6)
 
 
-def test_com_frame_references_against_chains():
+def link_poses(alpha, lengths):
+    """Independent route: link-centre poses relative to the middle link, composed in the group."""
+    a1, a2 = alpha
+    l1, l2, l3 = lengths
+    p1 = SE2.compose(SE2.compose([-l2 / 2, 0, 0], [0, 0, -a1]), [-l1 / 2, 0, 0])
+    p3 = SE2.compose(SE2.compose([l2 / 2, 0, 0], [0, 0, a2]), [l3 / 2, 0, 0])
+    return np.stack([p1, np.zeros(3), p3])
+
+
+def test_com_frame_references_against_group_compositions():
     for alpha, lengths in ex2_3.a.inputs():
-        beta, dbeta = chains.com_frame(alpha, lengths)
-        assert np.allclose(ch2.com_beta(alpha, lengths), beta)
-        assert np.allclose(ch2.com_dbeta(alpha, lengths), dbeta)
-        J_com, links = chains.com_frame_jacobians(alpha, lengths)
-        assert np.allclose(ch2.com_jacobian(alpha, lengths), J_com)
-        assert np.allclose(ch2.links_from_com(alpha, lengths), np.stack(links))
-        assert np.allclose(ch2.three_link_body_jacobians(alpha, lengths),
-                           np.stack(chains.three_link_jacobians(alpha, lengths)))
+        w = np.asarray(lengths, dtype=float)
+        assert np.allclose(ch2.com_beta(alpha, lengths), (w[:, None] * link_poses(alpha, lengths)).sum(0) / w.sum())
+        eps = 1e-6
+        fd = np.stack([(ch2.com_beta(alpha + eps * e, lengths) - ch2.com_beta(alpha - eps * e, lengths)) / (2 * eps)
+                       for e in np.eye(2)], 1)
+        assert np.allclose(ch2.com_dbeta(alpha, lengths), fd, atol=1e-6)
+        J = ch2.three_link_body_jacobians(alpha, lengths)
+        assert J.shape == (3, 3, 5)
+        assert np.allclose(J, np.stack(chains.three_link_jacobians(alpha, lengths)))
 
 
 def test_com_jacobian_by_finite_differences():
@@ -75,7 +79,7 @@ def test_link_jacobians_in_com_frame_by_finite_differences():
             g_com = SE2.exp(t * xi)
             a = alpha + t * adot
             middle = SE2.compose(g_com, SE2.inverse(ch2.com_beta(a, lengths)))
-            return SE2.compose(middle, ch2.link_poses(a, lengths)[i])
+            return SE2.compose(middle, link_poses(a, lengths)[i])
         eps = 1e-6
         J = ch2.links_from_com(alpha, lengths)
         for i in range(3):

@@ -4,18 +4,12 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from gm_core import SE2
-from gm_core.checks import ex3_1, ex3_3, ex3_4, reset_progress
-from gm_core.checks import ch3
+from gm_core.checks import ch3, ex3_1, ex3_3, ex3_4
 from gm_core.locomotion import connection_from_pfaffian
 from gm_core.systems import Ackerman, DifferentialDrive, HighReSwimmer, LowReSwimmer
 from gm_core.systems.high_re import ellipse_added_mass
 
-
-@pytest.fixture(autouse=True)
-def clean():
-    reset_progress()
-    yield
-    reset_progress()
+pytestmark = pytest.mark.usefixtures("clean")
 
 
 def test_differential_drive_heading_by_integration():

@@ -6,6 +6,7 @@ cannot look at progress())."""
 import contextlib
 import importlib.util
 import io
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -157,3 +158,33 @@ def test_untouched_exercise_runs_and_is_unattempted(path):
         reset_progress()
         import matplotlib.pyplot as plt
         plt.close("all")
+
+
+@pytest.mark.parametrize("path", EXERCISES + SOLUTIONS, ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_everything_the_notebook_advertises_is_imported(path):
+    nb = nbformat.read(path, as_version=4)
+    code = "\n".join(c.source for c in nb.cells if c.cell_type == "code")
+    prose = "\n".join(c.source for c in nb.cells if c.cell_type == "markdown")
+    imported = set()
+    for line in code.splitlines():
+        m = re.match(r"\s*from gm_core\.checks import (.*)", line)
+        if m:
+            imported |= {n.strip() for n in m.group(1).split(",")}
+    for name in ("progress", "progress_widget", "set_time_limit", "reset_progress"):
+        if re.search(rf"`{name}\(", prose):
+            assert name in imported, f"{path.name} mentions {name}() but does not import it"
+
+
+def test_solution_links_resolve_from_the_workspace_and_exercises():
+    from gm_core.checks import exercise_ids
+    from gm_core.checks._core import REGISTRY
+    for ex_id in exercise_ids():
+        part = next(iter(REGISTRY[ex_id].parts.values()))
+        for folder in ("workspace", "exercises"):
+            assert (ROOT / folder / part.solution_path()).resolve().exists(), (ex_id, folder)
+
+
+def test_exercise_notebooks_point_to_the_workspace_readme():
+    for path in EXERCISES:
+        text = path.read_text(encoding="utf-8")
+        assert "exercises/README.md" not in text, path.name

@@ -23,6 +23,21 @@ from gm_core.widgets import ch1 as W  # noqa: E402
 from gm_core.widgets.base import PANELS  # noqa: E402
 
 
+def rk4_curve(f, q0, T, n):
+    """Independent route for integral curves: n classical RK4 steps over [0, T], (n+1, ..., 2)."""
+    q = np.asarray(q0, float)
+    h = T / n
+    out = [q]
+    for _ in range(n):
+        k1 = f(q)
+        k2 = f(q + 0.5 * h * k1)
+        k3 = f(q + 0.5 * h * k2)
+        k4 = f(q + h * k3)
+        q = q + h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
+        out.append(q)
+    return np.array(out)
+
+
 def slide(panel, **values):
     """Move sliders one by one, as a user would (each change triggers an update)."""
     for k, v in values.items():
@@ -206,11 +221,11 @@ def test_vector_field_curve_follows_the_field(field):
     fx, fy = p.scene.forward.get_data()
     assert np.allclose([fx[0], fy[0]], [0.8, -0.6])
     # independent route: classical RK4 with small steps, forward and backward
-    ref = D.rk4_curve(D.FIELDS[field], np.array([0.8, -0.6]), D.VectorFieldScene.T, 2400)[::10]
+    ref = rk4_curve(D.FIELDS[field], np.array([0.8, -0.6]), D.VectorFieldScene.T, 2400)[::10]
     m = len(fx)
     assert np.allclose(np.c_[fx, fy], ref[:m], atol=1e-4)
     bx, by = p.scene.backward.get_data()
-    back = D.rk4_curve(lambda q: -D.FIELDS[field](q), np.array([0.8, -0.6]), D.VectorFieldScene.T, 2400)[::10]
+    back = rk4_curve(lambda q: -D.FIELDS[field](q), np.array([0.8, -0.6]), D.VectorFieldScene.T, 2400)[::10]
     assert np.allclose(np.c_[bx, by], back[: len(bx)], atol=1e-4)
     assert np.all(np.isfinite(fx)) and np.all(np.isfinite(bx))
     # the background arrows point along the field
@@ -364,3 +379,22 @@ def test_binomial_table_limits():
             assert abs(ratio - inv_fact) < 1e-3
     n, k, c, ratio, inv_fact, draft = rows[2]   # n = 10, k = 2
     assert c == 45 and draft == 50.0             # the draft's n^k/k! is not C(n, k)
+
+
+def test_jshtml_page_has_a_sized_first_frame_and_waits_for_its_elements():
+    """The player page shows frame 0 in the <img> itself, at the figure's pixel width (<= 900),
+    and starts the player only once its elements are in the document (issue 12: an animation
+    laid out at 0 x 0 in JupyterLab)."""
+    import base64
+    import re
+    import struct
+
+    from gm_core.drawing.base import jshtml
+
+    html = jshtml(D.puck_vs_arc_animation(frames=3)).data
+    img = re.search(r'<img id="_anim_img\w+" src="data:image/png;base64,([^"]+)" width="(\d+)"', html)
+    assert img, "first frame not embedded in the <img>"
+    png = base64.b64decode(img.group(1))
+    w, h = struct.unpack(">II", png[16:24])
+    assert int(img.group(2)) == w <= 900 and h > 0
+    assert "document.getElementById(img_id) === null" in html

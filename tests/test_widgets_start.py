@@ -36,3 +36,34 @@ def test_naive_update_draws_the_same_pose():
     p.naive_update(x=0.5, y=0.5, theta=0.3)
     assert len(p.ax.patches) == 1
     assert "FrameDemo" in all_panels()
+
+
+def test_set_survives_a_stale_echo_from_the_browser(monkeypatch):
+    """Run All: set() runs before the browser renders the slider; the slider's first echo (its
+    old value) must not overwrite the value set from code (issue 12, the start page race)."""
+    p = FrameDemo()
+    before = p.controls["theta"].value
+    p.set(x=0.0, y=2.0, theta=np.pi)
+    p.controls["theta"].value = before            # what a late initial echo does
+    assert p.controls["theta"].value == np.pi
+    np.testing.assert_allclose(p.frame.g, [0.0, 2.0, np.pi])
+    # after the echo window a student's drag back to that value is an ordinary change
+    monkeypatch.setattr(FrameDemo, "echo_window", 0.0)
+    p.controls["theta"].value = before
+    np.testing.assert_allclose(p.frame.g, [0.0, 2.0, before])
+
+
+def test_browser_rounding_keeps_exact_values():
+    """The browser shows sliders on their grid (min + k * step) and may echo the rounded position:
+    neither the starting values nor values set from code change because of such an echo."""
+    p = FrameDemo()
+    start = p.values()["theta"]                   # 0.8, off the grid -pi + k * 0.01
+    p.controls["theta"].value = -np.pi + round((start + np.pi) / 0.01) * 0.01   # the first render's echo
+    assert p.values()["theta"] == start
+    np.testing.assert_allclose(p.frame.g[2], start)
+    p.set(x=0.123456)
+    p.controls["x"].value = 0.12                 # the browser's echo of its rounded position
+    assert p.values()["x"] == 0.123456           # keeps the exact value set from code
+    np.testing.assert_allclose(p.frame.g[0], 0.123456)
+    p.controls["x"].value = 0.5                  # a real move is a real change
+    np.testing.assert_allclose(p.frame.g[0], 0.5)

@@ -1,34 +1,79 @@
-"""Exercise checkers for the 13 exercises of chapters 1-3, in the spirit of Kaggle's learntools.
+"""Exercise checkers for the course's exercises, in the spirit of Kaggle's learntools.
 
 Usage in an exercise notebook::
 
-    from gm_core.checks import ex1_4, progress
-    ex1_4.a.check(exp_left)     # -> Verdict: passed / failed / unattempted, with a message
+    from gm_core.checks import ex1_4, progress, progress_widget
+    ex1_4.a.check(exp_left)     # Correct / Not yet / Unattempted, with a message
     ex1_4.a.hint()              # graded hints: hint(2), hint(3) say more
     ex1_4.a.solution()          # the key result and the worked-solution notebook to open
-    progress()                  # {"1.1": "passed" | "failed" | "unattempted", ..., "3.4": ...}
+    progress()                  # {"1.1": "passed" | "in progress" | "failed" | "unattempted", ...}
+    progress_widget()           # the same as a table, with pending course updates
 
 Every exercise is an object ``exN_M`` whose parts are attributes (``ex2_3.a``, ``ex2_3.b``, ...).
-A check never raises into the notebook. Conceptual parts (``ChoicePart``) also have ``.widget()``;
-exercise 1.5 has ``ex1_5.slide_rule()``. ``progress_widget()`` shows the record as a table.
+A check never raises into the notebook and never hangs: your code runs in a separate process
+under a time limit (``set_time_limit(seconds)``; see ``_sandbox``). ``check(answer, strict=True)``
+raises AssertionError instead, for nbgrader / otter-grader test cells. Inside a student workspace
+progress is saved in ``workspace/.progress.json``; ``reset_progress()`` forgets it.
+
+Adding a chapter: write ``gm_core/checks/chN.py`` creating its ``Exercise`` objects (they register
+themselves); every module named ``ch<number>.py`` in this folder is imported here, and its
+exercises are available as ``gm_core.checks.exN_M`` and listed by ``progress()``.
 
 numpy only at import time: sympy is used only for sympy answers and ipywidgets only for widgets.
 """
 from __future__ import annotations
 
-from ._core import (EXERCISE_IDS, FAILED, PASSED, REGISTRY, UNATTEMPTED, ChoicePart, CustomPart,
-                    Exercise, FunctionPart, Part, TuplePart, Verdict, part_progress, progress,
-                    reset_progress)
-from .ch1 import ex1_1, ex1_2, ex1_3, ex1_4, ex1_5
-from .ch2 import ex2_1, ex2_2, ex2_3, ex2_4
-from .ch3 import ex3_1, ex3_2, ex3_3, ex3_4
+import importlib
+import pkgutil
+import re
+
+from ._choice import ChoicePart
+from ._core import (
+    FAILED,
+    IN_PROGRESS,
+    PASSED,
+    REGISTRY,
+    UNATTEMPTED,
+    CustomPart,
+    Exercise,
+    FunctionPart,
+    Part,
+    TuplePart,
+    Verdict,
+    exercise_ids,
+    part_progress,
+    progress,
+    reset_progress,
+    solutions_viewed,
+)
+from ._progress import pending_updates
+from ._sandbox import set_time_limit
+
+
+def _chapter_modules():
+    names = [m.name for m in pkgutil.iter_modules(__path__) if re.fullmatch(r"ch\d+", m.name)]
+    return sorted(names, key=lambda n: int(n[2:]))
+
+
+for _name in _chapter_modules():
+    importlib.import_module(f".{_name}", __name__)
 
 __all__ = [
-    "progress", "progress_widget", "part_progress", "reset_progress", "exercise", "Verdict",
-    "EXERCISE_IDS", "PASSED", "FAILED", "UNATTEMPTED",
-    "ex1_1", "ex1_2", "ex1_3", "ex1_4", "ex1_5", "ex2_1", "ex2_2", "ex2_3", "ex2_4",
-    "ex3_1", "ex3_2", "ex3_3", "ex3_4",
-]
+    "progress", "progress_widget", "part_progress", "reset_progress", "exercise", "exercise_ids",
+    "Verdict", "EXERCISE_IDS", "PASSED", "FAILED", "UNATTEMPTED", "IN_PROGRESS", "set_time_limit",
+    "course_updates", "pending_updates", "solutions_viewed",
+    "Part", "FunctionPart", "TuplePart", "ChoicePart", "CustomPart", "Exercise",
+] + ["ex" + i.replace(".", "_") for i in exercise_ids()]
+
+
+def __getattr__(name):
+    # EXERCISE_IDS and every exN_M come from the registry, so a new chapter module needs no edit here
+    if name == "EXERCISE_IDS":
+        return exercise_ids()
+    m = re.fullmatch(r"ex(\d+)_(\d+)", name)
+    if m and f"{m.group(1)}.{m.group(2)}" in REGISTRY:
+        return REGISTRY[f"{m.group(1)}.{m.group(2)}"]
+    raise AttributeError(f"module 'gm_core.checks' has no attribute {name!r}")
 
 
 def exercise(ex_id):
@@ -37,6 +82,32 @@ def exercise(ex_id):
 
 
 def progress_widget():
-    """A small ipywidgets table of progress() for this kernel (with a Refresh button)."""
+    """A small table of progress() (all exercises, saved record), with pending course updates."""
     from ._widgets import progress_widget as _pw
     return _pw()
+
+
+def course_updates():
+    """Show the course updates waiting in your workspace (once), e.g. on the start page.
+
+    Each entry is an exercise you had edited when the course changed it: your file is kept, and
+    the new version sits beside it. Returns None (the list is displayed); ``pending_updates()``
+    returns it as data.
+    """
+    from ._display import in_notebook
+    from ._widgets import updates_html
+    pending = pending_updates(mark_seen=True)
+    if not pending:
+        text = "No course updates are waiting in your workspace."
+        if in_notebook():
+            from IPython.display import HTML, display
+            display(HTML(f"<p style='color:#555'>{text}</p>"))
+        else:
+            print(text)
+        return
+    if in_notebook():
+        from IPython.display import HTML, display
+        display(HTML(updates_html(pending)))
+    else:
+        for n in pending:
+            print(f"Course update: your {n['file']} is kept; the new version is {n['new_version']}")

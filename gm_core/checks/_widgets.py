@@ -10,7 +10,16 @@ import html
 
 import numpy as np
 
-from ._core import EXERCISE_IDS, FAILED, PASSED, UNATTEMPTED, part_progress, progress
+from ._core import exercise_ids, part_progress, progress, solutions_viewed
+from ._display import COLORS
+from ._progress import (
+    FAILED,
+    IN_PROGRESS,
+    PASSED,
+    UNATTEMPTED,
+    find_workspace,
+    pending_updates,
+)
 
 
 def choice_widget(part):
@@ -24,7 +33,7 @@ def choice_widget(part):
 
     def on_click(_):
         v = part.check(radio.value, quiet=True)
-        color = {PASSED: "#1a7f37", FAILED: "#b42318"}.get(v.status, "#6e7781")
+        color = COLORS.get(v.status, "#6e7781")
         out.value = f'<span style="color:{color}"><b>{v.status}</b>: {html.escape(v.message)}</span>'
 
     button.on_click(on_click)
@@ -81,8 +90,8 @@ def slide_rule_svg(a, b):
              # the slide (C scale)
              f'<rect x="{_PAD + shift - 8:.1f}" y="20" width="{_DECADE + 16}" height="56" '
              'fill="#fffbe8" stroke="#999"/>',
-             f'<text x="4" y="64" font-size="13" font-weight="bold">C</text>',
-             f'<text x="4" y="100" font-size="13" font-weight="bold">D</text>']
+             '<text x="4" y="64" font-size="13" font-weight="bold">C</text>',
+             '<text x="4" y="100" font-size="13" font-weight="bold">D</text>']
     parts += _ticks(_PAD + shift, 76, True, 1)
     parts += _ticks(_PAD, 76, False, 2)
     parts.append(f'<line x1="{cursor:.1f}" y1="8" x2="{cursor:.1f}" y2="142" stroke="#b42318" '
@@ -122,30 +131,47 @@ def slide_rule(a=2.0, b=3.0):
 
 
 # ------------------------------------------------------------------------------ progress
-_ICON = {PASSED: "&#10004;", FAILED: "&#10008;", UNATTEMPTED: "&middot;"}
-_COLOR = {PASSED: "#1a7f37", FAILED: "#b42318", UNATTEMPTED: "#6e7781"}
+_ICON = {PASSED: "&#10004;", FAILED: "&#10008;", UNATTEMPTED: "&middot;", IN_PROGRESS: "&#9680;"}
 
 
-def progress_html():
-    """An HTML table of the 13 exercises' status in this kernel (with parts passed)."""
+def updates_html(pending):
+    """An HTML list of pending course updates (the student's kept file and the new version)."""
+    items = "".join(
+        f"<li>your <code>{html.escape(n['file'])}</code> is kept as you left it; the course's new "
+        f"version is beside it: <code>{html.escape(n['new_version'])}</code></li>" for n in pending)
+    return (f'<div style="border-left:4px solid {COLORS["notice"]};padding:4px 10px">'
+            f'<b style="color:{COLORS["notice"]}">Course updates</b><ul>{items}</ul>'
+            "Open the new version to see what changed; copy over what you want to keep.</div>")
+
+
+def progress_html(mark_seen=False):
+    """An HTML table of every exercise's status (the saved record), with parts passed."""
     status = progress()
     parts = part_progress()
+    viewed = solutions_viewed()
     rows = []
-    for ex_id in EXERCISE_IDS:
+    for ex_id in exercise_ids():
         s = status[ex_id]
         p = parts.get(ex_id, {})
         done = sum(v == PASSED for v in p.values())
-        rows.append(f'<tr><td>{ex_id}</td><td style="color:{_COLOR[s]}">{_ICON[s]} {s}</td>'
-                    f'<td style="color:#555">{done}/{len(p)} parts</td></tr>')
-    return ('<table style="font-size:90%"><tr><th>exercise</th><th>status</th><th></th></tr>'
-            + "".join(rows) + "</table>")
+        seen = viewed.get(ex_id, [])
+        note = f"solution viewed: {', '.join(seen)}" if seen else ""
+        rows.append(f'<tr><td>{ex_id}</td><td style="color:{COLORS[s]}">{_ICON[s]} {s}</td>'
+                    f'<td style="color:#555">{done}/{len(p)} parts</td>'
+                    f'<td style="color:#555">{html.escape(note)}</td></tr>')
+    where = ("saved in your workspace" if find_workspace() is not None
+             else "this kernel only (not in a workspace)")
+    table = ('<table style="font-size:90%"><tr><th>exercise</th><th>status</th><th></th><th></th>'
+             "</tr>" + "".join(rows) + f'</table><span style="color:#555;font-size:85%">Record: {where}.</span>')
+    pending = pending_updates(mark_seen=mark_seen)
+    return (updates_html(pending) if pending else "") + table
 
 
 def progress_widget():
-    """A small widget showing progress(); its Refresh button re-reads the record."""
+    """A small widget showing progress() and pending course updates; Refresh re-reads the record."""
     import ipywidgets as W
 
-    view = W.HTML(progress_html())
+    view = W.HTML(progress_html(mark_seen=True))
     button = W.Button(description="Refresh", layout=W.Layout(width="90px"))
 
     def refresh(_=None):

@@ -3,9 +3,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..groups import SE2, wrap_angle
-from ._core import ChoicePart, CustomPart, Exercise, FunctionPart, TuplePart, Unattempted, Wrong, \
-    call_student, is_starter, match_shape, rng_inputs, to_array
+from ..groups import SE2
+from ._answers import is_starter, is_sympy, to_numbers
+from ._choice import ChoicePart
+from ._core import (
+    CustomPart,
+    Exercise,
+    FunctionPart,
+    TuplePart,
+    outcome_error,
+    rng_inputs,
+)
+from ._sandbox import Unattempted, Wrong
 
 # ============================================================================ 1.1
 ex1_1 = Exercise("1.1", "Configuration spaces of a universal joint and an offset universal joint", [
@@ -37,25 +46,25 @@ ex1_1 = Exercise("1.1", "Configuration spaces of a universal joint and an offset
         solution_text="(b) T^2 = S^1 x S^1: two independent, unrestricted rotations."),
     ChoicePart(
         "b", "Configuration space when the two rotation axes do not intersect",
-        {"a": "The same space, T^2: only the forward kinematics (where the output link is) changes",
-         "b": "R^2 x S^1, because the offset adds a translation",
-         "c": "SE(2), because the output now translates and rotates",
-         "d": "T^2 x R, one extra dimension for the offset"},
-        "a",
+        {"a": "R^2 x S^1, because the offset between the axes adds a translation",
+         "b": "SE(2), because the output shaft now translates as well as rotates",
+         "c": "Still T^2: only the forward kinematics (where the output link is) changes",
+         "d": "T^2 x R, with one extra dimension that measures the offset between the two axes"},
+        "c",
         feedback={
-            "a": "Correct: the offset is a fixed length, not a degree of freedom. The two joint "
+            "c": "Correct: the offset is a fixed length, not a degree of freedom. The two joint "
                  "angles still describe every configuration, so the space is still T^2; what "
                  "changes is the map from (angle 1, angle 2) to the output link's pose.",
-            "b": "The offset moves the output link, but by an amount fixed by the two angles: it "
+            "a": "The offset moves the output link, but by an amount fixed by the two angles: it "
                  "adds no new independent coordinate.",
-            "c": "The output link's pose does change, but it is determined by the two angles: the "
+            "b": "The output link's pose does change, but it is determined by the two angles: the "
                  "configuration space counts independent coordinates, not the pose's dimension.",
             "d": "A fixed offset is a constant of the mechanism, not a coordinate that can vary.",
         },
         hints=["Does the offset between the axes change while the joint moves?",
                "The configuration space is set by the independent coordinates and their character "
                "(line or circle), not by where the parts end up in space."],
-        solution_text="(a) Still T^2; the offset only changes the forward kinematics."),
+        solution_text="(c) Still T^2; the offset only changes the forward kinematics."),
 ])
 
 
@@ -76,7 +85,7 @@ _scaling_inputs = rng_inputs(12, 6, _pos_pair,
 
 def _diag_params(out, args):
     """Accept the two diagonal entries or the full 2x2 matrix (which must be diagonal)."""
-    arr = to_array(out, "the value your function returned")
+    arr = to_numbers(out, "the value your function returned")
     if arr.shape == (2, 2):
         if abs(arr[0, 1]) > 1e-9 or abs(arr[1, 0]) > 1e-9:
             raise Wrong("your product matrix has non-zero off-diagonal entries, so it is not a "
@@ -186,6 +195,44 @@ def _swap_msg(a, b):
     return f"this is {b}, not {a}: the two are inverses of each other, so check which one you meant."
 
 
+_PRODUCT_LABELS = ("T_g L_{g^-1} T_e L_g on (R+, x)", "T_g R_{g^-1} T_e R_g on (R+, x)",
+                   "T_g L_{g^-1} T_e L_g on SE(2)", "T_g R_{g^-1} T_e R_g on SE(2)")
+
+
+def _product_probe(answer, i):
+    """Student side: the i-th product as given: (symbols left in it, its numbers or None)."""
+    if is_starter(answer):
+        raise Unattempted()
+    if not isinstance(answer, (list, tuple)) or len(answer) != 4:
+        raise Wrong("give a tuple of the four simplified products, in the order of the prompt.")
+    if all(is_starter(a) for a in answer):
+        raise Unattempted()
+    item = answer[i]
+    if is_starter(item):
+        raise Wrong(f"{_PRODUCT_LABELS[i]} is still None.")
+    free = sorted(str(x) for x in getattr(item, "free_symbols", ())) if is_sympy(item) else []
+    if free:
+        return [free, None]
+    return [[], to_numbers(item, _PRODUCT_LABELS[i])]
+
+
+def _product_judge(outcomes):
+    for i, o in enumerate(outcomes):
+        if o["k"] != "ok":
+            outcome_error(o, "your products", "")
+        free, value = o["v"]
+        label = _PRODUCT_LABELS[i]
+        if free:
+            raise Wrong(f"{label} still contains {', '.join(free)}: simplify it (sp.simplify) until "
+                        "the symbols cancel; that cancellation is what the exercise shows.")
+        n = 1 if i < 2 else 3
+        value = np.asarray(value, dtype=float)
+        if value.size != n * n or not np.allclose(value.reshape(n, n), np.eye(n), atol=1e-12):
+            raise Wrong(f"{label} should simplify to the identity{' matrix' if n == 3 else ' 1'}; "
+                        "yours does not. Check the order of the factors and parts (a) and (b).")
+    return "Correct: each product simplifies to the identity, so each pair are inverses."
+
+
 ex1_3 = Exercise("1.3", "T_g L_{g^-1} = (T_e L_g)^-1 and T_g R_{g^-1} = (T_e R_g)^-1", [
     TuplePart(
         "a", "On (R+, x): the four lifted actions as functions of g",
@@ -216,156 +263,32 @@ ex1_3 = Exercise("1.3", "T_g L_{g^-1} = (T_e L_g)^-1 and T_g R_{g^-1} = (T_e R_g
         reference=(_TgL_ginv, _TeL_g, _TgR_ginv, _TeR_g),
         wrong=[(_TeL_g, _TeL_g, _TgR_ginv, _TeR_g)],
         starter=(None, None, None, None)),
+    CustomPart(
+        "c", "Show the identities: the four products, simplified: (T_g L_{g^-1} T_e L_g, "
+             "T_g R_{g^-1} T_e R_g) on (R+, x), then the same two on SE(2)",
+        lambda: [lambda ans, i=i: _product_probe(ans, i) for i in range(4)], _product_judge,
+        hints=["Multiply the pairs from parts (a) and (b) in the order T_g L_{g^-1} times T_e L_g.",
+               "sp.simplify(M1 * M2) on SE(2): the sines and cosines combine through "
+               "cos^2 + sin^2 = 1."],
+        solution_text="All four products simplify to the identity (1 on (R+, x), I_3 on SE(2)).",
+        reference=(1, 1, np.eye(3), np.eye(3)), wrong=[(1, 1, np.eye(3), 2 * np.eye(3))],
+        starter=(None, None, None, None), weight=1.0),
 ])
 
 
 # ============================================================================ 1.4
-def _se2_vec(out, args):
-    """Accept (x, y, theta) or a 3x3 homogeneous matrix; wrap the angle to (-pi, pi]."""
-    arr = to_array(out, "the value your function returned")
-    if arr.shape == (3, 3):
-        arr = np.array([arr[0, 2], arr[1, 2], np.arctan2(arr[1, 0], arr[0, 0])])
-    arr = match_shape(arr, (3,), "the value your function returned")
-    return np.array([arr[0], arr[1], wrap_angle(arr[2])])
-
-
-def _exp_ref(xi):
-    e = SE2.exp(np.asarray(xi, dtype=float))
-    return np.array([e[0], e[1], wrap_angle(e[2])])
-
-
-_XI_EDGES = [(np.array(v, dtype=float),) for v in (
-    [1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [1.0, 0.0, 1e-9], [0.0, 1.0, np.pi], [1.0, 0.0, 2 * np.pi],
-    [0.3, -0.2, -1.5], [1.0, 0.0, 1e-5], [0.0, 0.0, 2.0])]
-_xi_inputs = rng_inputs(14, 6, lambda rng: (rng.uniform(-3, 3, 3),), edges=_XI_EDGES)
-
-
-def _exp_wrong_sign(xi):
-    vx, vy, w = xi
-    return _exp_ref([vx, vy, w]) * np.array([1, 1, 1]) if w == 0 else _exp_ref(
-        [vx, vy, -w]) * np.array([1, 1, -1])
-
-
-_EXP_MISTAKES = [
-    (lambda xi: np.array([xi[0], xi[1], wrap_angle(xi[2])]),
-     "your function returns xi itself: that is the exponential of the additive group (R^2 x S^1, +), "
-     "the straight-line 'hockey puck' path of Figure 1.19, not the SE(2) arc."),
-    (_exp_wrong_sign, "the arc bends the wrong way: with a positive rotational velocity the path "
-     "curves to the left of its initial direction."),
-]
-
-
-def _exp_part(name, side):
-    field = "left-invariant field X_L(g) = T_e L_g xi, (1.46)" if side == "left" else \
-        "right-invariant field X_R(g) = T_e R_g xi, (1.47)"
-    return FunctionPart(
-        name, f"Closed-form {side} exponential exp(xi) as a function of xi = (vx, vy, w)",
-        ref=_exp_ref, inputs=_xi_inputs, arg_names=("xi",), shape=(3,), postprocess=_se2_vec,
-        rtol=1e-6, atol=1e-7, sympy_names=("vx", "vy", "w"),
-        sympy_args=lambda xi: (xi[0], xi[1], xi[2]), sympy_ok=lambda xi: abs(xi[2]) > 1e-3,
-        mistakes=_EXP_MISTAKES,
-        hints=[f"Write the flow of the {field} as three ODEs for x, y and theta, starting at e.",
-               "theta(t) = w t comes first; the other two equations then have explicit right-hand "
-               "sides (left field) or form a linear system x' = vx - w y, y' = vy + w x (right field).",
-               "Integrate to t = 1. Your formula divides by w: treat w = 0 (a straight line) "
-               "separately, or use sin(w)/w and (1 - cos w)/w written to avoid 0/0."],
-        solution_text="exp(vx, vy, w) = ((vx sin w - vy (1 - cos w))/w, (vx (1 - cos w) + vy sin w)/w, "
-                      "w), with the limit (vx, vy, 0) at w = 0. Both fields give the same point.",
-        reference=lambda xi: SE2.exp(np.asarray(xi, dtype=float)), wrong=[lambda xi: np.asarray(xi)])
-
-
-def _helix_ref(xi):
-    vx, vy, w = np.asarray(xi, dtype=float)
-    v = np.hypot(vx, vy)
-    return np.array([2 * np.pi * np.sign(w), 2 * v / abs(w), v])
-
-
-def _helix_inputs():
-    yield (np.array([1.0, 0.0, 1.0]),)
-    yield (np.array([0.0, 0.0, 2.0]),)
-    yield (np.array([1.0, 1.0, -0.5]),)
-    rng = np.random.default_rng(15)
-    for _ in range(5):
-        w = rng.choice([-1, 1]) * rng.uniform(0.2, 4)
-        yield (np.array([rng.uniform(-2, 2), rng.uniform(-2, 2), w]),)
-
-
-def _d_methods_judge(answer):
-    keys = ("euler_left", "euler_right", "product", "taylor")
-    if not isinstance(answer, dict) or not answer:
-        raise Wrong("give a dict {'euler_left': f, 'euler_right': f, 'product': f, 'taylor': f} of "
-                    "functions f(xi, n).")
-    missing = [k for k in keys if k not in answer]
-    if missing:
-        raise Wrong(f"your dict has no entry for {', '.join(repr(k) for k in missing)}.")
-    if all(is_starter(answer.get(k)) for k in keys):
-        raise Unattempted()
-    for k in keys:
-        if k not in answer or is_starter(answer[k]):
-            raise Wrong(f"the entry {k!r} is missing or still None.")
-        if not callable(answer[k]):
-            raise Wrong(f"answer[{k!r}] is not a function f(xi, n).")
-    for xi in (np.array([1.0, 0.0, 0.5]), np.array([1.0, 0.0, 2.0]), np.array([1.0, 0.0, -4.0])):
-        exact = _exp_ref(xi)
-        errs = {}
-        for k in keys:
-            ns = (40, 80) if k != "taylor" else (10, 30)
-            es = []
-            for n in ns:
-                out = call_student(answer[k], (xi, n), f"answer[{k!r}]")
-                if is_starter(out):
-                    raise Unattempted(f"answer[{k!r}] still returns None.")
-                got = _se2_vec(out, None)
-                d = got - exact
-                d[2] = wrap_angle(d[2])
-                es.append(float(np.linalg.norm(d)))
-            errs[k] = es
-            if k == "taylor":
-                if es[1] > 1e-7:
-                    raise Wrong(f"with 30 terms your Taylor sum is still {es[1]:.1e} away from the "
-                                f"closed form for xi = {tuple(xi)}; the series should have converged.")
-            else:
-                if es[0] < 1e-12 and es[1] < 1e-12:
-                    raise Wrong(f"answer[{k!r}] returns the exact exponential for every n; implement "
-                                "the n-step method itself so that its convergence can be seen.")
-                ratio = es[1] / es[0] if es[0] > 0 else 0.0
-                if not (es[1] < 0.2 * max(1.0, abs(xi[2])) and 0.35 < ratio < 0.65):
-                    raise Wrong(f"answer[{k!r}] does not converge to the closed form at first order "
-                                f"for xi = {tuple(xi)} (errors {es[0]:.2e} at n=40, {es[1]:.2e} at "
-                                "n=80): check the step size 1/n and that you take n steps.")
-    return "Correct: both Euler flows and the cumulative product converge at first order (error ~ 1/n), " \
-           "the Taylor sum factorially fast."
-
-
-def _euler(xi, n, side):
-    xi = np.asarray(xi, dtype=float)
-    g = np.zeros(3)
-    for _ in range(int(n)):
-        if side == "left":
-            g = g + SE2.body_to_world(g, xi) / n
-        else:
-            g = g + SE2.spatial_to_world(g, xi) / n
-    return g
-
-
-def _product(xi, n):
-    return np.linalg.matrix_power(np.eye(3) + SE2.hat(np.asarray(xi, dtype=float)) / n, int(n))
-
-
-def _taylor(xi, n):
-    X = SE2.hat(np.asarray(xi, dtype=float))
-    total, term = np.zeros((3, 3)), np.eye(3)
-    for k in range(int(n)):
-        total = total + term
-        term = term @ X / (k + 1)
-    return total
-
-
-#: Reference implementations of the four routes of exercise 1.4d (also used by the tests).
-EXP_METHODS = {"euler_left": lambda xi, n: _euler(xi, n, "left"),
-               "euler_right": lambda xi, n: _euler(xi, n, "right"),
-               "product": _product, "taylor": _taylor}
-
+from ._ch1_exp import (  # noqa: E402,F401
+    EXP_METHODS,
+    _d_judge,
+    _d_probes,
+    _euler,
+    _exp_part,
+    _exp_ref,
+    _helix_inputs,
+    _helix_ref,
+    _product,
+    _taylor,
+)
 
 ex1_4 = Exercise("1.4", "The exponential map on SE(2)", [
     _exp_part("a", "left"),
@@ -390,7 +313,7 @@ ex1_4 = Exercise("1.4", "The exponential map on SE(2)", [
                       "2 |(vx, vy)| / |w|, xy arclength in unit time = |(vx, vy)|.",
         reference=_helix_ref, wrong=[lambda xi: _helix_ref(xi) * np.array([1, 0.5, 1])]),
     CustomPart(
-        "d", "Four numerical routes to exp: dict of functions f(xi, n)", _d_methods_judge,
+        "d", "Four numerical routes to exp: dict of functions f(xi, n)", _d_probes, _d_judge,
         hints=["Euler on the left field: g <- g + (1/n) T_e L_g xi, n times. On the right field use "
                "T_e R_g instead.",
                "Cumulative product: multiply n copies of (I + xi_hat / n). Taylor: sum xi_hat^k / k! "
@@ -406,28 +329,27 @@ ex1_4 = Exercise("1.4", "The exponential map on SE(2)", [
         starter={"euler_left": None, "euler_right": None, "product": None, "taylor": None}),
     ChoicePart(
         "d_rates", "How fast do the methods converge?",
-        {"a": "All four converge at the same rate, like 1/n",
-         "b": "Euler (left and right) and the cumulative product: error ~ 1/n; Taylor: faster than "
-              "any power of 1/n",
-         "c": "Taylor: error ~ 1/n; the others converge factorially",
-         "d": "Euler on the right field is exact for every n"},
-        "b",
-        feedback={"b": "Correct: the first three are first-order methods; the Taylor tail is bounded "
+        {"a": "All four converge at the same rate: the error halves when n doubles",
+         "b": "Taylor: error ~ 1/n; Euler and the cumulative product converge factorially",
+         "c": "Euler on the right-invariant field is exact for every n; the other three converge like 1/n",
+         "d": "Euler (both fields) and the product: error ~ 1/n; Taylor: faster than any power of 1/n"},
+        "d",
+        feedback={"d": "Correct: the first three are first-order methods; the Taylor tail is bounded "
                        "by |xi|^n/n!.",
                   "a": "Look at the Taylor curve on a log scale: it drops off a cliff.",
-                  "c": "Swap them: the Taylor remainder shrinks like |xi|^n / n!.",
-                  "d": "Its error halves when n doubles, like the left field's."},
+                  "b": "Swap them: the Taylor remainder shrinks like |xi|^n / n!.",
+                  "c": "Its error halves when n doubles, like the left field's."},
         hints=["Plot the error against n on log-log axes: a straight line of slope -1 is first order."]),
     ChoicePart(
         "d_meaning", "What are the intermediate values of the cumulative product?",
-        {"a": "After k of n factors, (I + xi_hat/n)^k approximates exp((k/n) xi_hat): a point on the "
-              "geodesic at time k/n, so the partial products trace the path",
-         "b": "The partial Taylor sums are points on the geodesic at intermediate times",
-         "c": "The partial products mean nothing until all n factors are in",
-         "d": "They are the body velocities at each step"},
+        {"a": "Points near the geodesic at times k/n: the partial products trace the path",
+         "b": "The partial Taylor sums, not the products, are the points of the geodesic at times k/n",
+         "c": "Nothing until all n factors are in: only the complete product approximates exp(xi)",
+         "d": "The body velocities at each step, which stay equal to xi all along the product"},
         "a",
         feedback={"a": "Correct: each factor is a small step 'from where we are', so the running "
-                       "product is the discretised trajectory (compare (1.xxvii)).",
+                       "product after k factors approximates exp((k/n) xi), a discretised "
+                       "trajectory (compare (1.xxvii)).",
                   "b": "A partial Taylor sum is not even a rigid motion: its 2x2 block is not a "
                        "rotation. It has no meaning as a point on the path.",
                   "c": "Look at what k factors of a unit-time step of length 1/n add up to.",
@@ -440,17 +362,15 @@ ex1_4 = Exercise("1.4", "The exponential map on SE(2)", [
 ex1_5 = Exercise("1.5", "The slide rule and the isomorphism log: (R+, x) -> (R, +)", [
     ChoicePart(
         "a", "How does a slide rule compute products?",
-        {"a": "Each scale marks the number x at the distance log(x) from its index; sliding one "
-              "scale along the other adds distances, and log a + log b = log(ab), so the product is "
-              "read off where the added distances end",
-         "b": "The scales are uniform; sliding adds a + b and a printed table converts sums to products",
-         "c": "Each scale marks x at the distance exp(x); sliding multiplies the distances",
-         "d": "It multiplies by repeated addition: the slide is moved b times by a"},
-        "a",
-        feedback={"a": "Correct: the log map is an isomorphism (1.xii), so adding lengths in (R, +) "
+        {"a": "Its scales are uniform; sliding adds a + b, and a printed table turns sums into products",
+         "b": "Each scale marks x at the distance exp(x) from its index, and sliding multiplies distances",
+         "c": "Each scale marks x at the distance log(x); sliding adds distances: log a + log b = log ab",
+         "d": "It multiplies by repeated addition: the slide is moved along b times by the length of a"},
+        "c",
+        feedback={"c": "Correct: the log map is an isomorphism (1.xii), so adding lengths in (R, +) "
                        "is multiplying numbers in (R+, x).",
-                  "b": "Look at a real C/D scale: the gap from 1 to 2 is much larger than from 9 to 10.",
-                  "c": "Exp would turn products into sums the other way round; distances on the rule "
+                  "a": "Look at a real C/D scale: the gap from 1 to 2 is much larger than from 9 to 10.",
+                  "b": "Exp would turn products into sums the other way round; distances on the rule "
                        "are added, not multiplied.",
                   "d": "One slide, one reading: no repetition involved."},
         hints=["Try the slide rule widget: ex1_5.slide_rule().",
@@ -474,17 +394,16 @@ ex1_5 = Exercise("1.5", "The slide rule and the isomorphism log: (R+, x) -> (R, 
         reference=lambda a: np.log10(a), wrong=[lambda a: np.log(a)]),
     ChoicePart(
         "c", "Why is it interesting that the isomorphism is exp/log?",
-        {"a": "Because log is the inverse of the group exponential of (R+, x): the rule computes in "
-              "the Lie algebra (R, +), and exp(a + b) = exp(a) exp(b) holds because the group is "
-              "commutative; on SE(2) exp(a) exp(b) differs from exp(a + b), so no such rule exists there",
-         "b": "Any bijection would work equally well; exp and log are only familiar choices",
-         "c": "Because exp(a + b) = exp(a) exp(b) on every Lie group, so slide rules exist for all of them",
-         "d": "Because log is a linear function"},
-        "a",
-        feedback={"a": "Correct: the slide rule works in exponential coordinates of a commutative "
-                       "group. For non-commuting elements the product exp(a) exp(b) picks up "
-                       "correction terms (the Lie bracket), a theme the book returns to.",
-                  "b": "A bijection must also turn the group operation into addition, (1.x); that "
+        {"a": "It is not: any bijection would work equally well; exp and log are only the familiar choice",
+         "b": "log inverts the exponential of the commutative group (R+, x); on SE(2) exp(a) exp(b) != exp(a + b)",
+         "c": "Because exp(a + b) = exp(a) exp(b) holds on every Lie group, so slide rules exist for every one of them",
+         "d": "Because log is a linear function, so it turns the products of numbers into sums of lengths"},
+        "b",
+        feedback={"b": "Correct: the rule computes in the Lie algebra (R, +) of a commutative group, "
+                       "where exp(a + b) = exp(a) exp(b). For non-commuting elements the product "
+                       "exp(a) exp(b) picks up correction terms (the Lie bracket), so no such rule "
+                       "exists on SE(2).",
+                  "a": "A bijection must also turn the group operation into addition, (1.x); that "
                        "singles out log up to a constant factor (the base).",
                   "c": "Try it on SE(2): exp of (1, 0, 0) then (0, 0, pi/2) is not exp of their sum.",
                   "d": "log is far from linear; it turns multiplication into addition."},

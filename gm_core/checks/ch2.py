@@ -1,7 +1,7 @@
 """Checkers for the chapter 2 exercises (2.1-2.4): constraints, Jacobians, body frames.
 
-The reference answers are computed here from the group layer alone (gm_core.groups), so they are
-an independent route to the chain code in gm_core.chains; tests compare the two.
+The three-link references call gm_core.chains (one copy of every formula); the independent
+routes (finite differences, the group layer) are in tests/test_checks_ch2.py.
 """
 from __future__ import annotations
 
@@ -9,46 +9,50 @@ import inspect
 
 import numpy as np
 
+from .. import chains
 from ..groups import SE2
-from ._core import (ChoicePart, CustomPart, Exercise, FunctionPart, Unattempted, Wrong, call_student,
-                    describe, is_starter, is_sympy, rng_inputs, sympy_callable, to_array)
+from ._answers import (
+    describe,
+    fmt_value,
+    is_starter,
+    is_sympy,
+    sympy_function,
+    to_numbers,
+)
+from ._choice import ChoicePart  # noqa: F401 - kept for chapter modules that add choices
+from ._core import CustomPart, Exercise, FunctionPart, outcome_error, rng_inputs
+from ._sandbox import Unattempted, Wrong
 
 # ============================================================================ 2.1
 _R2 = np.sqrt(2.0)
 
 
 def _scalar_fn(f, label):
-    """Wrap a constraint given as f(p), f(x, y, z) or a sympy expression in x, y, z."""
+    """Student side: a constraint given as f(p), f(x, y, z), f(x, y, z=0), f(*p), a sympy
+    expression in x, y, z or an equation Eq(lhs, rhs) (read as lhs - rhs)."""
     if is_starter(f):
         raise Unattempted()
-    if is_sympy(f) and hasattr(f, "free_symbols"):
-        g = sympy_callable(f, ("x", "y", "z"), label)
-        return lambda p: g(p[0], p[1], p[2])
+    if is_sympy(f):
+        import sympy as sp
+        expr = f.lhs - f.rhs if isinstance(f, sp.Equality) else f
+        if hasattr(expr, "free_symbols"):
+            g = sympy_function(expr, ("x", "y", "z"), None, label)
+            return lambda p: g(p[0], p[1], p[2])
     if not callable(f):
         raise Wrong(f"{label} is {describe(f)}; a function of the point p = (x, y, z) (or a sympy "
                     "expression in x, y, z) was expected.")
     try:
-        n = len([q for q in inspect.signature(f).parameters.values()
-                 if q.default is q.empty and q.kind in (q.POSITIONAL_ONLY, q.POSITIONAL_OR_KEYWORD)])
+        params = list(inspect.signature(f).parameters.values())
+        positional = [q for q in params if q.kind in (q.POSITIONAL_ONLY, q.POSITIONAL_OR_KEYWORD)]
+        spread = any(q.kind == q.VAR_POSITIONAL for q in params) or len(positional) >= 3
     except (TypeError, ValueError):
-        n = 1
-    if n == 3:
+        spread = False
+    if spread:
         return lambda p: f(p[0], p[1], p[2])
     return f
 
 
-def _value(f, p, label):
-    out = call_student(f, (p,), label)
-    if is_starter(out):
-        raise Unattempted(f"{label} still returns None.")
-    arr = to_array(out, f"the value of {label} at p = {tuple(np.round(p, 3))}")
-    if arr.size != 1:
-        raise Wrong(f"{label} should return one number (a constraint function is scalar); it "
-                    f"returned shape {arr.shape}.")
-    return float(arr.reshape(()))
-
-
-def _judge_2_1(answer):
+def _pair(answer):
     if is_starter(answer):
         raise Unattempted()
     if not isinstance(answer, (tuple, list)) or len(answer) != 2:
@@ -58,52 +62,127 @@ def _judge_2_1(answer):
     for label, a in zip(("f1", "f2"), answer):
         if is_starter(a):
             raise Wrong(f"{label} is still None; give both constraint functions.")
-    f1 = _scalar_fn(answer[0], "f1")
-    f2 = _scalar_fn(answer[1], "f2")
-    rng = np.random.default_rng(21)
-    # f1: its zero set must be a sphere about the origin; it must contain the circle, radius sqrt 2.
-    for _ in range(12):
-        u = rng.normal(size=3)
-        u /= np.linalg.norm(u)
-        if abs(_value(f1, _R2 * u, "f1")) > 1e-7:
-            for r in (1.0, 2.0):
-                if abs(_value(f1, r * u, "f1")) < 1e-9:
-                    raise Wrong(f"f1 vanishes on a sphere of radius {r:g}; the circle x^2 + y^2 = 1, "
-                                "z = 1 is not on that sphere, so the two constraints would have no "
-                                "common solutions there.")
-            raise Wrong("f1 does not vanish everywhere on one sphere centred at (0, 0, 0); the "
-                        "exercise asks for a first constraint that fixes the distance from the origin.")
-        for r in (0.5, 1.0, 1.3, 1.5, 2.0):
-            if abs(_value(f1, r * u, "f1")) < 1e-7:
-                raise Wrong(f"f1 also vanishes at distance {r:g} from the origin, so its zero set is "
-                            "more than one sphere.")
-    # f2 must vanish on the circle and nowhere else on the sphere.
-    for t in rng.uniform(0, 2 * np.pi, 8):
-        p = np.array([np.cos(t), np.sin(t), 1.0])
-        if abs(_value(f2, p, "f2")) > 1e-7:
-            raise Wrong(f"f2 does not vanish at the circle point {tuple(np.round(p, 3))}, so the "
-                        "accessible manifold misses part of the circle.")
-        q = np.array([np.cos(t), np.sin(t), -1.0])
-        if abs(_value(f2, q, "f2")) < 1e-7:
-            raise Wrong("f2 also vanishes on the circle z = -1 of the same sphere, so the accessible "
-                        "manifold would be two circles, not one.")
-    for _ in range(20):
-        u = rng.normal(size=3)
-        u /= np.linalg.norm(u)
-        p = _R2 * u
-        if abs(p[2] - 1.0) < 1e-3:
-            continue
-        if abs(_value(f2, p, "f2")) < 1e-7:
-            raise Wrong(f"f2 also vanishes at {tuple(np.round(p, 3))}, a point of the sphere off the "
-                        "circle, so the accessible manifold is larger than the circle.")
+    return answer
+
+
+def _values(answer, i, points):
+    """Student side: f_i at every point (NaN where it gives no single number)."""
+    label = ("f1", "f2")[i]
+    f = _scalar_fn(_pair(answer)[i], label)
+    out = np.full(len(points), np.nan)
+    for j, p in enumerate(points):
+        v = f(np.array(p))
+        if is_starter(v):
+            if j == 0:
+                raise Unattempted(f"{label} still returns None.")
+            raise Wrong(f"{label} returned None at p = {fmt_value(p)} (a branch without return?).")
+        arr = to_numbers(v, f"the value of {label} at p = {fmt_value(np.round(p, 3))}")
+        if arr.size != 1:
+            raise Wrong(f"{label} should return one number (a constraint function is scalar); it "
+                        f"returned shape {arr.shape}.")
+        out[j] = float(arr.reshape(()))
+    return out
+
+
+def _unit(rng, n):
+    u = rng.normal(size=(n, 3))
+    return u / np.linalg.norm(u, axis=1, keepdims=True)
+
+
+_rng = np.random.default_rng(21)
+_SPHERE = _R2 * _unit(_rng, 30)
+_RADII = np.linspace(0.05, 4.0, 240)
+_DIRS = np.vstack([_unit(_rng, 6), [[0, 0, 1.0], [0, 0, -1.0]]])
+_RAYS = (_DIRS[:, None, :] * _RADII[None, :, None]).reshape(-1, 3)
+_CIRCLE = np.array([[np.cos(t), np.sin(t), 1.0] for t in np.linspace(0, 2 * np.pi, 24, endpoint=False)])
+_ZS = np.array([z for z in np.linspace(-1.4, 1.4, 57) if abs(z - 1.0) > 0.04])
+_LONS = np.linspace(0, 2 * np.pi, 48, endpoint=False)
+_LATS = np.array([[np.sqrt(2 - z * z) * np.cos(t), np.sqrt(2 - z * z) * np.sin(t), z]
+                  for z in _ZS for t in _LONS])
+_MZ = np.linspace(-_R2, _R2, 121)
+_MLONS = np.linspace(0, 2 * np.pi, 8, endpoint=False) + 0.3
+_MERIDIANS = np.array([[np.sqrt(max(2 - z * z, 0)) * np.cos(t), np.sqrt(max(2 - z * z, 0)) * np.sin(t), z]
+                       for t in _MLONS for z in _MZ])
+_F1_POINTS = np.vstack([_SPHERE, _RAYS])
+_F2_POINTS = np.vstack([_CIRCLE, _LATS, _MERIDIANS])
+
+
+def _zeros_along(values, scale):
+    """Indices along a sampled curve where the function crosses or (nearly) touches zero."""
+    v = np.asarray(values)
+    tol = 1e-7 * scale
+    idx = set(np.flatnonzero(np.abs(v) <= tol))
+    idx |= {i for i in range(len(v) - 1) if v[i] * v[i + 1] < 0}
+    a = np.abs(v)
+    idx |= {i for i in range(1, len(v) - 1) if a[i] <= a[i - 1] and a[i] <= a[i + 1] and a[i] < 1e-2 * scale}
+    return sorted(idx)
+
+
+def _judge_2_1(outcomes):
+    for o in outcomes:
+        if o["k"] != "ok":
+            outcome_error(o, "your constraint", "a point p")
+    f1 = np.asarray(outcomes[0]["v"], dtype=float)
+    f2 = np.asarray(outcomes[1]["v"], dtype=float)
+    for vals, pts, label in ((f1, _F1_POINTS, "f1"), (f2, _F2_POINTS, "f2")):
+        bad = np.flatnonzero(~np.isfinite(vals))
+        if bad.size:
+            raise Wrong(f"{label} gives NaN or inf at p = {fmt_value(np.round(pts[bad[0]], 3))}.")
+    scale1 = max(1.0, float(np.median(np.abs(f1))))
+    sphere, rays = f1[:len(_SPHERE)], f1[len(_SPHERE):].reshape(len(_DIRS), len(_RADII))
+    if np.any(np.abs(sphere) > 1e-7 * scale1):
+        for r in (1.0, 2.0):
+            k = int(np.argmin(np.abs(_RADII - r)))
+            if np.all(np.abs(rays[:, k]) < 1e-2 * scale1) and np.all(np.abs(rays[:, k]) <= np.abs(rays).min(axis=1) + 1e-12):
+                raise Wrong(f"f1 vanishes on a sphere of radius {r:g}; the circle x^2 + y^2 = 1, "
+                            "z = 1 is not on that sphere, so the two constraints would have no "
+                            "common solutions there.")
+        raise Wrong("f1 does not vanish everywhere on one sphere centred at (0, 0, 0) through the "
+                    "circle; the exercise asks for a first constraint that fixes the distance from "
+                    "the origin.")
+    for ray in rays:
+        for i in _zeros_along(ray, scale1):
+            if abs(_RADII[i] - _R2) > 0.03 and not (i + 1 < len(_RADII) and _RADII[i] < _R2 < _RADII[i + 1]):
+                raise Wrong(f"f1 also vanishes near distance {_RADII[i]:.3g} from the origin, so its "
+                            "zero set is more than one sphere.")
+    scale2 = max(1.0, float(np.median(np.abs(f2))))
+    circle = f2[:len(_CIRCLE)]
+    if np.any(np.abs(circle) > 1e-7 * scale2):
+        p = _CIRCLE[int(np.argmax(np.abs(circle)))]
+        raise Wrong(f"f2 does not vanish at the circle point {fmt_value(np.round(p, 3))}, so the "
+                    "accessible manifold misses part of the circle.")
+    lats = f2[len(_CIRCLE):len(_CIRCLE) + len(_LATS)].reshape(len(_ZS), len(_LONS))
+    for z, row in zip(_ZS, lats):
+        if np.all(np.abs(row) <= 1e-7 * scale2):
+            raise Wrong(f"f2 also vanishes on the whole circle z = {z:.3g} of the same sphere, so "
+                        "the accessible manifold would be more than one circle.")
+        loop = np.append(row, row[0])
+        hits = _zeros_along(loop, scale2)
+        if hits:
+            t = _LONS[hits[0] % len(_LONS)]
+            p = np.array([np.sqrt(2 - z * z) * np.cos(t), np.sqrt(2 - z * z) * np.sin(t), z])
+            raise Wrong(f"f2 also vanishes near {fmt_value(np.round(p, 3))}, a point of the sphere "
+                        "off the circle, so the accessible manifold is larger than the circle.")
+    mer = f2[len(_CIRCLE) + len(_LATS):].reshape(len(_MLONS), len(_MZ))
+    for t, col in zip(_MLONS, mer):
+        for i in _zeros_along(col, scale2):
+            z = _MZ[i]
+            if abs(z - 1.0) > 0.04 and not (i + 1 < len(_MZ) and _MZ[i] < 1.0 < _MZ[i + 1]):
+                p = np.array([np.sqrt(max(2 - z * z, 0)) * np.cos(t), np.sqrt(max(2 - z * z, 0)) * np.sin(t), z])
+                raise Wrong(f"f2 also vanishes near {fmt_value(np.round(p, 3))}, a point of the "
+                            "sphere off the circle, so the accessible manifold is larger than the circle.")
     return ("Correct: f1 = 0 is the sphere of radius sqrt(2) about the origin, and on it f2 = 0 cuts "
             "out exactly the circle x^2 + y^2 = 1, z = 1.")
+
+
+def _probes_2_1():
+    return [lambda ans: _values(ans, 0, _F1_POINTS), lambda ans: _values(ans, 1, _F2_POINTS)]
 
 
 ex2_1 = Exercise("2.1", "Holonomic constraints: the circle as a sphere cut by a second constraint", [
     CustomPart(
         "a", "A pair (f1, f2): f1 fixes the distance from the origin, f1 = f2 = 0 is the circle "
-             "x^2 + y^2 = 1 on the plane z = 1", _judge_2_1,
+             "x^2 + y^2 = 1 on the plane z = 1", _probes_2_1, _judge_2_1,
         hints=["Which sphere about the origin contains the circle? Compute the distance from the "
                "origin of the point (1, 0, 1).",
                "On that sphere, which second condition keeps the circle and throws away everything "
@@ -193,66 +272,33 @@ ex2_2 = Exercise("2.2", "Jacobian of the offset rotary-prismatic arm", [
 
 
 # ============================================================================ 2.3
-def _lengths(lengths):
-    return np.asarray(lengths, dtype=float).reshape(3)
-
-
-def link_poses(alpha, lengths):
-    """Poses of the three link centres relative to the middle link, (3, 3), (2.12)-style chains."""
-    a1, a2 = np.asarray(alpha, dtype=float)
-    l1, l2, l3 = _lengths(lengths)
-    p1 = np.array([-l2 / 2 - l1 / 2 * np.cos(a1), l1 / 2 * np.sin(a1), -a1])
-    p3 = np.array([l2 / 2 + l3 / 2 * np.cos(a2), l3 / 2 * np.sin(a2), a2])
-    return np.stack([p1, np.zeros(3), p3])
-
-
-def link_pose_derivatives(alpha, lengths):
-    """d(link pose)/d(alpha), (3 links, 3, 2)."""
-    a1, a2 = np.asarray(alpha, dtype=float)
-    l1, l2, l3 = _lengths(lengths)
-    D = np.zeros((3, 3, 2))
-    D[0, :, 0] = [l1 / 2 * np.sin(a1), l1 / 2 * np.cos(a1), -1.0]
-    D[2, :, 1] = [-l3 / 2 * np.sin(a2), l3 / 2 * np.cos(a2), 1.0]
-    return D
-
-
 def com_beta(alpha, lengths, weights=None):
-    """beta(alpha): length-weighted mean link-centre position and orientation, (3,); ex. 2.3a."""
-    w = _lengths(lengths) if weights is None else np.asarray(weights, dtype=float)
-    return (w[:, None] * link_poses(alpha, lengths)).sum(0) / w.sum()
+    """beta(alpha): the length-weighted CoM / mean-orientation frame, (3,); ex. 2.3a (gm_core.chains)."""
+    return chains.com_frame(alpha, lengths, weights)[0]
 
 
 def com_dbeta(alpha, lengths):
-    w = _lengths(lengths)
-    return (w[:, None, None] * link_pose_derivatives(alpha, lengths)).sum(0) / w.sum()
-
-
-def frame_jacobian(beta, dbeta):
-    """Body Jacobian (3, 3 + m) of a frame at beta(r) from the reference link, (2.62)."""
-    beta = np.asarray(beta, dtype=float)
-    TR = SE2.right_lifted_action(SE2.inverse(beta), beta)
-    return SE2.Ad_inv(beta) @ np.hstack([np.eye(3), TR @ dbeta])
+    return chains.com_frame(alpha, lengths)[1]
 
 
 def three_link_body_jacobians(alpha, lengths):
-    """Body Jacobians (3, 3, 5) of the link centres, middle link as body frame; (2.57)-(2.59) corrected."""
-    poses = link_poses(alpha, lengths)
-    D = link_pose_derivatives(alpha, lengths)
-    return np.stack([frame_jacobian(poses[i], D[i]) for i in range(3)])
+    """Adapter: gm_core.chains.three_link_jacobians stacked into one (3, 3, 5) array."""
+    return np.stack(chains.three_link_jacobians(alpha, lengths))
 
 
 def com_jacobian(alpha, lengths):
-    return frame_jacobian(com_beta(alpha, lengths), com_dbeta(alpha, lengths))
+    """Body Jacobian (3, 5) of the CoM frame, (2.62) (gm_core.chains)."""
+    return chains.com_frame_jacobians(alpha, lengths)[0]
 
 
 def links_from_com(alpha, lengths):
-    """Link body Jacobians (3, 3, 5) with the CoM frame as body frame, via (2.68)."""
-    beta = com_beta(alpha, lengths)
-    TR = SE2.right_lifted_action(SE2.inverse(beta), beta)
-    P = np.eye(5)
-    P[:3, :3] = SE2.Ad(beta)
-    P[:3, 3:] = -TR @ com_dbeta(alpha, lengths)
-    return three_link_body_jacobians(alpha, lengths) @ P
+    """Link body Jacobians (3, 3, 5) with the CoM frame as body frame, (2.68) (gm_core.chains)."""
+    return np.stack(chains.com_frame_jacobians(alpha, lengths)[1])
+
+
+def _com_dbeta_only(al, le):
+    beta, dbeta = chains.com_frame(al, le)
+    return np.hstack([SE2.Ad_inv(beta), dbeta])
 
 
 def _tl_make(rng):
@@ -267,7 +313,7 @@ _tl_inputs = rng_inputs(23, 6, _tl_make, edges=[(np.zeros(2), np.ones(3)),
 def _links_post(out, args):
     """Accept a (3, 3, 5) array or a sequence of three (3, 5) matrices."""
     if isinstance(out, (list, tuple)) and len(out) == 3:
-        return np.stack([to_array(o, "each link Jacobian") for o in out])
+        return np.stack([to_numbers(o, "each link Jacobian") for o in out])
     return out
 
 
@@ -292,7 +338,7 @@ ex2_3 = Exercise("2.3", "Three-link system: the centre-of-mass / mean-orientatio
         "b", "J_com(alpha, lengths): body Jacobian (3 x 5) of the CoM frame, columns (xi, alpha_dot) "
              "of the middle link",
         ref=com_jacobian, inputs=_tl_inputs, arg_names=("alpha", "lengths"), shape=(3, 5),
-        mistakes=[(lambda al, le: np.hstack([SE2.Ad_inv(com_beta(al, le)), com_dbeta(al, le)]),
+        mistakes=[(_com_dbeta_only,
                    "your shape columns are d beta / d alpha itself; the velocity of the frame "
                    "relative to the middle link must be carried to the frame with T_beta R_beta^-1 "
                    "and Ad_beta^-1, (2.61)-(2.62)."),
@@ -305,7 +351,7 @@ ex2_3 = Exercise("2.3", "Three-link system: the centre-of-mass / mean-orientatio
                "t alpha_dot, and differentiate the pose of the CoM frame."],
         solution_text="J_com = Ad_beta^-1 [ I_3 | T_beta R_beta^-1 d beta/d alpha ].",
         reference=com_jacobian,
-        wrong=[lambda al, le: np.hstack([SE2.Ad_inv(com_beta(al, le)), com_dbeta(al, le)])]),
+        wrong=[_com_dbeta_only]),
     FunctionPart(
         "c", "links(alpha, lengths): the three link body Jacobians (3, 3, 5) with the CoM frame as "
              "system body frame, columns (xi_com, alpha_dot)",
@@ -333,10 +379,69 @@ def _cob(x, y, tg, th):
     return np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
+class ShowThatPart(FunctionPart):
+    """A symbolic "show that" answer: a sympy object, numerically right, from which the symbols
+    ``eliminated`` have dropped out (the property the exercise shows)."""
+
+    kind = "show"
+
+    def __init__(self, *a, eliminated=(), reference_factory=None, **kw):
+        self._reference_factory = reference_factory
+        super().__init__(*a, **kw)
+        self.eliminated = tuple(eliminated)
+
+    @property
+    def reference(self):
+        """A correct answer (built with sympy on first use, so importing stays light)."""
+        if self._reference_factory is not None:
+            return self._reference_factory()
+        return self._reference
+
+    @reference.setter
+    def reference(self, value):
+        self._reference = value
+
+    def _symbols(self, answer):
+        if is_starter(answer):
+            raise Unattempted()
+        if not (is_sympy(answer) or isinstance(answer, (list, tuple))):
+            raise Wrong(f"your answer is {describe(answer)}; this part shows a property, so give the "
+                        "simplified sympy matrix (a function would hide the simplification).")
+        return sorted({str(x) for x in getattr(_as_matrix(answer), "free_symbols", ())})
+
+    def probes(self):
+        return [self._symbols] + super().probes()
+
+    def judge(self, outcomes):
+        if not outcomes:
+            raise Wrong("the check could not evaluate your answer.")
+        if outcomes[0]["k"] != "ok":
+            outcome_error(outcomes[0], "your answer", "")
+        message = super().judge(outcomes[1:])
+        left = [s for s in outcomes[0]["v"] if s in self.eliminated]
+        if left:
+            raise Wrong(f"your matrix has the right values but still contains {', '.join(left)}: "
+                        "simplify it (sp.simplify) so that they drop out; that is what the exercise "
+                        "shows.")
+        return message
+
+
+def _cob_sympy():
+    import sympy as sp
+    tg, th = sp.symbols("theta_g theta_h", real=True)
+    d = th - tg
+    return sp.Matrix([[sp.cos(d), sp.sin(d), 0], [-sp.sin(d), sp.cos(d), 0], [0, 0, 1]])
+
+
+def _as_matrix(answer):
+    import sympy as sp
+    return sp.Matrix(answer) if isinstance(answer, (list, tuple)) else answer
+
+
 ex2_4 = Exercise("2.4", "Ad_h^-1 Ad_g with equal positions is a rotation (change of basis)", [
-    FunctionPart(
-        "a", "The product Ad_h^-1 Ad_g for g = (x, y, theta_g), h = (x, y, theta_h), as a sympy matrix "
-             "in x, y, theta_g, theta_h (or a function of those four numbers)",
+    ShowThatPart(
+        "a", "The product Ad_h^-1 Ad_g for g = (x, y, theta_g), h = (x, y, theta_h), as a simplified "
+             "sympy matrix in x, y, theta_g, theta_h", eliminated=("x", "y"),
         ref=_cob, arg_names=("x", "y", "theta_g", "theta_h"), shape=(3, 3),
         inputs=rng_inputs(24, 6, lambda rng: tuple(rng.uniform(-3, 3, 4)),
                           edges=[(0.0, 0.0, 0.0, 0.0), (2.0, -1.0, 0.3, 0.3), (1.0, 1.0, 0.0, np.pi)]),
@@ -351,7 +456,7 @@ ex2_4 = Exercise("2.4", "Ad_h^-1 Ad_g with equal positions is a rotation (change
                "The translation entries cancel; the 2x2 block is a rotation by theta_g - theta_h."],
         solution_text="Ad_h^-1 Ad_g = [[cos d, sin d, 0], [-sin d, cos d, 0], [0, 0, 1]] with d = "
                       "theta_h - theta_g: the rotation (2.vi), independent of x and y.",
-        reference=_cob, wrong=[lambda x, y, tg, th: _cob(x, y, tg, th).T]),
+        reference_factory=_cob_sympy, wrong=[lambda x, y, tg, th: _cob(x, y, tg, th).T]),
 ])
 
 __all__ = ["ex2_1", "ex2_2", "ex2_3", "ex2_4"]

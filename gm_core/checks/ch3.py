@@ -9,7 +9,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..groups import SE2
-from ._core import ChoicePart, Exercise, FunctionPart, rng_inputs
+from ._choice import ChoicePart
+from ._core import Exercise, FunctionPart, rng_inputs
+
 
 # ============================================================================ 3.1
 def _theta_dd(alpha1, alpha2, R, w):
@@ -40,19 +42,18 @@ ex3_1 = Exercise("3.1", "Differential drive: a holonomic constraint hidden in th
         reference=_theta_dd, wrong=[lambda a1, a2, R, w: -_theta_dd(a1, a2, R, w)]),
     ChoicePart(
         "b", "Which combination of the constraints (3.23)-(3.25) is integrable?",
-        {"a": "The difference of the two no-slip constraints; the no-slide constraint and the sum of "
-              "the no-slip constraints are not integrable",
-         "b": "All three are integrable, so the car cannot reach every pose",
-         "c": "Only the no-slide constraint (3.25)",
-         "d": "None: nonholonomic constraints never hide a holonomic one"},
-        "a",
-        feedback={"a": "Correct: the difference only involves theta_dot and the wheel speeds, whose "
+        {"a": "All three are integrable, so the car cannot reach every pose in the plane",
+         "b": "Only the no-slide constraint (3.25), like the rolling disk's sideways condition",
+         "c": "None of them: nonholonomic constraints never hide a holonomic one inside",
+         "d": "The difference of the two no-slip constraints; the other combinations are not"},
+        "d",
+        feedback={"d": "Correct: the difference only involves theta_dot and the wheel speeds, whose "
                        "coefficients are constant, so it is an exact differential. The rest still "
                        "lets the car reach any (x, y) by parallel parking.",
-                  "b": "Then the car could not parallel park; it can reach every (x, y).",
-                  "c": "The no-slide condition is the rolling disk's constraint (3.vi): it does not "
+                  "a": "Then the car could not parallel park; it can reach every (x, y).",
+                  "b": "The no-slide condition is the rolling disk's constraint (3.vi): it does not "
                        "integrate, since the disk can reach any position.",
-                  "d": "Exercise 3.1 is the counterexample: look at the difference of (3.23) and (3.24)."},
+                  "c": "Exercise 3.1 is the counterexample: look at the difference of (3.23) and (3.24)."},
         hints=["A Pfaffian row integrates when it is the differential of a function; which rows "
                "have constant coefficients in variables whose derivatives they multiply?"]),
 ])
@@ -62,14 +63,14 @@ ex3_1 = Exercise("3.1", "Differential drive: a holonomic constraint hidden in th
 ex3_2 = Exercise("3.2", "Pfaffians with fewer or more than three rows", [
     ChoicePart(
         "a", "What changes if the Pfaffian has fewer than 3 rows?",
-        {"a": "omega_xi is not square and cannot be inverted: the shape velocity no longer fixes "
-              "the body velocity, which is free along the null space of omega_xi (the system can "
-              "drift), so more physics (e.g. momentum) is needed to close the equations",
-         "b": "Nothing: a pseudo-inverse gives the same local connection",
-         "c": "The system becomes overconstrained and only some shape changes are allowed",
-         "d": "The local connection just gets more columns"},
+        {"a": "omega_xi cannot be inverted: the body velocity may drift along its null space",
+         "b": "Nothing: a pseudo-inverse of omega_xi gives the same local connection as before",
+         "c": "The system becomes overconstrained, so only some shape changes remain possible",
+         "d": "The local connection simply gets more columns, one for each missing constraint"},
         "a",
-        feedback={"a": "Correct: with m < 3 rows, xi = -A r_dot + (any null-space vector of omega_xi).",
+        feedback={"a": "Correct: with m < 3 rows, xi = -A r_dot + (any null-space vector of omega_xi): "
+                       "the shape velocity no longer fixes the body velocity, and more physics (e.g. "
+                       "momentum) is needed to close the equations.",
                   "b": "A pseudo-inverse picks one solution of an underdetermined system; the "
                        "physical motion is not determined by the constraints alone.",
                   "c": "That happens with more rows, not fewer.",
@@ -77,18 +78,17 @@ ex3_2 = Exercise("3.2", "Pfaffians with fewer or more than three rows", [
         hints=["Count equations and unknowns in omega_xi xi = -omega_r r_dot when omega has 2 rows."]),
     ChoicePart(
         "b", "And with more than 3 rows?",
-        {"a": "omega_xi is tall: independent extra rows can only all hold if r_dot satisfies "
-              "compatibility conditions, so the system is overconstrained and only some shape "
-              "velocities are allowed; dependent rows (like the two wheels' shared no-slide "
-              "condition) add nothing and can be dropped before computing A from 3 independent rows",
-         "b": "Nothing changes; invert omega_xi as usual",
-         "c": "The body velocity becomes free to drift",
-         "d": "The local connection gets more rows"},
-        "a",
-        feedback={"a": "Correct: A = omega_xi^-1 omega_r uses any 3 independent rows; the others "
-                       "constrain r_dot (e.g. a car whose two wheels must turn at matched speeds).",
-                  "b": "A non-square matrix has no inverse.",
-                  "c": "More constraints remove freedom; drift comes with fewer.",
+        {"a": "Nothing changes: omega_xi is inverted exactly as in the square 3 x 3 case",
+         "b": "The body velocity becomes free to drift along the extra directions",
+         "c": "Extra independent rows restrict r_dot; dependent ones can be dropped",
+         "d": "The local connection gets one more row for each extra constraint row"},
+        "c",
+        feedback={"c": "Correct: independent extra rows can only all hold if r_dot satisfies "
+                       "compatibility conditions (overconstrained; e.g. a car whose two wheels must "
+                       "turn at matched speeds); dependent rows, like the two wheels' shared "
+                       "no-slide condition, add nothing, and A comes from 3 independent rows.",
+                  "a": "A non-square matrix has no inverse.",
+                  "b": "More constraints remove freedom; drift comes with fewer.",
                   "d": "The rows of A are the position directions (3 for SE(2)), however many "
                        "constraints there are."},
         hints=["The differential drive car started with four constraints (3.18)-(3.19) for two "
@@ -135,11 +135,14 @@ def _ack_part(name, drive):
         name, f"A(alpha, R, L): local connection (3 x 2) of the {drive}-wheel-drive kinematic bicycle; "
               "alpha = (drive wheel angle, steering angle), wheel radius R, wheelbase L",
         ref=ref, inputs=_ack_inputs, arg_names=("alpha", "R", "L"), shape=(3, 2),
+        sympy_names=("alpha1", "alpha2", "R", "L"), sympy_args=lambda al, R, L: (al[0], al[1], R, L),
         mistakes=[(_neg(ref), "your sign is reversed: the book writes xi = -A r_dot (3.10), so A = "
                    "omega_xi^-1 omega_r (3.17); driving forward must give xi^x > 0, i.e. A < 0 there."),
                   (other, f"that is the connection of the {'front' if drive == 'rear' else 'rear'}-"
                    "wheel-drive car."),
-                  (lambda al, R, L: ref(al, R, 1.0), "your rotation rate ignores the wheelbase L.")],
+                  (lambda al, R, L: ref(al, R, 1.0), "your rotation rate ignores the wheelbase L."),
+                  (lambda al, R, L: ref(al, 1.0, L), "your connection ignores the wheel radius R: "
+                   "a wheel turning by alpha1 rolls R alpha1.")],
         hints=["Body frame at the middle of the rear axle, x forward; the front wheel sits at "
                "(L, 0) turned by the steering angle alpha2. Each wheel may not slide sideways; the "
                "driven wheel may not slip: its forward speed is R alpha1_dot.",
@@ -252,15 +255,14 @@ ex3_4 = Exercise("3.4", "Local connections of two-link swimmers at low and high 
     _swim_part("b", "high"),
     ChoicePart(
         "c", "What net displacement does a periodic stroke alpha(t) of the two-link swimmer produce?",
-        {"a": "None: with one shape variable, xi = -A(alpha) alpha_dot and the stroke retraces its "
-              "path, so every cycle returns the swimmer to where it started (the scallop theorem)",
-         "b": "A forward displacement proportional to the stroke amplitude",
-         "c": "A sideways displacement at low Re, none at high Re",
-         "d": "It depends on how fast the stroke is executed"},
-        "a",
-        feedback={"a": "Correct: a loop in a one-dimensional shape space encloses no area, so both "
-                       "swimmers only wobble back and forth.",
-                  "b": "Integrate xi = -A(alpha) alpha_dot over a stroke that goes out and back.",
+        {"a": "A forward displacement per cycle, proportional to the stroke amplitude",
+         "b": "None: with one shape variable each stroke retraces its path (scallop theorem)",
+         "c": "A sideways displacement at low Reynolds number, and none at high Reynolds number",
+         "d": "It depends on how fast the stroke is executed: faster strokes travel further"},
+        "b",
+        feedback={"b": "Correct: xi = -A(alpha) alpha_dot, and a loop in a one-dimensional shape "
+                       "space encloses no area, so both swimmers only wobble back and forth.",
+                  "a": "Integrate xi = -A(alpha) alpha_dot over a stroke that goes out and back.",
                   "c": "Both regimes give kinematic systems; the argument is the same for both.",
                   "d": "Kinematic systems are insensitive to pacing (section 3.1)."},
         hints=["With one shape variable, the forward and return strokes trace the same path in "

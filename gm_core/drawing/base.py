@@ -13,6 +13,7 @@ from matplotlib.animation import FuncAnimation
 from matplotlib.patches import Polygon
 
 from ..groups import SE2
+from .toolkit import DPI, PALETTE, new_figure
 
 __all__ = ["testing", "n_frames", "new_figure", "FrameArtist", "BodyArtist", "TrailArtist",
            "SingularFlag", "animate", "jshtml"]
@@ -28,25 +29,10 @@ def n_frames(n: int, under_test: int = 6) -> int:
     return min(n, under_test) if testing() else n
 
 
-def new_figure(nrows=1, ncols=1, *, figsize=(6, 4), subplot_kw=None, **kw):
-    """Create a figure without auto-displaying it (so a panel can place ``fig.canvas`` itself).
-
-    Under ipympl (``%matplotlib widget``) the canvas is a widget; its toolbar header is hidden.
-    """
-    with plt.ioff():
-        fig, ax = plt.subplots(nrows, ncols, figsize=figsize, subplot_kw=subplot_kw, **kw)
-    canvas = fig.canvas
-    if hasattr(canvas, "header_visible"):
-        canvas.header_visible = False
-        canvas.footer_visible = False
-        canvas.resizable = False
-    return fig, ax
-
-
 class FrameArtist:
-    """An SE(2) coordinate frame drawn as two arrows (x axis red, y axis green) at g = (x, y, theta)."""
+    """An SE(2) coordinate frame drawn as two arrows (x axis ``PALETTE["x"]``, y axis ``PALETTE["y"]``) at g."""
 
-    def __init__(self, ax, g=(0.0, 0.0, 0.0), length=0.4, colors=("tab:red", "tab:green"), zorder=5, **kw):
+    def __init__(self, ax, g=(0.0, 0.0, 0.0), length=0.4, colors=(PALETTE["x"], PALETTE["y"]), zorder=5, **kw):
         self.ax = ax
         self.length = float(length)
         self.quiver = ax.quiver([0, 0], [0, 0], [1, 0], [0, 1], color=list(colors), angles="xy",
@@ -70,7 +56,7 @@ class BodyArtist:
 
     def __init__(self, ax, outline, g=(0.0, 0.0, 0.0), **style):
         self.outline = np.asarray(outline, dtype=float)
-        style.setdefault("facecolor", "tab:blue")
+        style.setdefault("facecolor", PALETTE["blue"])
         style.setdefault("alpha", 0.5)
         style.setdefault("edgecolor", "k")
         self.patch = Polygon(self.outline, closed=True, **style)
@@ -145,13 +131,53 @@ def animate(fig, update, frames, interval=50, **kw):
         if testing():
             idx = np.linspace(0, len(frames) - 1, n_frames(len(frames))).round().astype(int)
             frames = [frames[i] for i in idx]
-    return FuncAnimation(fig, update, frames=frames, interval=interval, blit=False, **kw)
+    anim = FuncAnimation(fig, update, frames=frames, interval=interval, blit=False, **kw)
+    anim.gm_figure = fig   # read by jshtml (FuncAnimation keeps its figure only privately)
+    return anim
+
+
+def _robust_jshtml(html, width=None):
+    """Make matplotlib's to_jshtml page robust in JupyterLab (plain string edits of its output).
+
+    * the first frame becomes the ``<img>``'s own ``src`` (with its pixel width), so the image has
+      its size and a picture even before -- or without -- the player's script running;
+    * the player starts once its elements are in the document: JupyterLab may render an output
+      before attaching it (off-screen cells), and the stock script then finds no element and
+      leaves the image empty (0 x 0).
+    """
+    import re
+
+    m = re.search(r'frames\[0\] = "(.*?)"\n', html, flags=re.S)
+    if m:
+        first = m.group(1).replace("\\\n", "")
+        size = f' width="{int(width)}"' if width else ""
+        html = re.sub(r'<img id="(_anim_img\w+)">', lambda k: f'<img id="{k.group(1)}" src="{first}"{size} '
+                      'style="max-width: 100%; height: auto;">', html, count=1)
+    html = re.sub(r"setTimeout\(function\(\) \{\s*(anim\w+ = new Animation\(.*?\);)\s*\}, 0\);",
+                  lambda k: ("(function start(tries) {\n"
+                             "        if (document.getElementById(img_id) === null) {\n"
+                             "            if (tries < 6000) { setTimeout(function() { start(tries + 1); }, 100); }\n"
+                             "            return;\n"
+                             "        }\n"
+                             f"        {k.group(1)}\n"
+                             "    })(0);"), html, count=1, flags=re.S)
+    return html
 
 
 def jshtml(anim, default_mode="loop"):
-    """An IPython HTML object that plays ``anim`` in the page, with no live kernel (to_jshtml)."""
+    """An IPython HTML object that plays ``anim`` in the page, with no live kernel (to_jshtml).
+
+    Frames are rendered at the figure standard's resolution; the page shows its first frame at
+    full size even before the player script runs (see :func:`_robust_jshtml`).
+    """
     from IPython.display import HTML
 
-    html = anim.to_jshtml(default_mode=default_mode)
-    plt.close(anim._fig)
+    fig = getattr(anim, "gm_figure", None)
+    width = None
+    if fig is not None:
+        fig.set_dpi(DPI)          # frames at the standard's resolution: 1 inch = 100 CSS px
+        width = fig.get_figwidth() * DPI
+    html = _robust_jshtml(anim.to_jshtml(default_mode=default_mode), width)
+    if fig is not None:
+        plt.close(fig)
     return HTML(html)

@@ -3,7 +3,11 @@
 Every system has ``connection(r)`` (..., 3, n) with ``xi = -A(r) r_dot`` (3.10), ``pfaffian(r)``
 (..., 3, 3 + n), ``body_velocity(r, r_dot)``, ``singularity(r)`` / ``is_singular(r)``, and
 ``parts()`` / ``part_poses(r)`` for drawing. Three-link systems also have ``link_poses(r)`` and
-``link_jacobians(r)``; the momentum-conserving ones have ``mass_matrix(r)``.
+``link_jacobians(r)`` (from :mod:`gm_core.chains`, moved to the system's body frame); the ones
+defined by a balance over the links (:class:`LinkMetricSystem`: floating snake, swimmers) have
+``link_matrices()`` and ``metric(r)``, called ``mass_matrix(r)`` or ``drag_matrix(r)``. Fluid
+coefficients come from :mod:`gm_core.fluids`. These modules import :mod:`gm_core.locomotion`,
+never the other way round.
 """
 from .ackerman import Ackerman
 from .base import LocomotionSystem, Part
@@ -12,9 +16,9 @@ from .floating_snake import FloatingSnake
 from .high_re import HighReSwimmer, ellipse_added_mass
 from .kinematic_snake import KinematicSnake
 from .low_re import LowReSwimmer
-from .three_link import ThreeLinkSystem
+from .three_link import LinkMetricSystem, ThreeLinkSystem
 
-__all__ = ["LocomotionSystem", "Part", "ThreeLinkSystem", "DifferentialDrive", "Ackerman",
+__all__ = ["LocomotionSystem", "Part", "ThreeLinkSystem", "LinkMetricSystem", "DifferentialDrive", "Ackerman",
            "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer", "ellipse_added_mass",
            "ALL_SYSTEMS"]
 

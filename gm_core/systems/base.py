@@ -12,8 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._validate import as_array
-from ..groups import matvec
-from ..locomotion import SINGULAR_TOL, connection_from_pfaffian, pfaffian_determinant
+from ..connection import SINGULAR_TOL, connection_from_pfaffian, pfaffian_determinant
+from ..locomotion import body_velocity
 
 __all__ = ["LocomotionSystem", "Part", "ellipse_outline", "rectangle_outline"]
 
@@ -77,9 +77,7 @@ class LocomotionSystem:
 
     def body_velocity(self, r, r_dot):
         """Body velocity xi = -A(r) r_dot (..., 3), book (3.10)."""
-        r = self._shape(r)
-        r_dot = self._shape(r_dot, "r_dot")
-        return -matvec(self.connection(r), r_dot)
+        return body_velocity(self, r, r_dot)
 
     def singularity(self, r):
         """Scaled det(omega_xi) (...,) in [-1, 1]; zero exactly at singular shapes."""

@@ -4,13 +4,14 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array, check_positive
-from ..locomotion import connection_from_pfaffian, metric_from_jacobians
-from .three_link import ThreeLinkSystem, three_link_link_poses
+from ..chains import com_frame
+from ..connection import connection_from_pfaffian, metric_from_jacobians
+from .three_link import LinkMetricSystem
 
 __all__ = ["FloatingSnake"]
 
 
-class FloatingSnake(ThreeLinkSystem):
+class FloatingSnake(LinkMetricSystem):
     """Three rigid links in free space (e.g. an astronaut or a falling cat), total momentum zero.
 
     The kinetic energy is ``1/2 sum xi_i^T diag(m_i, m_i, I_i) xi_i`` with link body velocities
@@ -21,7 +22,7 @@ class FloatingSnake(ThreeLinkSystem):
     ``inertias=None`` means uniform slender rods, ``I_i = m_i l_i^2 / 12``. ``frame="com"`` puts
     the body frame at the system's centre of mass, oriented with the middle link (then the first
     two rows of A vanish: the centre of mass does not move); ``frame="middle"`` uses the middle
-    link's own frame.
+    link's own frame. The frame is fixed at construction.
     """
 
     name = "floating snake"
@@ -48,17 +49,8 @@ class FloatingSnake(ThreeLinkSystem):
     # -- centre of mass ----------------------------------------------------------------------
     def _com(self, r):
         """Centre of mass (..., 2) in the middle link's frame and its derivative (..., 2, 2) wrt r."""
-        P = three_link_link_poses(r, self.lengths)
-        m = np.array(self.masses)
-        c = np.einsum("i,...ij->...j", m, P[..., :2]) / m.sum()
-        l1, _, l3 = self.lengths
-        a1, a2 = r[..., 0], r[..., 1]
-        dc = np.zeros(r.shape[:-1] + (2, 2))
-        dc[..., 0, 0] = m[0] * l1 / 2 * np.sin(a1)
-        dc[..., 1, 0] = m[0] * l1 / 2 * np.cos(a1)
-        dc[..., 0, 1] = -m[2] * l3 / 2 * np.sin(a2)
-        dc[..., 1, 1] = m[2] * l3 / 2 * np.cos(a2)
-        return c, dc / m.sum()
+        beta, dbeta = com_frame(r, self.lengths, weights=self.masses)
+        return beta[..., :2], dbeta[..., :2, :]
 
     def frame_offset(self, r):
         r = self._shape(r)
@@ -67,9 +59,10 @@ class FloatingSnake(ThreeLinkSystem):
             off[..., :2] = -self._com(r)[0]
         return off
 
-    def _frame_change(self, r):
+    def frame_change(self, r):
         if self.frame != "com":
             return None
+        r = self._shape(r)
         c, dc = self._com(r)
         T = np.zeros(r.shape[:-1] + (5, 5))
         T[..., 0, 0] = T[..., 1, 1] = T[..., 2, 2] = T[..., 3, 3] = T[..., 4, 4] = 1.0
@@ -85,11 +78,7 @@ class FloatingSnake(ThreeLinkSystem):
 
     def mass_matrix(self, r):
         """Mass matrix (..., 5, 5) of (3.39): sum of J_i^T diag(m_i, m_i, I_i) J_i."""
-        return metric_from_jacobians(self.link_jacobians(r), self.link_matrices())
-
-    def pfaffian(self, r):
-        """Momentum map (..., 3, 5): the top three rows of the mass matrix (body momentum = 0)."""
-        return metric_from_jacobians(self.link_jacobians(r), self.link_matrices(), rows=3)
+        return self.metric(r)
 
     def connection(self, r):
         """Local connection (..., 3, 2) from the mass matrix, (3.40).
@@ -99,7 +88,7 @@ class FloatingSnake(ThreeLinkSystem):
         ``B = [[1, 0, c_y], [0, 1, -c_x], [0, 0, 1]]``, so ``A_com = B^-1 (A_mid - [dc/dr; 0])``.
         """
         r = self._shape(r)
-        J = super().link_jacobians(r) if self.frame == "middle" else self._middle_jacobians(r)
+        J = self.middle_link_jacobians(r)
         A = connection_from_pfaffian(metric_from_jacobians(J, self.link_matrices(), rows=3))
         if self.frame == "com":
             c, dc = self._com(r)
@@ -107,13 +96,6 @@ class FloatingSnake(ThreeLinkSystem):
             A[..., 0, :] -= c[..., 1, None] * A[..., 2, :]
             A[..., 1, :] += c[..., 0, None] * A[..., 2, :]
         return A
-
-    def _middle_jacobians(self, r):
-        frame, self.frame = self.frame, "middle"
-        try:
-            return super().link_jacobians(r)
-        finally:
-            self.frame = frame
 
     def __repr__(self):
         return (f"FloatingSnake(lengths={self.lengths}, masses={self.masses}, "

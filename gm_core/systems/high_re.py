@@ -4,32 +4,22 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import check_positive
-from ..locomotion import connection_from_pfaffian, metric_from_jacobians
+from ..fluids import ellipse_added_mass
 from .base import Part, ellipse_outline
-from .three_link import ThreeLinkSystem
+from .three_link import LinkMetricSystem
 
 __all__ = ["HighReSwimmer", "ellipse_added_mass"]
 
 
-def ellipse_added_mass(a, b, fluid_density=1.0):
-    """Added-mass matrix (3, 3) of an ellipse (semi-axes a along x, b) in an ideal 2-D fluid.
-
-    ``diag(pi rho b^2, pi rho a^2, pi rho (a^2 - b^2)^2 / 8)``: the corrected (3.46) (the
-    draft's rotational entry lacks the factor pi/8), from the potential flow around an ellipse
-    (e.g. Lamb, Hydrodynamics, section 72; Newman, Marine Hydrodynamics, table 4.2).
-    """
-    rho = fluid_density
-    return np.diag([np.pi * rho * b ** 2, np.pi * rho * a ** 2, np.pi * rho * (a ** 2 - b ** 2) ** 2 / 8])
-
-
-class HighReSwimmer(ThreeLinkSystem):
+class HighReSwimmer(LinkMetricSystem):
     """Three elliptical links in an inviscid fluid, starting from rest: total momentum stays zero.
 
     Each link is an ellipse with semi-major axis a = l/2 and semi-minor axis b = a /
     aspect_ratio. Its effective inertia is the body's ``diag(m, m, m (a^2 + b^2)/4)``
-    (``m = body_density * pi a b``) plus the added mass of :func:`ellipse_added_mass`, with the
-    flows around the links treated as independent (3.47). The local connection comes from the
-    mass matrix as for the floating snake, (3.39)-(3.40). Body frame: the middle link.
+    (``m = body_density * pi a b``) plus the added mass of
+    :func:`gm_core.fluids.ellipse_added_mass`, with the flows around the links treated as
+    independent (3.47). The local connection comes from the mass matrix as for the floating
+    snake, (3.39)-(3.40). Body frame: the middle link.
     """
 
     name = "high-Reynolds swimmer"
@@ -58,15 +48,7 @@ class HighReSwimmer(ThreeLinkSystem):
 
     def mass_matrix(self, r):
         """Mass matrix (..., 5, 5) of body plus fluid, (3.39) with (3.47)."""
-        return metric_from_jacobians(self.link_jacobians(r), self.link_matrices())
-
-    def pfaffian(self, r):
-        """Momentum map (..., 3, 5) of body plus fluid: the top three rows of the mass matrix."""
-        return metric_from_jacobians(self.link_jacobians(r), self.link_matrices(), rows=3)
-
-    def connection(self, r):
-        """Local connection (..., 3, 2) from the mass matrix, (3.40)."""
-        return connection_from_pfaffian(self.pfaffian(r))
+        return self.metric(r)
 
     def parts(self):
         return [Part(f"link {i + 1}", ellipse_outline(a, b), "link") for i, (a, b) in enumerate(self.semi_axes())]

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .base import Part, rectangle_outline
 from .three_link import ThreeLinkSystem
 
 __all__ = ["KinematicSnake"]
@@ -30,7 +31,7 @@ class KinematicSnake(ThreeLinkSystem):
 
     def pfaffian(self, r):
         """Pfaffian (..., 3, 5): the lateral (y) rows of J1, J2, J3, i.e. no link slides sideways."""
-        J1, J2, J3 = self.link_jacobians(r)
+        J1, J2, J3 = self.middle_link_jacobians(r)
         return np.stack([J1[..., 1, :], J2[..., 1, :], J3[..., 1, :]], -2)
 
     def connection_closed_form(self, r):
@@ -48,8 +49,6 @@ class KinematicSnake(ThreeLinkSystem):
         return A
 
     def parts(self):
-        from .base import Part, rectangle_outline
-
         out = super().parts()
         w = self._link_width()
         # A wheel (drawn across the link) under each link centre: it rolls along the link only.

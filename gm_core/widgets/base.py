@@ -21,11 +21,11 @@ from __future__ import annotations
 
 import importlib
 import pkgutil
+import time
 
 import ipywidgets as W
-import numpy as np
 
-__all__ = ["Panel", "PANELS", "register", "all_panels"]
+__all__ = ["Panel", "ScenePanel", "PANELS", "register", "all_panels", "slider", "int_slider"]
 
 #: name -> Panel subclass, filled by @register.
 PANELS: dict[str, type] = {}
@@ -58,13 +58,22 @@ class Panel:
 
     def __init__(self, **options):
         self.options = options
+        self._pinned = {}
+        self._exact = {}
         self.controls: dict[str, W.ValueWidget] = {}
         self.fig = None
         self.build()
+        # The browser shows each slider on its grid (min + k * step) and may echo that rounded
+        # position when it first renders: the exact starting values are kept (see set()).
+        self._exact = {k: c.value for k, c in self.controls.items() if getattr(c, "step", None)}
         for c in self.controls.values():
             c.continuous_update = True
             c.observe(self._on_change, names="value")
         self.update(**self.values())
+        if self.fig is not None:
+            from ..drawing.toolkit import freeze_layout
+
+            freeze_layout(self.fig)   # constrained layout once, then fixed (blitting needs still axes)
         self.blitter = None
         if self.blit and self.fig is not None:
             from ..drawing.blit import Blitter, can_blit
@@ -85,15 +94,37 @@ class Panel:
 
     # -- shared -------------------------------------------------------------------
     def values(self):
-        return {k: c.value for k, c in self.controls.items()}
+        """The controls' values (a value set by :meth:`set` is reported exactly, not as rounded
+        by the browser's slider grid)."""
+        out = {k: c.value for k, c in self.controls.items()}
+        for k, v in self._exact.items():
+            if _same(self.controls[k], out[k], v):
+                out[k] = v
+        return out
+
+    #: Seconds after :meth:`set` during which a control change back to the value it had before
+    #: is treated as a stale echo from the browser (its first render) and undone.
+    echo_window = 5.0
 
     def set(self, **values):
-        """Set several controls at once and update once (what a test or a demo button does)."""
+        """Set several controls at once and update once (what a test, a demo or a notebook does).
+
+        The sliders themselves take the values. The browser shows a slider on its grid
+        (min + k * step) and may echo that rounded position back: an echo within half a step of
+        the value set here keeps the exact value (``values()`` reports it). For a few seconds a
+        change back to the old value (a slider's initial echo arriving late after Run All) is
+        undone: a value set from code is never overwritten by a widget's first render.
+        """
+        unknown = [k for k in values if k not in self.controls]
+        if unknown:
+            raise ValueError(f"unknown control {unknown[0]!r}; this panel has {sorted(self.controls)}")
+        now = time.monotonic()
         with self.hold():
             for k, v in values.items():
-                if k not in self.controls:
-                    raise ValueError(f"unknown control {k!r}; this panel has {sorted(self.controls)}")
-                self.controls[k].value = v
+                c = self.controls[k]
+                self._pinned[k] = (c.value, v, now)
+                self._exact[k] = v
+                c.value = v
         self.refresh()
 
     def hold(self):
@@ -111,8 +142,26 @@ class Panel:
     _held = False
 
     def _on_change(self, change):
-        if not self._held:
-            self.refresh()
+        if self._held:
+            return
+        key = next((k for k, c in self.controls.items() if c is change["owner"]), None)
+        pinned = self._pinned.get(key)
+        if pinned is not None:
+            before, wanted, t = pinned
+            if time.monotonic() - t < self.echo_window and _same(change["owner"], change["new"], before) \
+                    and not _same(change["owner"], change["new"], wanted):
+                # a stale echo of the value before set(): put the programmatic value back
+                with self.hold():
+                    change["owner"].value = wanted
+                return
+            del self._pinned[key]
+        if key in self._exact:
+            if _same(change["owner"], change["new"], self._exact[key]):
+                return   # the browser's rounding of a value set from code: keep the exact value
+            del self._exact[key]
+        if _same(change["owner"], change["new"], change["old"], exact=True):
+            return   # an echo of the value the kernel already has (float round-off): nothing moved
+        self.refresh()
 
     def refresh(self, **values):
         """Update to the controls' values (overridden by ``values``) and show the new frame.
@@ -169,18 +218,73 @@ class Panel:
         display(self.widget)
 
 
+class ScenePanel(Panel):
+    """The one widget pattern: a drawing :class:`~gm_core.drawing.toolkit.Scene` (``scene_class``,
+    built with the panel's options) owns the figure and its update; the panel pairs it with
+    controls (``controls_spec()``).
+
+    ``update`` hands the control values to ``scene.set`` and asks for a redraw; ``naive_update``
+    is the scene's clear-and-replot baseline. Attributes the panel does not have are read from
+    the scene (``panel.art`` is ``panel.scene.art``), so tests and notebooks can inspect the
+    artists and the numbers the scene computed.
+    """
+
+    scene_class = None
+
+    def controls_spec(self):
+        raise NotImplementedError
+
+    def scene_options(self):
+        """Keyword arguments for ``scene_class`` (default: the panel's options)."""
+        return dict(self.options)
+
+    def build(self):
+        self.scene = self.scene_class(**self.scene_options())
+        self.fig = self.scene.fig
+        self.controls = self.controls_spec()
+
+    def update(self, **values):
+        self.scene.set(**values)
+        self.after_update(values)
+        self.fig.canvas.draw_idle()
+
+    def after_update(self, values):
+        """Hook for control-side effects of a change (e.g. disabling sliders); nothing by default."""
+
+    def naive_update(self, **values):
+        self.scene.replot(**values)
+        self.fig.canvas.draw_idle()
+
+    def __getattr__(self, name):
+        # only called for attributes the panel lacks; never recurse before the scene exists
+        if name.startswith("__") or name == "scene":
+            raise AttributeError(name)
+        scene = self.__dict__.get("scene")
+        if scene is None:
+            raise AttributeError(f"{type(self).__name__!s} has no attribute {name!r}")
+        return getattr(scene, name)
+
+
+def _same(control, a, b, exact=False):
+    """True if two values of ``control`` are the same slider position (half a step apart at most;
+    ``exact``: equal up to float round-off)."""
+    try:
+        a, b = float(a), float(b)
+    except (TypeError, ValueError):
+        return a == b
+    step = float(getattr(control, "step", 0) or 0)
+    tol = 1e-9 * max(1.0, abs(a), abs(b)) if exact or not step else 0.5 * step
+    return abs(a - b) <= tol
+
+
+def int_slider(value, lo, hi, description=""):
+    """An IntSlider with the course's defaults."""
+    return W.IntSlider(value=value, min=lo, max=hi, step=1, description=description,
+                       continuous_update=True, style={"description_width": "initial"})
+
+
 def slider(value, lo, hi, step=0.01, description="", readout_format=".2f", **kw):
     """A FloatSlider with the course's defaults (continuous updates, readable description)."""
     return W.FloatSlider(value=value, min=lo, max=hi, step=step, description=description,
                          readout_format=readout_format, continuous_update=True,
                          style={"description_width": "initial"}, **kw)
-
-
-def finite_or_flag(values, flag, message):
-    """Return True if every value is finite; otherwise show ``flag`` with ``message`` and return False."""
-    ok = bool(np.all(np.isfinite(values)))
-    if ok:
-        flag.hide()
-    else:
-        flag.show(message)
-    return ok

@@ -11,7 +11,7 @@ import ipywidgets as W
 import numpy as np
 
 from ..drawing import ch1 as D
-from .base import Panel, register, slider
+from .base import ScenePanel, int_slider, register, slider
 
 __all__ = [
     "show", "TorusPathPanel", "LoopsPanel", "PoleChartPanel",
@@ -33,33 +33,6 @@ def show(fig):
         display(canvas)
     else:
         display(fig)
-
-
-def int_slider(value, lo, hi, description=""):
-    return W.IntSlider(value=value, min=lo, max=hi, step=1, description=description,
-                       continuous_update=True, style={"description_width": "initial"})
-
-
-class ScenePanel(Panel):
-    """A Panel whose figure is a :class:`gm_core.drawing.ch1.Scene` (``scene_class``)."""
-
-    scene_class = None
-
-    def controls_spec(self):
-        raise NotImplementedError
-
-    def build(self):
-        self.scene = self.scene_class(**self.options)
-        self.fig = self.scene.fig
-        self.controls = self.controls_spec()
-
-    def update(self, **values):
-        self.scene.set(**values)
-        self.fig.canvas.draw_idle()
-
-    def naive_update(self, **values):
-        self.scene.replot(**values)
-        self.fig.canvas.draw_idle()
 
 
 # ====================================================================== 1.1 configuration spaces
@@ -269,7 +242,7 @@ class HelixPanel(ScenePanel):
     scene_class = D.HelixScene
 
     def controls_spec(self):
-        return {"thetadot": slider(1.0, -3.0, 3.0, description="θ̇")}
+        return {"thetadot": slider(1.0, -3.0, 3.0, description="dθ/dt (turning rate)")}
 
 
 @register
@@ -303,6 +276,6 @@ class ExpFourWaysPanel(ScenePanel):
     scene_class = D.ExpFourWaysScene
 
     def controls_spec(self):
-        return {"thetadot": slider(1.0, -3.0, 3.0, description="θ̇ in ξ = (1, 0, θ̇)"),
+        return {"thetadot": slider(1.0, -3.0, 3.0, description="dθ/dt in ξ = (1, 0, dθ/dt)"),
                 "n": int_slider(8, 1, 64, description="steps / terms n"),
                 "side": W.Dropdown(options=["left", "right"], value="left", description="field")}

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..drawing.base import BodyArtist, FrameArtist, TrailArtist, new_figure
+from ..drawing.base import BodyArtist, FrameArtist, new_figure
 from .base import Panel, register, slider
 
 

@@ -1,0 +1,371 @@
+"""Lie groups and SE(2) (book sections 1.2-1.3): group axioms on every group, the slide rule,
+the circle vs SO(2), left and right actions, repeated steps, points on a rigid body.
+
+The axiom checks are mathematics in :mod:`gm_core.axioms`; nothing here asks which group it is
+(labels come from ``G.name``).
+"""
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.collections import LineCollection, PolyCollection
+
+from ..axioms import AXIOMS, axiom_residuals, powers
+from ..groups import ALL_GROUPS, S1, SE2, R2xS1
+from .base import BodyArtist, FrameArtist
+from .toolkit import (PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, margins, new_figure, plane, set_arrows,
+                      title, xticks, yticks)
+
+__all__ = ["BODY", "group_label", "GroupAxiomsScene", "SlideRuleScene", "CircleIsoScene",
+           "LeftRightActionScene", "ForwardLeftScene", "BodyPointsScene"]
+
+BODY = BodyArtist.triangle(0.35)
+
+
+def group_label(G):
+    """A short two-line label for a group, made from ``G.name`` alone (no per-group table)."""
+    s = str(G.name)
+    for a, b in (("^1", "¹"), ("^2", "²"), ("R+", "R⁺"), (" x ", " × "), ("2pi", "2π")):
+        s = s.replace(a, b)
+    return s.replace(", ", ",\n", 1) if len(s) > 7 else s
+
+
+class GroupAxiomsScene(Scene):
+    """Bar chart of the axiom residuals for every group in gm_core.ALL_GROUPS (values ``seed``, ``scale``)."""
+
+    FLOOR = 1e-18
+    TOL = 1e-9
+
+    def make_figure(self):
+        fig, ax = new_figure(figsize=(8, 3.4))
+        margins(fig, left=0.08, right=0.99, bottom=0.12, top=0.9)
+        return fig, [ax]
+
+    def decorate(self):
+        (ax,) = self.axes
+        self.names = list(ALL_GROUPS)
+        ax.set_yscale("log")
+        ax.set_ylim(self.FLOOR / 3, 1e-3)
+        ax.axhline(self.TOL, color="darkred", ls="--", lw=1)
+        PathText(ax, len(self.names) - 0.5, self.TOL * 2, "tolerance 1e-9", size=7, ha="right",
+                 color="darkred")
+        ax.set_xlim(-0.6, len(self.names) - 0.4)
+        xticks(ax, np.arange(len(self.names)), [group_label(ALL_GROUPS[k]) for k in self.names])
+        yticks(ax, [1e-18, 1e-15, 1e-12, 1e-9, 1e-6, 1e-3], ["≤1e-18", "1e-15", "1e-12", "1e-9",
+                                                               "1e-6", "1e-3"])
+        ax.minorticks_off()
+        for k, (axiom, color) in enumerate(zip(AXIOMS, (PALETTE["blue"], PALETTE["orange"], PALETTE["green"]))):
+            PathText(ax, 0.02 + 0.25 * k, 0.93, "■ " + axiom, size=7.5, color=color, coords="axes")
+
+    def create(self):
+        (ax,) = self.axes
+        x = np.arange(len(self.names))
+        self.bars = {}
+        for k, (axiom, color) in enumerate(zip(AXIOMS, (PALETTE["blue"], PALETTE["orange"], PALETTE["green"]))):
+            self.bars[axiom] = ax.bar(x + (k - 1) * 0.27, np.full(len(x), self.FLOOR), width=0.27,
+                                      bottom=self.FLOOR / 3, color=color, label=axiom)
+        self.title = title(ax)
+
+    def set(self, seed=0, scale=1.0):
+        rng = np.random.default_rng(int(seed))
+        self.results = {k: axiom_residuals(G, rng, scale=scale) for k, G in ALL_GROUPS.items()}
+        for axiom in AXIOMS:
+            for rect, k in zip(self.bars[axiom], self.names):
+                rect.set_height(max(self.results[k][axiom], self.FLOOR) - self.FLOOR / 3)
+        closed = all(r["closure"] for r in self.results.values())
+        worst = max(r[a] for r in self.results.values() for a in AXIOMS)
+        self.title.set_text(f"seed {int(seed)}: closure {'holds' if closed else 'FAILS'} for every group;"
+                            f" worst residual {worst:.1e}")
+
+
+class SlideRuleScene(Scene):
+    """A slide rule: (R+, x) multiplication done as (R, +) addition of logarithms, (1.xii).
+
+    Values ``a`` and ``b`` in [1, 10]. The sliding C scale is shifted by log10(a); the cursor at
+    log10(a) + log10(b) reads a*b on the fixed D scale (which runs over two decades, 1-100).
+    """
+
+    def make_figure(self):
+        fig, ax = new_figure(figsize=(8, 2.6))
+        margins(fig, left=0.02, right=0.98, bottom=0.05, top=0.85)
+        return fig, [ax]
+
+    @staticmethod
+    def _ticks(decades, y0, up):
+        vals = np.concatenate([np.arange(1, 10, 0.5) * 10 ** d for d in range(decades)] + [[10 ** decades]])
+        x = np.log10(vals)
+        major = np.isclose(vals / 10 ** np.floor(np.log10(vals) + 1e-12), np.round(vals / 10 ** np.floor(
+            np.log10(vals) + 1e-12)))
+        length = np.where(major, 0.25, 0.12) * (1 if up else -1)
+        segs = np.stack([np.stack([x, np.full_like(x, y0)], -1), np.stack([x, y0 + length], -1)], 1)
+        return vals, x, segs, major
+
+    def decorate(self):
+        (ax,) = self.axes
+        ax.set_xlim(-0.05, 2.05)
+        ax.set_ylim(-1.1, 1.3)
+        ax.axis("off")
+        vals, x, segs, major = self._ticks(2, 0.0, False)
+        ax.add_collection(LineCollection(segs, colors="k", linewidths=1))
+        for v, xx, m in zip(vals, x, major):
+            if m and v not in (70, 90):     # 70 and 90 would crowd their neighbours
+                PathText(ax, xx, -0.45, f"{v:g}", size=7.5, ha="center")
+        PathText(ax, -0.03, -0.3, "D", size=9, weight="bold", ha="right")
+        ax.plot([0, 2], [0, 0], "k", lw=1)
+        vals, x, segs, major = self._ticks(1, 0.0, True)
+        self._c_vals, self._c_x, self._c_segs, self._c_major = vals, x, segs, major
+
+    def create(self):
+        (ax,) = self.axes
+        self.slide = LineCollection(self._c_segs, colors=PALETTE["blue"], linewidths=1)
+        ax.add_collection(self.slide)
+        self.c_labels = [PathText(ax, x, 0.35, f"{v:g}", size=7, ha="center", color=PALETTE["blue"])
+                         for v, x, m in zip(self._c_vals, self._c_x, self._c_major) if m]
+        self._c_label_x = np.array([x for x, m in zip(self._c_x, self._c_major) if m])
+        (self.slide_edge,) = ax.plot([0, 1], [0.02, 0.02], color=PALETTE["blue"], lw=2)
+        (self.cursor,) = ax.plot([0, 0], [-0.8, 0.9], color=PALETTE["vermillion"], lw=1.5)
+        self.add_a = arrow(ax, color=PALETTE["orange"], width=0.006)
+        self.add_b = arrow(ax, color=PALETTE["green"], width=0.006)
+        self.readout = PathText(ax, 1.0, 1.05, "", size=9, ha="center")
+
+    def set(self, a=2.0, b=3.0):
+        la, lb = np.log10(a), np.log10(b)
+        segs = self._c_segs.copy()
+        segs[..., 0] += la
+        self.slide.set_segments(segs)
+        for t, x in zip(self.c_labels, self._c_label_x):
+            t.set_position((x + la, 0.35))
+        self.slide_edge.set_data([la, la + 1], [0.02, 0.02])
+        self.cursor_x = la + lb
+        self.cursor.set_data([self.cursor_x, self.cursor_x], [-0.8, 0.9])
+        set_arrows(self.add_a, [0, -0.85], [la, 0])
+        set_arrows(self.add_b, [la, -0.85], [lb, 0])
+        self.reading = 10 ** self.cursor_x
+        self.readout.set_text(f"log a + log b = {la:.3f} + {lb:.3f} = {la + lb:.3f}   →   "
+                              f"read on D: {self.reading:.3f} = a × b = {a * b:.3f}")
+
+
+class CircleIsoScene(Scene):
+    """(S^1, + mod 1) vs SO(2): adding cycles on the circle = multiplying rotation matrices, (1.xvi).
+
+    Values ``a1``, ``a2`` in cycles [0, 1).
+    """
+
+    G = S1(1.0)
+
+    def make_figure(self):
+        fig, axes = new_figure(1, 2, figsize=(7, 3.4))
+        margins(fig, left=0.02, right=0.98, bottom=0.05, top=0.84, wspace=0.1)
+        return fig, list(axes)
+
+    def decorate(self):
+        t = np.linspace(0, TWO_PI, 120)
+        for ax in self.axes:
+            ax.plot(np.cos(t), np.sin(t), color="0.7")
+            ax.set_xlim(-1.35, 1.35)
+            ax.set_ylim(-1.35, 1.35)
+            ax.set_aspect("equal")
+            ax.axis("off")
+        title(self.axes[0], "circle (S¹, + mod 1): add cycles")
+        title(self.axes[1], "SO(2): multiply matrices, act on e₁")
+
+    def create(self):
+        ax_s, ax_r = self.axes
+        self.pts = ax_s.scatter([0, 0, 0], [0, 0, 0], c=[PALETTE["blue"], PALETTE["orange"], PALETTE["vermillion"]],
+                                s=[50, 50, 90],
+                                zorder=5)
+        self.vecs = ArrowSet(ax_r, color=[PALETTE["blue"], PALETTE["orange"], PALETTE["vermillion"]], n=3, width=0.012)
+        self.check = ArrowSet(ax_r, color="k", width=0.005)
+        self.readout = PathText(ax_s, 0, -1.3, "", size=8, ha="center")
+        self.r_readout = PathText(ax_r, 0, -1.3, "", size=8, ha="center")
+
+    def set(self, a1=0.2, a2=0.35):
+        G = self.G
+        g1, g2 = np.array([a1]), np.array([a2])
+        s = G.compose(g1, g2)
+        ang = TWO_PI * np.array([a1, a2, s[0]])
+        self.pts.set_offsets(np.stack([np.cos(ang), np.sin(ang)], -1))
+        M = G.matrix(g1) @ G.matrix(g2)
+        e1 = np.array([1.0, 0.0])
+        v = np.stack([G.matrix(g1) @ e1, G.matrix(g2) @ e1, M @ e1])
+        set_arrows(self.vecs, np.zeros((3, 2)), v)
+        self.product_matrix = M
+        self.sum_matrix = G.matrix(s)
+        set_arrows(self.check, [0, 0], self.sum_matrix @ e1 * 0.6)
+        self.mismatch = float(np.max(np.abs(M - self.sum_matrix)))
+        self.readout.set_text(f"{a1:.2f} + {a2:.2f} mod 1 = {s[0]:.2f} cycles")
+        self.r_readout.set_text(f"max |R(a1)R(a2) − R(a1 ⊕ a2)| = {self.mismatch:.1e}")
+
+
+# ================================================================================ 1.3 SE(2)
+class LeftRightActionScene(Scene):
+    """Figs. 1.8-1.9: a body at g, moved by the left action (h g) and by the right action (g h).
+
+    Values ``x, y, theta`` (g) and ``u, v, beta`` (h).
+    """
+
+    LIM = 4.0
+
+    def make_figure(self):
+        fig, axes = new_figure(1, 2, figsize=(9, 4.3))
+        margins(fig, left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
+        return fig, list(axes)
+
+    def decorate(self):
+        for ax in self.axes:
+            plane(ax, self.LIM)
+            FrameArtist(ax, (0, 0, 0), length=0.6, colors=("0.55", "0.55"), zorder=2)
+        title(self.axes[0], "left action: hg (fig. 1.8)")
+        title(self.axes[1], "right action: gh (fig. 1.9)")
+
+    def create(self):
+        ax_l, ax_r = self.axes
+        self.g_body = [BodyArtist(ax, BODY, facecolor="0.6") for ax in self.axes]
+        self.g_frame = [FrameArtist(ax, length=0.5) for ax in self.axes]
+        self.hg_body = BodyArtist(ax_l, BODY, facecolor=PALETTE["blue"])
+        self.hg_frame = FrameArtist(ax_l, length=0.5)
+        self.gh_body = BodyArtist(ax_r, BODY, facecolor=PALETTE["orange"])
+        self.gh_frame = FrameArtist(ax_r, length=0.5)
+        # left action = rotate about the world origin by beta, then translate by (u, v)
+        (self.arc,) = ax_l.plot([], [], color=PALETTE["blue"], ls=":", lw=1.5)
+        self.shift = ArrowSet(ax_l, color=PALETTE["blue"], width=0.006)
+        # h drawn in the world frame (left) and in g's frame (right)
+        self.h_frame_l = FrameArtist(ax_l, length=0.35, colors=("0.3", "0.3"), zorder=3)
+        (self.h_in_g,) = ax_r.plot([], [], color=PALETTE["orange"], ls="--", lw=1.2)
+        (self.h_in_g_corner,) = ax_r.plot([], [], color=PALETTE["orange"], ls=":", lw=1.0)
+        self.l_text = PathText(ax_l, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes")
+        self.r_text = PathText(ax_r, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes")
+
+    def set(self, x=1.5, y=0.5, theta=0.5, u=-1.0, v=1.0, beta=0.9):
+        g = np.array([x, y, theta])
+        h = np.array([u, v, beta])
+        self.hg = SE2.compose(h, g)
+        self.gh = SE2.compose(g, h)
+        for b, f in zip(self.g_body, self.g_frame):
+            b.set(g)
+            f.set(g)
+        self.hg_body.set(self.hg)
+        self.hg_frame.set(self.hg)
+        self.gh_body.set(self.gh)
+        self.gh_frame.set(self.gh)
+        s = np.linspace(0.0, 1.0, 40)[:, None]
+        rot = SE2.act_on_points(np.concatenate([0 * s, 0 * s, beta * s], -1), g[:2])
+        self.arc.set_data(rot[:, 0], rot[:, 1])
+        set_arrows(self.shift, rot[-1], [u, v])
+        self.h_frame_l.set(h)
+        corner = SE2.act_on_points(g, np.array([u, 0.0]))
+        self.h_in_g.set_data([x, self.gh[0]], [y, self.gh[1]])
+        self.h_in_g_corner.set_data([x, corner[0], self.gh[0]], [y, corner[1], self.gh[1]])
+        self.l_text.set_text(f"hg = ({self.hg[0]:.2f}, {self.hg[1]:.2f}, {self.hg[2]:.2f})\n"
+                             "rotate g about the origin by β, then shift by (u, v)")
+        self.r_text.set_text(f"gh = ({self.gh[0]:.2f}, {self.gh[1]:.2f}, {self.gh[2]:.2f})\n"
+                             "step (u, v) along g's own axes, then turn by β")
+
+
+
+
+class ForwardLeftScene(Scene):
+    """Fig. 1.10: repeat the step g in (R^2 x S^1, +) and in SE(2); values ``x, y, theta, n``.
+
+    Each step's displacement, read in the body frame it starts from, is printed: constant in
+    SE(2) ("forward and to the left" for g = (1, 1, pi/2)), changing in (R^2 x S^1, +).
+    """
+
+    N_MAX = 8
+    LIM = 4.5
+
+    def make_figure(self):
+        fig, axes = new_figure(1, 2, figsize=(9, 4.4))
+        margins(fig, left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
+        return fig, list(axes)
+
+    def decorate(self):
+        for ax in self.axes:
+            plane(ax, self.LIM)
+        title(self.axes[0], "(R² × S¹, +):  g + g + …")
+        title(self.axes[1], "SE(2):  g ∘ g ∘ …")
+
+    def create(self):
+        self.bodies, self.frames, self.steps, self.texts = [], [], [], []
+        for ax, color in zip(self.axes, (PALETTE["purple"], PALETTE["blue"])):
+            bodies = PolyCollection([], facecolors=color, edgecolors="k", alpha=0.4, linewidths=0.8)
+            frames = LineCollection([], linewidths=1.8, zorder=4)
+            steps = LineCollection([], colors=color, linewidths=1.2, linestyles="--")
+            for c in (bodies, frames, steps):
+                ax.add_collection(c)
+            self.bodies.append(bodies)
+            self.frames.append(frames)
+            self.steps.append(steps)
+            self.texts.append(PathText(ax, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes"))
+
+    @staticmethod
+    def body_displacements(poses):
+        """Displacement of each step, written in the body frame it starts from: (k, 2)."""
+        d = poses[1:, :2] - poses[:-1, :2]
+        t = poses[:-1, 2]
+        c, s = np.cos(t), np.sin(t)
+        return np.stack([c * d[:, 0] + s * d[:, 1], -s * d[:, 0] + c * d[:, 1]], -1)
+
+    @staticmethod
+    def describe(d):
+        fwd = "forward" if d[0] > 1e-9 else ("backward" if d[0] < -1e-9 else "")
+        side = "to the left" if d[1] > 1e-9 else ("to the right" if d[1] < -1e-9 else "")
+        return " and ".join(w for w in (fwd, side) if w) or "no move"
+
+    def set(self, x=1.0, y=1.0, theta=np.pi / 2, n=2):
+        n = int(n)
+        g = np.array([x, y, theta])
+        self.poses = [powers(R2xS1, g, n), powers(SE2, g, n)]
+        for k in range(2):
+            P = self.poses[k]
+            self.bodies[k].set_verts(SE2.act_on_points(P[:, None, :], BODY))
+            origin = P[:, :2]
+            tips = SE2.act_on_points(P[:, None, :], np.array([[0.4, 0.0], [0.0, 0.4]]))
+            self.frames[k].set_segments(np.concatenate([np.stack([origin, tips[:, 0]], 1),
+                                                        np.stack([origin, tips[:, 1]], 1)]))
+            self.frames[k].set_color([PALETTE["vermillion"]] * (n + 1) + [PALETTE["green"]] * (n + 1))
+            self.steps[k].set_segments(np.stack([P[:-1, :2], P[1:, :2]], 1))
+            d = self.body_displacements(P)
+            lines = [f"step {j + 1}: ({d[j, 0]:+.2f}, {d[j, 1]:+.2f}) {self.describe(d[j])}"
+                     for j in range(min(n, 4))]
+            if n > 4:
+                lines.append("...")
+            self.texts[k].set_text("in the body frame:\n" + "\n".join(lines))
+
+
+class BodyPointsScene(Scene):
+    """(1.11)-(1.12): a point fixed in the body, carried to the world by g; values ``x, y, theta, px, py``."""
+
+    OUTLINE = BodyArtist.rectangle(1.6, 0.8)
+
+    def make_figure(self):
+        fig, ax = new_figure(figsize=(5, 4.4))
+        margins(fig, left=0.1, right=0.98, bottom=0.1, top=0.9)
+        return fig, [ax]
+
+    def decorate(self):
+        (ax,) = self.axes
+        plane(ax, 3.0)
+        FrameArtist(ax, (0, 0, 0), length=0.6, colors=("0.55", "0.55"), zorder=2)
+
+    def create(self):
+        (ax,) = self.axes
+        self.body = BodyArtist(ax, self.OUTLINE, facecolor=PALETTE["blue"], alpha=0.3)
+        self.frame = FrameArtist(ax, length=0.6)
+        (self.legs,) = ax.plot([], [], color=PALETTE["blue"], ls="--", lw=1)
+        (self.point,) = ax.plot([], [], "o", color=PALETTE["vermillion"], ms=7, zorder=7)
+        self.text = title(ax, size=8)
+
+    def set(self, x=0.5, y=0.3, theta=0.6, px=0.6, py=0.3):
+        g = np.array([x, y, theta])
+        pb = np.array([px, py])
+        self.body.set(g)
+        self.frame.set(g)
+        self.world = SE2.act_on_points(g, pb)
+        via_matrix = (SE2.matrix(g) @ np.array([px, py, 1.0]))[:2]
+        self.matrix_mismatch = float(np.max(np.abs(via_matrix - self.world)))
+        corner = SE2.act_on_points(g, np.array([px, 0.0]))
+        self.legs.set_data([x, corner[0], self.world[0]], [y, corner[1], self.world[1]])
+        self.point.set_data([self.world[0]], [self.world[1]])
+        self.text.set_text(f"body point ({px:.2f}, {py:.2f}) → world ({self.world[0]:.2f}, "
+                           f"{self.world[1]:.2f})\nmatrix (1.12) agrees to {self.matrix_mismatch:.0e}")
+

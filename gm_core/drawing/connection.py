@@ -1,0 +1,337 @@
+"""Connection vector fields (book chapter 3): the rows of the local connection drawn over shape
+space, the singular set, a shape cursor, the static figures of chapters 8-9 and the gait animation.
+
+Sign convention of the fields: row i of the local connection is drawn as the vector field
+``-A^i(r)`` over shape space, so that ``xi^i = <-A^i, r_dot>`` (3.10): moving the shape along an
+arrow gives positive body velocity component i, across it gives none. Undefined values (at a
+singular shape) are masked, never passed to matplotlib as NaN.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .base import SingularFlag
+from .motion import SystemArtist, VelocityArtist, draw_system_naive, style_world_axes, system_extent
+from .toolkit import PALETTE, Scene, new_figure, readout
+
+__all__ = ["ROW_LABELS", "shape_grid", "connection_field", "ConnectionFieldArtist", "draw_singular_set",
+           "ShapeCursorArtist", "style_shape_axes", "connection_fields_figure", "regimes_figure",
+           "poor_pictures_figure", "ConnectionFieldScene", "field_grid_axes"]
+
+ROW_LABELS = ("ξx (forward)", "ξy (sideways)", "ξθ (turning)")  # plain text: no mathtext parse cost
+
+
+# ------------------------------------------------------------------------------ fields
+def shape_grid(system, n=21, limits=None):
+    """(a1, a2, r): a grid over the system's shape window, ``n`` points per side (or ``(n1, n2)``:
+    n1 along alpha1, n2 along alpha2); r has shape (n2, n1, 2)."""
+    (lo1, hi1), (lo2, hi2) = limits or system.shape_limits
+    n1, n2 = (n, n) if np.ndim(n) == 0 else n
+    a1, a2 = np.meshgrid(np.linspace(lo1, hi1, int(n1)), np.linspace(lo2, hi2, int(n2)), indexing="xy")
+    return a1, a2, np.stack([a1, a2], -1)
+
+
+def connection_field(system, row, n=21, limits=None):
+    """(a1, a2, U, V): the field -A^row over a shape grid, U and V masked where A is undefined.
+
+    Entries below 1e-10 of the largest entry of A on the grid are set to exactly zero, so a row
+    that vanishes analytically (e.g. the floating snake's translation rows) is not drawn as
+    magnified round-off.
+    """
+    a1, a2, r = shape_grid(system, n, limits)
+    A = system.connection(r)
+    finite = np.isfinite(A)
+    big = float(np.max(np.abs(A[finite]))) if finite.any() else 0.0
+    U = -A[..., row, 0]
+    V = -A[..., row, 1]
+    with np.errstate(invalid="ignore"):
+        tiny = np.hypot(U, V) <= 1e-10 * big
+    U = np.where(tiny, 0.0, U)
+    V = np.where(tiny, 0.0, V)
+    U = np.ma.masked_invalid(U)
+    V = np.ma.masked_invalid(V)
+    mask = np.ma.getmaskarray(U) | np.ma.getmaskarray(V)
+    return a1, a2, np.ma.array(U, mask=mask), np.ma.array(V, mask=mask)
+
+
+#: Longest arrow of a field on screen, in pixels (the figure standard).
+MIN_ARROW_PX = 25.0
+
+
+def auto_grid(ax, limits=None, lo=5, hi=15):
+    """Grid points ``(n1, n2)`` for a field over ``limits`` ((lo1, hi1), (lo2, hi2)) drawn on
+    ``ax`` with equal aspect: the same spacing both ways, at least MIN_ARROW_PX / 0.9 pixels
+    (at least ``lo`` points along the longer side, at most ``hi`` along either)."""
+    fig = ax.figure
+    bbox = ax.get_position(original=True)
+    w, h = bbox.width * fig.get_figwidth() * fig.dpi, bbox.height * fig.get_figheight() * fig.dpi
+    if limits is None:
+        (a0, a1), (b0, b1) = ax.get_xlim(), ax.get_ylim()
+    else:
+        (a0, a1), (b0, b1) = limits
+    pa, pb = abs(a1 - a0) or 1.0, abs(b1 - b0) or 1.0
+    unit = min(w / pa, h / pb)                      # pixels per data unit (equal aspect)
+    gap = MIN_ARROW_PX / 0.9 + 2                    # pixels between grid points
+    n_long = int(np.clip(unit * max(pa, pb) // gap + 1, lo, hi))
+    step = max(pa, pb) / (n_long - 1)               # data units between grid points
+    n_short = int(np.clip(round(min(pa, pb) / step) + 1, 2, hi))
+    return (n_long, n_short) if pa >= pb else (n_short, n_long)
+
+
+class ConnectionFieldArtist:
+    """Quiver of one connection row, -A^row(r), over shape space; arrows are clipped for readability.
+
+    Arrows longer than ``clip`` x the median length are shortened to that length (near singular
+    shapes the connection grows without bound); undefined arrows are masked. ``factor`` is the
+    data-to-arrow scale in use, so the drawn arrow is ``factor * (-A^row)`` unless clipped.
+    ``n=None`` picks the grid from the axes' size so that the longest arrow (0.9 grid spacings)
+    is at least :data:`MIN_ARROW_PX` long on screen (the figure standard).
+    """
+
+    def __init__(self, ax, system, row, n=None, limits=None, clip=3.0, color="k", **kw):
+        n = auto_grid(ax, limits or system.shape_limits) if n is None else n
+        self.ax, self.n, self.limits, self.clip, self.row = ax, n, limits, float(clip), row
+        self.system = system
+        a1, a2, U, V = connection_field(system, row, n, limits)
+        self.quiver = ax.quiver(a1, a2, np.zeros_like(a1), np.zeros_like(a1), color=color, angles="xy",
+                                scale_units="xy", scale=1.0, width=0.008, headwidth=3.5, headlength=4.5,
+                                headaxislength=4.0, pivot="mid", **kw)
+        self.set(system, row)
+
+    def set(self, system=None, row=None):
+        """Recompute the field for (system, row) and move the arrows in place (set_UVC)."""
+        if system is not None:
+            self.system = system
+        if row is not None:
+            self.row = row
+        a1, a2, U, V = connection_field(self.system, self.row, self.n, self.limits)
+        self.quiver.set_offsets(np.column_stack([a1.ravel(), a2.ravel()]))
+        mag = np.ma.sqrt(U ** 2 + V ** 2)
+        n1, n2 = a1.shape[1], a1.shape[0]
+        spacing = min(np.ptp(a1) / (n1 - 1), np.ptp(a2) / (n2 - 1))
+        nonzero = np.ma.masked_equal(mag, 0.0)
+        med = float(np.ma.median(nonzero)) if nonzero.count() else 0.0
+        top = float(mag.max()) if mag.count() else 0.0
+        # the longest drawn arrow is 0.9 grid spacings: the largest arrow, or clip x the median
+        cap = min(self.clip * med, top) if med > 0 else (top or 1.0)
+        cap = cap if cap > 0 else 1.0
+        self.factor = 0.9 * spacing / cap
+        shrink = np.ma.where(mag > cap, cap / np.ma.where(mag > 0, mag, 1.0), 1.0)
+        self.U, self.V = U, V
+        self.quiver.set_UVC(U * shrink * self.factor, V * shrink * self.factor)
+        self.clipped = np.ma.filled(mag > cap, False)
+        return self
+
+
+def draw_singular_set(ax, system, n=161, limits=None, **style):
+    """Draw the singular shapes (det omega_xi = 0) as red lines; returns the contour set or None."""
+    if not system.may_be_singular:
+        return None
+    a1, a2, r = shape_grid(system, n, limits)
+    d = system.singularity(r)
+    if not (np.nanmin(d) < 0 < np.nanmax(d)):
+        return None
+    style.setdefault("colors", "crimson")
+    style.setdefault("linewidths", 2.0)
+    return ax.contour(a1, a2, d, levels=[0.0], **style)
+
+
+class ShapeCursorArtist:
+    """A marker at shape r on a shape-space axes and an arrow for the shape velocity r_dot."""
+
+    def __init__(self, ax, color=PALETTE["green"], arrow_scale=0.5):
+        (self.marker,) = ax.plot([0.0], [0.0], "o", color=color, ms=8, zorder=7)
+        self.arrow = ax.quiver([0.0], [0.0], [0.0], [0.0], color=color, angles="xy", scale_units="xy",
+                               scale=1.0, width=0.01, zorder=7)
+        self.arrow_scale = arrow_scale
+
+    def set(self, r, r_dot=(0.0, 0.0)):
+        r = np.asarray(r, float)
+        d = np.asarray(r_dot, float) * self.arrow_scale
+        self.marker.set_data([r[0]], [r[1]])
+        self.arrow.set_offsets([r])
+        self.arrow.set_UVC([d[0]], [d[1]])
+
+
+def _tick_label(v):
+    if np.isclose(abs(v), np.pi):
+        return "−π" if v < 0 else "π"
+    return f"{v:g}".replace("-", "−")
+
+
+def style_shape_axes(ax, system, title=None):
+    """Shape-space axes: equal aspect, three ticks per axis (few labels keep redraws cheap)."""
+    (lo1, hi1), (lo2, hi2) = system.shape_limits
+    ax.set_xlim(lo1, hi1)
+    ax.set_ylim(lo2, hi2)
+    ax.set_aspect("equal")
+    ax.set_xticks([lo1, 0.0, hi1], [_tick_label(v) for v in (lo1, 0.0, hi1)])
+    ax.set_yticks([lo2, 0.0, hi2], [_tick_label(v) for v in (lo2, 0.0, hi2)])
+    ax.tick_params(labelsize=8, pad=2)
+    ax.set_xlabel("α₁", labelpad=1)
+    ax.set_ylabel("α₂", labelpad=1)
+    if title:
+        ax.set_title(title)
+
+
+def connection_fields_figure(system, n=None, figsize=(9, 3.3)):
+    """A static figure: the three connection rows of ``system`` as vector fields, singular set in red."""
+    fig, axes = new_figure(1, 3, figsize=figsize)
+    arts = []
+    for i, ax in enumerate(axes):
+        style_shape_axes(ax, system, ROW_LABELS[i])
+        arts.append(ConnectionFieldArtist(ax, system, i, n=n))
+        draw_singular_set(ax, system)
+    fig.suptitle(f"{system.name}: the rows of −A(r) as fields")
+    return fig, axes, arts
+
+
+def regimes_figure(systems, n=None, figsize=(8.5, 11)):
+    """Static grid: one row per system, one column per connection row (x, y, theta)."""
+    systems = list(systems)
+    fig, axes = new_figure(len(systems), 3, figsize=figsize, squeeze=False)
+    for k, s in enumerate(systems):
+        for i in range(3):
+            ax = axes[k, i]
+            style_shape_axes(ax, s, ROW_LABELS[i] if k == 0 else None)
+            if i == 0:
+                ax.set_ylabel(f"{s.name}\nα₂", labelpad=1)
+            ConnectionFieldArtist(ax, s, i, n=n)
+            draw_singular_set(ax, s)
+    return fig, axes
+
+
+def poor_pictures_figure(system, row=2, n=6, figsize=(9, 3.4)):
+    """Three pictures of one connection row: a plane field, local contour lines, and arrows.
+
+    (a) at each grid shape r0, a small tilted square: the graph of the linear function
+    r_dot -> <-A^row(r0), r_dot>; (b) at each grid shape, three short parallel segments along which
+    that linear function is constant, spaced inversely to its gain; (c) the arrow field -A^row.
+    Singular grid shapes are skipped. Returns (fig, axes).
+    """
+    fig, axes = new_figure(1, 3, figsize=figsize)
+    axes = list(axes)
+    axes[0].remove()
+    axes[0] = fig.add_subplot(1, 3, 1, projection="3d")
+    a1, a2, U, V = connection_field(system, row, n)
+    (lo1, hi1), (lo2, hi2) = system.shape_limits
+    h = 0.35 * min(hi1 - lo1, hi2 - lo2) / n
+    big = float(np.ma.max(np.ma.sqrt(U ** 2 + V ** 2))) or 1.0
+    s = np.linspace(-h, h, 2)
+    S1, S2 = np.meshgrid(s, s)
+    for k in np.ndindex(a1.shape):
+        if np.ma.is_masked(U[k]) or np.ma.is_masked(V[k]):
+            continue
+        u, v = float(U[k]), float(V[k])
+        axes[0].plot_surface(a1[k] + S1, a2[k] + S2, (u * S1 + v * S2) / big, color=PALETTE["blue"], alpha=0.6,
+                             linewidth=0.3, edgecolor="k")
+        m = np.hypot(u, v)
+        if m > 0:
+            t = np.array([-v, u]) / m  # along a level line of the local linear function
+            nrm = np.array([u, v]) / m
+            gap = min(h, 0.25 * h * big / m)
+            for j in (-1, 0, 1):
+                c = np.array([a1[k], a2[k]]) + j * gap * nrm
+                axes[1].plot([c[0] - h * t[0], c[0] + h * t[0]], [c[1] - h * t[1], c[1] + h * t[1]],
+                             color=PALETTE["purple"], lw=1)
+    axes[0].set(xlabel="α₁", ylabel="α₂", title="(a) plane field")
+    axes[0].tick_params(labelsize=7.5, pad=0)
+    for ax, title in zip(axes[1:], ["(b) local level lines", "(c) connection vector field"]):
+        style_shape_axes(ax, system, title)
+    ConnectionFieldArtist(axes[2], system, row, n=n)
+    for ax in axes[1:]:
+        draw_singular_set(ax, system)
+    fig.suptitle(f"{system.name}, row {ROW_LABELS[row]}")
+    return fig, axes
+
+
+def field_grid_axes(figsize=(8, 7.5)):
+    """A 2 x 2 figure: three shape-space axes (one per connection row) and a world axes."""
+    fig, axes = new_figure(2, 2, figsize=figsize)
+    return fig, [axes[0, 0], axes[0, 1], axes[1, 0]], axes[1, 1]
+
+
+def thin_labels(field_axes, body_ax, body_labels=True):
+    """Fewer texts, faster redraws: tick labels only on the outer edges of the 2 x 2 grid."""
+    top_left, top_right, bottom_left = field_axes
+    for ax in (top_left, top_right):
+        ax.tick_params(labelbottom=False)
+        ax.set_xlabel("")
+    top_right.tick_params(labelleft=False)
+    top_right.set_ylabel("")
+    if not body_labels:
+        body_ax.tick_params(labelbottom=False, labelleft=False)
+
+
+def _fmt(xi):
+    return f"ξ = ({xi[0]:+.3f}, {xi[1]:+.3f}, {xi[2]:+.3f})"
+
+
+class ConnectionFieldScene(Scene):
+    """The three rows of A as vector fields over shape space, a shape cursor, and the body there.
+
+    Values: ``alpha1``, ``alpha2`` (the shape) and ``alpha1_dot``, ``alpha2_dot`` (its velocity);
+    the fourth axes draws the body at that shape with its body velocity xi = -A(r) r_dot (3.10).
+    At a singular shape the velocity is hidden and a flag says why. Options: ``system`` (required),
+    ``n`` (field grid; default from the axes size), ``velocity_scale``.
+    """
+
+    def __init__(self, system, n=None, velocity_scale=1.0, **options):
+        self.system, self.n, self.velocity_scale = system, n, velocity_scale
+        super().__init__(**options)
+
+    def make_figure(self):
+        fig, self.field_axes, self.ax = field_grid_axes()
+        return fig, self.field_axes + [self.ax]
+
+    def decorate(self):
+        s = self.system
+        for i, ax in enumerate(self.field_axes):
+            style_shape_axes(ax, s, f"row {i + 1}: {ROW_LABELS[i]}")
+            draw_singular_set(ax, s)
+        style_world_axes(self.ax, 1.15 * system_extent(s))
+        self.ax.set_title("body at this shape; arrow: body velocity")
+        thin_labels(self.field_axes, self.ax, body_labels=False)
+
+    def create(self):
+        s = self.system
+        self.fields = [ConnectionFieldArtist(ax, s, i, n=self.n, color="0.35") for i, ax in enumerate(self.field_axes)]
+        self.cursors = [ShapeCursorArtist(ax) for ax in self.field_axes]
+        self.body = SystemArtist(self.ax, s)
+        self.vel = VelocityArtist(self.ax, scale=self.velocity_scale)
+        self.flag = SingularFlag(self.ax)
+        self.text = readout(self.ax, 0.02, 0.02)
+
+    def set(self, alpha1=0.0, alpha2=0.0, alpha1_dot=1.0, alpha2_dot=0.0):
+        r = np.array([alpha1, alpha2])
+        rd = np.array([alpha1_dot, alpha2_dot])
+        for c in self.cursors:
+            c.set(r, rd)
+        self.body.set(np.zeros(3), r)
+        self.flag.text.stale = True  # may appear on any change: a moving artist from the first frame
+        if self.system.is_singular(r):
+            self.xi = np.full(3, np.nan)
+            self.vel.set(np.zeros(3), self.xi)
+            self.flag.show("singular shape: A undefined")
+            self.text.set_text("ξ undefined")
+        else:
+            self.xi = self.system.body_velocity(r, rd)
+            self.flag.hide()
+            self.vel.set(np.zeros(3), self.xi)
+            self.text.set_text(_fmt(self.xi))
+
+    def replot(self, alpha1=0.0, alpha2=0.0, alpha1_dot=1.0, alpha2_dot=0.0):
+        r = np.array([alpha1, alpha2])
+        rd = np.array([alpha1_dot, alpha2_dot])
+        for i, ax in enumerate(self.field_axes):
+            ax.clear()
+            style_shape_axes(ax, self.system, ROW_LABELS[i])
+            ConnectionFieldArtist(ax, self.system, i, n=self.n)
+            draw_singular_set(ax, self.system)
+            ax.plot([r[0]], [r[1]], "o", color=PALETTE["green"])
+        self.ax.clear()
+        style_world_axes(self.ax, 2.0)
+        draw_system_naive(self.ax, self.system, np.zeros(3), r)
+        if not self.system.is_singular(r):
+            xi = self.system.body_velocity(r, rd)
+            self.ax.quiver([0], [0], [xi[0]], [xi[1]], angles="xy", scale_units="xy", scale=1.0)

@@ -1,0 +1,291 @@
+"""Geodesics and the exponential map (book section 1.6): SE(2) helices, the spinning puck vs the
+SE(2) arc (live and as an animation), geodesics of (R+, x), and exp computed four ways.
+
+Geodesics come from :mod:`gm_core.fields`, exp histories from :mod:`gm_core.calculus`.
+"""
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.collections import LineCollection
+from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+from ..calculus import exp_history
+from ..fields import puck_vs_arc, rplus_geodesics, se2_helix, se2_helices
+from ..groups import SE2, RPlus
+from .actions import BODY
+from .base import BodyArtist, FrameArtist, TrailArtist, animate
+from .toolkit import (PALETTE, PathText, Scene, arrow, figure, margins, new_figure, plain_3d, plane, set_arrows,
+                      title, xticks, yticks, axis_label)
+
+__all__ = ["helix_geometry", "HelixScene", "PuckArcScene", "puck_vs_arc_animation", "RPlusGeodesicScene",
+           "ExpFourWaysScene"]
+
+
+# ============================================================================ 1.6 geodesics, exp
+def helix_geometry(thetadot, speed=1.0):
+    """Diameter, period and pitch of the SE(2) geodesic of xi = (speed, 0, thetadot): a dict.
+
+    Thin wrapper over :func:`gm_core.fields.se2_helix` returning plain floats (inf for a
+    straight line, thetadot = 0).
+    """
+    geo = se2_helix(np.array([speed, 0.0, thetadot]))
+    return {"diameter": float(geo.diameter), "radius": float(geo.radius), "period": float(geo.period),
+            "pitch": float(geo.pitch), "arclength": float(geo.arclength),
+            "straight": bool(geo.straight), "centre": np.asarray(geo.centre, float)}
+
+
+class HelixScene(Scene):
+    """Fig. 1.18: SE(2) geodesics exp(t (1, 0, thetadot)) as helices in (x, y, theta) and their
+    xy shadows, circles through the origin tangent to the x axis. Value ``thetadot``.
+    """
+
+    FAMILY = (-2.0, -1.0, -0.5, 0.5, 1.0, 2.0)
+    T = np.linspace(-np.pi, np.pi, 121)
+
+    def make_figure(self):
+        fig = figure(figsize=(9, 4.2))
+        ax3 = fig.add_subplot(1, 2, 1, projection="3d")
+        ax2 = fig.add_subplot(1, 2, 2)
+        margins(fig, left=0.0, right=0.98, bottom=0.04, top=0.9, wspace=0.05)
+        return fig, [ax3, ax2]
+
+    def decorate(self):
+        ax3, ax2 = self.axes
+        plain_3d(ax3, lim=3.2, labels=("x", "y", "θ"))
+        ax3.set_zlim(-7.0, 7.0)
+        ax3.view_init(elev=22, azim=-62)
+        plane(ax2, 3.2)
+        title(ax2, "xy projection: circles through the origin")
+        paths, _ = se2_helices(np.array(self.FAMILY), self.T)
+        segs3 = [p for p in paths]
+        ax3.add_collection3d(Line3DCollection(segs3, colors="0.7", linewidths=0.8))
+        ax2.add_collection(LineCollection([p[:, :2] for p in paths], colors="0.75", linewidths=0.8))
+
+    def create(self):
+        ax3, ax2 = self.axes
+        (self.helix,) = ax3.plot([], [], [], color=PALETTE["vermillion"], lw=2.2)
+        (self.circle,) = ax2.plot([], [], color=PALETTE["vermillion"], lw=2.2)
+        (self.unit,) = ax2.plot([], [], color="k", lw=3.5, alpha=0.6)
+        (self.centre,) = ax2.plot([], [], "+", color=PALETTE["vermillion"], ms=9)
+        self.title3 = PathText(ax3, 0.5, 0.98, "", size=9, ha="center", va="top", coords="axes")
+        self.info = PathText(ax2, 0.03, 0.03, "", size=8, va="bottom", coords="axes")
+
+    def set(self, thetadot=1.0):
+        paths, _ = se2_helices(np.array([thetadot]), self.T)
+        self.path = paths[0]
+        self.helix.set_data_3d(self.path[:, 0], self.path[:, 1], self.path[:, 2])
+        self.geometry = geo = helix_geometry(thetadot)
+        self.circle.set_data(self.path[:, 0], self.path[:, 1])
+        unit = SE2.exp(np.linspace(0, 1, 30)[:, None] * np.array([1.0, 0.0, thetadot]))
+        self.unit.set_data(unit[:, 0], unit[:, 1])
+        self.title3.set_text(f"helix in (x, y, θ) for ξ = (1, 0, {thetadot:.2f})")
+        if geo["straight"]:
+            self.centre.set_visible(False)
+            self.info.set_text("dθ/dt = 0: a straight line\n(the circle's diameter is infinite)")
+        else:
+            self.centre.set_visible(True)
+            self.centre.set_data([geo["centre"][0]], [geo["centre"][1]])
+            self.info.set_text(f"diameter 2|v|/|dθ/dt| = {geo['diameter']:.2f}\none turn: t = "
+                               f"{geo['period']:.2f}, θ rises 2π\nblack: exp(ξ), xy length |v| = 1")
+
+
+class PuckArcScene(Scene):
+    """Fig. 1.19: the (R^2 x S^1, +) 'spinning puck' and the SE(2) arc, same xi, same time t.
+
+    Values ``t`` and ``w`` (xi = (1, 1, w) as in the book for w = 1). A third panel shows each
+    path's *body-frame* forward velocity: constant on SE(2), oscillating for the puck.
+    """
+
+    T_MAX = 2 * np.pi
+
+    def make_figure(self):
+        fig, axes = new_figure(1, 3, figsize=(10, 3.6), gridspec_kw=dict(width_ratios=[1, 1, 1.1]))
+        margins(fig, left=0.02, right=0.98, bottom=0.15, top=0.88, wspace=0.12)
+        return fig, list(axes)
+
+    def decorate(self):
+        a, b, c = self.axes
+        plane(a, 4.5)
+        plane(b, 4.5)
+        title(a, "(R² × S¹, +): straight line, spinning")
+        title(b, "SE(2): arc, constant body velocity")
+        c.set_xlim(0, self.T_MAX)
+        c.set_ylim(-1.6, 1.6)
+        c.axhline(0, color="0.6", lw=0.8)
+        axis_label(c, "x", "time t", ticks=xticks(c, [0, np.pi, 2 * np.pi], ["0", "π", "2π"]))
+        yticks(c, [-1, 0, 1], ["−1", "0", "1"])
+        title(c, "forward speed seen by the body")
+
+    def create(self):
+        a, b, c = self.axes
+        self.paths = [TrailArtist(ax, color=col, lw=1.2, alpha=0.6) for ax, col in
+                      ((a, PALETTE["purple"]), (b, PALETTE["blue"]))]
+        self.trails = [TrailArtist(ax, color=col, lw=2.5) for ax, col in ((a, PALETTE["purple"]), (b, PALETTE["blue"]))]
+        self.bodies = [BodyArtist(ax, BODY * 1.4, facecolor=col) for ax, col in
+                       ((a, PALETTE["purple"]), (b, PALETTE["blue"]))]
+        self.frames = [FrameArtist(ax, length=0.5) for ax in (a, b)]
+        (self.fwd_puck,) = c.plot([], [], color=PALETTE["purple"], lw=1.8)
+        (self.fwd_arc,) = c.plot([], [], color=PALETTE["blue"], lw=1.8)
+        (self.now,) = c.plot([], [], color="k", lw=1)
+        self._w = None
+
+    def set(self, t=1.0, w=1.0):
+        if w != self._w:
+            ts = np.linspace(0, self.T_MAX, 181)
+            self.full = puck_vs_arc(ts, xi=(1.0, 1.0, w))
+            self.paths[0].set(self.full.puck[:, :2])
+            self.paths[1].set(self.full.arc[:, :2])
+            self.fwd_puck.set_data(ts, self.full.puck_body_velocity[:, 0])
+            self.fwd_arc.set_data(ts, self.full.arc_body_velocity[:, 0])
+            self._w = w
+        now = puck_vs_arc(np.linspace(0, t, 60), xi=(1.0, 1.0, w))
+        self.now_state = now
+        for k, P in enumerate((now.puck, now.arc)):
+            self.trails[k].set(P[:, :2])
+            self.bodies[k].set(P[-1])
+            self.frames[k].set(P[-1])
+        self.now.set_data([t, t], [-1.6, 1.6])
+
+
+def puck_vs_arc_animation(w=1.0, frames=48, interval=80):
+    """FuncAnimation of fig. 1.19 (play it with ``gm_core.drawing.base.jshtml``; no kernel needed)."""
+    scene = PuckArcScene()
+    ts = np.linspace(0.0, PuckArcScene.T_MAX, frames)
+
+    def step(k):
+        scene.set(t=float(ts[k]), w=w)
+        return []
+
+    scene.set(t=0.0, w=w)
+    return animate(scene.fig, step, frames=frames, interval=interval)
+
+
+class RPlusGeodesicScene(Scene):
+    """Fig. 1.17: geodesics g(t) = exp(t xi) of (R+, x) from e = 1, with the invariant field's arrows.
+
+    Value ``xi``. Every unit of time multiplies g by the same factor exp(xi), so the curve speeds
+    up (xi > 0) or slows down (xi < 0); the dashed line is the additive (R, +) geodesic with the
+    same starting velocity, for contrast.
+    """
+
+    T = np.linspace(0.0, 3.0, 121)
+
+    def make_figure(self):
+        fig, ax = new_figure(figsize=(6.4, 4.2))
+        margins(fig, left=0.15, right=0.97, bottom=0.14, top=0.9)
+        return fig, [ax]
+
+    def decorate(self):
+        (ax,) = self.axes
+        ax.set_xlim(0, 3)
+        ax.set_ylim(0, 8)
+        xticks(ax, [0, 1, 2, 3], ["0", "1", "2", "3"])
+        ticks = yticks(ax, [0, 1, np.e, 4, 6, 8], ["0", "1 (= e)", "2.718 (ℯ)", "4", "6", "8"])
+        axis_label(ax, "x", "time t", ticks=ticks[:1])
+        axis_label(ax, "y", "g", ticks=ticks)
+        ax.axhline(1.0, color="0.7", lw=0.8)
+        g, _ = rplus_geodesics(np.array([-1.0, -0.5, 0.5, 1.0]), self.T)
+        ax.add_collection(LineCollection([np.c_[self.T, gi] for gi in g], colors="0.8", linewidths=1))
+
+    def create(self):
+        (ax,) = self.axes
+        (self.curve,) = ax.plot([], [], color=PALETTE["vermillion"], lw=2.2)
+        (self.additive,) = ax.plot([], [], color=PALETTE["blue"], lw=1.2, ls="--")
+        self.arrows = arrow(ax, color=PALETTE["vermillion"], n=4, width=0.006)
+        (self.marks,) = ax.plot([], [], "o", color="k", ms=5)
+        self.title = title(ax)
+        self.info = PathText(ax, 0.03, 0.93, "", size=8, va="top", coords="axes")
+
+    def set(self, xi=1.0):
+        g, g_dot = rplus_geodesics(np.array(xi), self.T)
+        self.g = g
+        self.curve.set_data(self.T, g)
+        self.additive.set_data(self.T, 1.0 + xi * self.T)
+        tk = np.array([0.0, 1.0, 2.0, 3.0])
+        gk = RPlus.exp(tk[:, None] * xi)[:, 0]
+        self.slopes = xi * gk                    # T_eL_g xi = g xi, the left-invariant field (1.46)
+        dt = 0.35
+        set_arrows(self.arrows, np.c_[tk, gk], np.c_[np.full(4, dt), dt * self.slopes])
+        self.marks.set_data(tk, gk)
+        self.ratios = gk[1:] / gk[:-1]
+        self.title.set_text(f"ξ = {xi:.2f}: exp(ξ) = {np.exp(xi):.4f}"
+                            + ("  — this is e" if abs(xi - 1) < 1e-12 else ""))
+        self.info.set_text("g(t+1)/g(t) = " + ", ".join(f"{r:.4f}" for r in self.ratios)
+                           + "\narrows: slope ġ = ξ g (left-invariant field)")
+
+
+class ExpFourWaysScene(Scene):
+    """Section 1.6.4 / exercise 1.4d: exp(xi) on SE(2) by closed form, Taylor series, the product
+    (I + xi^/n)^n and Euler steps, for xi = (1, 0, thetadot).
+
+    Values ``thetadot``, ``n`` and ``side`` ("left" or "right" invariant field, for Euler). Left:
+    error against the number of steps/terms (log-log), with the current n marked. Right: the
+    intermediate values of each method in the xy plane, over the closed-form arc.
+    """
+
+    NS = tuple(2 ** k for k in range(7))
+    METHODS = (("taylor", PALETTE["green"], "Taylor partial sums"), ("product", PALETTE["blue"], "(I + ξ^/n)ᵏ"),
+               ("euler", PALETTE["orange"], "Euler steps"))
+
+    def make_figure(self):
+        fig, axes = new_figure(1, 2, figsize=(9.6, 4.0))
+        margins(fig, left=0.08, right=0.98, bottom=0.11, top=0.9, wspace=0.15)
+        return fig, list(axes)
+
+    def decorate(self):
+        a, b = self.axes
+        a.set_xlim(-0.2, 6.3)
+        a.set_ylim(-17, 1.5)
+        xticks(a, range(7), [str(n) for n in self.NS])
+        yticks(a, [0, -4, -8, -12, -16], ["1", "1e-4", "1e-8", "1e-12", "1e-16"])
+        title(a, "error ‖estimate − exp(ξ^)‖ against n (log scales)")
+        PathText(a, 6.2, -16.5, "n steps / terms →", size=7.5, ha="right")
+        b.set_aspect("equal")
+        b.set_xticks([])
+        b.set_yticks([])
+        # one fixed window holds every arc exp(s xi), |thetadot| <= 3 (fixed limits keep slider
+        # changes cheap); early Taylor partial sums may leave it, which is part of the story
+        b.set_xlim(-0.55, 1.35)
+        b.set_ylim(-0.95, 0.95)
+        b.axhline(0, color="0.85", lw=0.8, zorder=0)
+        b.axvline(0, color="0.85", lw=0.8, zorder=0)
+        title(b, "intermediate values in the xy plane")
+
+    def create(self):
+        a, b = self.axes
+        self.err_lines, self.err_marks, self.path_lines = {}, {}, {}
+        for k, (m, col, label) in enumerate(self.METHODS):
+            (self.err_lines[m],) = a.plot([], [], "-o", color=col, ms=4, lw=1.5)
+            (self.err_marks[m],) = a.plot([], [], "*", color=col, ms=13, mec="k", mew=0.5)
+            (self.path_lines[m],) = b.plot([], [], "-o", color=col, ms=3.5, lw=1.0, alpha=0.85)
+            PathText(a, 0.03, 0.30 - 0.07 * k, label, size=8, color=col, coords="axes")
+        (self.arc,) = b.plot([], [], color="0.3", lw=2.5, alpha=0.5)
+        (self.target,) = b.plot([], [], "k*", ms=12)
+        self.info = PathText(b, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes", family="monospace")
+        self._key = None
+
+    def set(self, thetadot=1.0, n=8, side="left"):
+        n = int(n)
+        xi = np.array([1.0, 0.0, thetadot])
+        key = (thetadot, side)
+        if key != self._key:
+            self.histories = {m: exp_history(SE2, xi, self.NS, m, side) for m, _, _ in self.METHODS}
+            for m, h in self.histories.items():
+                self.err_lines[m].set_data(np.log2(h.n), np.log10(np.maximum(h.error, 1e-16)))
+            s = np.linspace(0, 1, 60)
+            arc = SE2.exp(s[:, None] * xi)
+            self.arc.set_data(arc[:, 0], arc[:, 1])
+            end = SE2.exp(xi)
+            self.target.set_data([end[0]], [end[1]])
+            self._key = key
+        self.final_error = {}
+        for m, _, _ in self.METHODS:
+            path = self.histories[m].path(n)
+            self.final_error[m] = float(path.error[-1]) if m != "taylor" else float(
+                np.linalg.norm(path.matrices[-1] - SE2.matrix(SE2.exp(xi))))
+            self.err_marks[m].set_data([np.log2(n)], [np.log10(max(self.final_error[m], 1e-16))])
+            pts = path.matrices[:, :2, 2] if m != "taylor" else path.matrices[1:, :2, 2]
+            self.path_lines[m].set_data(pts[:, 0], pts[:, 1])
+        self.info.set_text(f"n = {n}, error:\n" + "\n".join(
+            f"{m:<8}{self.final_error[m]:.1e}" for m, _, _ in self.METHODS))
+

@@ -1,0 +1,342 @@
+"""Velocities (book sections 1.4-1.5): vector fields and integral curves, lifted actions, world,
+body and spatial velocities, and the adjoint.
+
+The example fields and rigid-body point velocities are mathematics in :mod:`gm_core.examples`;
+integral curves come from :func:`gm_core.fields.integral_curve` (scipy's solve_ivp).
+"""
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.collections import LineCollection
+
+from ..examples import FIELDS, point_velocities
+from ..fields import integral_curve
+from ..groups import SE2, RPlus
+from .actions import BODY
+from .base import BodyArtist, FrameArtist
+from .toolkit import (PALETTE, ArrowSet, PathText, Scene, arrow, margins, new_figure, plane, set_arrows,
+                      title, xticks)
+
+__all__ = ["VectorFieldScene", "LiftedScalarScene", "LiftedSE2Scene", "VelocityScene", "AdjointScene",
+           "vec_text"]
+
+
+class VectorFieldScene(Scene):
+    """Figs. 1.13-1.14: a vector field, some integral curves, and one from a movable start point.
+
+    Values ``field`` (a key of :data:`FIELDS`), ``x0``, ``y0``. The movable curve is drawn
+    forwards (solid) and backwards in time (dashed, the flow of -X); curves computed with
+    :func:`gm_core.fields.integral_curve` (scipy solve_ivp).
+    """
+
+    LIM = 3.0
+    T = 6.0
+    N = 240
+
+    def make_figure(self):
+        fig, ax = new_figure(figsize=(5.2, 5.0))
+        margins(fig, left=0.03, right=0.97, bottom=0.03, top=0.93)
+        return fig, [ax]
+
+    def decorate(self):
+        (ax,) = self.axes
+        plane(ax, self.LIM, grid=False)
+        self._field = None
+
+    def create(self):
+        (ax,) = self.axes
+        g = np.linspace(-self.LIM + 0.25, self.LIM - 0.25, 13)
+        self._grid = np.stack(np.meshgrid(g, g), -1).reshape(-1, 2)
+        self.quiver = ArrowSet(ax, n=len(self._grid), color="0.6", width=0.0045, zorder=1)
+        self.background = LineCollection([], colors=PALETTE["blue"], linewidths=1.0, alpha=0.55, zorder=2)
+        ax.add_collection(self.background)
+        (self.forward,) = ax.plot([], [], color=PALETTE["vermillion"], lw=2.2, zorder=4)
+        (self.backward,) = ax.plot([], [], color=PALETTE["vermillion"], lw=1.5, ls="--", zorder=4)
+        (self.start,) = ax.plot([], [], "o", color="k", ms=7, zorder=5)
+        self.title = title(ax)
+        self._field = None
+
+    def _background(self, name):
+        """A few fixed integral curves (both directions), cut where they leave the view: segments."""
+        starts = np.array([[2.5, 0.0], [-2.5, 0.5], [0.5, 2.5], [-0.5, -2.5], [1.2, 1.2], [-1.5, -1.0],
+                           [0.3, 0.05], [2.8, 2.8], [-2.8, 2.2]])
+        segs = []
+        for sign in (1.0, -1.0):
+            for q0 in starts:
+                seg = _flow(FIELDS[name], q0, 4.0, 100, 1.5 * self.LIM, sign)
+                if len(seg) > 1:
+                    segs.append(seg)
+        return segs
+
+    def curve(self, name, x0, y0):
+        """Forward and backward integral curves from (x0, y0), each (m, 2), by solve_ivp.
+
+        Uses :func:`gm_core.fields.integral_curve` (scipy's solve_ivp) on X and on -X, stopping
+        early if the curve leaves a box three times the view (so runaway curves never overflow).
+        """
+        return [_flow(FIELDS[name], [x0, y0], self.T, self.N, 3 * self.LIM, sign) for sign in (1.0, -1.0)]
+
+    def set(self, field="spiral sink", x0=1.5, y0=1.0):
+        if field != self._field:
+            v = FIELDS[field](self._grid)
+            n = np.linalg.norm(v, axis=1, keepdims=True)
+            v = 0.32 * v / np.maximum(n, 1e-12) * (n > 1e-12)
+            self.quiver.set(self._grid - v / 2, v)   # arrows centred on the grid points
+            self.background.set_segments(self._background(field))
+            self._field = field
+        fwd, bwd = self.curve(field, x0, y0)
+        # a curve that runs away (saddle, backwards van der Pol) is cut where it leaves the view
+        self.fwd_pts, self.bwd_pts = (c[: _first_outside(c, 3 * self.LIM)] for c in (fwd, bwd))
+        self.forward.set_data(self.fwd_pts[:, 0], self.fwd_pts[:, 1])
+        self.backward.set_data(self.bwd_pts[:, 0], self.bwd_pts[:, 1])
+        self.start.set_data([x0], [y0])
+        self.title.set_text(f"{field}: forward (solid) and backward (dashed) from ({x0:.2f}, {y0:.2f})")
+
+
+def _flow(f, q0, T, n, lim, sign=1.0):
+    """Integral curve of sign * f from q0 at n + 1 equal times on [0, T], stopped where it leaves
+    the box |x|, |y| < lim (gm_core.fields.integral_curve with a terminal event): (m, 2)."""
+    def leave(t, y):
+        return lim - np.max(np.abs(y))
+
+    leave.terminal = True
+    c = integral_curve(lambda q, t: sign * f(q), q0, (0.0, T), t_eval=np.linspace(0.0, T, n + 1),
+                       method="RK45", rtol=1e-5, atol=1e-8, events=leave)
+    return c.q
+
+
+def _first_outside(c, lim):
+    bad = ~np.all(np.isfinite(c) & (np.abs(c) < lim), axis=1)
+    return int(np.argmax(bad)) if bad.any() else len(c)
+
+
+
+
+class LiftedScalarScene(Scene):
+    """Lifted actions on (R^2, +) and (R+, x), (1.22)-(1.25): a velocity carried from g to hg.
+
+    Values ``hx``, ``hy`` (a translation of R^2) and ``h`` (a factor in R+). On R^2 the arrow is
+    carried unchanged; on R+ it is scaled by h, like interest proportional to the balance.
+    """
+
+    G_R2 = np.array([-1.0, -0.5])
+    V_R2 = np.array([0.8, 0.4])
+    G_RP = 1.5
+    V_RP = 0.6
+
+    def make_figure(self):
+        fig, axes = new_figure(1, 2, figsize=(9, 3.6), gridspec_kw=dict(width_ratios=[1, 1.5]))
+        margins(fig, left=0.03, right=0.98, bottom=0.14, top=0.88, wspace=0.12)
+        return fig, list(axes)
+
+    def decorate(self):
+        ax2, ax1 = self.axes
+        plane(ax2, 2.5)
+        title(ax2, "(R², +): T_gL_h = identity")
+        ax1.set_xlim(-0.2, 10.5)
+        ax1.set_ylim(-1.0, 1.6)
+        ax1.set_yticks([])
+        ax1.plot([0, 10.5], [0, 0], color="k", lw=1)
+        xticks(ax1, [0, 1, 4, 6, 8, 10], ["0", "1 = e", "4", "6", "8", "10"])
+        title(ax1, "(R⁺, ×): T_gL_h = h scales the arrow")
+
+    def create(self):
+        ax2, ax1 = self.axes
+        (self.pts2,) = ax2.plot([], [], "o", color="k", ms=6)
+        self.arrows2 = ArrowSet(ax2, color=[PALETTE["blue"], PALETTE["orange"]], n=2, width=0.012)
+        self.shift2 = ArrowSet(ax2, color="0.6", width=0.005)
+        (self.pts1,) = ax1.plot([], [], "o", color="k", ms=6)
+        self.arrows1 = arrow(ax1, color=[PALETTE["blue"], PALETTE["orange"]], n=2, width=0.008)
+        self.text1 = PathText(ax1, 0.02, 0.06, "", size=8, coords="axes")
+
+    def set(self, hx=1.5, hy=1.0, h=2.5):
+        g2 = self.G_R2
+        hg2 = g2 + np.array([hx, hy])
+        self.pts2.set_data([g2[0], hg2[0]], [g2[1], hg2[1]])
+        self.v_R2 = np.stack([self.V_R2, np.eye(2) @ self.V_R2])
+        set_arrows(self.arrows2, [g2, hg2], self.v_R2)
+        set_arrows(self.shift2, g2, [hx, hy])
+        g1 = self.G_RP
+        hg1 = RPlus.compose([h], [g1])[0]
+        lifted = (RPlus.left_lifted_action([h], [g1]) @ [self.V_RP])[0]
+        self.v_RP = np.array([self.V_RP, lifted])
+        self.pts1.set_data([g1, hg1], [0, 0])
+        set_arrows(self.arrows1, [[g1, 0.5], [hg1, 0.5]], [[self.V_RP, 0], [lifted, 0]])
+        self.text1.set_text(f"g = {g1:.2f}, ġ = {self.V_RP:.2f}  →  hg = {hg1:.2f}, "
+                            f"T_gL_h ġ = {lifted:.2f};  ratio ġ/g = {self.V_RP / g1:.3f} = "
+                            f"{lifted / hg1:.3f}")
+
+
+def vec_text(a, digits=2):
+    """'(+0.12, -0.50, +0.00)': fixed-width numbers for readouts, never printing -0.00."""
+    tiny = 0.5 * 10.0 ** -digits
+    return "(" + ", ".join(f"{(c if abs(c) >= tiny else 0.0):+.{digits}f}" for c in a) + ")"
+
+
+
+
+class LiftedSE2Scene(Scene):
+    """Lifted actions on SE(2), (1.31) and (1.37): a body's motion carried from g to hg and to gh.
+
+    Values ``theta`` (heading of g), ``u, v, beta`` (h). The body at g moves with world velocity
+    g_dot (body velocity XI0). Arrows are the velocities of the body's corners: at hg they are
+    T_gL_h g_dot (same motion *as seen by the body*), at gh they are T_gR_h g_dot (the motion of a
+    frame welded to g, same *spatial* velocity).
+    """
+
+    XI0 = np.array([0.7, 0.0, 0.9])
+    G_XY = np.array([-1.2, -1.0])
+    SCALE = 0.7
+
+    def make_figure(self):
+        fig, ax = new_figure(figsize=(5.8, 4.9))
+        margins(fig, left=0.02, right=0.98, bottom=0.02, top=0.93)
+        return fig, [ax]
+
+    def decorate(self):
+        (ax,) = self.axes
+        plane(ax, 3.5)
+
+    def create(self):
+        (ax,) = self.axes
+        colors = ("0.45", PALETTE["blue"], PALETTE["orange"])
+        self.bodies = [BodyArtist(ax, BODY * 1.6, facecolor=c, alpha=0.45) for c in colors]
+        self.vel = [ArrowSet(ax, color=c, n=4, width=0.007) for c in colors]
+        (self.weld,) = ax.plot([], [], color=PALETTE["orange"], ls=":", lw=1.5)
+        self.title = title(ax, size=8)
+        self.text = PathText(ax, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes", family="monospace")
+
+    def set(self, theta=0.3, u=2.0, v=1.5, beta=1.0):
+        g = np.array([self.G_XY[0], self.G_XY[1], theta])
+        h = np.array([u, v, beta])
+        g_dot = SE2.body_to_world(g, self.XI0)
+        self.poses = [g, SE2.compose(h, g), SE2.compose(g, h)]
+        self.world_vels = [g_dot, SE2.left_lifted_action(h, g) @ g_dot, SE2.right_lifted_action(h, g) @ g_dot]
+        for body, q, pose, gd in zip(self.bodies, self.vel, self.poses, self.world_vels):
+            body.set(pose)
+            pts = np.vstack([pose[:2], SE2.act_on_points(pose, body.outline)])
+            set_arrows(q, pts, self.SCALE * point_velocities(pose, gd, pts))
+        self.weld.set_data([g[0], self.poses[2][0]], [g[1], self.poses[2][1]])
+        xi = [SE2.world_to_body(p, gd) for p, gd in zip(self.poses, self.world_vels)]
+        xs = [SE2.world_to_spatial(p, gd) for p, gd in zip(self.poses, self.world_vels)]
+        self.body_vels, self.spatial_vels = np.array(xi), np.array(xs)
+        self.title.set_text("grey: g     blue: hg with T_gL_h ġ     orange: gh with T_gR_h ġ")
+        f = vec_text
+        self.text.set_text("    body ξ                spatial ξˢ\n" + "\n".join(
+            f"{name:<3}{f(b)}  {f(s)}" for name, b, s in zip(("g", "hg", "gh"), xi, xs)))
+
+
+class VelocityScene(Scene):
+    """Fig. 1.15: world, body and spatial velocity of a body at g with body velocity xi.
+
+    Values ``x, y, theta`` (g) and ``vx, vy, w`` (the body velocity xi).
+    """
+
+    LIM = 3.0
+
+    def make_figure(self):
+        fig, axes = new_figure(2, 2, figsize=(7.2, 7.0))
+        margins(fig, left=0.02, right=0.98, bottom=0.02, top=0.95, wspace=0.06, hspace=0.12)
+        return fig, list(np.ravel(axes))
+
+    def decorate(self):
+        names = ["(a) world velocity ġ", "(b) body velocity ξ, in the body frame",
+                 "(c) ξ after moving the body to e", "(d) spatial velocity ξˢ at the origin"]
+        for ax, name in zip(self.axes, names):
+            plane(ax, self.LIM)
+            title(ax, name, size=8.5)
+
+    def create(self):
+        a, b, c, d = self.axes
+        self.bodies = [BodyArtist(ax, BODY * 1.5, facecolor=PALETTE["blue"], alpha=0.4) for ax in self.axes]
+        self.frames = [FrameArtist(ax, length=0.6) for ax in (b, c)]
+        self.world = ArrowSet(a, color="k", width=0.012)
+        self.components = ArrowSet(b, color=[PALETTE["vermillion"], PALETTE["green"]], n=2, width=0.012)
+        self.at_e = ArrowSet(c, color="k", width=0.012)
+        self.spatial_parts = ArrowSet(d, color=["0.55", PALETTE["purple"]], n=2, width=0.008)
+        self.spatial = ArrowSet(d, color=PALETTE["vermillion"], width=0.012)
+        (self.lever,) = d.plot([], [], color=PALETTE["purple"], ls=":", lw=1.5)
+        self.texts = [PathText(ax, 0.03, 0.04, "", size=8, coords="axes") for ax in self.axes]
+
+    def set(self, x=1.2, y=0.6, theta=0.7, vx=0.8, vy=0.3, w=0.6):
+        g = np.array([x, y, theta])
+        xi = np.array([vx, vy, w])
+        self.g_dot = SE2.body_to_world(g, xi)
+        self.xi_s = SE2.body_to_spatial(g, xi)
+        for k in (0, 1, 3):
+            self.bodies[k].set(g)
+        self.bodies[2].set(SE2.identity())
+        self.frames[0].set(g)
+        self.frames[1].set(SE2.identity())
+        set_arrows(self.world, g[:2], self.g_dot[:2])
+        axes_b = SE2.matrix(g)[:2, :2]
+        self.component_vecs = np.stack([vx * axes_b[:, 0], vy * axes_b[:, 1]])
+        set_arrows(self.components, [g[:2], g[:2] + self.component_vecs[0]], self.component_vecs)
+        set_arrows(self.at_e, [0, 0], xi[:2])
+        lever = -g[:2]                         # from the body's frame origin to the world origin
+        swirl = w * np.array([-lever[1], lever[0]])
+        self.spatial_parts_vecs = np.stack([self.g_dot[:2], swirl])
+        set_arrows(self.spatial_parts, [[0, 0], self.g_dot[:2]], self.spatial_parts_vecs)
+        set_arrows(self.spatial, [0, 0], self.xi_s[:2])
+        self.lever.set_data([x, 0], [y, 0])
+        f = vec_text
+        self.texts[0].set_text(f"ġ = {f(self.g_dot)}")
+        self.texts[1].set_text(f"ξ = {f(xi)}  (red: ξˣ, green: ξʸ)")
+        self.texts[2].set_text(f"ξ = T_gL_g⁻¹ ġ = {f(SE2.world_to_body(g, self.g_dot))}")
+        self.texts[3].set_text(f"ξˢ = {f(self.xi_s)} = ġ + ξᶿ × l")
+
+
+def _matrix_lines(M):
+    return "\n".join("[" + "  ".join(f"{v:+7.3f}" for v in row) + " ]" for row in M)
+
+
+class AdjointScene(Scene):
+    """(1.40)-(1.45): Ad_g three ways, plus the spatial velocity by finite differences of g(t) g(t)^-1.
+
+    Values ``x, y, theta`` (g) and ``vx, vy, w`` (body velocity xi).
+    """
+
+    def make_figure(self):
+        fig, ax = new_figure(figsize=(7.6, 2.9))
+        margins(fig, left=0.0, right=1.0, bottom=0.0, top=1.0)
+        return fig, [ax]
+
+    def decorate(self):
+        (ax,) = self.axes
+        ax.set_axis_off()
+        ax.set_xlim(0, 1)
+        ax.set_ylim(0, 1)
+        heads = ["Ad_g, closed form (1.43)", "T_gR_g⁻¹ · T_eL_g  (1.40)", "same, finite differences"]
+        for k, s in enumerate(heads):
+            PathText(ax, 0.02 + 0.33 * k, 0.92, s, size=8, weight="bold")
+
+    def create(self):
+        (ax,) = self.axes
+        self.blocks = [PathText(ax, 0.02 + 0.33 * k, 0.82, "", size=8, va="top", color=c)
+                       for k, c in enumerate(("k", PALETTE["blue"], PALETTE["green"]))]
+        self.summary = PathText(ax, 0.02, 0.42, "", size=8, va="top")
+
+    def set(self, x=1.0, y=-0.5, theta=0.8, vx=0.5, vy=0.2, w=0.7):
+        g = np.array([x, y, theta])
+        xi = np.array([vx, vy, w])
+        e = SE2.identity()
+        ginv = SE2.inverse(g)
+        self.Ad = SE2.Ad(g)
+        Ad_tn = SE2.right_lifted_action(ginv, g) @ SE2.left_lifted_action(g, e)
+        self.Ad_fd = SE2.numerical_right_lifted_action(ginv, g) @ SE2.numerical_left_lifted_action(g, e)
+        # independent check with velocities: xi_s = d/dt (g(t) g^-1) at t = 0 with g(t) = g exp(t xi)
+        hstep = 1e-6
+        Mp = SE2.matrix(SE2.compose(g, SE2.exp(hstep * xi))) @ SE2.matrix(ginv)
+        Mm = SE2.matrix(SE2.compose(g, SE2.exp(-hstep * xi))) @ SE2.matrix(ginv)
+        self.xi_s_fd = SE2.vee((Mp - Mm) / (2 * hstep))
+        self.xi_s = self.Ad @ xi
+        self.mismatch = float(max(np.abs(self.Ad - Ad_tn).max(), np.abs(self.Ad - self.Ad_fd).max()))
+        for blk, M in zip(self.blocks, (self.Ad, Ad_tn, self.Ad_fd)):
+            blk.set_text(_matrix_lines(M))
+        f = lambda a: vec_text(a, 4)  # noqa: E731
+        self.summary.set_text(
+            f"largest difference between the three matrices: {self.mismatch:.1e}\n"
+            f"{f(self.xi_s)}   ξˢ = Ad_g ξ\n"
+            f"{f(self.xi_s_fd)}   ξˢ from d/dt (g(t) g⁻¹) by finite differences, g(t) = g exp(tξ)\n"
+            f"{f(SE2.Ad_inv(g) @ self.xi_s)}   back again: Ad_g⁻¹ ξˢ = ξ")
+

@@ -1,0 +1,248 @@
+"""Gaits: closed shape trajectories ``t -> r(t)`` of period T, with their shape velocity (chapter 3).
+
+numpy/scipy only; :mod:`gm_core.locomotion` integrates them (and re-exports every name here).
+
+* :class:`Gait` from a callable, or :meth:`Gait.from_samples` (periodic cubic spline);
+* :func:`circle_gait` (a :class:`CircleGait`), :func:`as_gait`.
+
+A gait also says how finely it must be sampled to see all its features (``feature_time``): a
+circle changes on the scale of its period, a spline on the scale of its knot spacing, a general
+callable on an unknown scale (then checks sample densely, see
+:func:`gm_core.locomotion.check_gait`).
+"""
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from ._validate import as_array, check_positive
+
+__all__ = ["Gait", "CircleGait", "circle_gait", "constant_rate_path", "as_gait", "GaitWarning", "CLOSURE_RTOL"]
+
+#: A gait is closed when |r(T) - r(0)| <= CLOSURE_RTOL * max(1, max |r|).
+CLOSURE_RTOL = 1e-8
+
+# Eighth-order central difference weights for f'(t) with offsets 1..4.
+_FD8 = np.array([4 / 5, -1 / 5, 4 / 105, -1 / 280])
+
+
+class GaitWarning(UserWarning):
+    """A gait was accepted but something about it is probably not what was meant (e.g. an open path)."""
+
+
+class Gait:
+    """A shape trajectory ``t -> r(t)`` over one period T, with its shape velocity.
+
+    Build one from a callable (``Gait(lambda t: ..., period=T)``), optionally with an exact
+    ``velocity`` callable (otherwise an eighth-order central difference is used), or from a
+    sampled closed path with :meth:`from_samples` (periodic cubic spline through the samples at
+    equal time steps). Callables should accept an array of times ``(N,)`` and return ``(N, n)``;
+    scalar-only callables also work, more slowly.
+
+    A gait proper is closed, r(T) = r(0) (see :attr:`closure_gap`); an open shape path (say a
+    constant-rate drive) is also a valid ``Gait`` for :func:`gm_core.locomotion.trajectory` over
+    one period, but :func:`gm_core.locomotion.net_displacement` refuses it unless told
+    ``check=False``. ``feature_time`` is the shortest time over which the shape changes
+    appreciably, if known (None: unknown, so singularity checks sample densely).
+    """
+
+    def __init__(self, shape, period=1.0, velocity=None, *, name="gait", knots=None, feature_time=None):
+        if not callable(shape):
+            raise TypeError(f"shape must be a callable t -> r(t); got {type(shape).__name__} "
+                            "(use Gait.from_samples for an array of points)")
+        if velocity is not None and not callable(velocity):
+            raise TypeError(f"velocity must be a callable t -> r_dot(t) or None; got {type(velocity).__name__}")
+        self.period = float(check_positive(period, "period"))
+        self._shape = shape
+        self._velocity = velocity
+        self.name = str(name)
+        self.knots = None if knots is None else as_array(knots, "knots")
+        if feature_time is not None:
+            feature_time = min(float(check_positive(feature_time, "feature_time")), self.period)
+        self.feature_time = feature_time
+        ends = self._eval(self._shape, np.array([0.0, self.period]))
+        if ends.ndim != 2 or ends.shape[-1] < 1:
+            raise ValueError(f"shape must return a vector of shape variables r(t) (n,); got {ends.shape[1:]}")
+        self.n_shape = ends.shape[-1]
+        self.closure_gap = ends[1] - ends[0]
+
+    @staticmethod
+    def _eval(f, t):
+        t = np.asarray(t, dtype=float)
+        flat = t.reshape(-1)
+        try:
+            out = np.asarray(f(flat), dtype=float)
+        except Exception:  # noqa: BLE001 - scalar-only callables; retried point by point below
+            out = None
+        if out is None or out.ndim != 2 or out.shape[0] != flat.size:
+            try:
+                out = np.array([np.atleast_1d(np.asarray(f(float(s)), dtype=float)) for s in flat])
+            except (TypeError, ValueError) as e:
+                raise TypeError(f"the gait's callable must return numbers r(t) (n,) for a time t; "
+                                f"calling it failed with {type(e).__name__}: {e}") from None
+        if out.ndim != 2:
+            raise ValueError(f"the gait's callable must return a vector r(t) (n,) per time; got shape {out.shape}")
+        if not np.all(np.isfinite(out)):
+            raise ValueError("the gait returned NaN or infinite shapes; every shape must be finite")
+        return out.reshape(t.shape + out.shape[-1:])
+
+    def __call__(self, t):
+        """Shape r(t), ``(..., n)`` for times ``(...)``."""
+        return self._eval(self._shape, t)
+
+    def velocity(self, t):
+        """Shape velocity r_dot(t), ``(..., n)``: exact if given, else an 8th-order central difference."""
+        if self._velocity is not None:
+            out = self._eval(self._velocity, t)
+            if out.shape[-1] != self.n_shape:
+                raise ValueError(f"the gait's velocity callable returned {out.shape[-1]} components per time; "
+                                 f"the shape has {self.n_shape}")
+            return out
+        t = np.asarray(t, dtype=float)
+        h = 1e-3 * (self.period if self.feature_time is None else self.feature_time)
+        out = 0.0
+        for k, w in enumerate(_FD8, start=1):
+            out = out + w * (self(t + k * h) - self(t - k * h))
+        return out / h
+
+    def is_closed(self, rtol=CLOSURE_RTOL):
+        """True when r(T) = r(0) to ``rtol`` relative to max(1, |r(0)|, |r(T)|)."""
+        r0 = self(np.array([0.0]))[0]
+        scale = max(1.0, float(np.max(np.abs(r0))), float(np.max(np.abs(r0 + self.closure_gap))))
+        return float(np.max(np.abs(self.closure_gap))) <= rtol * scale
+
+    def require_closed(self, what):
+        """Raise ValueError naming the gap when the gait is open; ``what`` says who needs it closed."""
+        if not self.is_closed():
+            gap = ", ".join(f"{v:.3g}" for v in self.closure_gap)
+            raise ValueError(
+                f"gait {self.name!r} is not closed: r(T) - r(0) = ({gap}), |gap| = "
+                f"{float(np.linalg.norm(self.closure_gap)):.3g}; {what} needs a closed loop in shape space")
+
+    @classmethod
+    def from_samples(cls, points, period=1.0, *, name="sampled gait"):
+        """A gait through the closed path ``points (K, n)`` visited at equal time steps.
+
+        The path is closed automatically (a last point equal to the first is dropped) and
+        interpolated by a periodic cubic spline, whose derivative gives the shape velocity. If
+        the closing segment (last point back to the first) is more than four times as long as
+        the longest other segment, the samples probably describe an open path and a
+        :class:`GaitWarning` names the gap.
+        """
+        from scipy.interpolate import CubicSpline
+
+        pts = as_array(points, "points")
+        if pts.ndim != 2 or pts.shape[0] < 3 or pts.shape[1] < 1:
+            raise ValueError(f"points must have shape (K, n) with K >= 3 samples of a closed path; "
+                             f"got shape {pts.shape}")
+        if np.allclose(pts[0], pts[-1]):
+            pts = pts[:-1]
+        if pts.shape[0] < 3:
+            raise ValueError("points must contain at least 3 distinct samples of a closed path")
+        seg = np.linalg.norm(np.diff(pts, axis=0), axis=-1)
+        gap = float(np.linalg.norm(pts[0] - pts[-1]))
+        if gap > 4 * float(seg.max()):
+            warnings.warn(f"points look like an open path: the closing segment from the last point back "
+                          f"to the first has length {gap:.3g}, the longest other segment {float(seg.max()):.3g}; "
+                          "the periodic spline closes it", GaitWarning, stacklevel=2)
+        T = float(check_positive(period, "period"))
+        K = pts.shape[0]
+        tk = np.linspace(0.0, T, K + 1)
+        spline = CubicSpline(tk, np.vstack([pts, pts[:1]]), bc_type="periodic", axis=0)
+        d = spline.derivative()
+        return cls(lambda t: spline(np.mod(t, T)), T, lambda t: d(np.mod(t, T)), name=name,
+                   knots=tk, feature_time=T / K)
+
+    def reparameterized(self, tau, tau_dot=None, *, name=None):
+        """The same path with a new pacing: ``r'(t) = r(tau(t))``, for a map tau of [0, T] onto itself.
+
+        ``tau`` must be increasing with tau(0) = 0 and tau(T) = T; ``tau_dot`` is its derivative
+        (optional). This is the time reparameterization of (3.3).
+        """
+        if not callable(tau):
+            raise TypeError("tau must be a callable t -> tau(t)")
+        if tau_dot is not None and not callable(tau_dot):
+            raise TypeError("tau_dot must be a callable t -> tau'(t) or None")
+        T = self.period
+        if not (abs(float(tau(0.0))) <= 1e-12 * T and abs(float(tau(T)) - T) <= 1e-12 * T):
+            raise ValueError("tau must map [0, T] onto itself with tau(0) = 0 and tau(T) = T")
+        base = self
+        if tau_dot is None:
+            vel = None
+        else:
+            def vel(t):
+                t = np.asarray(t, dtype=float)
+                return base.velocity(tau(t)) * np.asarray(tau_dot(t), dtype=float)[..., None]
+        return Gait(lambda t: base(tau(np.asarray(t, dtype=float))), T, vel,
+                    name=name or f"{self.name} (repaced)")
+
+    def __repr__(self):
+        return f"{type(self).__name__}({self.name!r}, period={self.period:g}, n_shape={self.n_shape})"
+
+
+class CircleGait(Gait):
+    """``r(t) = c + R (cos 2 pi t / T, sin 2 pi t / T)``: see :func:`circle_gait`."""
+
+    def __init__(self, amplitude, center=(0.0, 0.0), period=1.0):
+        R = check_positive(amplitude, "amplitude")
+        if R.ndim > 1 or R.size not in (1, 2):
+            raise ValueError(f"amplitude must be a number or a pair of semi-axes; got shape {R.shape}")
+        c = as_array(center, "center", (2,), what=" (the gait's centre in shape space)")
+        if c.ndim != 1:
+            raise ValueError(f"center must have shape (2,); got shape {c.shape}")
+        #: semi-axes (2,) and centre (2,) of the circle (or ellipse)
+        self.amplitude = np.broadcast_to(R, (2,)).astype(float)
+        self.center = c.copy()
+        T = float(check_positive(period, "period"))
+        super().__init__(self._r, T, self._r_dot, feature_time=T,
+                         name=f"circle R={self.amplitude[0]:g} about ({c[0]:g}, {c[1]:g})")
+
+    def _phase(self, t):
+        # the phase 2 pi t / T, computed as 2 pi (t / T) so that tiny or huge periods stay exact
+        return 2 * np.pi * (np.asarray(t, dtype=float) / self.period)
+
+    def _r(self, t):
+        w = self._phase(t)
+        return self.center + self.amplitude * np.stack([np.cos(w), np.sin(w)], -1)
+
+    def _r_dot(self, t):
+        w = self._phase(t)
+        return (2 * np.pi / self.period) * self.amplitude * np.stack([-np.sin(w), np.cos(w)], -1)
+
+
+def circle_gait(amplitude, center=(0.0, 0.0), period=1.0):
+    """Circular gait ``r(t) = c + R (cos 2 pi t / T, sin 2 pi t / T)`` in a 2-D shape space.
+
+    ``amplitude`` is the radius R (a positive number, or two positive semi-axes for an ellipse);
+    ``center`` is c; the circle is traversed counterclockwise once per ``period``.
+    """
+    return CircleGait(amplitude, center, period)
+
+
+def constant_rate_path(r0, r_dot, duration, *, name="constant rate"):
+    """The open shape path ``r(t) = r0 + t r_dot`` for 0 <= t <= duration, as a :class:`Gait`.
+
+    For driving a system at a constant shape rate (e.g. both wheels of a car turning steadily)
+    with :func:`gm_core.locomotion.trajectory`. Its feature time is the whole duration (a straight
+    line has no narrow features), so singularity checks need only a few thousand samples.
+    """
+    r0 = as_array(r0, "r0", what=" (the starting shape)")
+    r_dot = as_array(r_dot, "r_dot", what=" (the constant shape velocity)")
+    if r0.ndim != 1 or r_dot.shape != r0.shape or r0.size < 1:
+        raise ValueError(f"r0 and r_dot must be vectors of the same length n >= 1; got shapes "
+                         f"{r0.shape} and {r_dot.shape}")
+    T = float(check_positive(duration, "duration"))
+    return Gait(lambda t: r0 + np.asarray(t, float)[..., None] * r_dot, T,
+                lambda t: np.broadcast_to(r_dot, np.shape(t) + r_dot.shape), name=name, feature_time=T)
+
+
+def as_gait(gait, period=1.0):
+    """A :class:`Gait` from a Gait, a callable ``t -> r`` (period ``period``) or samples ``(K, n)``."""
+    if isinstance(gait, Gait):
+        return gait
+    if callable(gait):
+        return Gait(gait, period)
+    if gait is None or isinstance(gait, (str, bytes)):
+        raise TypeError(f"gait must be a Gait, a callable t -> r(t) or an array of shapes; got {gait!r}")
+    return Gait.from_samples(gait, period)

@@ -1,0 +1,23 @@
+"""Geometry of locomotion beyond the draft: curvature, Stokes estimate, coordinates, costs, optimal gaits.
+
+numpy/scipy only. Follows Hatton & Choset (2011-2015) for the constraint curvature and the
+choice of body frame, and Ramasamy & Hatton (2019) for gait optimisation; conventions are the
+book's (``xi = -A(r) r_dot``, (3.10)).
+
+* :mod:`.curvature`: ``constraint_curvature``, ``stokes_estimate``, ``body_velocity_integral``;
+* :mod:`.coordinates`: ``reframe``, ``centre_of_mass_coordinates``, ``minimum_perturbation_coordinates``;
+* :mod:`.metrics`: ``dissipation_metric``, ``path_length``, ``efficiency``;
+* :mod:`.optimal`: ``fourier_gait``, ``optimize_gait``, ``sysplotter_stroke``.
+"""
+from .coordinates import (MinimumPerturbationCoordinates, Reframed, body_frames, centre_of_mass_coordinates,
+                          minimum_perturbation_coordinates, reframe)
+from .curvature import body_velocity_integral, connection_derivative, constraint_curvature, stokes_estimate
+from .metrics import dissipation_metric, efficiency, path_length
+from .optimal import FourierGait, OptimalGait, fourier_gait, gait_objective, optimize_gait
+from .strokes import SYSPLOTTER_STROKES, sysplotter_stroke, sysplotter_swimmer
+
+__all__ = ["constraint_curvature", "connection_derivative", "stokes_estimate", "body_velocity_integral",
+           "Reframed", "reframe", "centre_of_mass_coordinates", "minimum_perturbation_coordinates",
+           "MinimumPerturbationCoordinates", "body_frames", "dissipation_metric", "path_length", "efficiency",
+           "FourierGait", "OptimalGait", "fourier_gait", "gait_objective", "optimize_gait",
+           "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer"]

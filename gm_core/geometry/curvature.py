@@ -1,0 +1,255 @@
+"""Constraint curvature, the Stokes estimate and the body-velocity integral (numpy/scipy only).
+
+Convention (book (3.10)): ``xi = -A(r) r_dot``, A of shape (..., 3, 2) with columns
+``A_1, A_2`` (se(2) vectors). Over one cycle of a small gait the net displacement is, to
+leading order (Hatton & Choset 2011, 2015),
+
+    log g(T) ~ integral over the enclosed area of  D(-A) = -(d_1 A_2 - d_2 A_1) + [A_1, A_2],
+
+the first term from Stokes' theorem applied to the body-velocity integral ``-oint A dr`` and the
+second from the second-order Magnus term of ``g_dot = g xi``. ``[.,.]`` is the group's
+``SE2.bracket``. The theta row is exact (SE(2)'s rotation part is abelian); the (x, y) rows
+have an error of third order in the size of the gait.
+
+Derivatives of A: exact for the systems whose connection has a closed form (see
+``_EXACT_DERIVATIVES``), otherwise second-order central differences with a step near the
+optimum eps**(1/3) (tested against exact derivatives in tests/test_geometry.py).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .._validate import SingularShapeError, as_array
+from ..groups import SE2, matvec
+from ..locomotion import as_gait, check_gait
+
+__all__ = ["constraint_curvature", "connection_derivative", "stokes_estimate",
+           "body_velocity_integral", "check_system", "closed_gait"]
+
+#: Relative central-difference step for connection derivatives (about eps**(1/3)).
+FD_STEP = 6e-6
+
+
+def check_system(system, name="system"):
+    """Raise TypeError unless ``system`` looks like a locomotion system with a 2-D shape space."""
+    n = getattr(system, "n_shape", None)
+    if n is None or not callable(getattr(system, "connection", None)):
+        raise TypeError(f"{name} must be a locomotion system with connection(r) and n_shape "
+                        f"(e.g. gm_core.systems.LowReSwimmer()); got {type(system).__name__} {system!r:.60}")
+    if n != 2:
+        raise ValueError(f"{name} must have a 2-D shape space for curvature and Stokes estimates; "
+                         f"{getattr(system, 'name', system)} has n_shape = {n}")
+    return system
+
+
+# ---------------------------------------------------------------------------------------------
+# Exact derivatives for closed-form connections
+# ---------------------------------------------------------------------------------------------
+def _dd_derivative(system, r):
+    A = system.connection(r)
+    return A, np.zeros(A.shape + (2,))
+
+
+def _ackerman_derivative(system, r):
+    A = system.connection(r)
+    R, L = system.wheel_radius, system.wheelbase
+    dA = np.zeros(A.shape + (2,))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # xi_theta = (R/L) tan(a2) a1'  =>  A[2, 0] = -(R/L) tan a2
+        dA[..., 2, 0, 1] = -(R / L) / np.cos(r[..., 1]) ** 2
+    dA[~np.isfinite(A).all(axis=(-1, -2))] = np.nan
+    return A, dA
+
+
+def _snake_derivative(system, r):
+    """Quotient rule on the closed form N/D of :meth:`KinematicSnake.connection_closed_form`."""
+    a1, a2 = r[..., 0], r[..., 1]
+    l1, l2, l3 = system.lengths
+    D = l3 * np.sin(a1) - l1 * np.sin(a2) + l2 * np.sin(a1 - a2)
+    dD = np.stack([l3 * np.cos(a1) + l2 * np.cos(a1 - a2), -l1 * np.cos(a2) - l2 * np.cos(a1 - a2)], -1)
+    N = np.zeros(r.shape[:-1] + (3, 2))
+    dN = np.zeros(r.shape[:-1] + (3, 2, 2))
+    N[..., 0, 0] = l1 * (l3 + l2 * np.cos(a2)) / 2
+    N[..., 0, 1] = l3 * (l1 + l2 * np.cos(a1)) / 2
+    N[..., 2, 0] = l1 * np.sin(a2)
+    N[..., 2, 1] = l3 * np.sin(a1)
+    dN[..., 0, 0, 1] = -l1 * l2 * np.sin(a2) / 2
+    dN[..., 0, 1, 0] = -l3 * l2 * np.sin(a1) / 2
+    dN[..., 2, 0, 1] = l1 * np.cos(a2)
+    dN[..., 2, 1, 0] = l3 * np.cos(a1)
+    A = system.connection(r)  # NaN at singular shapes, same values as N / D elsewhere
+    with np.errstate(divide="ignore", invalid="ignore"):
+        dA = dN / D[..., None, None, None] - N[..., None] * dD[..., None, None, :] / D[..., None, None, None] ** 2
+    dA[~np.isfinite(A).all(axis=(-1, -2))] = np.nan
+    return A, dA
+
+
+def _exact_derivatives():
+    from ..systems import Ackerman, DifferentialDrive, KinematicSnake
+
+    # Exact classes only: a subclass may change the connection. These belong on the systems
+    # themselves as ``connection_derivative(r)`` (see the report of issue #15).
+    return {DifferentialDrive: _dd_derivative, Ackerman: _ackerman_derivative,
+            KinematicSnake: _snake_derivative}
+
+
+def connection_derivative(system, r, *, method="auto"):
+    """Connection and its shape derivative: ``(A (..., 3, n), dA (..., 3, n, n))``, ``dA[..., i, j, k] = d A_ij / d r_k``.
+
+    ``method="auto"`` uses the system's own ``connection_derivative`` if it has one, then a
+    closed form for the systems that have one, else central differences; ``"fd"`` forces
+    central differences (step ``FD_STEP`` relative to ``max(1, |r|)``). In the difference route A
+    itself is the mean of the stencil values (error O(h^2), about 1e-11).
+    """
+    r = as_array(r, "r", (system.n_shape,), what=f" (a shape of {system.name})")
+    if method not in ("auto", "fd"):
+        raise ValueError(f"method must be 'auto' or 'fd'; got {method!r}")
+    if method == "auto":
+        own = getattr(system, "connection_derivative", None)
+        if callable(own):
+            return own(r)
+        exact = _exact_derivatives().get(type(system))
+        if exact is not None:
+            return exact(system, r)
+    n = system.n_shape
+    h = FD_STEP * np.maximum(1.0, np.abs(r))
+    offsets = np.zeros((2 * n,) + r.shape)
+    for k in range(n):
+        offsets[2 * k, ..., k] = h[..., k]
+        offsets[2 * k + 1, ..., k] = -h[..., k]
+    vals = system.connection(r[None] + offsets)  # one batched call: (2n, ..., 3, n)
+    dA = np.stack([(vals[2 * k] - vals[2 * k + 1]) / (2 * h[..., k, None, None]) for k in range(n)], -1)
+    A = vals.mean(axis=0)
+    return A, dA
+
+
+def constraint_curvature(system, r, *, method="auto"):
+    """Constraint curvature D(-A) (..., 3) at shapes r (..., 2): ``-(d1 A_2 - d2 A_1) + [A_1, A_2]``.
+
+    Its integral over the area enclosed by a counter-clockwise gait is the leading-order net
+    displacement (Hatton & Choset 2015); rows are (x, y, theta) in the body frame. NaN at
+    singular shapes. ``system`` may be any object with ``connection(r)`` and ``n_shape == 2``
+    (a system, or one seen from other coordinates, see :mod:`gm_core.geometry.coordinates`).
+    """
+    check_system(system)
+    base = getattr(system, "base_system", None)
+    if method == "auto" and base is not None and callable(getattr(system, "beta", None)):
+        # A frame change beta(r) acts on the curvature by Ad_{beta^-1} (gauge covariance); this
+        # avoids differentiating beta twice. tests/test_geometry_coordinates.py checks it against "fd".
+        r = as_array(r, "r", (system.n_shape,), what=f" (a shape of {system.name})")
+        F = matvec(SE2.Ad_inv(system.beta(r)), constraint_curvature(base, r))
+        valid = getattr(system, "_inside", None)
+        return F if valid is None else np.where(valid(r)[..., None], F, np.nan)
+    A, dA = connection_derivative(system, r, method=method)
+    exterior = dA[..., :, 1, 0] - dA[..., :, 0, 1]
+    ok = np.isfinite(A).all(axis=(-1, -2)) & np.isfinite(exterior).all(axis=-1)
+    if not ok.all():  # singular shapes: NaN out, and keep NaN away from the bracket's input check
+        A = np.where(ok[..., None, None], A, 0.0)
+        exterior = np.where(ok[..., None], exterior, np.nan)
+    return -exterior + SE2.bracket(A[..., :, 0], A[..., :, 1])
+
+
+# ---------------------------------------------------------------------------------------------
+# Area and loop integrals over a gait
+# ---------------------------------------------------------------------------------------------
+def _centroid(p):
+    """Area centroid of the closed polygon p (N, 2) (vertex mean if the area is ~0)."""
+    x, y = p[:, 0], p[:, 1]
+    xn, yn = np.roll(x, -1), np.roll(y, -1)
+    cross = x * yn - xn * y
+    area = cross.sum() / 2
+    scale = np.ptp(p, axis=0).prod()
+    if abs(area) <= 1e-9 * max(scale, 1e-300):
+        return p.mean(axis=0)
+    return np.array([((x + xn) * cross).sum(), ((y + yn) * cross).sum()]) / (6 * area)
+
+
+def _stokes_once(system, gait, nt, ns, center, method):
+    T = gait.period
+    t = np.arange(nt) * (T / nt)
+    p = gait(t)
+    v = gait.velocity(t)
+    s, w = np.polynomial.legendre.leggauss(ns)
+    s, w = (s + 1) / 2, w / 2
+    q = center + s[:, None, None] * (p - center)[None]  # (ns, nt, 2)
+    F = constraint_curvature(system, q, method=method)  # (ns, nt, 3)
+    if not np.all(np.isfinite(F)):
+        i, j = np.argwhere(~np.isfinite(F).all(-1))[0]
+        raise SingularShapeError(
+            f"the curvature of {system.name} is singular at r = ({q[i, j, 0]:.6g}, {q[i, j, 1]:.6g}) "
+            "inside the gait: the area integral is undefined there")
+    radial = np.einsum("s,s,sti->ti", w, s, F)  # int_0^1 F(c + s (p - c)) s ds
+    d = p - center
+    cross = d[:, 0] * v[:, 1] - d[:, 1] * v[:, 0]
+    return (radial * cross[:, None]).sum(axis=0) * (T / nt)
+
+
+def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True):
+    """Area integral (3,) of the constraint curvature over the region the gait encloses.
+
+    The region is counted with its winding number, so a clockwise gait gives the negative
+    (it moves the other way) and a non-convex simple gait is fine. Computed with the radial
+    (Poincare-lemma) primitive of the curvature about the gait's area centroid c:
+    ``oint (int_0^1 F(c + s (r - c)) s ds) (r - c) x r_dot dt``, trapezoidal in t (periodic)
+    and Gauss-Legendre in s, refined until two results agree to ``rtol``. The theta row
+    equals the exact net rotation; (x, y) are the leading-order estimate of g(T).
+    """
+    check_system(system)
+    gait = closed_gait(gait, system)
+    if check:
+        check_gait(system, gait)
+    center = _centroid(gait(np.linspace(0, gait.period, 1024, endpoint=False)))
+    nt, ns = 256, 16
+    prev = _stokes_once(system, gait, nt, ns, center, method)
+    while True:
+        nt, ns = 2 * nt, ns + 8
+        cur = _stokes_once(system, gait, nt, ns, center, method)
+        if np.max(np.abs(cur - prev)) <= rtol * max(1.0, np.max(np.abs(cur))) or nt >= 2 ** 12:
+            return cur
+        prev = cur
+
+
+def body_velocity_integral(system, gait, *, rtol=1e-12, check=True):
+    """The naive estimate (3,): ``int_0^T xi dt = -oint A(r) dr`` (ignores the Lie bracket).
+
+    Trapezoidal rule over the period (spectrally accurate for smooth periodic gaits), doubled
+    until two results agree to ``rtol``.
+    """
+    check_system(system)
+    gait = closed_gait(gait, system)
+    if check:
+        check_gait(system, gait)
+    T = gait.period
+
+    def once(n):
+        t = np.arange(n) * (T / n)
+        xi = -matvec(system.connection(gait(t)), gait.velocity(t))
+        if not np.all(np.isfinite(xi)):
+            raise SingularShapeError(f"the gait reaches a singular shape of {system.name}")
+        return xi.sum(axis=0) * (T / n)
+
+    n = 512
+    prev = once(n)
+    while True:
+        n *= 2
+        cur = once(n)
+        if np.max(np.abs(cur - prev)) <= rtol * max(1.0, np.max(np.abs(cur))) or n >= 2 ** 17:
+            return cur
+        prev = cur
+
+
+def closed_gait(gait, system=None, name="gait"):
+    """``gait`` as a :class:`Gait` after checking it is closed (r(T) = r(0)) and matches ``system``."""
+    gait = as_gait(gait)
+    p0, p1 = gait(np.array([0.0, gait.period]))
+    if np.max(np.abs(p1 - p0)) > 1e-8 * max(1.0, float(np.max(np.abs(p0)))):
+        raise ValueError(f"{name} is not closed: r(0) = {np.round(p0, 6).tolist()} but r(T) = "
+                         f"{np.round(p1, 6).tolist()} (T = {gait.period:g}); a gait must return to its start")
+    if system is not None:
+        _match(system, gait)
+    return gait
+
+
+def _match(system, gait):
+    if gait.n_shape != system.n_shape:
+        raise ValueError(f"gait has {gait.n_shape} shape variables but {system.name} has {system.n_shape}")

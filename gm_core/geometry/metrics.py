@@ -1,0 +1,99 @@
+"""Cost metrics on shape space, path length and efficiency of gaits (numpy only).
+
+For a system whose motions cost energy through a symmetric matrix on the full velocity
+``(xi, r_dot)`` -- the drag matrix of the low-Reynolds swimmer (power dissipated) or the mass
+matrix of the floating snake and the high-Reynolds swimmer (kinetic energy) -- the cost seen on
+shape space alone follows by substituting the constraint ``xi = -A(r) r_dot`` (3.10):
+
+    M(r) = [-A; I]^T  D(r)  [-A; I]       (n x n),
+
+the metric used by Hatton and co-workers (sysplotter: drag per unit length 1 along a link and
+``drag_ratio`` across it, so each link contributes diag(L, k L, k L^3 / 12)).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .._validate import as_array
+from ..locomotion import check_gait, net_displacement
+from .curvature import check_system, closed_gait
+
+__all__ = ["dissipation_metric", "full_cost_matrix", "path_length", "efficiency", "metric_function"]
+
+
+def full_cost_matrix(system, r):
+    """The (..., 3 + n, 3 + n) drag or mass matrix of ``system`` at r, or TypeError if it has none."""
+    for attr in ("drag_matrix", "mass_matrix"):
+        f = getattr(system, attr, None)
+        if callable(f):
+            return f(r)
+    base = getattr(system, "cost_matrix", None)
+    if callable(base):
+        return base(r)
+    raise TypeError(f"system {getattr(system, 'name', system)!r} has no physical cost metric (no "
+                    "drag_matrix or mass_matrix); pass metric='euclidean' or a callable r -> M(r)")
+
+
+def dissipation_metric(system, r):
+    """Shape-space cost metric M(r) (..., n, n) = [-A; I]^T D [-A; I] (power or kinetic energy).
+
+    ``D`` is the system's drag matrix (low Re: the power is ``r_dot^T M r_dot``) or its mass
+    matrix (floating snake, high Re: twice the kinetic energy). The metric does not depend on
+    the choice of body frame, so a system seen in other coordinates delegates to its base.
+    """
+    check_system(system)
+    base = getattr(system, "base_system", None)
+    if base is not None:
+        return dissipation_metric(base, r)
+    r = as_array(r, "r", (system.n_shape,), what=f" (a shape of {system.name})")
+    D = full_cost_matrix(system, r)
+    A = system.connection(r)
+    n = system.n_shape
+    P = np.concatenate([-A, np.broadcast_to(np.eye(n), A.shape[:-2] + (n, n))], axis=-2)
+    M = np.swapaxes(P, -1, -2) @ D @ P
+    return (M + np.swapaxes(M, -1, -2)) / 2
+
+
+def metric_function(system, metric=None):
+    """A callable r -> M(r) (..., n, n): the system's own metric (None), the identity ('euclidean'), or ``metric``."""
+    if metric is None:
+        full_cost_matrix(getattr(system, "base_system", None) or system, np.zeros(system.n_shape))
+        return lambda r: dissipation_metric(system, r)
+    if isinstance(metric, str):
+        if metric != "euclidean":
+            raise ValueError(f"metric must be None, 'euclidean' or a callable r -> M(r); got {metric!r}")
+        n = system.n_shape
+        return lambda r: np.broadcast_to(np.eye(n), np.shape(r)[:-1] + (n, n))
+    if not callable(metric):
+        raise TypeError(f"metric must be None, 'euclidean' or a callable r -> M(r); got {type(metric).__name__}")
+    return metric
+
+
+def path_length(system, gait, *, metric=None, samples=None, check=True):
+    """Length (float) of the gait in the cost metric: ``int_0^T sqrt(r_dot^T M(r) r_dot) dt``.
+
+    ``metric=None`` uses :func:`dissipation_metric`; ``'euclidean'`` the identity. Trapezoidal
+    rule over the period (spectral for smooth periodic gaits): 4096 samples unless given.
+    """
+    check_system(system)
+    gait = closed_gait(gait, system)
+    Mf = metric_function(system, metric)
+    if check:
+        check_gait(system, gait)
+    n = 4096 if samples is None else int(samples)
+    if n < 8:
+        raise ValueError(f"samples must be an integer >= 8; got {samples!r}")
+    t = np.arange(n) * (gait.period / n)
+    v = gait.velocity(t)
+    M = Mf(gait(t))
+    speed2 = np.einsum("ti,tij,tj->t", v, M, v)
+    return float(np.sqrt(np.maximum(speed2, 0.0)).sum() * gait.period / n)
+
+
+def efficiency(system, gait, *, metric=None, check=True):
+    """Efficiency (float): translation ``|(x, y) of g(T)|`` per unit path length in the cost metric."""
+    check_system(system)
+    gait = closed_gait(gait, system)
+    L = path_length(system, gait, metric=metric, check=check)
+    g = net_displacement(system, gait, check=False)
+    return float(np.hypot(g[0], g[1]) / L)

@@ -1,0 +1,298 @@
+"""Gaits as Fourier series and their optimisation (numpy/scipy only), after Ramasamy & Hatton (2019).
+
+A Fourier gait moves each joint as ``r_j(t) = c_j + sum_k a_jk cos(k w t) + b_jk sin(k w t)``,
+``w = 2 pi / T``. :func:`optimize_gait` maximises the net translation ``|(x, y) of g(T)|`` or the
+efficiency (translation per unit path length in the cost metric) over the coefficients with
+scipy's L-BFGS-B and an exact gradient of the discretised problem's continuous adjoint:
+
+    delta g(T) = g(T) * int_0^T Ad_{g(T)^-1 g(t)} delta xi(t) dt,
+    delta xi = -(dA/dr . delta r) r_dot - A delta r_dot,
+
+(the variation of ``g_dot = g xi``), and for the path length
+``delta L = int (r_dot^T M delta r_dot + 1/2 r_dot^T (dM . delta r) r_dot) / |r_dot|_M dt``.
+tests/test_geometry_optimal.py compares this gradient with finite differences.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._validate import SingularShapeError, as_array, check_positive
+from ..groups import SE2, matvec
+from ..locomotion import Gait, check_gait, net_displacement, trajectory
+from .curvature import check_system, connection_derivative
+from .metrics import metric_function, path_length
+
+__all__ = ["FourierGait", "fourier_gait", "optimize_gait", "OptimalGait", "gait_objective"]
+
+#: Cost returned for trial gaits that reach a singular shape (a finite wall the line search backs off from).
+_REJECT = 1e3
+
+
+class FourierGait(Gait):
+    """A :class:`Gait` given by Fourier coefficients: ``center (n,)``, ``a, b (n, order)`` (cos, sin)."""
+
+    def __init__(self, a, b, center, period, name="Fourier gait"):
+        self.a, self.b, self.center = a, b, center
+        self.order = a.shape[1]
+        k = np.arange(1, self.order + 1)
+        w = 2 * np.pi / period
+        self._k, self._w = k, w
+
+        def shape(t):
+            kt = w * np.asarray(t, dtype=float)[..., None] * k
+            return center + np.cos(kt) @ a.T + np.sin(kt) @ b.T
+
+        def vel(t):
+            kt = w * np.asarray(t, dtype=float)[..., None] * k
+            return (np.cos(kt) * (w * k)) @ b.T - (np.sin(kt) * (w * k)) @ a.T
+
+        super().__init__(shape, period, vel, name=name)
+
+    @property
+    def parameters(self):
+        """Flat coefficient vector ``[center, a.ravel(), b.ravel()]``, length n (1 + 2 order)."""
+        return np.concatenate([self.center, self.a.ravel(), self.b.ravel()])
+
+    @classmethod
+    def from_parameters(cls, p, n_shape, order, period=2 * np.pi, name="Fourier gait"):
+        p = np.asarray(p, dtype=float)
+        n, K = n_shape, order
+        return cls(p[n:n + n * K].reshape(n, K), p[n + n * K:].reshape(n, K), p[:n].copy(), float(period), name)
+
+    def basis(self, t):
+        """Per-joint basis values and time derivatives at t (N,): two arrays (1 + 2 order, N)."""
+        kt = self._w * np.asarray(t, dtype=float)[None, :] * self._k[:, None]
+        wk = (self._w * self._k)[:, None]
+        phi = np.vstack([np.ones((1, kt.shape[1])), np.cos(kt), np.sin(kt)])
+        dphi = np.vstack([np.zeros((1, kt.shape[1])), -wk * np.sin(kt), wk * np.cos(kt)])
+        return phi, dphi
+
+
+def fourier_gait(a, b=None, center=None, *, period=2 * np.pi, name="Fourier gait"):
+    """A closed gait whose joints are truncated Fourier series (any order, any centre).
+
+    ``a``: cosine coefficients (n, order) (``a[j, k-1]`` multiplies cos(k w t) in joint j);
+    ``b``: sine coefficients, same shape (zeros if None); ``center``: (n,) (zeros if None);
+    ``period`` T, with w = 2 pi / T. The velocity is exact.
+    """
+    a = as_array(a, "a")
+    if a.ndim != 2 or a.shape[1] < 1:
+        raise ValueError(f"a must have shape (n_shape, order) with order >= 1; got shape {a.shape}")
+    b = np.zeros_like(a) if b is None else as_array(b, "b", a.shape[-1:], what=" (same shape as a)")
+    if b.shape != a.shape:
+        raise ValueError(f"b must have the same shape as a {a.shape}; got shape {b.shape}")
+    center = np.zeros(a.shape[0]) if center is None else as_array(center, "center", (a.shape[0],))
+    if center.ndim != 1:
+        raise ValueError(f"center must have shape ({a.shape[0]},); got shape {center.shape}")
+    T = float(check_positive(period, "period"))
+    return FourierGait(a.copy(), b.copy(), center.copy(), T, name)
+
+
+# ---------------------------------------------------------------------------------------------
+# Objective and its gradient
+# ---------------------------------------------------------------------------------------------
+def _metric_derivative(Mf, r):
+    """M (N, n, n) and dM (N, n, n, n) by central differences (dM[..., k] = dM/dr_k)."""
+    n = r.shape[-1]
+    h = 6e-6 * np.maximum(1.0, np.abs(r))
+    offs = np.zeros((2 * n,) + r.shape)
+    for k in range(n):
+        offs[2 * k, :, k], offs[2 * k + 1, :, k] = h[:, k], -h[:, k]
+    vals = np.asarray(Mf(r[None] + offs))
+    dM = np.stack([(vals[2 * k] - vals[2 * k + 1]) / (2 * h[:, k, None, None]) for k in range(n)], -1)
+    return vals.mean(axis=0), dM
+
+
+def gait_objective(system, gait, objective="displacement", *, intervals=512, metric=None, gradient=True):
+    """Objective value and gradient with respect to ``gait.parameters`` (to be *maximised*).
+
+    ``objective``: ``"displacement"`` (|(x, y) of g(T)|) or ``"efficiency"`` (that over the path
+    length in the cost metric). Uses ``intervals`` equal time steps (even), two Magnus steps each.
+    Returns ``(value, grad or None, info)`` with info = dict(g=g(T), length=L or None).
+    """
+    if objective not in ("displacement", "efficiency"):
+        raise ValueError(f"objective must be 'displacement' or 'efficiency'; got {objective!r}")
+    N = int(intervals)
+    T = gait.period
+    tr = trajectory(system, gait, n_frames=N + 1, substeps=2, check=False)
+    gT = tr.g[-1]
+    if not np.all(np.isfinite(gT)):
+        raise SingularShapeError(f"the gait reaches a singular shape of {system.name}")
+    d = float(np.hypot(gT[0], gT[1]))
+    value, L = d, None
+    t = tr.t
+    if objective == "efficiency":
+        Mf = metric_function(system, metric)
+        v = gait.velocity(t[:-1])
+        if gradient:
+            M, dM = _metric_derivative(Mf, tr.r[:-1])
+        else:
+            M = Mf(tr.r[:-1])
+        sp = np.sqrt(np.maximum(np.einsum("ti,tij,tj->t", v, M, v), 1e-300))
+        L = float(sp.sum() * T / N)
+        value = d / L
+    if not gradient:
+        return value, None, dict(g=gT, length=L)
+    n = system.n_shape
+    A, dA = connection_derivative(system, tr.r)
+    rd = gait.velocity(t)
+    Ad = SE2.Ad(SE2.compose(SE2.inverse(gT), tr.g))  # (N+1, 3, 3)
+    w = np.full(N + 1, 2.0)
+    w[1::2] = 4.0
+    w[0] = w[-1] = 1.0
+    w *= T / (3 * N)  # Simpson
+    phi, dphi = gait.basis(t)  # (P, N+1)
+    grads = []
+    for j in range(n):
+        K = -matvec(Ad, np.einsum("tik,tk->ti", dA[..., j], rd)) * w[:, None]
+        Lc = -matvec(Ad, A[..., j]) * w[:, None]
+        eta = phi @ K + dphi @ Lc  # (P, 3)
+        c, s = np.cos(gT[2]), np.sin(gT[2])
+        dxy = np.stack([c * eta[:, 0] - s * eta[:, 1], s * eta[:, 0] + c * eta[:, 1]], -1)
+        grads.append(dxy @ gT[:2] / max(d, 1e-300))
+    grad_d = _to_parameter_order(grads, gait.order)
+    if objective == "displacement":
+        return value, grad_d, dict(g=gT, length=None)
+    t0 = t[:-1]
+    phi0, dphi0 = phi[:, :-1], dphi[:, :-1]
+    Mv = matvec(M, v)
+    gl = []
+    for j in range(n):
+        quad = 0.5 * np.einsum("ti,tik,tk->t", v, dM[..., j], v)
+        gl.append((phi0 @ (quad / sp) + dphi0 @ (Mv[:, j] / sp)) * T / N)
+    grad_L = _to_parameter_order(gl, gait.order)
+    return value, grad_d / L - d / L ** 2 * grad_L, dict(g=gT, length=L)
+
+
+def _to_parameter_order(per_joint, order):
+    """Reorder per-joint gradients [(1 + 2K,)] * n into the flat [center, a.ravel(), b.ravel()] layout."""
+    G = np.array(per_joint)  # (n, 1 + 2K)
+    return np.concatenate([G[:, 0], G[:, 1:1 + order].ravel(), G[:, 1 + order:].ravel()])
+
+
+# ---------------------------------------------------------------------------------------------
+# Optimisation
+# ---------------------------------------------------------------------------------------------
+@dataclass
+class OptimalGait:
+    """Result of :func:`optimize_gait`."""
+
+    gait: FourierGait
+    objective: str
+    displacement: float
+    net_displacement: np.ndarray
+    path_length: float | None
+    efficiency: float | None
+    history: list = field(default_factory=list)
+    success: bool = True
+    message: str = ""
+    nit: int = 0
+
+    def __repr__(self):
+        eff = "n/a" if self.efficiency is None else f"{self.efficiency:.5f}"
+        return (f"OptimalGait({self.objective}: displacement {self.displacement:.5f}, efficiency {eff}, "
+                f"{self.nit} iterations)")
+
+
+def _start_gait(system, order, start, period):
+    n = system.n_shape
+    if start is None:
+        a = np.zeros((n, order))
+        b = np.zeros((n, order))
+        a[0, 0] = 1.0
+        b[1 % n, 0] = 1.0
+        return fourier_gait(a, b, period=period, name="start: circle")
+    if isinstance(start, FourierGait):
+        if start.n_shape != n:
+            raise ValueError(f"start has {start.n_shape} shape variables but {system.name} has {n}")
+        K = max(order, start.order)
+        a = np.zeros((n, K))
+        b = np.zeros((n, K))
+        a[:, :start.order], b[:, :start.order] = start.a, start.b
+        return fourier_gait(a[:, :order] if K > order else a, b[:, :order] if K > order else b,
+                            start.center, period=start.period, name="start")
+    raise TypeError(f"start must be None (a circle) or a FourierGait from fourier_gait(); got {type(start).__name__}")
+
+
+def optimize_gait(system, objective="displacement", order=3, start=None, *, coordinates="minimum perturbation",
+                  bounds=None, metric=None, period=2 * np.pi, maxiter=200, gtol=1e-7, intervals=512, callback=None,
+                  singular_margin=1e-3):
+    """Fourier gait (of ``order`` harmonics per joint) maximising ``objective``; an :class:`OptimalGait`.
+
+    ``objective``: ``"displacement"`` (|(x, y) of g(T)|) or ``"efficiency"`` (that per unit
+    path length in the cost metric); ``start``: None (the unit circle about the origin) or a
+    :class:`FourierGait`; ``callback(iteration, value)`` is called after each iteration (for
+    progress displays). L-BFGS on the exact adjoint gradient of :func:`gait_objective`.
+
+    A gait that rotates the body moves its frame along an arc, so how far "the swimmer" got
+    depends on which body frame is measured. As in sysplotter, the translation is measured in
+    the minimum-perturbation frame over ``bounds`` (default ``system.shape_limits``), which also
+    confines the gait to that rectangle; ``coordinates="given"`` measures it in the system's
+    own frame instead. The start gait must stay clear of singular shapes (else
+    SingularShapeError); trial gaits that come within ``singular_margin`` of one (in the scaled
+    determinant of :meth:`singularity`) or leave the rectangle are rejected (a cost wall the
+    line search backs off from), and the result is checked again.
+    """
+    from scipy.optimize import minimize
+
+    from .coordinates import minimum_perturbation_coordinates
+
+    check_system(system)
+    if coordinates not in ("minimum perturbation", "given"):
+        raise ValueError(f"coordinates must be 'minimum perturbation' or 'given'; got {coordinates!r}")
+    if coordinates == "minimum perturbation" and not hasattr(system, "discrete_divergence"):
+        system = minimum_perturbation_coordinates(system, bounds)
+    if objective not in ("displacement", "efficiency"):
+        raise ValueError(f"objective must be 'displacement' or 'efficiency'; got {objective!r}")
+    if isinstance(order, bool) or not isinstance(order, (int, np.integer)) or order < 1:
+        raise ValueError(f"order must be a positive integer; got {order!r}")
+    if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
+        raise ValueError(f"maxiter must be a positive integer; got {maxiter!r}")
+    if isinstance(intervals, bool) or not isinstance(intervals, (int, np.integer)) or intervals < 8 or intervals % 2:
+        raise ValueError(f"intervals must be an even integer >= 8; got {intervals!r}")
+    if objective == "efficiency":
+        metric_function(system, metric)  # fails early if the system has no metric
+    g0 = _start_gait(system, int(order), start, period)
+    check_gait(system, g0)
+    n, K, T = system.n_shape, g0.order, g0.period
+    singular_ok = not getattr(system, "may_be_singular", False)
+
+    def make(p):
+        return FourierGait.from_parameters(p, n, K, T)
+
+    def fun(p):
+        gait = make(p)
+        if not singular_ok:
+            dd = system.singularity(gait(np.linspace(0, T, 4 * intervals + 1)))
+            if np.any(np.abs(dd) < singular_margin) or np.any(np.sign(dd) != np.sign(dd[0])):
+                return _REJECT, np.zeros_like(p)
+        val, grad, _ = gait_objective(system, gait, objective, intervals=intervals, metric=metric)
+        return -val, -grad
+
+    history = []
+
+    def cb(xk):
+        val = -fun(xk)[0]
+        history.append(float(val))
+        if callback is not None:
+            callback(len(history), float(val))
+
+    p0 = g0.parameters
+    history.append(float(-fun(p0)[0]))
+    res = minimize(fun, p0, jac=True, method="L-BFGS-B", callback=cb,
+                   options=dict(maxiter=int(maxiter), gtol=gtol, ftol=1e-13, maxls=40))
+    best = make(res.x)
+    best.name = f"optimal gait ({objective}, order {K})"
+    check_gait(system, best)
+    g = net_displacement(system, best, check=False)
+    d = float(np.hypot(g[0], g[1]))
+    L = eff = None
+    try:
+        L = path_length(system, best, metric=metric, check=False)
+        eff = d / L
+    except TypeError:
+        if objective == "efficiency":
+            raise
+    return OptimalGait(best, objective, d, g, L, eff, history, bool(res.success), str(res.message), int(res.nit))

@@ -1,0 +1,192 @@
+"""Panels for the geometry notebook: a gait on the curvature map, frames compared, optimisation progress.
+
+Numbers come from :mod:`gm_core.geometry` and :mod:`gm_core.locomotion`; artists from
+:mod:`gm_core.drawing.curvature`. Each update moves existing artists and calls draw_idle.
+"""
+from __future__ import annotations
+
+import ipywidgets as W
+import numpy as np
+
+from .._validate import SingularShapeError
+from ..drawing.base import SingularFlag, new_figure
+from ..drawing.curvature import DPI, FONT, ROWS, CurvatureMapArtist, FieldArtist, GaitArtist, _style
+from ..geometry import (body_frames, body_velocity_integral, fourier_gait, optimize_gait, stokes_estimate)
+from ..locomotion import net_displacement
+from ..systems import LowReSwimmer
+from .base import Panel, register, slider
+
+__all__ = ["shaped_gait", "GaitStokesPanel", "FrameFieldsPanel", "optimize_with_progress"]
+
+FRAMES = ("middle link", "centre of mass", "minimum perturbation")
+
+
+def shaped_gait(c1=0.0, c2=0.0, a=1.0, b=1.0, tilt=0.0, bend=0.0, period=1.0):
+    """An ellipse gait (semi-axes a, b, turned by ``tilt``, centre (c1, c2)) bent into a bean by ``bend``.
+
+    ``bend`` adds a second harmonic along the minor axis, which makes the loop non-convex for
+    |bend| above about a/4. Counter-clockwise for positive a and b.
+    """
+    c, s = np.cos(tilt), np.sin(tilt)
+    R = np.array([[c, -s], [s, c]])
+    cos_c = np.array([[a, 0.0], [0.0, bend]])  # (u, v) cos coefficients, harmonics 1 and 2
+    sin_c = np.array([[0.0, 0.0], [b, 0.0]])
+    return fourier_gait(R @ cos_c, R @ sin_c, (c1, c2), period=period, name="shaped gait")
+
+
+LIMITS = ((-2.5, 2.5), (-2.5, 2.5))
+
+
+def _frames(system):
+    frames = getattr(_frames, "_cache", {})
+    key = id(system)
+    if key not in frames:
+        frames[key] = body_frames(system, LIMITS)
+        _frames._cache = frames
+    return frames[key]
+
+
+@register
+class GaitStokesPanel(Panel):
+    """Move, resize and reshape a gait on a curvature map; compare exact g(T), Stokes and ∮ξ dt."""
+
+    title = "A gait on the curvature map: exact displacement, Stokes estimate, body-velocity integral"
+    #: The bar chart rescales its axis on every change, so blitting a cached background would
+    #: leave stale tick labels: always draw the whole figure.
+    blit = False
+
+    def build(self):
+        self.system = self.options.get("system") or LowReSwimmer()
+        self.frames = _frames(self.system)
+        self.fig, (self.ax, self.axb) = new_figure(1, 2, figsize=(9, 4.2), dpi=DPI, layout="constrained",
+                                                   gridspec_kw=dict(width_ratios=[1.1, 1]))
+        self.map = CurvatureMapArtist(self.ax, self.frames["middle link"], 0, limits=LIMITS)
+        _style(self.ax, self.map.limits)
+        self.gait_artist = GaitArtist(self.ax)
+        self.flag = SingularFlag(self.ax)
+        x = np.arange(3)
+        self.bars = {}
+        for k, (label, color) in enumerate([("exact g(T)", "k"), ("Stokes ∬D(−A)", "tab:red"),
+                                            ("∫ξ dt", "tab:gray")]):
+            self.bars[label] = self.axb.bar(x + (k - 1) * 0.27, np.zeros(3), 0.25, color=color, label=label)
+        self.axb.set_xticks(x, [f"{r}" for r in ROWS], fontsize=FONT)
+        self.axb.axhline(0, color="k", lw=0.8)
+        self.axb.tick_params(labelsize=FONT)
+        self.axb.legend(fontsize=FONT, loc="lower right")
+        self.readout = self.axb.set_title(" \n \n ", fontsize=FONT, family="monospace", loc="left")
+        self.controls = {
+            "c1": slider(0.0, -1.5, 1.5, description="centre α₁"),
+            "c2": slider(0.0, -1.5, 1.5, description="centre α₂"),
+            "a": slider(1.0, 0.1, 1.5, description="size a"),
+            "b": slider(0.6, 0.1, 1.5, description="size b"),
+            "tilt": slider(0.78, -1.6, 1.6, description="tilt"),
+            "bend": slider(0.0, -0.6, 0.6, description="bend"),
+            "row": W.ToggleButtons(options=[(r, i) for i, r in enumerate(ROWS)], value=0,
+                                   description="map row"),
+            "frame": W.ToggleButtons(options=list(FRAMES), value="middle link", description="frame"),
+        }
+
+    def compute(self, c1, c2, a, b, tilt, bend, frame, **_):
+        system = self.frames[frame]
+        gait = shaped_gait(c1, c2, a, b, tilt, bend)
+        exact = net_displacement(system, gait)
+        stokes = stokes_estimate(system, gait, rtol=1e-6, check=False)
+        bvi = body_velocity_integral(system, gait, rtol=1e-8, check=False)
+        return system, gait, exact, stokes, bvi
+
+    def update(self, **v):
+        self.map.set(self.frames[v["frame"]], v["row"])
+        self.gait_artist.set(shaped_gait(v["c1"], v["c2"], v["a"], v["b"], v["tilt"], v["bend"]))
+        try:
+            _, _, exact, stokes, bvi = self.compute(**v)
+        except SingularShapeError as e:
+            self.flag.show("gait leaves the map or is singular")
+            for bars in self.bars.values():
+                for rect in bars:
+                    rect.set_height(0.0)
+            self.readout.set_text(str(e)[:40])
+            self.values_shown = None
+        else:
+            self.flag.hide()
+            for bars, vals in zip(self.bars.values(), (exact, stokes, bvi)):
+                for rect, h in zip(bars, vals):
+                    rect.set_height(h)
+            top = float(np.max(np.abs([exact, stokes, bvi]))) * 1.3 + 1e-9
+            self.axb.set_ylim(-top, top)
+            self.readout.set_text(f"exact g(T) ({exact[0]:+.4f}, {exact[1]:+.4f}, {exact[2]:+.4f})\n"
+                                  f"Stokes     ({stokes[0]:+.4f}, {stokes[1]:+.4f}, {stokes[2]:+.4f})\n"
+                                  f"int xi dt  ({bvi[0]:+.4f}, {bvi[1]:+.4f}, {bvi[2]:+.4f})")
+            self.values_shown = (exact, stokes, bvi)
+        self.fig.canvas.draw_idle()
+
+    def naive_update(self, **v):
+        self.ax.clear()
+        self.axb.clear()
+        self.map = CurvatureMapArtist(self.ax, self.frames[v["frame"]], v["row"], limits=LIMITS)
+        GaitArtist(self.ax).set(shaped_gait(v["c1"], v["c2"], v["a"], v["b"], v["tilt"], v["bend"]))
+        try:
+            _, _, exact, stokes, bvi = self.compute(**v)
+            self.axb.bar(np.arange(9), np.concatenate([exact, stokes, bvi]))
+        except SingularShapeError:
+            pass
+        self.fig.canvas.draw_idle()
+
+
+@register
+class FrameFieldsPanel(Panel):
+    """The three rows of −A(r) as fields, in the frame chosen by a toggle (they straighten and shrink)."""
+
+    title = "The connection seen from three body frames"
+
+    def build(self):
+        self.system = self.options.get("system") or LowReSwimmer()
+        self.frames = _frames(self.system)
+        self.fig, axes = new_figure(1, 3, figsize=(9, 3.3), dpi=DPI, layout="constrained")
+        lim = LIMITS
+        self.axes = axes
+        self.fields = [FieldArtist(ax, self.system, i, limits=lim, n=13) for i, ax in enumerate(axes)]
+        for i, ax in enumerate(axes):
+            _style(ax, lim, f"row {ROWS[i]} of −A")
+        self.norms = {}
+        self.labels = [ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=FONT,
+                               bbox=dict(facecolor="white", alpha=0.8, lw=0)) for ax in axes]
+        self.controls = {"frame": W.ToggleButtons(options=list(FRAMES), value="middle link", description="frame")}
+
+    def field_norms(self, frame):
+        """Mean |row of A| over the grid, per row (3,) (what the minimum-perturbation frame makes small)."""
+        A = self.frames[frame].connection(self.fields[0].grid)
+        return np.sqrt(np.nanmean(np.sum(A ** 2, axis=-1), axis=(0, 1)))
+
+    def update(self, frame):
+        ref = [f.set(self.frames["middle link"]) for f in self.fields] if not self.norms else self.norms["ref"]
+        self.norms["ref"] = ref
+        size = self.field_norms(frame)
+        for f, lab, sc, sz in zip(self.fields, self.labels, ref, size):
+            f.set(self.frames[frame], scale=sc)  # same arrow scale in every frame
+            lab.set_text(f"rms |row| = {sz:.3f}")
+        self.fig.canvas.draw_idle()
+
+    def naive_update(self, frame):
+        for i, ax in enumerate(self.axes):
+            ax.clear()
+            FieldArtist(ax, self.frames[frame], i, limits=LIMITS, n=13)
+        self.fig.canvas.draw_idle()
+
+
+def optimize_with_progress(system, objective="displacement", order=3, **kw):
+    """Run :func:`gm_core.geometry.optimize_gait` showing a progress bar and the current value; returns the result."""
+    from IPython.display import display
+
+    maxiter = kw.pop("maxiter", 200)
+    bar = W.IntProgress(value=0, min=0, max=maxiter, description=f"max {objective}")
+    label = W.HTML("starting from a circle ...")
+    display(W.HBox([bar, label]))
+
+    def cb(it, val):
+        bar.value = min(it, maxiter)
+        label.value = f"iteration {it}: {objective} = {val:.5f}"
+
+    res = optimize_gait(system, objective, order=order, maxiter=maxiter, callback=cb, **kw)
+    bar.value = bar.max
+    label.value = f"done after {res.nit} iterations: {objective} = {res.history[-1]:.5f}"
+    return res

@@ -1,0 +1,65 @@
+"""Multiple choice that must be read (issue #14, point 3), and the notebooks show the checker's options."""
+import collections
+from pathlib import Path
+
+import nbformat
+import pytest
+
+from gm_core import checks
+from gm_core.checks import exercise_ids
+from gm_core.checks._core import REGISTRY
+
+ROOT = Path(__file__).resolve().parent.parent
+CHOICES = [(ex_id, name, p) for ex_id in exercise_ids() for name, p in REGISTRY[ex_id].parts.items()
+           if p.kind == "choice"]
+pytestmark = pytest.mark.usefixtures("clean")
+
+
+def test_correct_positions_are_balanced_across_the_course():
+    positions = collections.Counter(list(p.options).index(sorted(p.correct)[0]) for _, _, p in CHOICES)
+    assert len(CHOICES) >= 10
+    n_letters = min(len(p.options) for _, _, p in CHOICES)
+    fair = len(CHOICES) / n_letters
+    assert all(positions[i] >= 1 for i in range(n_letters)), positions      # every position used
+    assert max(positions.values()) <= fair + 1.5, positions                  # none dominates
+
+
+def test_the_longest_option_is_not_a_tell():
+    longest = sum(max(p.options.values(), key=len) == p.options[sorted(p.correct)[0]]
+                  for _, _, p in CHOICES)
+    assert longest <= len(CHOICES) // 4, f"the correct option is the longest in {longest} questions"
+
+
+def test_option_order_is_stable():
+    # the same letters and texts for every student and every run: the notebooks print the table
+    again = {(e, n): dict(p.options) for e, n, p in CHOICES}
+    import importlib
+    for mod in ("gm_core.checks.ch1", "gm_core.checks.ch3"):
+        importlib.reload(importlib.import_module(mod))
+    try:
+        assert {(e, n): dict(REGISTRY[e].parts[n].options) for e, n, _ in CHOICES} == again
+    finally:
+        for e, n, p in CHOICES:       # put the originals back (reload made new objects)
+            REGISTRY[e].parts[n] = p
+            setattr(REGISTRY[e], n, p)
+
+
+@pytest.mark.parametrize("ex_id,name,part", CHOICES, ids=lambda x: str(x) if isinstance(x, str) else "")
+def test_notebooks_show_the_checker_options(ex_id, name, part):
+    rows = [f"| {k} | {text} |" for k, text in part.options.items()]
+    for folder in ("solutions", "exercises"):
+        nb = nbformat.read(ROOT / folder / f"ex{ex_id.replace('.', '_')}.ipynb", as_version=4)
+        text = "\n".join(c.source for c in nb.cells if c.cell_type == "markdown")
+        assert all(r in text for r in rows), (folder, ex_id, name)
+
+
+def test_solution_views_are_recorded(capsys):
+    checks.ex3_2.b.solution()
+    assert checks.solutions_viewed() == {"3.2": ["b"]}
+
+
+def test_widget_records_and_reads_letters():
+    w = checks.ex3_4.c.widget()
+    w.radio.value = sorted(checks.ex3_4.c.correct)[0]
+    w.button.click()
+    assert "passed" in w.feedback.value

@@ -1,0 +1,114 @@
+"""Headless (Agg) tests of the geometry drawing and panels: artists show what gm_core.geometry computes."""
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+os.environ.setdefault("GM_COURSE_TESTING", "1")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+from gm_core import SE2  # noqa: E402
+from gm_core.drawing import curvature as D  # noqa: E402
+from gm_core.geometry import (body_velocity_integral, constraint_curvature, stokes_estimate,  # noqa: E402
+                              sysplotter_stroke, sysplotter_swimmer)
+from gm_core.locomotion import circle_gait, net_displacement, trajectory  # noqa: E402
+from gm_core.systems import FloatingSnake, KinematicSnake, LowReSwimmer  # noqa: E402
+from gm_core.widgets import curvature as Wc  # noqa: E402
+from gm_core.widgets.base import PANELS  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def stokes_panel():
+    return Wc.GaitStokesPanel()
+
+
+def figure_standard(fig):
+    w, h = fig.get_size_inches() * fig.dpi
+    assert w <= 900
+    fig.canvas.draw()
+    for t in fig.findobj(matplotlib.text.Text):
+        if t.get_visible() and t.get_text().strip():
+            assert t.get_fontsize() * fig.dpi / 72 >= 10, t.get_text()
+    assert fig.get_layout_engine() is not None
+
+
+def test_panels_registered_and_update_in_place(stokes_panel):
+    assert {"GaitStokesPanel", "FrameFieldsPanel"} <= set(PANELS)
+    for p in (stokes_panel, Wc.FrameFieldsPanel()):
+        fig = p.fig
+        n = [len(ax.get_children()) for ax in fig.axes]
+        p.update(**p.sample_values(np.random.default_rng(0)))
+        assert p.fig is fig and [len(ax.get_children()) for ax in fig.axes] == n
+        figure_standard(fig)
+        p.naive_update(**p.values())
+
+
+@pytest.mark.parametrize("frame", ["middle link", "minimum perturbation"])
+def test_bars_show_exact_stokes_and_integral(stokes_panel, frame):
+    p = stokes_panel
+    v = dict(c1=0.3, c2=-0.2, a=0.9, b=0.5, tilt=0.4, bend=0.25, frame=frame, row=2)
+    p.set(**v)
+    system = p.frames[frame]
+    gait = Wc.shaped_gait(0.3, -0.2, 0.9, 0.5, 0.4, 0.25)
+    want = [net_displacement(system, gait), stokes_estimate(system, gait), body_velocity_integral(system, gait)]
+    for bars, w in zip(p.bars.values(), want):
+        np.testing.assert_allclose([r.get_height() for r in bars], w, atol=1e-6)
+    np.testing.assert_allclose(p.bars["exact g(T)"][2].get_height(), p.bars["Stokes ∬D(−A)"][2].get_height(),
+                               atol=1e-8)
+    line = np.column_stack(p.gait_artist.line.get_data())
+    np.testing.assert_allclose(line, gait(np.linspace(0, 1, line.shape[0])), atol=1e-12)
+    img = p.map.image.get_array()
+    _, _, grid = D.shape_grid(p.map.limits, p.map.n)
+    np.testing.assert_allclose(img[10, 20], constraint_curvature(system, grid[10, 20])[2], rtol=1e-6, atol=1e-9)
+
+
+def test_gait_leaving_the_map_raises_the_flag(stokes_panel):
+    p = stokes_panel
+    p.set(c1=1.5, c2=1.5, a=1.5, b=1.5, frame="minimum perturbation")
+    assert p.flag.visible
+    assert all(r.get_height() == 0 for bars in p.bars.values() for r in bars)
+    p.set(c1=0.0, c2=0.0, a=0.5, b=0.5)
+    assert not p.flag.visible
+
+
+def test_frame_fields_show_minus_the_connection():
+    p = Wc.FrameFieldsPanel()
+    for frame in ("centre of mass", "minimum perturbation"):
+        p.set(frame=frame)
+        f = p.fields[1]
+        V = -p.frames[frame].connection(f.grid)[..., 1, :]
+        U = np.column_stack([f.quiver.U.ravel(), f.quiver.V.ravel()])
+        k = np.argmax(np.linalg.norm(V.reshape(-1, 2), axis=1))
+        direction = V.reshape(-1, 2)[k] / np.linalg.norm(V.reshape(-1, 2)[k])
+        np.testing.assert_allclose(U[k] / np.linalg.norm(U[k]), direction, atol=1e-9)
+    assert p.field_norms("minimum perturbation")[2] < p.field_norms("middle link")[2]
+
+
+def test_curvature_maps_figure_and_zero_rows():
+    fig = D.curvature_maps_figure({"floating": (FloatingSnake(), circle_gait(1.0)),
+                                   "snake": (KinematicSnake(), None)}, n=21)
+    figure_standard(fig)
+    texts = [t.get_text() for t in fig.findobj(matplotlib.text.Text)]
+    assert texts.count("≡ 0") == 2  # the floating snake's centre of mass cannot move
+
+
+def test_swimmer_animation_places_the_links():
+    s, g = sysplotter_swimmer(), sysplotter_stroke("efficiency")
+    tr = trajectory(s, g, n_frames=31)
+    fig, anim = D.animate_swimmer(s, g, tr, n_frames=31, row=0, limits=((-2.6, 2.6), (-2.6, 2.6)))
+    figure_standard(fig)
+    anim._func(2)  # the third frame (frames are shortened under test, indices still map to traj)
+    i = np.linspace(0, 30, 31).round().astype(int)[2]
+    sw = [a for a in fig.axes[1].patches]
+    poses = SE2.compose(tr.g[i][None], s.part_poses(tr.r[i]))
+    for patch, part, pose in zip(sw, s.parts(), poses):
+        np.testing.assert_allclose(patch.get_xy()[: len(part.outline)], SE2.act_on_points(pose, part.outline),
+                                   atol=1e-12)
+    anim.event_source = None
+
+
+def test_optimize_with_progress_reports(capsys):
+    res = Wc.optimize_with_progress(LowReSwimmer(lengths=(1 / 3,) * 3), "displacement", order=1, maxiter=3)
+    assert len(res.history) >= 2 and res.history[-1] >= res.history[0]
