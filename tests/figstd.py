@@ -13,8 +13,11 @@ returns one line per breach, naming the figure (``where``) and the text:
   its own tick labels (2D axes);
 * readouts (texts placed on an axes with ``ax.text``/``ax.annotate`` and anchored inside it) lie
   wholly inside their axes (a caption anchored outside its axes is judged as any other text);
-* every vector field (a quiver of ``MIN_FIELD_ARROWS`` arrows or more; an SE(2) frame's two
-  arrows are not a field) has a longest arrow of at least ``MIN_ARROW_PX`` (25) px.
+* every vector field (a quiver, or a collection marked ``gm_arrow_set`` like the toolkit's
+  ArrowSet, of ``MIN_FIELD_ARROWS`` arrows or more; an SE(2) frame's two arrows are not a field) has a longest arrow of at least ``MIN_ARROW_PX`` (25) px.
+
+Texts drawn as glyph outlines by gm_core.drawing.toolkit.PathText (found through the
+``gm_path_text`` attribute of their PathCollection) are measured like Text artists.
 
 Used by tests/test_figure_standard.py (every notebook's figures, every panel, animation frames),
 tools/screenshots.py and the browser tests. :class:`FrameChecker` is a matplotlib movie writer
@@ -79,8 +82,8 @@ class _RecordingRenderer(RendererAgg):
         return super().draw_text(gc, x, y, s, prop, angle, ismath=ismath, mtext=mtext)
 
 
-def _label(t: Text, limit: int = 40) -> str:
-    s = " ".join(t.get_text().split())
+def _label(t, limit: int = 40) -> str:
+    s = " ".join((t if isinstance(t, str) else t.get_text()).split())
     return repr(s if len(s) <= limit else s[: limit - 1] + "…")
 
 
@@ -110,19 +113,22 @@ def _roles(fig) -> dict[int, tuple[str, object]]:
 
 
 def _owner(fig) -> str | None:
-    """Class name of the object holding ``fig`` as its ``.fig`` attribute (a Panel), if any."""
+    """Class name of the object holding ``fig`` as its ``.fig`` attribute: a Panel (it has
+    ``controls``) before a scene, if any."""
+    found = []
     for d in gc.get_referrers(fig):
         if isinstance(d, (type, types.ModuleType, AbstractMovieWriter)) or type(d).__module__.startswith("matplotlib"):
             continue
         if not isinstance(d, dict):  # an instance whose attributes live inline (Python >= 3.11)
             if getattr(d, "fig", None) is fig:
-                return type(d).__name__
+                found.append(d)
             continue
         if d.get("fig") is fig:
-            for o in gc.get_referrers(d):
-                if getattr(o, "__dict__", None) is d and not isinstance(o, types.ModuleType):
-                    return type(o).__name__
-    return None
+            found += [o for o in gc.get_referrers(d)
+                      if getattr(o, "__dict__", None) is d and not isinstance(o, types.ModuleType)]
+    if not found:
+        return None
+    return type(next((o for o in found if hasattr(o, "controls")), found[0])).__name__
 
 
 def figure_name(fig) -> str:
@@ -188,6 +194,29 @@ def _labels_in_tick_rows(boxes, roles) -> list[str]:
     return out
 
 
+def _path_texts(fig) -> list[tuple]:
+    """Texts drawn as glyph outlines (gm_core.drawing.toolkit.PathText: a PathCollection that
+    carries its PathText as ``gm_path_text``), as items of :func:`breaches`. Call after drawing.
+    One anchored strictly inside its axes is a readout; titles, ticks and labels sit outside."""
+    out = []
+    for coll in fig.findobj(lambda a: hasattr(a, "gm_path_text")):
+        pt = coll.gm_path_text
+        ax = getattr(pt, "ax", None)
+        if not coll.get_visible() or (ax is not None and not ax.get_visible()):
+            continue
+        text = pt.get_text() or ""
+        if not text.strip() or not len(coll.get_paths()):
+            continue
+        bb = pt.get_window_extent()
+        anchor = tuple(coll.get_offset_transform().transform(np.asarray(pt.xy, float)))
+        role = "text"
+        if ax is not None and _inside(anchor, ax.get_window_extent(), tol=-0.5):
+            role = "readout"
+        out.append((pt, f"{role} (PathText)" if role == "text" else role, ax, text,
+                    float(getattr(pt, "size", 0.0)), bb, anchor))
+    return out
+
+
 def _anchor(t: Text, bb) -> tuple[float, float]:
     """The display point a text is aligned to (its ha/va corner of the drawn extent)."""
     ha, va = t.get_horizontalalignment(), t.get_verticalalignment()
@@ -199,6 +228,19 @@ def _anchor(t: Text, bb) -> tuple[float, float]:
 def _inside(point, box, tol: float = 1.0) -> bool:
     x, y = point
     return box.x0 - tol <= x <= box.x1 + tol and box.y0 - tol <= y <= box.y1 + tol
+
+
+def _arrow_set_longest_px(coll) -> float | None:
+    """Longest arrow, in display px, of an ArrowSet-like collection (``gm_arrow_set`` with
+    ``offsets``, ``U``, ``V`` in data units); None when every arrow is zero."""
+    a = coll.gm_arrow_set
+    P = np.asarray(a.get_offsets(), float).reshape(-1, 2)
+    V = np.stack([np.asarray(a.U, float), np.asarray(a.V, float)], -1)
+    if not len(P) or not np.any(np.hypot(V[:, 0], V[:, 1]) > 0):
+        return None
+    trans = coll.axes.transData if coll.axes is not None else coll.get_transform()
+    d = trans.transform(P + V) - trans.transform(P)
+    return float(np.nanmax(np.hypot(d[:, 0], d[:, 1])))
 
 
 def _quiver_longest_px(q: Quiver) -> float | None:
@@ -245,13 +287,16 @@ def breaches(fig, tight: bool = False) -> list[str]:
         out.append(f"{width_px:.0f} px wide (> {MAX_WIDTH_PX} px: {how})")
     roles = _roles(fig)
     W, H = renderer.width, renderer.height
-    boxes = []
+    items = []  # (object, role, axes, text, size in pt, extent, anchor)
     for t, bb in renderer.texts:
-        if not t.get_visible():
-            continue
-        role, ax = roles.get(id(t), ("text", None))
-        px = t.get_fontsize() * dpi / 72.0
-        desc = f"{role} {_label(t)}"
+        if t.get_visible():
+            role, ax = roles.get(id(t), ("text", None))
+            items.append((t, role, ax, t.get_text(), t.get_fontsize(), bb, _anchor(t, bb)))
+    items += _path_texts(fig)
+    boxes = []
+    for t, role, ax, text, size, bb, anchor in items:
+        px = size * dpi / 72.0
+        desc = f"{role} {_label(text)}"
         if px < MIN_TEXT_PX - 1e-6:
             out.append(f"{desc} is {px:.1f} px (< {MIN_TEXT_PX:.0f} px)")
         if not np.all(np.isfinite([bb.x0, bb.y0, bb.x1, bb.y1])):
@@ -262,7 +307,7 @@ def breaches(fig, tight: bool = False) -> list[str]:
             out.append(f"{desc} is cut by the figure edge ("
                        + ", ".join(f"{k} by {v:.0f} px" for k, v in cut.items()) + ")")
         ab = ax.get_window_extent(renderer) if role == "readout" else None
-        if ab is not None and _inside(_anchor(t, bb), ab):  # anchored outside: a caption, not a readout
+        if ab is not None and _inside(anchor, ab):  # anchored outside: a caption, not a readout
             past = {"left": ab.x0 - bb.x0, "right": bb.x1 - ab.x1, "bottom": ab.y0 - bb.y0, "top": bb.y1 - ab.y1}
             past = {k: v for k, v in past.items() if v > EDGE_TOL_PX}
             if past:
@@ -275,9 +320,12 @@ def breaches(fig, tight: bool = False) -> list[str]:
         if ox > OVERLAP_TOL_PX and oy > OVERLAP_TOL_PX:
             out.append(f"{d1} overlaps {d2} ({ox:.0f} x {oy:.0f} px)")
     out += _labels_in_tick_rows(boxes, roles)
-    fields = [q for q in fig.findobj(Quiver) if q.get_visible() and len(q.get_paths()) >= MIN_FIELD_ARROWS]
-    for i, q in enumerate(fields, 1):
-        longest = _quiver_longest_px(q)
+    fields = [(q, _quiver_longest_px) for q in fig.findobj(Quiver)
+              if q.get_visible() and len(q.get_paths()) >= MIN_FIELD_ARROWS]
+    fields += [(c, _arrow_set_longest_px) for c in fig.findobj(lambda a: hasattr(a, "gm_arrow_set"))
+               if c.get_visible() and len(c.gm_arrow_set.U) >= MIN_FIELD_ARROWS]
+    for i, (q, measure) in enumerate(fields, 1):
+        longest = measure(q)
         if longest is not None and longest < MIN_ARROW_PX:
             which = f"vector field {i} of {len(fields)}" if len(fields) > 1 else "vector field"
             out.append(f"{which} ({len(q.get_paths())} arrows): longest arrow {longest:.1f} px "

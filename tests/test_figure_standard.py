@@ -125,6 +125,18 @@ def test_checker_leaves_captions_outside_the_axes_to_the_other_rules():
     assert figstd.check_figure(fig) == []
 
 
+def test_checker_measures_glyph_outline_texts():
+    """gm_core.drawing.toolkit.PathText draws text as paths: it is measured like a Text."""
+    from gm_core.drawing.toolkit import PathText
+
+    fig, ax = _good()
+    PathText(ax, 0.8, 0.5, "a long PathText readout", size=10, coords="axes")
+    PathText(ax, 0.02, 0.9, "θ = 0.80", size=10, coords="axes")  # on top of the Text readout
+    msgs = figstd.check_figure(fig)
+    assert any("readout 'a long PathText readout' runs past its axes (right by" in m for m in msgs), _kinds(msgs)
+    assert any("overlaps readout 'θ = 0.80'" in m for m in msgs), _kinds(msgs)
+
+
 def test_checker_finds_arrows_too_short_to_show_direction():
     fig, ax = _good()
     x, y = np.meshgrid(np.linspace(0, 1, 30), np.linspace(0, 1, 30))
@@ -133,6 +145,21 @@ def test_checker_finds_arrows_too_short_to_show_direction():
     assert len(msgs) == 1 and "vector field 2 of 2 (900 arrows): longest arrow" in msgs[0], _kinds(msgs)
     longest = float(msgs[0].split("longest arrow ")[1].split(" px")[0])
     assert 0 < longest < figstd.MIN_ARROW_PX
+
+
+def test_checker_measures_arrow_sets_marked_for_it():
+    """A PolyCollection of arrows (toolkit.ArrowSet) is a field once marked ``gm_arrow_set``."""
+    from gm_core.drawing.toolkit import ArrowSet
+
+    fig, ax = _good()
+    ax.set_aspect("equal")
+    arrows = ArrowSet(ax, n=4)
+    arrows.set([[0.2, 0.2], [0.4, 0.2], [0.6, 0.2], [0.8, 0.2]], [[0.01, 0.0]] * 4)  # ~3 px each
+    arrows.poly.gm_arrow_set = arrows
+    msgs = figstd.check_figure(fig)
+    assert any("(4 arrows): longest arrow" in m and "direction unreadable" in m for m in msgs), _kinds(msgs)
+    arrows.set([[0.2, 0.2], [0.4, 0.2], [0.6, 0.2], [0.8, 0.2]], [[0.15, 0.0]] * 4)
+    assert figstd.check_figure(fig) == []
 
 
 def test_checker_ignores_texts_that_are_not_drawn():
