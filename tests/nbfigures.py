@@ -17,6 +17,7 @@ import contextlib
 import json
 import os
 import re
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -139,6 +140,7 @@ def run_notebook(path: Path, visit=None, root: Path = ROOT, epilogue: str | None
 
     cwd = os.getcwd()
     os.chdir(path.parent)
+    workspace = os.environ.pop("GM_COURSE_WORKSPACE", None)  # checks keep progress in memory only
     try:
         with _catch_animations(on_animation):
             for k, src, may_raise in _code_cells(path):
@@ -168,6 +170,11 @@ def run_notebook(path: Path, visit=None, root: Path = ROOT, epilogue: str | None
                 visit(where, fig, "figure")
     finally:
         os.chdir(cwd)
+        if workspace is not None:
+            os.environ["GM_COURSE_WORKSPACE"] = workspace
         plt.close("all")
         shell.reset(new_session=False)
+        checks = sys.modules.get("gm_core.checks")
+        if checks is not None and hasattr(checks, "reset_progress"):
+            checks.reset_progress()  # the exercises' verdicts do not leak into later tests
     return res
