@@ -11,13 +11,14 @@ LAB_ARGS ?=
 ROOT_FLAG := $(if $(filter 0,$(shell id -u)),--ServerApp.allow_root=True,)
 PYTEST_ARGS ?=
 
-.PHONY: setup lab test exercises workspace bench clean help
+.PHONY: setup lab lab-settings test exercises workspace bench screenshots clean help
 
 help:
 	@echo "make lab        set up and open JupyterLab on the course (book/00-start-here.ipynb)"
 	@echo "make test       set up and run every test and every notebook"
 	@echo "make exercises  regenerate exercises/ from solutions/"
 	@echo "make bench      print the benchmark tables"
+	@echo "make screenshots  a PNG of every figure of the course + index.html in build/screenshots/"
 
 $(PY):
 	$(PYTHON) -m venv $(VENV)
@@ -34,7 +35,12 @@ setup: $(STAMP)
 workspace: setup
 	$(PY) tools/sync_workspace.py
 
-lab: setup workspace
+# The course's JupyterLab defaults (jupyter/overrides.json: no news pop-up, no update check),
+# installed as JupyterLab's documented settings overrides (overrides.d/) of the venv's JupyterLab.
+lab-settings: setup
+	$(PY) tools/lab_settings.py
+
+lab: setup workspace lab-settings
 	$(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir="$(CURDIR)" $(ROOT_FLAG) $(LAB_ARGS) book/00-start-here.ipynb
 
 test: setup
@@ -48,6 +54,10 @@ bench: setup
 	$(PY) benchmarks/widget_latency.py
 	$(PY) benchmarks/connection_grid.py
 	@echo "also: benchmarks/browser_latency.py (needs chromium), benchmarks/suite_time.py (runs the suite)"
+
+# One PNG per figure (real browser when chromium exists, else headless matplotlib) + index.html.
+screenshots: setup
+	$(PY) tools/screenshots.py
 
 clean:
 	rm -rf $(VENV) .hypothesis

@@ -28,6 +28,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests" / "browser"))
 import browserlab  # noqa: E402
+import labview  # noqa: E402
 
 _ARM_JS = r"""
 (sel) => {
@@ -138,7 +139,7 @@ def main(argv=None):
     with tempfile.TemporaryDirectory(prefix="gm-latency-") as tmp:
         server = browserlab.LabServer(Path(tmp), extra_notebooks={browserlab.SELFCHECK_PATH: browserlab.selfcheck_notebook()})
         with server, sync_playwright() as pw:
-            context = browserlab.launch_chromium(pw, Path(tmp) / "profile")
+            context = browserlab.launch_chromium(pw, Path(tmp) / "profile", viewport=labview.STUDENT_WINDOW)
             lab = browserlab.LabBrowser(context, server)
             try:
                 for nb in nbs:

@@ -4,8 +4,9 @@ Used by ``tests/browser/`` (pytest fixtures in conftest.py) and by ``benchmarks/
 
 * :class:`LabServer` copies the course (book/, exercises/, solutions/) to a temporary folder and
   starts ``python -m jupyterlab`` on 127.0.0.1 (free port, random token, fresh runtime/config/data
-  dirs, news and update checks off, a user-settings dir that turns off notebook windowing and the
-  news toast). The kernel imports ``gm_core`` from the tree these tests live in (PYTHONPATH), so a
+  dirs, the course's own JupyterLab defaults from jupyter/overrides.json (news prompt and update
+  check off, installed by tools/lab_settings.py as `make lab` does), and no user settings of its
+  own: the student's JupyterLab). The kernel imports ``gm_core`` from the tree these tests live in (PYTHONPATH), so a
   scratch copy of the repository tests its own code. Stop it with :meth:`LabServer.stop`
   (sessions and kernels deleted over the REST API, then SIGTERM/SIGKILL to the server's process
   group, whose id is the server's PID).
@@ -93,12 +94,12 @@ def interactive_notebooks(root: Path = ROOT) -> list[Path]:
 # --------------------------------------------------------------------------------------------
 
 # Per-user settings for the test server (JupyterLab reads <user_settings_dir>/<ext>/<plugin>.jupyterlab-settings).
-LAB_SETTINGS = {
-    # render every cell (windowing would detach off-screen outputs, canvases included)
-    ("@jupyterlab/notebook-extension", "tracker"): {"windowingMode": "none"},
-    # no "Would you like to get notified about official Jupyter news?" toast
-    ("@jupyterlab/apputils-extension", "notification"): {"fetchNews": "false", "checkForUpdates": False},
-}
+# Empty on purpose: the server gets exactly the student's settings, JupyterLab's defaults plus the
+# course's own (jupyter/overrides.json, installed by tools/lab_settings.py as `make lab` does), so
+# the tests see what a student sees (notebook windowing included: JupyterLab 4's default
+# "contentVisibility" lays off-screen outputs out differently, e.g. a jshtml animation's image)
+# and test_student_view.py proves the course's file silences the news prompt.
+LAB_SETTINGS: dict = {}
 
 
 def free_port() -> int:
@@ -136,6 +137,21 @@ class LabServer:
             target.parent.mkdir(parents=True, exist_ok=True)
             target.write_text(json.dumps(nb, indent=1), encoding="utf-8")
 
+    def _app_settings(self) -> Path:
+        """JupyterLab's application settings dir for the server: this Python's own (page_config
+        etc.) plus the course's overrides, installed by the same tool `make lab` uses."""
+        sys.path.insert(0, str(self.source_root / "tools"))
+        try:
+            import lab_settings
+        finally:
+            sys.path.pop(0)
+        app_settings = self.workdir / "lab-app-settings"
+        default = lab_settings.default_settings_dir()
+        if default.is_dir():
+            shutil.copytree(default, app_settings, dirs_exist_ok=True)
+        lab_settings.install(app_settings)
+        return app_settings
+
     def _write_settings(self) -> Path:
         settings = self.workdir / "lab-user-settings"
         for (ext, plugin), values in LAB_SETTINGS.items():
@@ -168,8 +184,7 @@ class LabServer:
             f"--IdentityProvider.token={self.token}",
             f"--ServerApp.root_dir={self.course}",
             "--ServerApp.open_browser=False",
-            "--LabApp.news_url=None",
-            "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
+            f"--LabApp.app_settings_dir={self.workdir / 'lab-app-settings'}",
             f"--LabApp.user_settings_dir={settings}",
             f"--LabApp.workspaces_dir={self.workdir / 'workspaces'}",
             "--LabApp.expose_app_in_browser=True",
@@ -180,6 +195,7 @@ class LabServer:
     def start(self):
         self._copy_course()
         settings = self._write_settings()
+        self._app_settings()
         (self.workdir / "workspaces").mkdir(exist_ok=True)
         last_err = None
         for _attempt in range(3):  # a port can be taken between free_port() and bind: retry
@@ -648,6 +664,10 @@ class NotebookPage:
         if fresh:
             t0 = self.timings.mark("load page", t0)
         self.wait_until(lambda s: s["phase"] == "panel", "JupyterLab to show the notebook", timeout)
+        if fresh:  # the student's layout: the file browser open beside the notebook
+            import labview
+            if not labview.show_file_browser(self.page):
+                self.fail("could not open the file browser in the left sidebar")
         t0 = self.timings.mark("lab ready", t0)
         self.wait_until(lambda s: s["phase"] == "panel" and s.get("ready") and s.get("kernel") == "idle"
                         and s.get("connection") == "connected",
@@ -795,17 +815,21 @@ class NotebookPage:
         self.timings.mark("close", t0)
 
 
-def check_interactive_notebook(lab: LabBrowser, relpath: str, change_timeout: float = 20.0, on_open=None):
+def check_interactive_notebook(lab: LabBrowser, relpath: str, change_timeout: float = 20.0, on_open=None,
+                               after_run=None):
     """The whole browser check of one chapter notebook; returns (SliderResult, timings dict).
 
     ``on_open()`` is called once the notebook has an idle kernel (the tests prestart the next
-    notebook's kernel there)."""
+    notebook's kernel there); ``after_run(nbp)`` right after Run All, before any slider moves
+    (the layout and panel-state checks of test_notebooks_in_lab)."""
     with NotebookPage(lab, relpath) as nbp:
         nbp.open()
         if on_open is not None:
             on_open()
         nbp.run_all()
         nbp.check_no_errors()
+        if after_run is not None:
+            after_run(nbp)
         sel = nbp.find_panel(0)
         # A panel whose canvas never stands still (an animation) cannot show the slider's effect:
         # then the next panels (up to three) are used instead.

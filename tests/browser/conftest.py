@@ -14,6 +14,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import browserlab  # noqa: E402
+import labview  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 TIMINGS_KEY = pytest.StashKey[dict]()
@@ -79,7 +80,8 @@ def lab_server(chromium, tmp_path_factory, request):
     """JupyterLab on a temporary copy of the course (plus the self-check notebook)."""
     t0 = time.monotonic()
     server = browserlab.LabServer(tmp_path_factory.mktemp("lab"),
-                                  extra_notebooks={browserlab.SELFCHECK_PATH: browserlab.selfcheck_notebook()})
+                                  extra_notebooks={browserlab.SELFCHECK_PATH: browserlab.selfcheck_notebook(),
+                                                   labview.LAYOUT_SELFCHECK_PATH: labview.layout_selfcheck_notebook()})
     _on_cleanup(request, server.stop)
     server.start()
     request.config.stash[TIMINGS_KEY]["(server start)"] = {"total": round(time.monotonic() - t0, 2)}
@@ -88,13 +90,16 @@ def lab_server(chromium, tmp_path_factory, request):
 
 @pytest.fixture(scope="session")
 def browser_context(chromium, tmp_path_factory, request):
-    """One headless Chromium (fresh empty profile) shared by every page of the session."""
+    """One headless Chromium (fresh empty profile) shared by every page of the session, with a
+    laptop's window (labview.STUDENT_WINDOW, 1366 x 768; the file browser is opened beside the
+    notebook on every fresh page load)."""
     from playwright.sync_api import sync_playwright
 
     t0 = time.monotonic()
     pw = sync_playwright().start()
     _on_cleanup(request, pw.stop)
-    context = browserlab.launch_chromium(pw, tmp_path_factory.mktemp("chromium-profile"))
+    context = browserlab.launch_chromium(pw, tmp_path_factory.mktemp("chromium-profile"),
+                                         viewport=labview.STUDENT_WINDOW)
     _on_cleanup(request, context.close)
     request.config.stash[TIMINGS_KEY]["(browser start)"] = {"total": round(time.monotonic() - t0, 2)}
     return context

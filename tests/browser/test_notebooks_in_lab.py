@@ -8,6 +8,10 @@ of the first interactive panel with the keyboard and check that the ipympl canva
 ``test_detector_*`` keeps the proof that the check can fail inside the suite: a generated notebook
 has a working panel and one whose ``update`` does nothing; the same helper must say "changed" for
 the first and "did not change" for the second.
+
+The same test checks what the student sees after Run All (tests/browser/labview.py): the layout
+at a 1366 x 768 window with the file browser open and the panels' state against a cell-by-cell
+run; test_student_view.py covers the other notebooks with figures and the quiet start.
 """
 from __future__ import annotations
 
@@ -16,6 +20,7 @@ import warnings
 import pytest
 
 import browserlab
+import labview
 
 pytestmark = pytest.mark.browser
 
@@ -39,9 +44,26 @@ def test_detector_tells_a_live_panel_from_a_dead_one(lab, record_timing, prestar
 
 @pytest.mark.parametrize("notebook", NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])
 def test_interactive_notebook_runs_and_responds(notebook, lab, record_timing, prestart_next):
+    """... and, right after Run All (1366 x 768 window, file browser open): nothing overflows its
+    output area, every animation shows a picture, and every named panel holds what a cell-by-cell
+    run gives (labview)."""
     relpath = notebook.relative_to(browserlab.ROOT).as_posix()
-    result, phases = browserlab.check_interactive_notebook(lab, relpath, on_open=prestart_next)
+    seen = {}
+
+    def student_view(nbp):
+        nbp.page.wait_for_timeout(1500)  # let the widgets' first messages from the browser arrive
+        seen["layout"], seen["counts"] = labview.layout_problems(nbp)
+        seen["state"] = labview.compare_panel_states(labview.kernel_panel_state(nbp),
+                                                     labview.expected_panel_state(notebook))
+        if seen["layout"] or seen["state"]:
+            seen["screenshot"] = nbp.screenshot()
+
+    result, phases = browserlab.check_interactive_notebook(lab, relpath, on_open=prestart_next,
+                                                           after_run=student_view)
     record_timing(relpath, phases)
     assert result.changed and result.slider_moved, result
+    problems = seen["layout"] + [f"Run All differs from cell by cell: {d}" for d in seen["state"]]
+    assert not problems, (f"{relpath} as the student sees it ({seen['counts']}; screenshot "
+                          f"{seen.get('screenshot')}):\n  " + "\n  ".join(problems))
     if not result.detail.startswith("panel #0, slider #0"):
         warnings.warn(f"{relpath}: the first slider of the first panel could not be judged; used {result.detail}")

@@ -1,0 +1,284 @@
+"""Every figure of the course meets the figure standard (CONTRIBUTING.md; issue #12 point 1).
+
+* ``test_checker_*``: the checker (tests/figstd.py) finds each kind of breach on a synthetic bad
+  figure, and passes a good one, so a green run means something.
+* ``test_panel_initial_state``: every registered Panel (gm_core.widgets.base.all_panels()) as it
+  first appears.
+* ``test_notebook_figures``: every notebook of book/, exercises/ and solutions/ executed headlessly
+  (tests/nbfigures.py): each figure after the cell that made it and in its final state, and every
+  frame of every animation shown through ``to_jshtml``. One test per notebook, so a failure names
+  the notebook; each message names the cell (``In[k]``, as numbered by Run All), the figure
+  and the text. The notebooks run once per session (a session-scoped cache).
+
+``python tests/test_figure_standard.py`` writes the current list of breaches (notes/breaches.txt).
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+from matplotlib.animation import FuncAnimation  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import figstd  # noqa: E402
+import nbfigures  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+NOTEBOOKS = nbfigures.course_notebooks()
+
+
+def _good():
+    fig, ax = plt.subplots(figsize=(6, 4), dpi=100, layout="constrained")
+    ax.plot([0, 1], [0, 1])
+    ax.set(xlabel="time t", ylabel="angle θ", title="a good figure")
+    ax.text(0.05, 0.9, "θ = 0.80", transform=ax.transAxes)
+    ax.quiver([0.2, 0.5, 0.8], [0.5, 0.5, 0.5], [0.1, 0.2, 0.0], [0.0, 0.1, 0.1], angles="xy",
+              scale_units="xy", scale=1)
+    ax.quiver([0.5, 0.5], [0.2, 0.2], [0.05, 0.0], [0.0, 0.05])  # a small frame: not a field
+    return fig, ax
+
+
+def _kinds(messages):
+    return " | ".join(messages)
+
+
+# -- the checker ------------------------------------------------------------------------------
+
+def test_checker_passes_a_good_figure():
+    fig, _ = _good()
+    assert figstd.check_figure(fig, "good") == []
+
+
+def test_checker_finds_a_figure_too_wide():
+    fig, _ = _good()
+    fig.set_size_inches(9.5, 4)
+    msgs = figstd.check_figure(fig, "wide")
+    assert len(msgs) == 1 and "950 px wide" in msgs[0] and msgs[0].startswith("wide: figure 'a good figure'")
+
+
+def test_checker_finds_small_text():
+    fig, ax = _good()
+    ax.set_xlabel("time t", fontsize=6)  # 8.3 px at 100 dpi
+    msgs = figstd.check_figure(fig)
+    assert len(msgs) == 1 and "x-axis label 'time t' is 8.3 px" in msgs[0], _kinds(msgs)
+
+
+def test_checker_finds_text_cut_by_the_figure_edge():
+    fig, ax = _good()
+    fig.text(0.97, 0.5, "cut off here")
+    msgs = figstd.check_figure(fig)
+    assert len(msgs) == 1 and "'cut off here' is cut by the figure edge (right by" in msgs[0], _kinds(msgs)
+
+
+def test_checker_sees_multiline_and_math_texts():
+    fig, ax = _good()
+    ax.set_title("torus $\\mathbb{T}^2$\n(both pairs of edges glued)", fontsize=6)
+    msgs = figstd.check_figure(fig)
+    # one message, for the whole two-line title (matplotlib hands the renderer no artist for it)
+    assert [m for m in msgs if "is 8.3 px" in m and "title 'torus $" in m and "(both pairs of edg" in m], _kinds(msgs)
+
+
+def test_checker_finds_overlapping_texts():
+    fig, ax = _good()
+    ax.set_ylabel("a long label " * 6)  # the y label cannot fit beside the axes: it crosses the tick labels
+    fig.set_layout_engine("none")
+    ax.set_title("title one")
+    fig.text(0.5, 0.885, "title two", ha="center")  # on top of the axes title
+    msgs = figstd.check_figure(fig)
+    assert any("title 'title one' overlaps text 'title two'" in m for m in msgs), _kinds(msgs)
+
+
+def test_checker_finds_tick_labels_meeting_at_a_corner():
+    fig, ax = plt.subplots(figsize=(3, 3), dpi=100)
+    ax.set(xlim=(-1000, 1000), ylim=(-1000, 1000))
+    ax.tick_params(axis="y", pad=-30)  # y tick labels pushed onto the x tick labels at the corner
+    ax.tick_params(axis="x", pad=-12)
+    msgs = figstd.check_figure(fig)
+    assert any("y tick label" in m and "overlaps" in m and "x tick label" in m for m in msgs), _kinds(msgs)
+
+
+def test_checker_finds_an_axis_label_in_the_row_of_its_tick_labels():
+    fig, ax = _good()
+    ax.set_xlabel("longitude λ", labelpad=-14)  # pulled up into the tick labels' row: "0  longitude λ"
+    ax.xaxis.set_label_coords(0.62, -0.03)
+    msgs = figstd.check_figure(fig)
+    assert any("x-axis label 'longitude λ' sits in the row of its tick labels" in m for m in msgs), _kinds(msgs)
+
+
+def test_checker_finds_a_readout_running_past_its_axes():
+    fig, ax = _good()
+    ax.text(0.9, 0.5, "θ = 3.14159 rad, long readout", transform=ax.transAxes)
+    msgs = figstd.check_figure(fig)
+    assert any("readout 'θ = 3.14159 rad, long readout' runs past its axes (right by" in m for m in msgs), \
+        _kinds(msgs)
+
+
+def test_checker_leaves_captions_outside_the_axes_to_the_other_rules():
+    fig, ax = _good()
+    ax.text(0.5, -0.2, "a caption below the axes", transform=ax.transAxes, ha="center", va="top")
+    assert figstd.check_figure(fig) == []
+
+
+def test_checker_measures_glyph_outline_texts():
+    """gm_core.drawing.toolkit.PathText draws text as paths: it is measured like a Text."""
+    from gm_core.drawing.toolkit import PathText
+
+    fig, ax = _good()
+    PathText(ax, 0.8, 0.5, "a long PathText readout", size=10, coords="axes")
+    PathText(ax, 0.02, 0.9, "θ = 0.80", size=10, coords="axes")  # on top of the Text readout
+    msgs = figstd.check_figure(fig)
+    assert any("readout 'a long PathText readout' runs past its axes (right by" in m for m in msgs), _kinds(msgs)
+    assert any("overlaps readout 'θ = 0.80'" in m for m in msgs), _kinds(msgs)
+
+
+def test_checker_finds_arrows_too_short_to_show_direction():
+    fig, ax = _good()
+    x, y = np.meshgrid(np.linspace(0, 1, 30), np.linspace(0, 1, 30))
+    ax.quiver(x, y, np.ones_like(x), np.zeros_like(y))  # autoscaled: each arrow a few px
+    msgs = figstd.check_figure(fig)
+    assert len(msgs) == 1 and "vector field 2 of 2 (900 arrows): longest arrow" in msgs[0], _kinds(msgs)
+    longest = float(msgs[0].split("longest arrow ")[1].split(" px")[0])
+    assert 0 < longest < figstd.MIN_ARROW_PX
+
+
+def test_checker_measures_arrow_sets_marked_for_it():
+    """A PolyCollection of arrows (toolkit.ArrowSet) is a field once marked ``gm_arrow_set``."""
+    from gm_core.drawing.toolkit import ArrowSet
+
+    fig, ax = _good()
+    ax.set_aspect("equal")
+    arrows = ArrowSet(ax, n=4)
+    arrows.set([[0.2, 0.2], [0.4, 0.2], [0.6, 0.2], [0.8, 0.2]], [[0.01, 0.0]] * 4)  # ~3 px each
+    arrows.poly.gm_arrow_set = arrows
+    msgs = figstd.check_figure(fig)
+    assert any("(4 arrows): longest arrow" in m and "direction unreadable" in m for m in msgs), _kinds(msgs)
+    arrows.set([[0.2, 0.2], [0.4, 0.2], [0.6, 0.2], [0.8, 0.2]], [[0.15, 0.0]] * 4)
+    assert figstd.check_figure(fig) == []
+
+
+def test_checker_ignores_texts_that_are_not_drawn():
+    fig, ax = _good()
+    ax.set_xlim(0, 1)
+    hidden = ax.text(0.5, 0.5, "x" * 200)
+    hidden.set_visible(False)
+    ax.text(0.5, 0.5, "   ")
+    assert figstd.check_figure(fig) == []
+
+
+def test_checker_measures_3d_texts_where_they_are_drawn():
+    fig = plt.figure(figsize=(5, 4), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    ax.text(0.0, 0.0, 0.0, "origin")
+    msgs = [m for m in figstd.check_figure(fig) if "'origin'" in m]
+    assert msgs == [], _kinds(msgs)
+
+
+def test_frame_checker_checks_every_animation_frame():
+    fig, ax = _good()
+    label = ax.text(0.05, 0.8, "frame", transform=ax.transAxes)
+
+    def update(k):
+        label.set_fontsize(12 if k < 2 else 5)  # small from frame 2 on
+
+    anim = FuncAnimation(fig, update, frames=4)
+    checker = figstd.FrameChecker("anim")
+    anim.save("unused", writer=checker)
+    assert checker.frames == 4
+    assert len(checker.breaches) == 1 and checker.breaches[0].startswith("anim frame 2: ") \
+        and "readout 'frame' is 6.9 px" in checker.breaches[0], checker.breaches
+
+
+def test_notebook_runner_catches_animation_frames(tmp_path):
+    import nbformat
+
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [nbformat.v4.new_code_cell(
+        "%matplotlib widget\n"
+        "import matplotlib.pyplot as plt\n"
+        "from matplotlib.animation import FuncAnimation\n"
+        "fig, ax = plt.subplots(figsize=(10, 3))\n"
+        "t = ax.set_title('tiny', fontsize=5)\n"
+        "anim = FuncAnimation(fig, lambda k: None, frames=3)\n"
+        "html = anim.to_jshtml()\n"
+        "plt.close(fig)\n")]
+    path = tmp_path / "anim.ipynb"
+    nbformat.write(nb, path)
+    res = nbfigures.run_notebook(path, root=tmp_path)
+    assert res.errors == [] and res.animations == 1 and res.figures == 0
+    text = _kinds(res.breaches)
+    assert "anim.ipynb In[1] animation frame 0: figure 'tiny': 1000 px wide" in text
+    assert "title 'tiny' is 6.9 px" in text
+
+
+# -- the course -------------------------------------------------------------------------------
+
+@pytest.fixture(scope="session")
+def notebook_results():
+    """Notebook path -> NotebookFigures, each notebook run once per session (on first use)."""
+    cache: dict[Path, nbfigures.NotebookFigures] = {}
+
+    def get(path: Path):
+        if path not in cache:
+            cache[path] = nbfigures.run_notebook(path)
+        return cache[path]
+
+    return get
+
+
+def _panels():
+    from gm_core.widgets.base import all_panels
+
+    return sorted(all_panels().items())
+
+
+PANELS = _panels()
+
+
+@pytest.mark.parametrize("name,cls", PANELS, ids=[n for n, _ in PANELS])
+def test_panel_initial_state(name, cls):
+    panel = cls()
+    assert panel.fig is not None, f"{name} has no figure"
+    msgs = figstd.check_figure(panel.fig, f"panel {name}")
+    assert not msgs, f"{len(msgs)} breaches of the figure standard:\n  " + "\n  ".join(msgs)
+
+
+@pytest.mark.parametrize("notebook", NOTEBOOKS, ids=[p.relative_to(ROOT).as_posix() for p in NOTEBOOKS])
+def test_notebook_figures(notebook, notebook_results):
+    res = notebook_results(notebook)
+    assert not res.errors, "cells failed, so not every figure was drawn:\n  " + "\n  ".join(res.errors)
+    assert not res.breaches, (f"{len(res.breaches)} breaches of the figure standard in {res.path} "
+                              f"({res.figures} figures, {res.animations} animations):\n  "
+                              + "\n  ".join(res.breaches))
+
+
+def write_report(out: Path) -> int:
+    """Write every current breach (panels, then notebooks) to ``out``; returns how many."""
+    lines, n = [], 0
+    for name, cls in PANELS:
+        msgs = figstd.check_figure(cls().fig, f"panel {name}")
+        plt.close("all")
+        n += len(msgs)
+        lines += msgs
+    for nb in NOTEBOOKS:
+        res = nbfigures.run_notebook(nb)
+        n += len(res.breaches) + len(res.errors)
+        lines += res.errors + res.breaches
+    head = [f"# Breaches of the figure standard: {n} (tests/test_figure_standard.py; "
+            "regenerate with `python tests/test_figure_standard.py`)", ""]
+    out.write_text("\n".join(head + lines) + "\n", encoding="utf-8")
+    return n
+
+
+if __name__ == "__main__":
+    import os
+
+    os.environ.setdefault("GM_COURSE_TESTING", "1")
+    target = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "notes" / "breaches.txt"
+    target.parent.mkdir(parents=True, exist_ok=True)
+    print(f"{write_report(target)} breaches -> {target}")
