@@ -195,7 +195,7 @@ class FrameFieldsPanel(Panel):
         self.fig, axes = new_figure(1, 3, figsize=(9, 3.3), dpi=DPI, layout="constrained")
         lim = LIMITS
         self.axes = axes
-        self.fields = [FieldArtist(ax, self.system, i, limits=lim, n=13) for i, ax in enumerate(axes)]
+        self.fields = [FieldArtist(ax, self.system, i, limits=lim) for i, ax in enumerate(axes)]
         for i, ax in enumerate(axes):
             _style(ax, lim, f"row {ROWS[i]} of −A")
         self.norms = {}
@@ -220,7 +220,7 @@ class FrameFieldsPanel(Panel):
     def naive_update(self, frame):
         for i, ax in enumerate(self.axes):
             ax.clear()
-            FieldArtist(ax, self.frames[frame], i, limits=LIMITS, n=13)
+            FieldArtist(ax, self.frames[frame], i, limits=LIMITS)
         self.fig.canvas.draw_idle()
 
 
