@@ -21,6 +21,9 @@ from .base import Panel, register, slider
 __all__ = ["shaped_gait", "numbers_table", "GaitStokesPanel", "FrameFieldsPanel", "optimize_with_progress"]
 
 FRAMES = ("middle link", "centre of mass", "minimum perturbation")
+#: ToggleButtons' default buttons are too narrow for "minimum perturbation" (cut to "minimum perturb…"):
+#: wide enough for the longest frame name at the widgets' 13 px font
+FRAME_BUTTONS = {"button_width": "12em"}
 
 
 def shaped_gait(c1=0.0, c2=0.0, a=1.0, b=1.0, tilt=0.0, bend=0.0, period=1.0):
@@ -116,7 +119,8 @@ class GaitStokesPanel(Panel):
             "bend": slider(0.0, -0.6, 0.6, description="bend"),
             "row": W.ToggleButtons(options=[(r, i) for i, r in enumerate(ROWS)], value=0,
                                    description="map row"),
-            "frame": W.ToggleButtons(options=list(FRAMES), value="middle link", description="frame"),
+            "frame": W.ToggleButtons(options=list(FRAMES), value="middle link", description="frame",
+                                     style=FRAME_BUTTONS),
         }
 
     def compute(self, c1, c2, a, b, tilt, bend, frame, **_):
@@ -199,9 +203,10 @@ class FrameFieldsPanel(Panel):
         for i, ax in enumerate(axes):
             _style(ax, lim, f"row {ROWS[i]} of −A")
         self.norms = {}
-        self.labels = [ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=FONT,
-                               bbox=dict(facecolor="white", alpha=0.8, lw=0)) for ax in axes]
-        self.controls = {"frame": W.ToggleButtons(options=list(FRAMES), value="middle link", description="frame")}
+        # the size of each row goes in its title, off the arrows
+        self.labels = [ax.title for ax in axes]
+        self.controls = {"frame": W.ToggleButtons(options=list(FRAMES), value="middle link", description="frame",
+                                          style=FRAME_BUTTONS)}
 
     def field_norms(self, frame):
         """Mean |row of A| over the grid, per row (3,) (what the minimum-perturbation frame makes small)."""
@@ -212,9 +217,9 @@ class FrameFieldsPanel(Panel):
         ref = [f.set(self.frames["middle link"]) for f in self.fields] if not self.norms else self.norms["ref"]
         self.norms["ref"] = ref
         size = self.field_norms(frame)
-        for f, lab, sc, sz in zip(self.fields, self.labels, ref, size):
+        for i, (f, lab, sc, sz) in enumerate(zip(self.fields, self.labels, ref, size)):
             f.set(self.frames[frame], scale=sc)  # same arrow scale in every frame
-            lab.set_text(f"rms |row| = {sz:.3f}")
+            lab.set_text(f"row {ROWS[i]} of −A\nrms |row| = {sz:.3f}")
         self.fig.canvas.draw_idle()
 
     def naive_update(self, frame):
