@@ -125,7 +125,7 @@ class ConnectionFieldArtist:
         # a row much smaller than the largest entry of A is drawn enlarged and says by how much
         note = dict(transform=ax.transAxes, fontsize=9, color="0.25", visible=False, zorder=6,
                     bbox=dict(boxstyle="round,pad=0.25", fc="white", ec="0.6", alpha=0.9))
-        self.zero_note = ax.text(0.5, 0.5, "≡ 0: zero everywhere", ha="center", va="center", **note)
+        self.zero_note = ax.text(0.5, 0.96, "≡ 0: zero everywhere", ha="center", va="top", **note)
         self.scale_note = ax.text(0.97, 0.03, "", ha="right", va="bottom", **note)
         self.set(system, row)
 

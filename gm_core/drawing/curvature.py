@@ -13,6 +13,7 @@ from ..geometry import constraint_curvature
 from ..groups import SE2
 from .base import BodyArtist, SingularFlag, TrailArtist, animate, new_figure
 from .connection import auto_grid, inset_limits
+from .toolkit import PALETTE
 
 __all__ = ["ROWS", "shape_grid", "CurvatureMapArtist", "GaitArtist", "FieldArtist", "SwimmerArtist",
            "curvature_maps_figure", "animate_swimmer", "FONT", "DPI"]
@@ -147,7 +148,7 @@ class FieldArtist:
 class SwimmerArtist:
     """A locomotor's rigid parts (BodyArtist each) at world pose g and shape r."""
 
-    def __init__(self, ax, system, colors=("tab:blue", "tab:orange", "tab:green")):
+    def __init__(self, ax, system, colors=(PALETTE["blue"], PALETTE["orange"], PALETTE["green"])):
         self.system = system
         self.bodies = [BodyArtist(ax, p.outline, facecolor=colors[i % len(colors)], alpha=0.8, zorder=3)
                        for i, p in enumerate(system.parts())]

@@ -12,6 +12,7 @@ import numpy as np
 
 from .._validate import SingularShapeError
 from ..drawing.base import SingularFlag, new_figure
+from ..drawing.toolkit import PALETTE
 from ..drawing.curvature import DPI, FONT, ROWS, CurvatureMapArtist, FieldArtist, GaitArtist, _style
 from ..geometry import (body_frames, body_velocity_integral, fourier_gait, optimize_gait, stokes_estimate)
 from ..locomotion import net_displacement
@@ -95,8 +96,8 @@ class GaitStokesPanel(Panel):
         self.flag = SingularFlag(self.ax)
         x = np.arange(3)
         self.bars = {}
-        for k, (label, color) in enumerate([("exact g(T)", "k"), ("Stokes ∬D(−A)", "tab:red"),
-                                            ("∫ξ dt", "tab:gray")]):
+        for k, (label, color) in enumerate([("exact g(T)", "k"), ("Stokes ∬D(−A)", PALETTE["vermillion"]),
+                                            ("∫ξ dt", PALETTE["grey"])]):
             self.bars[label] = self.axb.bar(x + (k - 1) * 0.27, np.zeros(3), 0.25, color=color, label=label)
         self.axb.set_xticks(x, [f"{r}" for r in ROWS], fontsize=FONT)
         # fixed limits, legend above the bars' reach, grid below them: nothing static is ever
