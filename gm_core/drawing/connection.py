@@ -285,7 +285,8 @@ def poor_pictures_figure(system, row=2, n=6, figsize=(9, 3.4)):
     axes = list(axes)
     axes[0].remove()
     axes[0] = fig.add_subplot(1, 3, 1, projection="3d")
-    a1, a2, U, V = connection_field(system, row, n)
+    # the grid of picture (c)'s ConnectionFieldArtist: cell centres, so (a)-(c) show the same shapes
+    a1, a2, U, V = connection_field(system, row, n, inset_limits(system.shape_limits, n))
     (lo1, hi1), (lo2, hi2) = system.shape_limits
     h = 0.35 * min(hi1 - lo1, hi2 - lo2) / n
     big = float(np.ma.max(np.ma.sqrt(U ** 2 + V ** 2))) or 1.0
