@@ -257,6 +257,8 @@ def _quiver_longest_px(q: Quiver) -> float | None:
         d = v[:, None, :] - v[None, :, :]
         best = max(best, float(np.sqrt((d ** 2).sum(-1)).max()))
     uv = np.hypot(np.ma.filled(q.U, 0.0), np.ma.filled(q.V, 0.0))
+    # matplotlib keeps a masked arrow's mask in ``Umask`` and fills its U, V with 1: not an arrow
+    uv = np.where(np.ma.getmaskarray(np.ma.array(uv, mask=np.broadcast_to(q.Umask, uv.shape))), 0.0, uv)
     if not np.any(uv > 0):
         return None  # every arrow is zero (a field at rest): nothing to judge
     return best

@@ -147,6 +147,21 @@ def test_checker_finds_arrows_too_short_to_show_direction():
     assert 0 < longest < figstd.MIN_ARROW_PX
 
 
+def test_checker_leaves_a_field_at_rest_with_masked_arrows_alone():
+    """A field zero wherever it is defined, masked elsewhere, is at rest: no direction to judge.
+    matplotlib fills a masked arrow's U, V with 1 (the mask lives in ``Quiver.Umask``), so the
+    checker must not read those fillers as arrows; a nonzero field with masked arrows is still judged."""
+    fig, ax = _good()
+    x, y = np.meshgrid(np.linspace(0.1, 0.9, 5), np.linspace(0.1, 0.9, 5))
+    U = np.ma.array(np.zeros_like(x), mask=np.eye(5, dtype=bool))
+    q = ax.quiver(x, y, U, U.copy(), angles="xy", scale_units="xy", scale=1)
+    assert np.asarray(q.Umask).any() and np.max(q.U) == 1.0  # the fillers the checker must skip
+    assert figstd.check_figure(fig) == []
+    q.set_UVC(np.ma.array(np.full_like(x, 0.01), mask=np.eye(5, dtype=bool)), U)  # ~2 px arrows
+    msgs = figstd.check_figure(fig)
+    assert any("vector field 2 of 2 (25 arrows): longest arrow" in m for m in msgs), _kinds(msgs)
+
+
 def test_checker_measures_arrow_sets_marked_for_it():
     """A PolyCollection of arrows (toolkit.ArrowSet) is a field once marked ``gm_arrow_set``."""
     from gm_core.drawing.toolkit import ArrowSet

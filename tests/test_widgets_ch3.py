@@ -101,7 +101,7 @@ def test_connection_field_panel_cursor_body_and_velocity(system):
     np.testing.assert_allclose(p.vel.world_vector(), xi[:2] * p.vel.scale, atol=1e-12)
     # the quivers show -A^i on the grid (times the display factor, where not clipped)
     for i, f in enumerate(p.fields):
-        a1, a2, rg = D.shape_grid(system, f.n)
+        a1, a2, rg = D.shape_grid(system, f.n, f.grid_limits)
         A = system.connection(rg)
         U = np.ma.masked_invalid(-A[..., i, 0]).ravel()
         keep = ~np.ma.getmaskarray(U) & ~f.clipped.ravel()

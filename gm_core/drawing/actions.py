@@ -59,7 +59,7 @@ class SlideRuleScene(Scene):
 
     def decorate(self):
         (ax,) = self.axes
-        ax.set_xlim(-0.05, 2.05)
+        ax.set_xlim(-0.08, 2.05)  # room for the scale letter "D" left of 1
         ax.set_ylim(-1.1, 1.3)
         ax.axis("off")
         vals, x, segs, major = self._ticks(2, 0.0, False)

@@ -59,10 +59,13 @@ def connection_field(system, row, n=21, limits=None):
 MIN_ARROW_PX = 25.0
 
 
-def auto_grid(ax, limits=None, lo=5, hi=15):
+def auto_grid(ax, limits=None, lo=5, hi=15, inset=False):
     """Grid points ``(n1, n2)`` for a field over ``limits`` ((lo1, hi1), (lo2, hi2)) drawn on
     ``ax`` with equal aspect: the same spacing both ways, at least MIN_ARROW_PX / 0.9 pixels
-    (at least ``lo`` points along the longer side, at most ``hi`` along either)."""
+    (at least ``lo`` points along the longer side, at most ``hi`` along either).
+
+    ``inset=True``: the points are the centres of n cells (see :func:`inset_limits`), so the
+    spacing is span / n rather than span / (n - 1)."""
     fig = ax.figure
     bbox = ax.get_position(original=True)
     w, h = bbox.width * fig.get_figwidth() * fig.dpi, bbox.height * fig.get_figheight() * fig.dpi
@@ -73,10 +76,23 @@ def auto_grid(ax, limits=None, lo=5, hi=15):
     pa, pb = abs(a1 - a0) or 1.0, abs(b1 - b0) or 1.0
     unit = min(w / pa, h / pb)                      # pixels per data unit (equal aspect)
     gap = MIN_ARROW_PX / 0.9 + 2                    # pixels between grid points
-    n_long = int(np.clip(unit * max(pa, pb) // gap + 1, lo, hi))
-    step = max(pa, pb) / (n_long - 1)               # data units between grid points
-    n_short = int(np.clip(round(min(pa, pb) / step) + 1, 2, hi))
+    extra = 0 if inset else 1                       # n points span n - 1 gaps, or n cells
+    n_long = int(np.clip(unit * max(pa, pb) // gap + extra, lo, hi))
+    step = max(pa, pb) / (n_long - extra)           # data units between grid points
+    n_short = int(np.clip(round(min(pa, pb) / step) + extra, 2, hi))
     return (n_long, n_short) if pa >= pb else (n_short, n_long)
+
+
+def inset_limits(limits, n):
+    """The window ``limits`` shrunk by half a cell on each side, for ``n`` (or ``(n1, n2)``) grid
+    points at the centres of equal cells: an arrow of 0.9 spacings drawn about such a point
+    (pivot "mid") stays inside the window, never sliced by the axes frame."""
+    n1, n2 = (n, n) if np.ndim(n) == 0 else n
+    out = []
+    for (lo, hi), k in zip(limits, (n1, n2)):
+        half = 0.5 * (hi - lo) / int(k)
+        out.append((lo + half, hi - half))
+    return tuple(out)
 
 
 class ConnectionFieldArtist:
@@ -86,17 +102,31 @@ class ConnectionFieldArtist:
     shapes the connection grows without bound); undefined arrows are masked. ``factor`` is the
     data-to-arrow scale in use, so the drawn arrow is ``factor * (-A^row)`` unless clipped.
     ``n=None`` picks the grid from the axes' size so that the longest arrow (0.9 grid spacings)
-    is at least :data:`MIN_ARROW_PX` long on screen (the figure standard).
+    is at least :data:`MIN_ARROW_PX` long on screen (the figure standard). A row that is zero on
+    the whole grid hides its arrows and says "≡ 0" inside the axes (``zero``); a row much smaller
+    than the largest entry of A (below ``SMALL`` of it) is still drawn at full length, with a note
+    of its enlargement (``enlarged``).
     """
 
+    #: a row whose longest arrow is below this fraction of the largest entry of A is "small"
+    SMALL = 0.05
+
     def __init__(self, ax, system, row, n=None, limits=None, clip=3.0, color="k", **kw):
-        n = auto_grid(ax, limits or system.shape_limits) if n is None else n
+        n = auto_grid(ax, limits or system.shape_limits, inset=True) if n is None else n
         self.ax, self.n, self.limits, self.clip, self.row = ax, n, limits, float(clip), row
+        #: the grid's own window: cell centres, half a cell inside the shape window
+        self.grid_limits = inset_limits(limits or system.shape_limits, n)
         self.system = system
-        a1, a2, U, V = connection_field(system, row, n, limits)
+        a1, a2, U, V = connection_field(system, row, n, self.grid_limits)
         self.quiver = ax.quiver(a1, a2, np.zeros_like(a1), np.zeros_like(a1), color=color, angles="xy",
                                 scale_units="xy", scale=1.0, width=0.008, headwidth=3.5, headlength=4.5,
                                 headaxislength=4.0, pivot="mid", **kw)
+        # a row that vanishes on the whole window is said in words, not drawn as a grid of dots;
+        # a row much smaller than the largest entry of A is drawn enlarged and says by how much
+        note = dict(transform=ax.transAxes, fontsize=9, color="0.25", visible=False, zorder=6,
+                    bbox=dict(boxstyle="round,pad=0.25", fc="white", ec="0.6", alpha=0.9))
+        self.zero_note = ax.text(0.5, 0.96, "≡ 0: zero everywhere", ha="center", va="top", **note)
+        self.scale_note = ax.text(0.97, 0.03, "", ha="right", va="bottom", **note)
         self.set(system, row)
 
     def set(self, system=None, row=None):
@@ -105,11 +135,16 @@ class ConnectionFieldArtist:
             self.system = system
         if row is not None:
             self.row = row
-        a1, a2, U, V = connection_field(self.system, self.row, self.n, self.limits)
+        if self.limits is None:  # the system (its shape window) may have changed
+            self.grid_limits = inset_limits(self.system.shape_limits, self.n)
+        a1, a2, U, V = connection_field(self.system, self.row, self.n, self.grid_limits)
+        A = self.system.connection(np.stack([a1, a2], -1))
+        finite = np.isfinite(A)
+        biggest = float(np.max(np.abs(A[finite]))) if finite.any() else 0.0
         self.quiver.set_offsets(np.column_stack([a1.ravel(), a2.ravel()]))
         mag = np.ma.sqrt(U ** 2 + V ** 2)
         n1, n2 = a1.shape[1], a1.shape[0]
-        spacing = min(np.ptp(a1) / (n1 - 1), np.ptp(a2) / (n2 - 1))
+        spacing = min(np.ptp(a1) / max(n1 - 1, 1), np.ptp(a2) / max(n2 - 1, 1))
         nonzero = np.ma.masked_equal(mag, 0.0)
         med = float(np.ma.median(nonzero)) if nonzero.count() else 0.0
         top = float(mag.max()) if mag.count() else 0.0
@@ -121,6 +156,14 @@ class ConnectionFieldArtist:
         self.U, self.V = U, V
         self.quiver.set_UVC(U * shrink * self.factor, V * shrink * self.factor)
         self.clipped = np.ma.filled(mag > cap, False)
+        self.zero = not top > 0
+        self.quiver.set_visible(not self.zero)
+        self.zero_note.set_visible(self.zero)
+        #: how much the arrows are enlarged against the largest entry of A on the grid (None: not)
+        self.enlarged = biggest / top if top > 0 and top < self.SMALL * biggest else None
+        if self.enlarged is not None:
+            self.scale_note.set_text(f"small row: arrows enlarged ×{self.enlarged:.2g}")
+        self.scale_note.set_visible(self.enlarged is not None)
         return self
 
 
@@ -242,7 +285,8 @@ def poor_pictures_figure(system, row=2, n=6, figsize=(9, 3.4)):
     axes = list(axes)
     axes[0].remove()
     axes[0] = fig.add_subplot(1, 3, 1, projection="3d")
-    a1, a2, U, V = connection_field(system, row, n)
+    # the grid of picture (c)'s ConnectionFieldArtist: cell centres, so (a)-(c) show the same shapes
+    a1, a2, U, V = connection_field(system, row, n, inset_limits(system.shape_limits, n))
     (lo1, hi1), (lo2, hi2) = system.shape_limits
     h = 0.35 * min(hi1 - lo1, hi2 - lo2) / n
     big = float(np.ma.max(np.ma.sqrt(U ** 2 + V ** 2))) or 1.0

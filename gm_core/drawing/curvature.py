@@ -12,6 +12,8 @@ import numpy as np
 from ..geometry import constraint_curvature
 from ..groups import SE2
 from .base import BodyArtist, SingularFlag, TrailArtist, animate, new_figure
+from .connection import auto_grid, inset_limits
+from .toolkit import PALETTE
 
 __all__ = ["ROWS", "shape_grid", "CurvatureMapArtist", "GaitArtist", "FieldArtist", "SwimmerArtist",
            "curvature_maps_figure", "animate_swimmer", "FONT", "DPI"]
@@ -114,11 +116,18 @@ class GaitArtist:
 
 
 class FieldArtist:
-    """One row of -A(r) as a quiver (the body velocity per unit shape velocity), rescaled to a common length."""
+    """One row of -A(r) as a quiver (the body velocity per unit shape velocity), rescaled to a common length.
 
-    def __init__(self, ax, system, row, limits=None, n=15, color="k"):
+    ``n=None`` (grid points per side) picks the grid from the axes' size (connection.auto_grid),
+    so the arrows (0.9 grid spacings at the 95th percentile length) meet the figure standard."""
+
+    def __init__(self, ax, system, row, limits=None, n=None, color="k"):
         self.limits = tuple(tuple(map(float, lim)) for lim in (limits or system.shape_limits))
-        _, _, self.grid = shape_grid(self.limits, n)
+        if n is None:  # grid from the axes' size: arrows of 0.9 spacings are >= MIN_ARROW_PX long
+            n = min(auto_grid(ax, self.limits, inset=True))
+        n = int(n)
+        # cell centres, half a cell inside the window: no arrow is sliced by the axes frame
+        _, _, self.grid = shape_grid(inset_limits(self.limits, n), n)
         self.row = row
         self.quiver = ax.quiver(self.grid[..., 0], self.grid[..., 1], np.zeros((n, n)), np.zeros((n, n)),
                                 color=color, angles="xy", scale_units="xy", scale=1.0, pivot="mid",
@@ -129,7 +138,7 @@ class FieldArtist:
         V = -system.connection(self.grid)[..., self.row, :]
         ok = np.isfinite(V).all(-1)
         V = np.where(ok[..., None], V, 0.0)
-        step = (self.limits[0][1] - self.limits[0][0]) / (self.grid.shape[1] - 1)
+        step = (self.limits[0][1] - self.limits[0][0]) / self.grid.shape[1]
         norm = scale if scale is not None else (np.percentile(np.linalg.norm(V, axis=-1)[ok], 95) if ok.any() else 1)
         norm = norm if norm > 0 else 1.0
         self.quiver.set_UVC(V[..., 0] * 0.9 * step / norm, V[..., 1] * 0.9 * step / norm)
@@ -139,7 +148,7 @@ class FieldArtist:
 class SwimmerArtist:
     """A locomotor's rigid parts (BodyArtist each) at world pose g and shape r."""
 
-    def __init__(self, ax, system, colors=("tab:blue", "tab:orange", "tab:green")):
+    def __init__(self, ax, system, colors=(PALETTE["blue"], PALETTE["orange"], PALETTE["green"])):
         self.system = system
         self.bodies = [BodyArtist(ax, p.outline, facecolor=colors[i % len(colors)], alpha=0.8, zorder=3)
                        for i, p in enumerate(system.parts())]

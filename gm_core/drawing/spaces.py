@@ -153,14 +153,15 @@ def flattened_views():
     _identified_edges(ax, TWO_PI, np.pi, "sphere")
     ax.plot([0, TWO_PI], [np.pi, np.pi], color="darkred", lw=4, alpha=0.6)
     ax.plot([0, TWO_PI], [0, 0], color="darkred", lw=4, alpha=0.6)
-    ax.text(np.pi, np.pi - 0.25, "whole edge = north pole", ha="center", fontsize=8.5, color="darkred")
-    ax.text(np.pi, 0.12, "whole edge = south pole", ha="center", fontsize=8.5, color="darkred")
+    # the labels sit clear of the thick edge lines they name (below the top one, above the bottom one)
+    ax.text(np.pi, np.pi - 0.2, "whole edge = north pole", ha="center", va="top", fontsize=8.5, color="darkred")
+    ax.text(np.pi, 0.2, "whole edge = south pole", ha="center", va="bottom", fontsize=8.5, color="darkred")
     # the longitude seam: the left edge (lambda = -180 deg) and the right edge (+180 deg) are one meridian
     for x in (0.0, TWO_PI):
         ax.plot([x, x], [0, np.pi], color=PALETTE["vermillion"], lw=3, alpha=0.5, solid_capstyle="butt")
     ax.text(np.pi, np.pi / 2, "left edge = right edge:\nthe seam λ = ±180°", ha="center", va="center",
             fontsize=8.5, color=PALETTE["vermillion"])
-    ax.set_title("sphere, latitude/longitude chart\n(seam glued, edges collapse at the poles)")
+    ax.set_title("sphere, latitude/longitude chart\n(seam glued, edges = the poles)")
     ax.set_xlabel("longitude λ")
     ax.set_ylabel("latitude φ")
     for ax in axes:

@@ -12,6 +12,7 @@ import numpy as np
 
 from .._validate import SingularShapeError
 from ..drawing.base import SingularFlag, new_figure
+from ..drawing.toolkit import PALETTE
 from ..drawing.curvature import DPI, FONT, ROWS, CurvatureMapArtist, FieldArtist, GaitArtist, _style
 from ..geometry import (body_frames, body_velocity_integral, fourier_gait, optimize_gait, stokes_estimate)
 from ..locomotion import net_displacement
@@ -21,6 +22,9 @@ from .base import Panel, register, slider
 __all__ = ["shaped_gait", "numbers_table", "GaitStokesPanel", "FrameFieldsPanel", "optimize_with_progress"]
 
 FRAMES = ("middle link", "centre of mass", "minimum perturbation")
+#: ToggleButtons' default buttons are too narrow for "minimum perturbation" (cut to "minimum perturb…"):
+#: wide enough for the longest frame name at the widgets' 13 px font
+FRAME_BUTTONS = {"button_width": "12em"}
 
 
 def shaped_gait(c1=0.0, c2=0.0, a=1.0, b=1.0, tilt=0.0, bend=0.0, period=1.0):
@@ -92,8 +96,8 @@ class GaitStokesPanel(Panel):
         self.flag = SingularFlag(self.ax)
         x = np.arange(3)
         self.bars = {}
-        for k, (label, color) in enumerate([("exact g(T)", "k"), ("Stokes ∬D(−A)", "tab:red"),
-                                            ("∫ξ dt", "tab:gray")]):
+        for k, (label, color) in enumerate([("exact g(T)", "k"), ("Stokes ∬D(−A)", PALETTE["vermillion"]),
+                                            ("∫ξ dt", PALETTE["grey"])]):
             self.bars[label] = self.axb.bar(x + (k - 1) * 0.27, np.zeros(3), 0.25, color=color, label=label)
         self.axb.set_xticks(x, [f"{r}" for r in ROWS], fontsize=FONT)
         # fixed limits, legend above the bars' reach, grid below them: nothing static is ever
@@ -116,7 +120,8 @@ class GaitStokesPanel(Panel):
             "bend": slider(0.0, -0.6, 0.6, description="bend"),
             "row": W.ToggleButtons(options=[(r, i) for i, r in enumerate(ROWS)], value=0,
                                    description="map row"),
-            "frame": W.ToggleButtons(options=list(FRAMES), value="middle link", description="frame"),
+            "frame": W.ToggleButtons(options=list(FRAMES), value="middle link", description="frame",
+                                     style=FRAME_BUTTONS),
         }
 
     def compute(self, c1, c2, a, b, tilt, bend, frame, **_):
@@ -195,13 +200,14 @@ class FrameFieldsPanel(Panel):
         self.fig, axes = new_figure(1, 3, figsize=(9, 3.3), dpi=DPI, layout="constrained")
         lim = LIMITS
         self.axes = axes
-        self.fields = [FieldArtist(ax, self.system, i, limits=lim, n=13) for i, ax in enumerate(axes)]
+        self.fields = [FieldArtist(ax, self.system, i, limits=lim) for i, ax in enumerate(axes)]
         for i, ax in enumerate(axes):
             _style(ax, lim, f"row {ROWS[i]} of −A")
         self.norms = {}
-        self.labels = [ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=FONT,
-                               bbox=dict(facecolor="white", alpha=0.8, lw=0)) for ax in axes]
-        self.controls = {"frame": W.ToggleButtons(options=list(FRAMES), value="middle link", description="frame")}
+        # the size of each row goes in its title, off the arrows
+        self.labels = [ax.title for ax in axes]
+        self.controls = {"frame": W.ToggleButtons(options=list(FRAMES), value="middle link", description="frame",
+                                          style=FRAME_BUTTONS)}
 
     def field_norms(self, frame):
         """Mean |row of A| over the grid, per row (3,) (what the minimum-perturbation frame makes small)."""
@@ -212,15 +218,15 @@ class FrameFieldsPanel(Panel):
         ref = [f.set(self.frames["middle link"]) for f in self.fields] if not self.norms else self.norms["ref"]
         self.norms["ref"] = ref
         size = self.field_norms(frame)
-        for f, lab, sc, sz in zip(self.fields, self.labels, ref, size):
+        for i, (f, lab, sc, sz) in enumerate(zip(self.fields, self.labels, ref, size)):
             f.set(self.frames[frame], scale=sc)  # same arrow scale in every frame
-            lab.set_text(f"rms |row| = {sz:.3f}")
+            lab.set_text(f"row {ROWS[i]} of −A\nrms |row| = {sz:.3f}")
         self.fig.canvas.draw_idle()
 
     def naive_update(self, frame):
         for i, ax in enumerate(self.axes):
             ax.clear()
-            FieldArtist(ax, self.frames[frame], i, limits=LIMITS, n=13)
+            FieldArtist(ax, self.frames[frame], i, limits=LIMITS)
         self.fig.canvas.draw_idle()
 
 
