@@ -12,6 +12,7 @@ observed_velocity      xi^s seen by the observer at h: Ad_{h^-1 g} xi           
 icr                    (-v_y / w, v_x / w) for xi = (v_x, v_y, w), flagged at w = 0      sec. 1.5
 point_in_frame         coordinates of a world point in the frame g (g^-1 p)             (1.12)
 conjugation            g xi^ g^-1 and (Ad_g xi)^: Ad as conjugation, for display         (1.40)
+point_velocities       world velocities of world points carried by a moving body       (1.28)
 """
 from __future__ import annotations
 
@@ -21,7 +22,8 @@ from ._validate import as_array
 from .groups import SE2, matvec
 from .kinematics import relative_pose
 
-__all__ = ["relative_pose", "observed_velocity", "icr", "point_in_frame", "conjugation"]
+__all__ = ["relative_pose", "observed_velocity", "icr", "point_in_frame", "conjugation",
+           "point_velocities"]
 
 
 def _se2(g, name):
@@ -72,3 +74,16 @@ def conjugation(g, xi):
     xi = as_array(xi, "xi", (3,), what=" (a Lie-algebra element (v_x, v_y, omega))")
     M = SE2.matrix(g)
     return M @ SE2.hat(xi) @ np.linalg.inv(M), SE2.hat(matvec(SE2.Ad(g), xi))
+
+
+def point_velocities(g, g_dot, points):
+    """World velocities ``(..., k, 2)`` of world points ``(..., k, 2)`` carried by a body at g.
+
+    The body's pose is ``g (..., 3)`` and its world velocity ``g_dot (..., 3)``; a point p moves
+    with v(p) = (x_dot, y_dot) + theta_dot J (p - (x, y)), J the quarter turn, (1.28). The one
+    point with v = 0 is the body's :func:`icr` (written in world axes).
+    """
+    g = _se2(g, "g")
+    g_dot = as_array(g_dot, "g_dot", (3,), what=" (world velocity)")
+    r = as_array(points, "points", (2,), what=" (world points)") - g[..., None, :2]
+    return g_dot[..., None, :2] + g_dot[..., None, 2:3] * np.stack([-r[..., 1], r[..., 0]], -1)

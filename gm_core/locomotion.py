@@ -51,7 +51,7 @@ from .groups import SE2, matvec
 __all__ = [
     "connection_from_pfaffian", "connection_from_mass_matrix", "metric_from_jacobians",
     "pfaffian_determinant", "body_velocity", "connection_curl", "Gait", "CircleGait", "circle_gait",
-    "constant_rate_path", "as_gait", "check_gait", "net_displacement", "trajectory", "displacement_until", "Trajectory", "se2_bracket",
+    "constant_rate_path", "as_gait", "check_gait", "net_displacement", "trajectory", "displacement_until", "Trajectory", "se2_bracket", "drive",
     "SingularShapeError", "AccuracyWarning", "GaitWarning",
 ]
 
@@ -444,3 +444,13 @@ def displacement_until(system, gait, t, *, steps=256, g0=(0.0, 0.0, 0.0)):
     if d is not None:
         _scan(system, part, sq, d)
     return SE2.compose(g0, _product(SE2.exp(om)))
+
+
+def drive(system, r0, r_dot, duration, n_frames=81):
+    """Trajectory of ``system`` when its shape moves at the constant rate r_dot from r0 for ``duration``.
+
+    The shape path is :func:`gm_core.gaits.constant_rate_path` (open, not a gait); returns a
+    :class:`Trajectory` starting at the identity; raises SingularShapeError if the shape path
+    reaches a singular shape.
+    """
+    return trajectory(system, constant_rate_path(r0, r_dot, duration), n_frames, substeps=16)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import SingularShapeError
-from ..examples import drive
+from ..locomotion import drive
 from ..groups import SE2
 from ..systems import Ackerman, DifferentialDrive
 from .base import BodyArtist, FrameArtist, SingularFlag, TrailArtist

@@ -1,7 +1,8 @@
 """Velocities (book sections 1.4-1.5): vector fields and integral curves, lifted actions, world,
 body and spatial velocities, and the adjoint.
 
-The example fields and rigid-body point velocities are mathematics in :mod:`gm_core.examples`;
+The example fields are mathematics in :mod:`gm_core.fields`, rigid-body point velocities in
+:mod:`gm_core.frames`;
 integral curves come from :func:`gm_core.fields.integral_curve` (scipy's solve_ivp).
 """
 from __future__ import annotations
@@ -9,9 +10,8 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.collections import LineCollection
 
-from ..examples import FIELDS, point_velocities
-from ..fields import integral_curve
-from ..frames import icr
+from ..fields import FIELDS, integral_curve
+from ..frames import icr, point_velocities
 from ..groups import SE2, RPlus
 from .actions import BODY
 from .base import BodyArtist, FrameArtist
