@@ -436,7 +436,7 @@ def displacement_until(system, gait, t, *, steps=256, g0=(0.0, 0.0, 0.0)):
     t = float(check_positive(t, "t"))
     if t > gait.period * (1 + 1e-12):
         raise ValueError(f"t must be in (0, T] with T = {gait.period:g} the gait's period; got {t!r}")
-    steps = check_int(steps, "steps", low=1, high=MAX_STEPS, what=" (equal Magnus steps)")
+    steps = check_int(steps, "steps", minimum=1, maximum=MAX_STEPS, what=" (equal Magnus steps)")
     g0 = as_array(g0, "g0", (3,), what=" (the starting position (x, y, theta))")
     part = Gait(gait, period=min(t, gait.period), velocity=gait.velocity, name=gait.name)
     edges = np.linspace(0.0, 1.0, steps + 1)
