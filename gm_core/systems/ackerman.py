@@ -44,6 +44,20 @@ class Ackerman(LocomotionSystem):
         om[..., 2, 2] = L * np.cos(a2)
         return om
 
+    def connection_derivative(self, r):
+        """``(A (..., 3, 2), dA (..., 3, 2, 2))`` with ``dA[..., i, j, k] = d A_ij / d r_k``; NaN where A is.
+
+        Only A_theta,1 = -(R/L) tan(a2) depends on the shape: d/d a2 = -(R/L) / cos(a2)^2.
+        """
+        r = self._shape(r)
+        A = self.connection(r)
+        R, L = self.wheel_radius, self.wheelbase
+        dA = np.zeros(A.shape + (2,))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            dA[..., 2, 0, 1] = -(R / L) / np.cos(r[..., 1]) ** 2
+        dA[~np.isfinite(A).all(axis=(-1, -2))] = np.nan
+        return A, dA
+
     def parts(self):
         R, L = self.wheel_radius, self.wheelbase
         return [Part("chassis", rectangle_outline(1.3 * L, 0.45 * L), "chassis"),

@@ -41,6 +41,11 @@ class DifferentialDrive(LocomotionSystem):
         A = np.array([[-R / 2, -R / 2], [0.0, 0.0], [R / (2 * w), -R / (2 * w)]])
         return np.broadcast_to(A, r.shape[:-1] + (3, 2)).copy()
 
+    def connection_derivative(self, r):
+        """``(A (..., 3, 2), dA (..., 3, 2, 2))`` with ``dA[..., i, j, k] = d A_ij / d r_k``: zero, A is constant."""
+        A = self.connection(r)
+        return A, np.zeros(A.shape + (2,))
+
     def parts(self):
         R, w = self.wheel_radius, self.half_width
         return [Part("chassis", rectangle_outline(1.6 * w, 1.4 * w), "chassis"),
