@@ -42,10 +42,8 @@ class SlideRuleScene(Scene):
     log10(a) + log10(b) reads a*b on the fixed D scale (which runs over two decades, 1-100).
     """
 
-    def make_figure(self):
-        fig, ax = new_figure(figsize=(8, 2.6))
-        margins(fig, left=0.02, right=0.98, bottom=0.05, top=0.85)
-        return fig, [ax]
+    FIGSIZE = (8, 2.6)
+    MARGINS = dict(left=0.02, right=0.98, bottom=0.05, top=0.85)
 
     @staticmethod
     def _ticks(decades, y0, up):
@@ -295,10 +293,8 @@ class BodyPointsScene(Scene):
 
     OUTLINE = BodyArtist.rectangle(1.6, 0.8)
 
-    def make_figure(self):
-        fig, ax = new_figure(figsize=(5, 4.4))
-        margins(fig, left=0.1, right=0.98, bottom=0.1, top=0.9)
-        return fig, [ax]
+    FIGSIZE = (5, 4.4)
+    MARGINS = dict(left=0.1, right=0.98, bottom=0.1, top=0.9)
 
     def decorate(self):
         (ax,) = self.axes

@@ -462,6 +462,24 @@ def wire(ax, X, Y, Z, color="0.75", lw=0.4, behind=False):
     return w
 
 
+def axes_row(figsize, projections, **margin_kw):
+    """A figure with one row of axes, ``projections`` giving each one's kind (None or "3d"); the
+    keywords go to :func:`margins`. Returns ``(fig, [axes...])``."""
+    fig = figure(figsize=figsize)
+    n = len(projections)
+    axes = [fig.add_subplot(1, n, k + 1, projection=p) for k, p in enumerate(projections)]
+    margins(fig, **margin_kw)
+    return fig, axes
+
+
+def text_panel(ax):
+    """Turn ``ax`` into a blank panel for text and tables: no axis, limits (0, 1) both ways."""
+    ax.set_axis_off()
+    ax.set_xlim(0, 1)
+    ax.set_ylim(0, 1)
+    return ax
+
+
 # ------------------------------------------------------------------------------------ scenes
 class Scene:
     """Base of every live drawing: it owns its figure; ``set`` moves, ``replot`` rebuilds.
@@ -469,7 +487,12 @@ class Scene:
     Subclasses implement ``make_figure()`` (returns the figure and a list of axes),
     ``decorate()`` (limits, labels, static artists) and ``create()`` (the moving artists), and
     ``set(**values)``. A widget panel pairs the scene with controls (gm_core.widgets).
+    A scene with one axes may instead set ``FIGSIZE`` (and ``MARGINS``, keywords of
+    :func:`margins`): the default ``make_figure`` then makes it and stores it as ``self.ax``.
     """
+
+    FIGSIZE = None
+    MARGINS = None
 
     def __init__(self, **options):
         self.options = options
@@ -478,7 +501,13 @@ class Scene:
         self.create()
 
     def make_figure(self):
-        raise NotImplementedError
+        if self.FIGSIZE is None:
+            raise NotImplementedError(f"{type(self).__name__} must set FIGSIZE or implement make_figure")
+        fig, ax = new_figure(figsize=self.FIGSIZE)
+        if self.MARGINS:
+            margins(fig, **self.MARGINS)
+        self.ax = ax
+        return fig, [ax]
 
     def decorate(self):
         pass
