@@ -13,7 +13,7 @@ from ..axioms import powers
 from ..groups import S1, SE2, R2xS1
 from .base import BodyArtist, FrameArtist
 from .group_or_not import GroupOrNotScene
-from .toolkit import (PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, margins, new_figure, plane, set_arrows,
+from .toolkit import (PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, plane, set_arrows,
                       title)
 
 __all__ = ["BODY", "group_label", "GroupAxiomsScene", "SlideRuleScene", "CircleIsoScene",
@@ -108,10 +108,9 @@ class CircleIsoScene(Scene):
 
     G = S1(1.0)
 
-    def make_figure(self):
-        fig, axes = new_figure(1, 2, figsize=(7, 3.4))
-        margins(fig, left=0.02, right=0.98, bottom=0.05, top=0.84, wspace=0.1)
-        return fig, list(axes)
+    FIGSIZE = (7, 3.4)
+    NCOLS = 2
+    MARGINS = dict(left=0.02, right=0.98, bottom=0.05, top=0.84, wspace=0.1)
 
     def decorate(self):
         t = np.linspace(0, TWO_PI, 120)
@@ -161,10 +160,9 @@ class LeftRightActionScene(Scene):
 
     LIM = 4.0
 
-    def make_figure(self):
-        fig, axes = new_figure(1, 2, figsize=(9, 4.3))
-        margins(fig, left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
-        return fig, list(axes)
+    FIGSIZE = (9, 4.3)
+    NCOLS = 2
+    MARGINS = dict(left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
 
     def decorate(self):
         for ax in self.axes:
@@ -229,10 +227,9 @@ class ForwardLeftScene(Scene):
     N_MAX = 8
     LIM = 4.5
 
-    def make_figure(self):
-        fig, axes = new_figure(1, 2, figsize=(9, 4.4))
-        margins(fig, left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
-        return fig, list(axes)
+    FIGSIZE = (9, 4.4)
+    NCOLS = 2
+    MARGINS = dict(left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
 
     def decorate(self):
         for ax in self.axes:

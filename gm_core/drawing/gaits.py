@@ -16,7 +16,7 @@ from .base import SingularFlag, TrailArtist, animate
 from .connection import (ROW_LABELS, ConnectionFieldArtist, ShapeCursorArtist, draw_singular_set, FieldGridScene,
                          style_shape_axes, thin_labels)
 from .motion import MovingView, SystemArtist, draw_system_naive, style_world_axes, system_extent
-from .toolkit import PALETTE, Scene, new_figure, readout
+from .toolkit import PALETTE, new_figure, readout
 
 __all__ = ["GaitScene", "GAIT_SHAPES", "animate_gait"]
 

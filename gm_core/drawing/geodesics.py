@@ -308,10 +308,9 @@ class ExpFourWaysScene(Scene):
     METHODS = (("taylor", PALETTE["green"], "Taylor partial sums"), ("product", PALETTE["blue"], "(I + ξ^/n)ᵏ"),
                ("euler", PALETTE["orange"], "Euler steps"))
 
-    def make_figure(self):
-        fig, axes = new_figure(1, 2, figsize=(9.6, 4.0))
-        margins(fig, left=0.08, right=0.98, bottom=0.11, top=0.9, wspace=0.15)
-        return fig, list(axes)
+    FIGSIZE = (9.6, 4.0)
+    NCOLS = 2
+    MARGINS = dict(left=0.08, right=0.98, bottom=0.11, top=0.9, wspace=0.15)
 
     def decorate(self):
         a, b = self.axes

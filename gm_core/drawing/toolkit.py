@@ -487,11 +487,13 @@ class Scene:
     Subclasses implement ``make_figure()`` (returns the figure and a list of axes),
     ``decorate()`` (limits, labels, static artists) and ``create()`` (the moving artists), and
     ``set(**values)``. A widget panel pairs the scene with controls (gm_core.widgets).
-    A scene with one axes may instead set ``FIGSIZE`` (and ``MARGINS``, keywords of
-    :func:`margins`): the default ``make_figure`` then makes it and stores it as ``self.ax``.
+    A scene with one row of plain axes may instead set ``FIGSIZE`` (and ``NCOLS``, default 1,
+    and ``MARGINS``, keywords of :func:`margins`): the default ``make_figure`` then makes them
+    (a single axes is also ``self.ax``).
     """
 
     FIGSIZE = None
+    NCOLS = 1
     MARGINS = None
 
     def __init__(self, **options):
@@ -503,11 +505,13 @@ class Scene:
     def make_figure(self):
         if self.FIGSIZE is None:
             raise NotImplementedError(f"{type(self).__name__} must set FIGSIZE or implement make_figure")
-        fig, ax = new_figure(figsize=self.FIGSIZE)
+        fig, axes = new_figure(1, self.NCOLS, figsize=self.FIGSIZE)
         if self.MARGINS:
             margins(fig, **self.MARGINS)
-        self.ax = ax
-        return fig, [ax]
+        if self.NCOLS > 1:
+            return fig, list(axes)
+        self.ax = axes
+        return fig, [axes]
 
     def decorate(self):
         pass
