@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_array, check_int, check_positive
+from ._validate import as_array, check_int, positive_number, real_number
 from .groups import SE2, matvec
 from .kinematics import (
     METHODS,
@@ -48,7 +48,7 @@ __all__ = [
 def single_link_frames(alpha, length=1.0):
     """Proximal and distal poses (g, h), each ``(..., 3)``, of the pivoted link of fig. 2.2; book (2.3)-(2.4)."""
     alpha = as_array(alpha, "alpha")
-    L = float(check_positive(length, "length"))
+    L = positive_number(length, "length")
     g = np.stack(np.broadcast_arrays(0.0 * alpha, 0.0 * alpha, alpha), -1)
     return g, SE2.compose(g, np.array([L, 0.0, 0.0]))
 
@@ -77,9 +77,9 @@ def rr_arm_jacobian(alpha, lengths=(1.0, 1.0)):
 def _rp_args(alpha, delta, l1, l2, offset):
     alpha = as_array(alpha, "alpha")
     delta = as_array(delta, "delta")
-    l1 = float(check_positive(l1, "l1"))
-    l2 = float(check_positive(l2, "l2"))
-    a = float(as_array(offset, "offset"))
+    l1 = positive_number(l1, "l1")
+    l2 = positive_number(l2, "l2")
+    a = real_number(offset, "offset")
     alpha, delta = np.broadcast_arrays(alpha, delta)
     return alpha, delta, l1, l2, a
 
@@ -358,8 +358,8 @@ def sample_accessible_manifold(constraints, n=200, rng=None, box=2.0, dim=3, ite
     n = check_int(n, "n", minimum=1, maximum=10 ** 7, what=" (the number of random starting points)")
     dim = check_int(dim, "dim", minimum=1, maximum=1000, what=" (the dimension of the ambient space)")
     iters = check_int(iters, "iters", minimum=1, maximum=10 ** 6, what=" (Gauss-Newton iterations)")
-    box = float(check_positive(box, "box"))
-    tol = float(check_positive(tol, "tol"))
+    box = positive_number(box, "box")
+    tol = positive_number(tol, "tol")
     if rng is None:
         rng = np.random.default_rng(0)
     elif not isinstance(rng, np.random.Generator):

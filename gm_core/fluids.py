@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_array, check_int, check_positive
+from ._validate import as_array, check_int, check_positive, positive_number
 
 __all__ = ["slender_link_drag", "drag_wrench", "ellipse_added_mass", "added_mass_bem"]
 
@@ -32,8 +32,8 @@ def slender_link_drag(length, drag_ratio=2.0):
     The wrench on the link is ``-D xi`` for the link's body velocity xi (longitudinal coefficient
     c = 1, lateral k = ``drag_ratio``); the moment is about the link centre.
     """
-    length = float(check_positive(length, "length"))
-    k = float(check_positive(drag_ratio, "drag_ratio"))
+    length = positive_number(length, "length")
+    k = positive_number(drag_ratio, "drag_ratio")
     return np.diag([length, k * length, k * length ** 3 / 12])
 
 
@@ -59,7 +59,7 @@ def drag_wrench(poses, velocities, lengths, drag_ratio=2.0, *, nodes=5):
     except ValueError:
         raise ValueError(f"poses and velocities must have the same shape (..., k, 3); got "
                          f"{np.shape(poses)} and {np.shape(velocities)}") from None
-    k = float(check_positive(drag_ratio, "drag_ratio"))
+    k = positive_number(drag_ratio, "drag_ratio")
     nodes = check_int(nodes, "nodes", minimum=1, maximum=100, what=" (Gauss-Legendre points per link)")
     s0, w0 = np.polynomial.legendre.leggauss(nodes)
     s = s0 * (L[:, None] / 2)                     # (k, q) points along each link
@@ -94,7 +94,7 @@ def ellipse_added_mass(a, b, fluid_density=1.0):
     be zero (a flat plate).
     """
     a, b = _semi_axes(a, b, allow_zero=True)
-    rho = float(check_positive(fluid_density, "fluid_density"))
+    rho = positive_number(fluid_density, "fluid_density")
     return np.diag([np.pi * rho * b ** 2, np.pi * rho * a ** 2, np.pi * rho * (a ** 2 - b ** 2) ** 2 / 8])
 
 
@@ -125,7 +125,7 @@ def added_mass_bem(a, b, fluid_density=1.0, *, n=600, m=300):
     thinner ellipses need more points (n = 1200, m = 600 for a/b = 20).
     """
     a, b = _semi_axes(a, b)
-    rho = float(check_positive(fluid_density, "fluid_density"))
+    rho = positive_number(fluid_density, "fluid_density")
     n = check_int(n, "n", minimum=8, maximum=20000, what=" (surface points)")
     m = check_int(m, "m", minimum=4, maximum=20000, what=" (interior sources)")
     if m > n:

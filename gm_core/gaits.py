@@ -16,7 +16,7 @@ import warnings
 
 import numpy as np
 
-from ._validate import as_array, check_positive
+from ._validate import as_array, check_positive, positive_number
 
 __all__ = ["Gait", "CircleGait", "circle_gait", "constant_rate_path", "as_gait", "GaitWarning", "CLOSURE_RTOL",
            "ellipse_gait", "serpenoid_gait", "GAIT_FAMILIES", "family_gait", "sine_pacing"]
@@ -54,13 +54,13 @@ class Gait:
                             "(use Gait.from_samples for an array of points)")
         if velocity is not None and not callable(velocity):
             raise TypeError(f"velocity must be a callable t -> r_dot(t) or None; got {type(velocity).__name__}")
-        self.period = float(check_positive(period, "period"))
+        self.period = positive_number(period, "period")
         self._shape = shape
         self._velocity = velocity
         self.name = str(name)
         self.knots = None if knots is None else as_array(knots, "knots")
         if feature_time is not None:
-            feature_time = min(float(check_positive(feature_time, "feature_time")), self.period)
+            feature_time = min(positive_number(feature_time, "feature_time"), self.period)
         self.feature_time = feature_time
         ends = self._eval(self._shape, np.array([0.0, self.period]))
         if ends.ndim != 2 or ends.shape[-1] < 1:
@@ -147,7 +147,7 @@ class Gait:
             warnings.warn(f"points look like an open path: the closing segment from the last point back "
                           f"to the first has length {gap:.3g}, the longest other segment {float(seg.max()):.3g}; "
                           "the periodic spline closes it", GaitWarning, stacklevel=2)
-        T = float(check_positive(period, "period"))
+        T = positive_number(period, "period")
         K = pts.shape[0]
         tk = np.linspace(0.0, T, K + 1)
         spline = CubicSpline(tk, np.vstack([pts, pts[:1]]), bc_type="periodic", axis=0)
@@ -195,7 +195,7 @@ class CircleGait(Gait):
         #: semi-axes (2,) and centre (2,) of the circle (or ellipse)
         self.amplitude = np.broadcast_to(R, (2,)).astype(float)
         self.center = c.copy()
-        T = float(check_positive(period, "period"))
+        T = positive_number(period, "period")
         super().__init__(self._r, T, self._r_dot, feature_time=T,
                          name=f"circle R={self.amplitude[0]:g} about ({c[0]:g}, {c[1]:g})")
 
@@ -227,13 +227,13 @@ def ellipse_gait(a, b, tilt=0.0, center=(0.0, 0.0), period=1.0):
     ``a``, ``b`` are the semi-axes (positive), ``tilt`` the angle of the a-axis from the alpha1
     axis; traversed counterclockwise (for a, b > 0) once per period.
     """
-    a = float(check_positive(a, "a"))
-    b = float(check_positive(b, "b"))
+    a = positive_number(a, "a")
+    b = positive_number(b, "b")
     tilt = float(as_array(tilt, "tilt", what=" (the ellipse's tilt angle in radians)"))
     c = as_array(center, "center", (2,), what=" (the gait's centre in shape space)")
     if c.ndim != 1:
         raise ValueError(f"center must have shape (2,); got shape {c.shape}")
-    T = float(check_positive(period, "period"))
+    T = positive_number(period, "period")
     ct, st = np.cos(tilt), np.sin(tilt)
     Rm = np.array([[ct, -st], [st, ct]])
 
@@ -267,7 +267,7 @@ def serpenoid_gait(amplitude, phase=np.pi / 2, frequency=1, center=(0.0, 0.0), p
     c = as_array(center, "center", (2,), what=" (the gait's centre in shape space)")
     if c.ndim != 1:
         raise ValueError(f"center must have shape (2,); got shape {c.shape}")
-    T = float(check_positive(period, "period"))
+    T = positive_number(period, "period")
 
     def r(t):
         w = 2 * np.pi * (np.asarray(t, float) / T)
@@ -313,7 +313,7 @@ def sine_pacing(a, period=1.0):
     a = float(as_array(a, "a", what=" (the pacing's unevenness)"))
     if not abs(a) < 1:
         raise ValueError(f"a must satisfy |a| < 1 so that the pacing is increasing; got {a!r}")
-    T = float(check_positive(period, "period"))
+    T = positive_number(period, "period")
 
     def tau(t):
         t = np.asarray(t, float)
@@ -337,7 +337,7 @@ def constant_rate_path(r0, r_dot, duration, *, name="constant rate"):
     if r0.ndim != 1 or r_dot.shape != r0.shape or r0.size < 1:
         raise ValueError(f"r0 and r_dot must be vectors of the same length n >= 1; got shapes "
                          f"{r0.shape} and {r_dot.shape}")
-    T = float(check_positive(duration, "duration"))
+    T = positive_number(duration, "duration")
     return Gait(lambda t: r0 + np.asarray(t, float)[..., None] * r_dot, T,
                 lambda t: np.broadcast_to(r_dot, np.shape(t) + r_dot.shape), name=name, feature_time=T)
 

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import SingularShapeError, as_array, check_int, check_positive
+from ._validate import SingularShapeError, as_array, check_int, positive_number
 from .connection import (  # noqa: F401 - SINGULAR_TOL kept here too
     SINGULAR_TOL,
     connection_from_mass_matrix,
@@ -98,7 +98,7 @@ def connection_curl(system, r, h=1e-5):
         raise ValueError(f"system must have a 2-D shape space for a scalar curl; {system.name} has "
                          f"{system.n_shape} shape variables")
     r = as_array(r, "r", (2,), what=" (a point of a 2-D shape space)")
-    h = float(check_positive(h, "h"))
+    h = positive_number(h, "h")
     e1, e2 = np.array([h, 0.0]), np.array([0.0, h])
     dA1 = (system.connection(r + e1) - system.connection(r - e1)) / (2 * h)
     dA2 = (system.connection(r + e2) - system.connection(r - e2)) / (2 * h)
@@ -433,7 +433,7 @@ def displacement_until(system, gait, t, *, steps=256, g0=(0.0, 0.0, 0.0)):
     """
     gait = as_gait(gait)
     _check_shapes(system, gait)
-    t = float(check_positive(t, "t"))
+    t = positive_number(t, "t")
     if t > gait.period * (1 + 1e-12):
         raise ValueError(f"t must be in (0, T] with T = {gait.period:g} the gait's period; got {t!r}")
     steps = check_int(steps, "steps", minimum=1, maximum=MAX_STEPS, what=" (equal Magnus steps)")

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_array, check_positive
+from ._validate import as_array, positive_number, real_number
 
 __all__ = ["cylinder_xyz", "torus_xyz", "sphere_xyz", "wrap_segments", "chart_speed",
            "polar_chart_velocity", "circle_point_velocity", "sphere_tangent_basis", "sphere_velocity",
@@ -40,7 +40,7 @@ def _pair(u, v, nu, nv):
 def cylinder_xyz(s, a, radius=1.0):
     """Points ``(..., 3)`` of the cylinder R^1 x S^1 of ``radius``: height ``s``, angle ``a``."""
     s, a = _pair(s, a, "s", "a")
-    radius = float(check_positive(radius, "radius"))
+    radius = positive_number(radius, "radius")
     return np.stack([radius * np.cos(a), radius * np.sin(a), s], -1)
 
 
@@ -51,8 +51,8 @@ def torus_xyz(a, b, R=2.0, r=0.7):
     (``R > r > 0`` for an embedded torus).
     """
     a, b = _pair(a, b, "a", "b")
-    R = float(check_positive(R, "R"))
-    r = float(check_positive(r, "r"))
+    R = positive_number(R, "R")
+    r = positive_number(r, "r")
     if r >= R:
         raise ValueError(f"the tube radius r must be smaller than R; got r = {r}, R = {R}")
     rho = R + r * np.cos(b)
@@ -62,7 +62,7 @@ def torus_xyz(a, b, R=2.0, r=0.7):
 def sphere_xyz(lat, lon, radius=1.0):
     """Point ``(..., 3)`` of the sphere S^2 of ``radius`` at latitude ``lat``, longitude ``lon`` (rad)."""
     lat, lon = _pair(lat, lon, "lat", "lon")
-    radius = float(check_positive(radius, "radius"))
+    radius = positive_number(radius, "radius")
     c = np.cos(lat)
     return radius * np.stack([c * np.cos(lon), c * np.sin(lon), np.sin(lat)], -1)
 
@@ -79,8 +79,8 @@ def wrap_segments(a, b, period_a=TWO_PI, period_b=TWO_PI):
     b = as_array(b, "b")
     if a.ndim != 1 or a.shape != b.shape:
         raise ValueError(f"a and b must be 1-D arrays of equal length; got shapes {a.shape} and {b.shape}")
-    pa = float(check_positive(period_a, "period_a", allow_zero=True))
-    pb = float(check_positive(period_b, "period_b", allow_zero=True))
+    pa = positive_number(period_a, "period_a", allow_zero=True)
+    pb = positive_number(period_b, "period_b", allow_zero=True)
     ia = np.floor(a / pa) if pa else np.zeros_like(a)
     ib = np.floor(b / pb) if pb else np.zeros_like(b)
     cuts = np.flatnonzero((np.diff(ia) != 0) | (np.diff(ib) != 0)) + 1
@@ -135,7 +135,7 @@ def circle_point_velocity(a, a_dot=1.0, radius=1.0):
     the tangent line at p (v . p = 0), fig. 1.11."""
     a = as_array(a, "a")
     a_dot = as_array(a_dot, "a_dot")
-    radius = float(check_positive(radius, "radius"))
+    radius = positive_number(radius, "radius")
     a, a_dot = np.broadcast_arrays(a, a_dot)
     c, s = np.cos(a), np.sin(a)
     return radius * np.stack([c, s], -1), (radius * a_dot)[..., None] * np.stack([-s, c], -1)
@@ -159,7 +159,7 @@ def sphere_velocity(lat, lon, lat_dot, lon_dot, radius=1.0):
     lat = as_array(lat, "lat")
     lat_dot = as_array(lat_dot, "lat_dot")
     lon_dot = as_array(lon_dot, "lon_dot")
-    radius = float(check_positive(radius, "radius"))
+    radius = positive_number(radius, "radius")
     return radius * ((np.cos(lat) * lon_dot)[..., None] * east + lat_dot[..., None] * north)
 
 
@@ -174,7 +174,7 @@ def great_circle(p, v, t, radius=1.0, tol=1e-9):
     p = as_array(p, "p", (3,), what=" (a point on the sphere)")
     v = as_array(v, "v", (3,), what=" (a tangent velocity)")
     t = as_array(t, "t")
-    radius = float(check_positive(radius, "radius"))
+    radius = positive_number(radius, "radius")
     if abs(np.linalg.norm(p) - radius) > tol * radius:
         raise ValueError(f"p must lie on the sphere of radius {radius}; |p| = {np.linalg.norm(p):.6g}")
     if abs(p @ v) > tol * radius * max(1.0, np.linalg.norm(v)):
@@ -193,6 +193,6 @@ def cylinder_geodesic(s0, a0, s_dot, a_dot, t, radius=1.0):
     straight line in (r a, s) -- a loop (s_dot = 0), an axial line (a_dot = 0) or a helix,
     fig. 1.16. Speed sqrt(s_dot^2 + (r a_dot)^2)."""
     t = as_array(t, "t")
-    s0, a0, s_dot, a_dot = (float(as_array(x, n)) for x, n in
+    s0, a0, s_dot, a_dot = (real_number(x, n) for x, n in
                             ((s0, "s0"), (a0, "a0"), (s_dot, "s_dot"), (a_dot, "a_dot")))
     return cylinder_xyz(s0 + s_dot * t, a0 + a_dot * t, radius)

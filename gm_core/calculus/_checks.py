@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, check_int, check_option
+from .._validate import as_array, check_int, check_option, real_number
 
 _SIDES = ("left", "right")
 
@@ -34,10 +34,7 @@ def _check_n_list(n, name="n"):
 
 
 def _check_scalar(x, name):
-    arr = as_array(x, name, what=" (a single real number)")
-    if arr.ndim != 0:
-        raise ValueError(f"{name} must be a single real number; got shape {arr.shape}")
-    return float(arr)
+    return real_number(x, name, " (a single real number)")
 
 
 def _check_xi(group, xi, name="xi"):

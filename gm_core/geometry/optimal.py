@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import SingularShapeError, as_array, check_positive
+from .._validate import SingularShapeError, as_array, positive_number
 from ..groups import SE2, matvec
 from ..locomotion import Gait, check_gait, net_displacement, trajectory
 from .curvature import check_system, connection_derivative
@@ -86,7 +86,7 @@ def fourier_gait(a, b=None, center=None, *, period=2 * np.pi, name="Fourier gait
     center = np.zeros(a.shape[0]) if center is None else as_array(center, "center", (a.shape[0],))
     if center.ndim != 1:
         raise ValueError(f"center must have shape ({a.shape[0]},); got shape {center.shape}")
-    T = float(check_positive(period, "period"))
+    T = positive_number(period, "period")
     return FourierGait(a.copy(), b.copy(), center.copy(), T, name)
 
 
@@ -155,7 +155,6 @@ def gait_objective(system, gait, objective="displacement", *, intervals=512, met
     grad_d = _to_parameter_order(grads, gait.order)
     if objective == "displacement":
         return value, grad_d, dict(g=gT, length=None)
-    t0 = t[:-1]
     phi0, dphi0 = phi[:, :-1], dphi[:, :-1]
     Mv = matvec(M, v)
     gl = []

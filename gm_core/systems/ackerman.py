@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_positive
+from .._validate import positive_number
 from .base import LocomotionSystem, Part, rectangle_outline
 
 __all__ = ["Ackerman"]
@@ -27,8 +27,8 @@ class Ackerman(LocomotionSystem):
     shape_limits = ((-np.pi, np.pi), (-1.3, 1.3))
 
     def __init__(self, wheel_radius=1.0, wheelbase=1.0):
-        self.wheel_radius = float(check_positive(wheel_radius, "wheel_radius"))
-        self.wheelbase = float(check_positive(wheelbase, "wheelbase"))
+        self.wheel_radius = positive_number(wheel_radius, "wheel_radius")
+        self.wheelbase = positive_number(wheelbase, "wheelbase")
 
     def pfaffian(self, r):
         """Pfaffian (..., 3, 5): rear no-slip, rear no-slide, front no-slide."""

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, check_positive
+from .._validate import as_array, positive_number
 from ..groups import SE2
 
 __all__ = ["DISK_DRIVE", "DISK_TURN", "disk_body_velocity", "disk_constraint_world", "disk_moves_path",
@@ -81,8 +81,8 @@ def parallel_park_moves(d, phi, speed=1.0, turn_rate=1.0):
     """The cycle drive d, turn phi, drive back d, turn back phi as moves (4, 3) of (v, w, duration)."""
     d = float(as_array(d, "d", what=" (the drive distance)"))
     phi = float(as_array(phi, "phi", what=" (the turn angle)"))
-    v = float(check_positive(speed, "speed"))
-    w = float(check_positive(turn_rate, "turn_rate"))
+    v = positive_number(speed, "speed")
+    w = positive_number(turn_rate, "turn_rate")
     sd, sp = np.sign(d) or 1.0, np.sign(phi) or 1.0
     Td, Tp = abs(d) / v, abs(phi) / w
     return np.array([[sd * v, 0.0, Td], [0.0, sp * w, Tp], [-sd * v, 0.0, Td], [0.0, -sp * w, Tp]])
