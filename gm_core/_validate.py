@@ -105,12 +105,15 @@ def real_number(value, name, what=""):
     return float(arr)
 
 
-def positive_number(value, name, *, allow_zero=False, what=""):
+def positive_number(value, name, *, allow_zero=False, what="", maximum=None):
     """Return ``value`` as a Python float after checking it is one positive (or, with
-    ``allow_zero``, non-negative) finite number."""
+    ``allow_zero``, non-negative) finite number, at most ``maximum`` if given (a physical size
+    whose powers must not overflow)."""
     arr = check_positive(value, name, allow_zero=allow_zero)
     if arr.ndim != 0:
         raise ValueError(f"{name} must be a single number{what}; got an array of shape {arr.shape}")
+    if maximum is not None and arr > maximum:
+        raise ValueError(f"{name} must be at most {maximum:g}{what}; got {float(arr):g}")
     return float(arr)
 
 

@@ -10,6 +10,7 @@ import itertools
 
 import numpy as np
 
+from ._validate import check_int
 from .groups import check_group
 
 __all__ = ["AXIOMS", "axiom_residuals", "powers", "GROUP_AXIOMS", "Structure", "Verdict",
@@ -29,6 +30,7 @@ def axiom_residuals(G, rng, n=20, scale=1.0):
     the law. ``scale`` stretches the random elements (``G.random(rng, n, scale=scale)``).
     """
     G = check_group(G, "G")
+    n = check_int(n, "n", minimum=1, maximum=10**6, what=" (random triples)")
     g1, g2, g3 = (G.random(rng, n, scale=scale) for _ in range(3))
     e = G.identity((n,))
     closure = all(np.all(G.contains(G.compose(a, b))) for a, b in ((g1, g2), (g2, g3), (g1, g3)))
@@ -45,8 +47,13 @@ def axiom_residuals(G, rng, n=20, scale=1.0):
 def powers(G, g, n):
     """``(n + 1, dim)``: e, g, g o g, ..., g^n (the repeated step of fig. 1.10)."""
     G = check_group(G, "G")
-    if isinstance(n, bool) or int(n) != n or n < 0:
+    numeric = isinstance(n, (int, float, np.integer, np.floating)) and not isinstance(n, (bool, np.bool_))
+    if numeric and np.isfinite(n) and (n < 0 or n != int(n)):
         raise ValueError(f"n must be a non-negative integer; got {n!r}")
+    n = check_int(n, "n", minimum=0, maximum=10**6)
+    g = G.project(g)
+    if g.ndim != 1:
+        raise ValueError(f"g must be a single element of {G.name} (shape ({G.param_dim},)); got shape {g.shape}")
     out = [G.identity()]
     for _ in range(int(n)):
         out.append(G.compose(out[-1], g))
@@ -129,6 +136,8 @@ def group_structure(G, name=None, set_name=None, seed=0, n=4):
     exp(s * xi_k) along one of three fixed Lie-algebra directions, so any group can be tried.
     """
     G = check_group(G, "G")
+    seed = check_int(seed, "seed", minimum=0, maximum=2**32)
+    n = check_int(n, "n", minimum=1, maximum=1000, what=" (elements in the pool)")
     rng = np.random.default_rng(seed)
     directions = np.random.default_rng(seed + 1).normal(size=(3, G.dim))
     pool = list(G.random(rng, n))
@@ -179,7 +188,7 @@ def structure(name):
     if isinstance(name, Structure):
         return name
     if name not in STRUCTURES:
-        raise ValueError(f"unknown structure {name!r}; expected one of {sorted(STRUCTURES)}")
+        raise ValueError(f"name must be one of {sorted(STRUCTURES)}; got {name!r}")
     return STRUCTURES[name]
 
 

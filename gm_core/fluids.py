@@ -32,7 +32,7 @@ def slender_link_drag(length, drag_ratio=2.0):
     The wrench on the link is ``-D xi`` for the link's body velocity xi (longitudinal coefficient
     c = 1, lateral k = ``drag_ratio``); the moment is about the link centre.
     """
-    length = positive_number(length, "length")
+    length = positive_number(length, "length", maximum=1e100)
     k = positive_number(drag_ratio, "drag_ratio")
     return np.diag([length, k * length, k * length ** 3 / 12])
 
@@ -52,8 +52,11 @@ def drag_wrench(poses, velocities, lengths, drag_ratio=2.0, *, nodes=5):
     if P.ndim < 2:
         raise ValueError(f"poses must have shape (..., k, 3) for k links; got shape {P.shape}")
     L = check_positive(lengths, "lengths")
+    if np.any(L > 1e100):
+        raise ValueError(f"lengths must be at most 1e100 (their cubes enter the drag); got {L.max():g}")
     if L.ndim != 1 or L.shape[0] != P.shape[-2]:
-        raise ValueError(f"lengths must hold one positive length per link ({P.shape[-2]}); got shape {L.shape}")
+        raise ValueError(f"lengths must hold one positive length per link of poses ({P.shape[-2]} links); "
+                         f"got shape {L.shape}")
     try:
         P, V = np.broadcast_arrays(P, V)
     except ValueError:
@@ -82,6 +85,9 @@ def _semi_axes(a, b, allow_zero=False):
     b = check_positive(b, "b", allow_zero=allow_zero)
     if a.ndim or b.ndim:
         raise ValueError(f"a and b must be numbers (the semi-axes); got shapes {a.shape} and {b.shape}")
+    for name, x in (("a", a), ("b", b)):
+        if x > 1e100:
+            raise ValueError(f"{name} must be at most 1e100 (a semi-axis whose square is finite); got {float(x):g}")
     return float(a), float(b)
 
 
@@ -125,6 +131,9 @@ def added_mass_bem(a, b, fluid_density=1.0, *, n=600, m=300):
     thinner ellipses need more points (n = 1200, m = 600 for a/b = 20).
     """
     a, b = _semi_axes(a, b)
+    if not 1e-3 <= a / b <= 1e3:
+        raise ValueError(f"a / b must be between 1e-3 and 1e3 for the boundary-element solver (a = {a:g}, "
+                         f"b = {b:g}); use ellipse_added_mass for thinner ellipses")
     rho = positive_number(fluid_density, "fluid_density")
     n = check_int(n, "n", minimum=8, maximum=20000, what=" (surface points)")
     m = check_int(m, "m", minimum=4, maximum=20000, what=" (interior sources)")

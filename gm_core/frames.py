@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_array
+from ._validate import as_array, batch_shape, positive_number
 from .groups import SE2, matvec
 from .kinematics import relative_pose
 
@@ -40,6 +40,7 @@ def observed_velocity(g, xi, h=(0.0, 0.0, 0.0)):
     """
     g, h = _se2(g, "g"), _se2(h, "h")
     xi = as_array(xi, "xi", (3,), what=" (a body velocity (v_x, v_y, omega))")
+    batch_shape(("g", g, 1), ("xi", xi, 1), ("h", h, 1))
     return matvec(SE2.Ad(relative_pose(g, h)), xi)
 
 
@@ -53,6 +54,7 @@ def icr(xi, tol=1e-9):
     the point returned is 0 with ``at_infinity`` True; never inf or NaN.
     """
     xi = as_array(xi, "xi", (3,), what=" (a velocity (v_x, v_y, omega))")
+    tol = positive_number(tol, "tol", allow_zero=True, what=" (the turning rate below which the centre is at infinity)")
     w = xi[..., 2]
     far = np.abs(w) <= tol
     safe = np.where(far, 1.0, w)
@@ -72,6 +74,7 @@ def conjugation(g, xi):
     that agree (the first from matrix products, the second from the closed form (1.43))."""
     g = _se2(g, "g")
     xi = as_array(xi, "xi", (3,), what=" (a Lie-algebra element (v_x, v_y, omega))")
+    batch_shape(("g", g, 1), ("xi", xi, 1))
     M = SE2.matrix(g)
     return M @ SE2.hat(xi) @ np.linalg.inv(M), SE2.hat(matvec(SE2.Ad(g), xi))
 

@@ -102,10 +102,11 @@ class Gait:
 
     def __call__(self, t):
         """Shape r(t), ``(..., n)`` for times ``(...)``."""
-        return self._eval(self._shape, t)
+        return self._eval(self._shape, as_array(t, "t", what=" (times)"))
 
     def velocity(self, t):
         """Shape velocity r_dot(t), ``(..., n)``: exact if given, else an 8th-order central difference."""
+        t = as_array(t, "t", what=" (times)")
         if self._velocity is not None:
             out = self._eval(self._velocity, t)
             if out.shape[-1] != self.n_shape:
@@ -350,6 +351,10 @@ def constant_rate_path(r0, r_dot, duration, *, name="constant rate"):
         raise ValueError(f"r0 and r_dot must be vectors of the same length n >= 1; got shapes "
                          f"{r0.shape} and {r_dot.shape}")
     T = positive_number(duration, "duration")
+    if T * float(np.max(np.abs(r_dot))) > 1e100 or float(np.max(np.abs(r0))) > 1e100:
+        raise ValueError(f"r0 and duration * r_dot must stay below 1e100 (shapes are angles and lengths); "
+                         f"got |r0| up to {float(np.max(np.abs(r0))):g} and duration * |r_dot| up to "
+                         f"{T * float(np.max(np.abs(r_dot))):g}")
     return Gait(lambda t: r0 + np.asarray(t, float)[..., None] * r_dot, T,
                 lambda t: np.broadcast_to(r_dot, np.shape(t) + r_dot.shape), name=name, feature_time=T)
 

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import SingularShapeError, as_array, check_int, positive_number
+from ._validate import SingularShapeError, as_array, check_int, positive_number, real_number
 from .connection import (  # noqa: F401 - SINGULAR_TOL kept here too
     SINGULAR_TOL,
     connection_from_mass_matrix,
@@ -84,7 +84,12 @@ def body_velocity(system, r, r_dot):
         np.broadcast_shapes(r.shape, r_dot.shape)
     except ValueError:
         raise ValueError(f"r and r_dot have incompatible batch shapes {r.shape[:-1]} and {r_dot.shape[:-1]}") from None
-    return -matvec(system.connection(r), r_dot)
+    A = system.connection(r)
+    if not np.all(np.isfinite(A)):
+        raise SingularShapeError(f"r reaches a singular shape of {system.name} "
+                                 f"({getattr(system, 'singular_description', 'det omega_xi = 0')}): "
+                                 f"the local connection does not exist there")
+    return -matvec(A, r_dot)
 
 
 def connection_curl(system, r, h=1e-5):
@@ -350,8 +355,9 @@ def net_displacement(system, gait, *, steps=None, check=True, rtol=1e-10):
     _check_shapes(system, gait)
     if not isinstance(check, (bool, np.bool_)):
         raise TypeError(f"check must be True or False; got {check!r}")
-    if isinstance(rtol, bool) or not isinstance(rtol, numbers.Real):
+    if isinstance(rtol, bool):
         raise TypeError(f"rtol must be a number; got {rtol!r}")
+    rtol = real_number(rtol, "rtol", " (a relative tolerance)")
     if not 1e-14 <= float(rtol) < 1:
         raise ValueError(f"rtol must be a relative tolerance in [1e-14, 1) (double precision cannot "
                          f"do better than ~1e-14); got {rtol!r}")

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_array, positive_number, real_number
+from ._validate import as_array, batch_shape, positive_number, real_number
 
 __all__ = ["cylinder_xyz", "torus_xyz", "sphere_xyz", "wrap_segments", "chart_speed",
            "polar_chart_velocity", "circle_point_velocity", "sphere_tangent_basis", "sphere_velocity",
@@ -34,6 +34,7 @@ TWO_PI = 2.0 * np.pi
 def _pair(u, v, nu, nv):
     u = as_array(u, nu)
     v = as_array(v, nv)
+    batch_shape((nu, u, 0), (nv, v, 0))
     return np.broadcast_arrays(u, v)
 
 
@@ -98,6 +99,7 @@ def chart_speed(lat, heading):
     """
     lat = as_array(lat, "lat", what=" (latitude in radians)")
     heading = as_array(heading, "heading", what=" (radians from north)")
+    batch_shape(("lat", lat, 0), ("heading", heading, 0))
     lat, heading = np.broadcast_arrays(lat, heading)
     c = np.cos(lat)
     dlat = np.cos(heading)
@@ -117,6 +119,7 @@ def polar_chart_velocity(lat, lon, heading):
     lat = as_array(lat, "lat")
     lon = as_array(lon, "lon")
     heading = as_array(heading, "heading")
+    batch_shape(("lat", lat, 0), ("lon", lon, 0), ("heading", heading, 0))
     lat, lon, heading = np.broadcast_arrays(lat, lon, heading)
     dlat = np.cos(heading)
     c, s = np.cos(lat), np.sin(lat)
@@ -136,6 +139,7 @@ def circle_point_velocity(a, a_dot=1.0, radius=1.0):
     a = as_array(a, "a")
     a_dot = as_array(a_dot, "a_dot")
     radius = positive_number(radius, "radius")
+    batch_shape(("a", a, 0), ("a_dot", a_dot, 0))
     a, a_dot = np.broadcast_arrays(a, a_dot)
     c, s = np.cos(a), np.sin(a)
     return radius * np.stack([c, s], -1), (radius * a_dot)[..., None] * np.stack([-s, c], -1)
@@ -173,13 +177,16 @@ def great_circle(p, v, t, radius=1.0, tol=1e-9):
     """
     p = as_array(p, "p", (3,), what=" (a point on the sphere)")
     v = as_array(v, "v", (3,), what=" (a tangent velocity)")
+    for name, x in (("p", p), ("v", v)):
+        if x.ndim != 1:
+            raise ValueError(f"{name} must be a single vector (3,); got shape {x.shape}")
     t = as_array(t, "t")
     radius = positive_number(radius, "radius")
-    if abs(np.linalg.norm(p) - radius) > tol * radius:
-        raise ValueError(f"p must lie on the sphere of radius {radius}; |p| = {np.linalg.norm(p):.6g}")
-    if abs(p @ v) > tol * radius * max(1.0, np.linalg.norm(v)):
+    norm_p, c = (float(np.hypot(np.hypot(x[0], x[1]), x[2])) for x in (p, v))   # no overflow
+    if abs(norm_p - radius) > tol * radius:
+        raise ValueError(f"p must lie on the sphere of radius {radius}; |p| = {norm_p:.6g}")
+    if abs(p @ (v / max(c, 1.0))) > tol * radius:
         raise ValueError(f"v must be tangent to the sphere at p (p . v = 0); got p . v = {p @ v:.3g}")
-    c = float(np.linalg.norm(v))
     if c == 0.0:
         return np.broadcast_to(p, t.shape + (3,)).copy(), np.zeros(t.shape + (3,))
     u = v / c

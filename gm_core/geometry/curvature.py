@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import SingularShapeError, as_array
+from .._validate import SingularShapeError, as_array, positive_number
 from ..groups import SE2, matvec
 from ..locomotion import as_gait, check_gait
 
@@ -50,6 +50,7 @@ def connection_derivative(system, r, *, method="auto"):
     central differences (step ``FD_STEP`` relative to ``max(1, |r|)``). In the difference route A
     itself is the mean of the stencil values (error O(h^2), about 1e-11).
     """
+    check_system(system)
     r = as_array(r, "r", (system.n_shape,), what=f" (a shape of {system.name})")
     if method not in ("auto", "fd"):
         raise ValueError(f"method must be 'auto' or 'fd'; got {method!r}")
@@ -130,6 +131,13 @@ def _stokes_once(system, gait, nt, ns, center, method):
     return (radial * cross[:, None]).sum(axis=0) * (T / nt)
 
 
+def _check_rtol(rtol):
+    r = positive_number(rtol, "rtol", what=" (a relative tolerance)")
+    if not 1e-15 <= r < 1:
+        raise ValueError(f"rtol must be a relative tolerance in [1e-15, 1); got {rtol!r}")
+    return r
+
+
 def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True, samples=None):
     """Area integral (3,) of the constraint curvature over the region the gait encloses.
 
@@ -146,6 +154,7 @@ def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True, samp
     """
     check_system(system)
     gait = closed_gait(gait, system)
+    rtol = _check_rtol(rtol)
     if check:
         check_gait(system, gait)
     center = _centroid(gait(np.linspace(0, gait.period, 1024, endpoint=False)))
@@ -172,6 +181,7 @@ def body_velocity_integral(system, gait, *, rtol=1e-12, check=True, samples=None
     gait = closed_gait(gait, system)
     if check:
         check_gait(system, gait)
+    rtol = _check_rtol(rtol)
     T = gait.period
 
     def once(n):

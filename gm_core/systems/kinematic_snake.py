@@ -57,7 +57,8 @@ class KinematicSnake(ThreeLinkSystem):
         """The closed form of the class docstring, (..., 3, 2) (an independent check of the solve)."""
         N, D, _, _ = self._closed_form_parts(self._shape(r))
         with np.errstate(divide="ignore", invalid="ignore"):
-            return N / D[..., None, None]
+            A = N / D[..., None, None]
+        return np.where(np.isfinite(A), A, np.nan)      # NaN at singular shapes, like connection
 
     def connection_derivative(self, r):
         """``(A (..., 3, 2), dA (..., 3, 2, 2))`` with ``dA[..., i, j, k] = d A_ij / d r_k``: the
