@@ -188,7 +188,7 @@ def structure(name):
     if isinstance(name, Structure):
         return name
     if name not in STRUCTURES:
-        raise ValueError(f"name must be one of {sorted(STRUCTURES)}; got {name!r}")
+        raise ValueError(f"unknown structure {name!r}: name must be one of {sorted(STRUCTURES)}")
     return STRUCTURES[name]
 
 
