@@ -22,9 +22,6 @@ from ._validate import as_array, check_int, check_positive, positive_number
 
 __all__ = ["slender_link_drag", "drag_wrench", "ellipse_added_mass", "added_mass_bem"]
 
-_MOTIONS = ("x", "y", "theta")
-
-
 # --------------------------------------------------------------------------- low Reynolds number
 def slender_link_drag(length, drag_ratio=2.0):
     """Drag matrix ``diag(l, k l, k l^3 / 12)`` (3, 3) of a slender link, in its centre frame; (3.41)-(3.43).

@@ -16,18 +16,10 @@ from .group_or_not import GroupOrNotScene
 from .toolkit import (PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, plane, set_arrows,
                       title)
 
-__all__ = ["BODY", "group_label", "GroupAxiomsScene", "SlideRuleScene", "CircleIsoScene",
+__all__ = ["BODY", "GroupAxiomsScene", "SlideRuleScene", "CircleIsoScene",
            "LeftRightActionScene", "ForwardLeftScene", "BodyPointsScene"]
 
 BODY = BodyArtist.triangle(0.35)
-
-
-def group_label(G):
-    """A short two-line label for a group, made from ``G.name`` alone (no per-group table)."""
-    s = str(G.name)
-    for a, b in (("^1", "¹"), ("^2", "²"), ("R+", "R⁺"), (" x ", " × "), ("2pi", "2π")):
-        s = s.replace(a, b)
-    return s.replace(", ", ",\n", 1) if len(s) > 7 else s
 
 
 #: the axioms' figure is now the "group or not?" table (the residual bar chart it replaced

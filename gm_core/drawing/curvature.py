@@ -11,7 +11,7 @@ import numpy as np
 
 from ..geometry import constraint_curvature
 from ..groups import SE2
-from .base import BodyArtist, SingularFlag, TrailArtist, animate, new_figure
+from .base import BodyArtist, TrailArtist, animate, new_figure
 
 __all__ = ["ROWS", "shape_grid", "CurvatureMapArtist", "GaitArtist", "FieldArtist", "SwimmerArtist",
            "curvature_maps_figure", "animate_swimmer", "FONT", "DPI"]
@@ -203,7 +203,3 @@ def animate_swimmer(system, gait, traj, n_frames=60, row=0, limits=None, figsize
     update(0)
     return fig, animate(fig, update, len(idx), interval=interval)
 
-
-def singular_flag(ax):
-    """A SingularFlag for an axes (re-exported for the widgets)."""
-    return SingularFlag(ax)
