@@ -2,7 +2,7 @@
 
 The mathematics (this package's top level, ``groups``, ``calculus``, ``fields``, ``kinematics``,
 ``chains``, ``connection``, ``gaits``, ``locomotion``, ``systems``, ``fluids``, ``geometry``,
-``manifolds``, ``axioms``, ``examples``) uses numpy and scipy only. Drawing
+``manifolds``, ``axioms``, ``frames``) uses numpy and scipy only. Drawing
 (``gm_core.drawing``) and widgets (``gm_core.widgets``) sit on top and are imported only when
 asked for, so the flow runs one way: math -> drawing -> widgets -> notebooks.
 """
@@ -20,7 +20,7 @@ __all__ = [
 __version__ = "0.1.0"
 
 _SUBMODULES = {"groups", "calculus", "fields", "chains", "kinematics", "connection", "gaits",
-               "locomotion", "systems", "fluids", "geometry", "manifolds", "axioms", "examples",
+               "locomotion", "systems", "fluids", "geometry", "manifolds", "axioms", "frames",
                "checks", "grade", "drawing", "widgets"}
 
 

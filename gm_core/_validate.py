@@ -13,7 +13,7 @@ import numbers
 
 import numpy as np
 
-__all__ = ["as_array", "check_positive", "check_int", "check_shape", "batch_shape",
+__all__ = ["as_array", "check_positive", "real_number", "positive_number", "check_int", "check_shape", "batch_shape",
            "check_option", "SingularShapeError", "MAX_ELEMENTS"]
 
 #: Largest number of entries a size or batch-shape argument may ask for (about 0.8 GB of floats).
@@ -95,6 +95,26 @@ def check_positive(value, name, *, allow_zero=False):
         kind = "non-negative" if allow_zero else "positive"
         raise ValueError(f"{name} must be {kind}; got {value!r:.80}")
     return arr
+
+
+def real_number(value, name, what=""):
+    """Return ``value`` as a Python float after checking it is one finite real number (not an array)."""
+    arr = as_array(value, name, what=what)
+    if arr.ndim != 0:
+        raise ValueError(f"{name} must be a single number{what}; got an array of shape {arr.shape}")
+    return float(arr)
+
+
+def positive_number(value, name, *, allow_zero=False, what="", maximum=None):
+    """Return ``value`` as a Python float after checking it is one positive (or, with
+    ``allow_zero``, non-negative) finite number, at most ``maximum`` if given (a physical size
+    whose powers must not overflow)."""
+    arr = check_positive(value, name, allow_zero=allow_zero)
+    if arr.ndim != 0:
+        raise ValueError(f"{name} must be a single number{what}; got an array of shape {arr.shape}")
+    if maximum is not None and arr > maximum:
+        raise ValueError(f"{name} must be at most {maximum:g}{what}; got {float(arr):g}")
+    return float(arr)
 
 
 def check_int(value, name, minimum=1, maximum=None, what=""):

@@ -1,8 +1,8 @@
 """Group axioms checked numerically on any gm_core group, (1.ii)-(1.v), and repeated products.
 
-numpy only. Nothing here asks which group it is: membership is read from the group's own
-``log``/``exp`` (:func:`is_element`), and elements are scaled inside the Lie algebra
-(:func:`scaled`), so a new group needs no change here.
+numpy only. Nothing here asks which group it is: membership is the group's own
+:meth:`~gm_core.groups.LieGroup.contains` and random elements its
+:meth:`~gm_core.groups.LieGroup.random`, so a new group needs no change here.
 """
 from __future__ import annotations
 
@@ -10,9 +10,10 @@ import itertools
 
 import numpy as np
 
+from ._validate import check_int
 from .groups import check_group
 
-__all__ = ["AXIOMS", "is_element", "scaled", "axiom_residuals", "powers", "GROUP_AXIOMS", "Structure", "Verdict",
+__all__ = ["AXIOMS", "axiom_residuals", "powers", "GROUP_AXIOMS", "Structure", "Verdict",
            "STRUCTURES", "structure", "group_structure", "check_axioms", "find_identity", "is_group",
            "try_elements"]
 
@@ -20,55 +21,20 @@ __all__ = ["AXIOMS", "is_element", "scaled", "axiom_residuals", "powers", "GROUP
 AXIOMS = ("associativity", "identity", "inverse")
 
 
-def is_element(G, g, tol=1e-9):
-    """True if every row of ``g (..., dim)`` is an element of ``G``.
-
-    Provisional, group-agnostic test (until the groups carry their own membership method):
-    ``g`` must have the group's coordinate shape, be finite, be accepted by ``G.log`` and
-    satisfy ``exp(log g) = g`` to a relative ``tol`` (angles compared modulo their period by
-    ``G.difference``). Outside
-    the group (a negative number for (R+, x)) ``log`` refuses or returns a non-finite value.
-    """
-    G = check_group(G, "G")
-    g = np.asarray(g, float)
-    if g.ndim == 0 or g.shape[-1] != G.dim or not np.all(np.isfinite(g)):
-        return False
-    try:
-        with np.errstate(invalid="ignore", divide="ignore"):
-            xi = G.log(g)
-        if not np.all(np.isfinite(xi)):
-            return False
-        # relative tolerance: exp(log g) carries round-off proportional to the size of g
-        return bool(np.all(np.abs(G.difference(G.exp(xi), g)) <= tol * (1.0 + np.abs(g))))
-    except ValueError:
-        return False
-
-
-def scaled(G, g, s):
-    """The element exp(s log g): ``g`` moved ``s`` times as far along its one-parameter subgroup.
-
-    For (R+, x) this is g**s, for the additive groups s*g; used to try the axioms on larger or
-    smaller elements.
-    """
-    G = check_group(G, "G")
-    return G.exp(float(s) * G.log(g))
-
-
 def axiom_residuals(G, rng, n=20, scale=1.0):
     """Worst-case residuals of the group axioms (1.ii)-(1.v) over ``n`` random triples of G.
 
     Returns a dict: ``closure`` (bool: every product and inverse is again an element, by
-    :func:`is_element`) and, for associativity, identity and inverse, the largest coordinate
+    ``G.contains``) and, for associativity, identity and inverse, the largest coordinate
     difference (angles compared modulo their period, ``G.difference``) between the two sides of
-    the law. ``scale`` scales the random elements in the Lie algebra (:func:`scaled`).
+    the law. ``scale`` stretches the random elements (``G.random(rng, n, scale=scale)``).
     """
     G = check_group(G, "G")
-    g1, g2, g3 = (G.random(rng, n) for _ in range(3))
-    if scale != 1.0:
-        g1, g2, g3 = (scaled(G, g, scale) for g in (g1, g2, g3))
+    n = check_int(n, "n", minimum=1, maximum=10**6, what=" (random triples)")
+    g1, g2, g3 = (G.random(rng, n, scale=scale) for _ in range(3))
     e = G.identity((n,))
-    closure = all(is_element(G, G.compose(a, b)) for a, b in ((g1, g2), (g2, g3), (g1, g3)))
-    closure = closure and is_element(G, G.inverse(g1))
+    closure = all(np.all(G.contains(G.compose(a, b))) for a, b in ((g1, g2), (g2, g3), (g1, g3)))
+    closure = closure and np.all(G.contains(G.inverse(g1)))
     assoc = G.difference(G.compose(g1, G.compose(g2, g3)), G.compose(G.compose(g1, g2), g3))
     ident = np.maximum(np.abs(G.difference(G.compose(e, g1), g1)),
                        np.abs(G.difference(G.compose(g1, e), g1)))
@@ -81,8 +47,13 @@ def axiom_residuals(G, rng, n=20, scale=1.0):
 def powers(G, g, n):
     """``(n + 1, dim)``: e, g, g o g, ..., g^n (the repeated step of fig. 1.10)."""
     G = check_group(G, "G")
-    if isinstance(n, bool) or int(n) != n or n < 0:
+    numeric = isinstance(n, (int, float, np.integer, np.floating)) and not isinstance(n, (bool, np.bool_))
+    if numeric and np.isfinite(n) and (n < 0 or n != int(n)):
         raise ValueError(f"n must be a non-negative integer; got {n!r}")
+    n = check_int(n, "n", minimum=0, maximum=10**6)
+    g = G.project(g)
+    if g.ndim != 1:
+        raise ValueError(f"g must be a single element of {G.name} (shape ({G.param_dim},)); got shape {g.shape}")
     out = [G.identity()]
     for _ in range(int(n)):
         out.append(G.compose(out[-1], g))
@@ -159,12 +130,14 @@ def _number_structure(name, set_name, symbol, op, member, pool, solve_right, sol
 
 
 def group_structure(G, name=None, set_name=None, seed=0, n=4):
-    """A :class:`Structure` made from one of gm_core's Lie groups (compose, inverse, is_element).
+    """A :class:`Structure` made from one of gm_core's Lie groups (compose, inverse, contains).
 
     The pool is ``n`` random elements (seeded); a user's slider value ``s`` becomes the element
     exp(s * xi_k) along one of three fixed Lie-algebra directions, so any group can be tried.
     """
     G = check_group(G, "G")
+    seed = check_int(seed, "seed", minimum=0, maximum=2**32)
+    n = check_int(n, "n", minimum=1, maximum=1000, what=" (elements in the pool)")
     rng = np.random.default_rng(seed)
     directions = np.random.default_rng(seed + 1).normal(size=(3, G.dim))
     pool = list(G.random(rng, n))
@@ -173,7 +146,7 @@ def group_structure(G, name=None, set_name=None, seed=0, n=4):
         x = np.asarray(x, float)
         return "(" + ", ".join(f"{v:.2f}" for v in x) + ")" if x.size > 1 else f"{float(x[0]):.3g}"
 
-    return Structure(name or str(G.name), set_name or name or str(G.name), "∘", G.compose, lambda x: is_element(G, x), pool,
+    return Structure(name or str(G.name), set_name or name or str(G.name), "∘", G.compose, lambda x: bool(np.all(G.contains(x))), pool,
                      lambda a, b: G.compose(G.inverse(a), b), lambda a, b: G.compose(b, G.inverse(a)),
                      equal=lambda a, b: bool(np.all(G.isclose(a, b, atol=1e-9))), fmt=fmt,
                      element=lambda s, k: G.exp(float(s) * directions[k % 3]))
@@ -215,7 +188,7 @@ def structure(name):
     if isinstance(name, Structure):
         return name
     if name not in STRUCTURES:
-        raise ValueError(f"unknown structure {name!r}; expected one of {sorted(STRUCTURES)}")
+        raise ValueError(f"unknown structure {name!r}: name must be one of {sorted(STRUCTURES)}")
     return STRUCTURES[name]
 
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_array, check_int, check_positive
+from ._validate import as_array, batch_shape, check_int, positive_number, real_number
 from .groups import SE2, matvec
 from .kinematics import (
     METHODS,
@@ -48,7 +48,7 @@ __all__ = [
 def single_link_frames(alpha, length=1.0):
     """Proximal and distal poses (g, h), each ``(..., 3)``, of the pivoted link of fig. 2.2; book (2.3)-(2.4)."""
     alpha = as_array(alpha, "alpha")
-    L = float(check_positive(length, "length"))
+    L = positive_number(length, "length")
     g = np.stack(np.broadcast_arrays(0.0 * alpha, 0.0 * alpha, alpha), -1)
     return g, SE2.compose(g, np.array([L, 0.0, 0.0]))
 
@@ -77,9 +77,9 @@ def rr_arm_jacobian(alpha, lengths=(1.0, 1.0)):
 def _rp_args(alpha, delta, l1, l2, offset):
     alpha = as_array(alpha, "alpha")
     delta = as_array(delta, "delta")
-    l1 = float(check_positive(l1, "l1"))
-    l2 = float(check_positive(l2, "l2"))
-    a = float(as_array(offset, "offset"))
+    l1 = positive_number(l1, "l1")
+    l2 = positive_number(l2, "l2")
+    a = real_number(offset, "offset")
     alpha, delta = np.broadcast_arrays(alpha, delta)
     return alpha, delta, l1, l2, a
 
@@ -202,6 +202,7 @@ def _beta_args(beta, dbeta):
     beta = as_array(beta, "beta", (3,), what=" (pose of the frame relative to the base link)")
     dbeta = as_array(dbeta, "dbeta", (3, np.shape(dbeta)[-1] if np.ndim(dbeta) >= 2 else 0),
                      what=" (d beta / d alpha)")
+    batch_shape(("beta", beta, 1), ("dbeta", dbeta, 2))
     return beta, dbeta
 
 
@@ -265,7 +266,12 @@ def links_from_beta_frame(jacobians, beta, dbeta):
     M[..., :3, :3] = SE2.Ad(beta)
     M[..., :3, 3:] = -_v_beta_matrix(beta, dbeta)
     M[..., 3:, 3:] = np.eye(n)
-    return [np.asarray(J, dtype=float) @ M for J in jacobians]
+    if not isinstance(jacobians, (list, tuple)) or not jacobians:
+        raise TypeError(f"jacobians must be a non-empty list or tuple of Jacobians (..., 3, 3 + n); "
+                        f"got {type(jacobians).__name__}")
+    Js = [as_array(J, f"jacobians[{i}]", (3, 3 + n), what=f" (dbeta has n = {n} columns)")
+          for i, J in enumerate(jacobians)]
+    return [J @ M for J in Js]
 
 
 def com_frame(alpha, lengths=(1.0, 1.0, 1.0), weights=None):
@@ -318,6 +324,7 @@ def pin_constraints(g1, g2):
     """
     g1 = as_array(g1, "g1", (3,), what=" (pose of body 1)")
     g2 = as_array(g2, "g2", (3,), what=" (pose of body 2)")
+    batch_shape(("g1", g1, 1), ("g2", g2, 1))
     return g1[..., :2] - g2[..., :2]
 
 
@@ -329,6 +336,7 @@ def pinned_pair(g, alpha):
     """
     g = as_array(g, "g", (3,), what=" (pose of body 1)")
     alpha = as_array(alpha, "alpha", what=" (angle of body 2 relative to body 1)")
+    batch_shape(("g", g, 1), ("alpha", alpha, 0))
     g, alpha = np.broadcast_arrays(g, alpha[..., None])
     turn = np.zeros(g.shape)
     turn[..., 2] = alpha[..., 0]
@@ -344,7 +352,7 @@ def circle_constraints(p):
 def sphere_plane_constraints(p):
     """Constraint values ``(..., 2)``: distance from the origin sqrt(2) and z = 1 (exercise 2.1: same manifold). p: ``(..., 3)``."""
     p = as_array(p, "p", (3,), what=" (points x, y, z)")
-    return np.stack([np.linalg.norm(p, axis=-1) - np.sqrt(2.0), p[..., 2] - 1.0], -1)
+    return np.stack([np.hypot(np.hypot(p[..., 0], p[..., 1]), p[..., 2]) - np.sqrt(2.0), p[..., 2] - 1.0], -1)
 
 
 def sample_accessible_manifold(constraints, n=200, rng=None, box=2.0, dim=3, iters=50, tol=1e-12):
@@ -358,8 +366,8 @@ def sample_accessible_manifold(constraints, n=200, rng=None, box=2.0, dim=3, ite
     n = check_int(n, "n", minimum=1, maximum=10 ** 7, what=" (the number of random starting points)")
     dim = check_int(dim, "dim", minimum=1, maximum=1000, what=" (the dimension of the ambient space)")
     iters = check_int(iters, "iters", minimum=1, maximum=10 ** 6, what=" (Gauss-Newton iterations)")
-    box = float(check_positive(box, "box"))
-    tol = float(check_positive(tol, "tol"))
+    box = positive_number(box, "box")
+    tol = positive_number(tol, "tol")
     if rng is None:
         rng = np.random.default_rng(0)
     elif not isinstance(rng, np.random.Generator):

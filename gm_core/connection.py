@@ -55,13 +55,15 @@ def pfaffian_determinant(omega_xi):
     if omega_xi.ndim < 2 or omega_xi.shape[-1] != omega_xi.shape[-2] or omega_xi.shape[-1] == 0:
         raise ValueError(f"omega_xi must be square matrices (..., k, k), the body block of a Pfaffian; "
                          f"got shape {omega_xi.shape}")
-    if omega_xi.shape[-2:] == (3, 3):
-        det = _cofactors3(omega_xi)[1]
-    else:
-        det = np.linalg.det(omega_xi)
-    norms = _hadamard(omega_xi)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(norms > 0, det / np.where(norms > 0, norms, 1.0), 0.0)
+    # the ratio det / prod(row norms) does not change when a row is scaled: scale each row by its
+    # largest entry first, so that entries near 1e300 do not overflow
+    with np.errstate(invalid="ignore", divide="ignore"):                     # NaN in, NaN out
+        big = np.max(np.abs(omega_xi), axis=-1, keepdims=True)
+        omega_xi = omega_xi / np.where(big > 0, big, 1.0)
+        det = _cofactors3(omega_xi)[1] if omega_xi.shape[-2:] == (3, 3) else np.linalg.det(omega_xi)
+        norms = _hadamard(omega_xi)
+        # a zero row is singular (0); a NaN entry stays NaN (the caller counts it as singular)
+        return np.where(norms > 0, det / np.where(norms > 0, norms, 1.0), np.where(np.isnan(norms), np.nan, 0.0))
 
 
 def connection_from_pfaffian(omega, *, n_position=3):
@@ -80,9 +82,9 @@ def connection_from_pfaffian(omega, *, n_position=3):
     w_xi = omega[..., :n_position]
     w_r = omega[..., n_position:]
     if n_position == 3:
-        adj, det = _cofactors3(w_xi)
-        norms = _hadamard(w_xi)
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):   # NaN in, NaN out
+            adj, det = _cofactors3(w_xi)
+            norms = _hadamard(w_xi)
             ok = np.abs(det) > SINGULAR_TOL * norms  # False for NaN too
             A = (adj @ w_r) / np.where(ok, det, np.nan)[..., None, None]
         return A

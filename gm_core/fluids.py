@@ -18,12 +18,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_array, check_int, check_positive
+from ._validate import as_array, check_int, check_positive, positive_number
 
 __all__ = ["slender_link_drag", "drag_wrench", "ellipse_added_mass", "added_mass_bem"]
-
-_MOTIONS = ("x", "y", "theta")
-
 
 # --------------------------------------------------------------------------- low Reynolds number
 def slender_link_drag(length, drag_ratio=2.0):
@@ -32,8 +29,8 @@ def slender_link_drag(length, drag_ratio=2.0):
     The wrench on the link is ``-D xi`` for the link's body velocity xi (longitudinal coefficient
     c = 1, lateral k = ``drag_ratio``); the moment is about the link centre.
     """
-    length = float(check_positive(length, "length"))
-    k = float(check_positive(drag_ratio, "drag_ratio"))
+    length = positive_number(length, "length", maximum=1e100)
+    k = positive_number(drag_ratio, "drag_ratio")
     return np.diag([length, k * length, k * length ** 3 / 12])
 
 
@@ -52,14 +49,17 @@ def drag_wrench(poses, velocities, lengths, drag_ratio=2.0, *, nodes=5):
     if P.ndim < 2:
         raise ValueError(f"poses must have shape (..., k, 3) for k links; got shape {P.shape}")
     L = check_positive(lengths, "lengths")
+    if np.any(L > 1e100):
+        raise ValueError(f"lengths must be at most 1e100 (their cubes enter the drag); got {L.max():g}")
     if L.ndim != 1 or L.shape[0] != P.shape[-2]:
-        raise ValueError(f"lengths must hold one positive length per link ({P.shape[-2]}); got shape {L.shape}")
+        raise ValueError(f"lengths must hold one positive length per link of poses ({P.shape[-2]} links); "
+                         f"got shape {L.shape}")
     try:
         P, V = np.broadcast_arrays(P, V)
     except ValueError:
         raise ValueError(f"poses and velocities must have the same shape (..., k, 3); got "
                          f"{np.shape(poses)} and {np.shape(velocities)}") from None
-    k = float(check_positive(drag_ratio, "drag_ratio"))
+    k = positive_number(drag_ratio, "drag_ratio")
     nodes = check_int(nodes, "nodes", minimum=1, maximum=100, what=" (Gauss-Legendre points per link)")
     s0, w0 = np.polynomial.legendre.leggauss(nodes)
     s = s0 * (L[:, None] / 2)                     # (k, q) points along each link
@@ -82,6 +82,9 @@ def _semi_axes(a, b, allow_zero=False):
     b = check_positive(b, "b", allow_zero=allow_zero)
     if a.ndim or b.ndim:
         raise ValueError(f"a and b must be numbers (the semi-axes); got shapes {a.shape} and {b.shape}")
+    for name, x in (("a", a), ("b", b)):
+        if x > 1e100:
+            raise ValueError(f"{name} must be at most 1e100 (a semi-axis whose square is finite); got {float(x):g}")
     return float(a), float(b)
 
 
@@ -94,7 +97,7 @@ def ellipse_added_mass(a, b, fluid_density=1.0):
     be zero (a flat plate).
     """
     a, b = _semi_axes(a, b, allow_zero=True)
-    rho = float(check_positive(fluid_density, "fluid_density"))
+    rho = positive_number(fluid_density, "fluid_density")
     return np.diag([np.pi * rho * b ** 2, np.pi * rho * a ** 2, np.pi * rho * (a ** 2 - b ** 2) ** 2 / 8])
 
 
@@ -125,7 +128,10 @@ def added_mass_bem(a, b, fluid_density=1.0, *, n=600, m=300):
     thinner ellipses need more points (n = 1200, m = 600 for a/b = 20).
     """
     a, b = _semi_axes(a, b)
-    rho = float(check_positive(fluid_density, "fluid_density"))
+    if not 1e-3 <= a / b <= 1e3:
+        raise ValueError(f"a / b must be between 1e-3 and 1e3 for the boundary-element solver (a = {a:g}, "
+                         f"b = {b:g}); use ellipse_added_mass for thinner ellipses")
+    rho = positive_number(fluid_density, "fluid_density")
     n = check_int(n, "n", minimum=8, maximum=20000, what=" (surface points)")
     m = check_int(m, "m", minimum=4, maximum=20000, what=" (interior sources)")
     if m > n:

@@ -12,16 +12,18 @@ observed_velocity      xi^s seen by the observer at h: Ad_{h^-1 g} xi           
 icr                    (-v_y / w, v_x / w) for xi = (v_x, v_y, w), flagged at w = 0      sec. 1.5
 point_in_frame         coordinates of a world point in the frame g (g^-1 p)             (1.12)
 conjugation            g xi^ g^-1 and (Ad_g xi)^: Ad as conjugation, for display         (1.40)
+point_velocities       world velocities of world points carried by a moving body       (1.28)
 """
 from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_array
+from ._validate import as_array, batch_shape, positive_number
 from .groups import SE2, matvec
 from .kinematics import relative_pose
 
-__all__ = ["relative_pose", "observed_velocity", "icr", "point_in_frame", "conjugation"]
+__all__ = ["relative_pose", "observed_velocity", "icr", "point_in_frame", "conjugation",
+           "point_velocities"]
 
 
 def _se2(g, name):
@@ -38,6 +40,7 @@ def observed_velocity(g, xi, h=(0.0, 0.0, 0.0)):
     """
     g, h = _se2(g, "g"), _se2(h, "h")
     xi = as_array(xi, "xi", (3,), what=" (a body velocity (v_x, v_y, omega))")
+    batch_shape(("g", g, 1), ("xi", xi, 1), ("h", h, 1))
     return matvec(SE2.Ad(relative_pose(g, h)), xi)
 
 
@@ -51,6 +54,7 @@ def icr(xi, tol=1e-9):
     the point returned is 0 with ``at_infinity`` True; never inf or NaN.
     """
     xi = as_array(xi, "xi", (3,), what=" (a velocity (v_x, v_y, omega))")
+    tol = positive_number(tol, "tol", allow_zero=True, what=" (the turning rate below which the centre is at infinity)")
     w = xi[..., 2]
     far = np.abs(w) <= tol
     safe = np.where(far, 1.0, w)
@@ -70,5 +74,19 @@ def conjugation(g, xi):
     that agree (the first from matrix products, the second from the closed form (1.43))."""
     g = _se2(g, "g")
     xi = as_array(xi, "xi", (3,), what=" (a Lie-algebra element (v_x, v_y, omega))")
+    batch_shape(("g", g, 1), ("xi", xi, 1))
     M = SE2.matrix(g)
     return M @ SE2.hat(xi) @ np.linalg.inv(M), SE2.hat(matvec(SE2.Ad(g), xi))
+
+
+def point_velocities(g, g_dot, points):
+    """World velocities ``(..., k, 2)`` of world points ``(..., k, 2)`` carried by a body at g.
+
+    The body's pose is ``g (..., 3)`` and its world velocity ``g_dot (..., 3)``; a point p moves
+    with v(p) = (x_dot, y_dot) + theta_dot J (p - (x, y)), J the quarter turn, (1.28). The one
+    point with v = 0 is the body's :func:`icr` (written in world axes).
+    """
+    g = _se2(g, "g")
+    g_dot = as_array(g_dot, "g_dot", (3,), what=" (world velocity)")
+    r = as_array(points, "points", (2,), what=" (world points)") - g[..., None, :2]
+    return g_dot[..., None, :2] + g_dot[..., None, 2:3] * np.stack([-r[..., 1], r[..., 0]], -1)

@@ -16,7 +16,7 @@ import warnings
 
 import numpy as np
 
-from ._validate import as_array, check_positive
+from ._validate import as_array, check_int, check_option, check_positive, positive_number, real_number
 
 __all__ = ["Gait", "CircleGait", "circle_gait", "constant_rate_path", "as_gait", "GaitWarning", "CLOSURE_RTOL",
            "ellipse_gait", "serpenoid_gait", "GAIT_FAMILIES", "family_gait", "sine_pacing"]
@@ -30,6 +30,18 @@ _FD8 = np.array([4 / 5, -1 / 5, 4 / 105, -1 / 280])
 
 class GaitWarning(UserWarning):
     """A gait was accepted but something about it is probably not what was meant (e.g. an open path)."""
+
+
+def _samples(points, name):
+    pts = as_array(points, name)
+    if pts.ndim != 2 or pts.shape[0] < 3 or pts.shape[1] < 1:
+        raise ValueError(f"{name} must have shape (K, n) with K >= 3 samples of a closed path; "
+                         f"got shape {pts.shape}")
+    if np.all(np.abs(pts[0] - pts[-1]) <= 1e-12 * np.abs(pts).max()):     # a repeated first point
+        pts = pts[:-1]
+    if pts.shape[0] < 3:
+        raise ValueError(f"{name} must contain at least 3 distinct samples of a closed path")
+    return pts
 
 
 class Gait:
@@ -54,13 +66,13 @@ class Gait:
                             "(use Gait.from_samples for an array of points)")
         if velocity is not None and not callable(velocity):
             raise TypeError(f"velocity must be a callable t -> r_dot(t) or None; got {type(velocity).__name__}")
-        self.period = float(check_positive(period, "period"))
+        self.period = positive_number(period, "period")
         self._shape = shape
         self._velocity = velocity
         self.name = str(name)
         self.knots = None if knots is None else as_array(knots, "knots")
         if feature_time is not None:
-            feature_time = min(float(check_positive(feature_time, "feature_time")), self.period)
+            feature_time = min(positive_number(feature_time, "feature_time"), self.period)
         self.feature_time = feature_time
         ends = self._eval(self._shape, np.array([0.0, self.period]))
         if ends.ndim != 2 or ends.shape[-1] < 1:
@@ -90,10 +102,11 @@ class Gait:
 
     def __call__(self, t):
         """Shape r(t), ``(..., n)`` for times ``(...)``."""
-        return self._eval(self._shape, t)
+        return self._eval(self._shape, as_array(t, "t", what=" (times)"))
 
     def velocity(self, t):
         """Shape velocity r_dot(t), ``(..., n)``: exact if given, else an 8th-order central difference."""
+        t = as_array(t, "t", what=" (times)")
         if self._velocity is not None:
             out = self._eval(self._velocity, t)
             if out.shape[-1] != self.n_shape:
@@ -133,27 +146,25 @@ class Gait:
         """
         from scipy.interpolate import CubicSpline
 
-        pts = as_array(points, "points")
-        if pts.ndim != 2 or pts.shape[0] < 3 or pts.shape[1] < 1:
-            raise ValueError(f"points must have shape (K, n) with K >= 3 samples of a closed path; "
-                             f"got shape {pts.shape}")
-        if np.allclose(pts[0], pts[-1]):
-            pts = pts[:-1]
-        if pts.shape[0] < 3:
-            raise ValueError("points must contain at least 3 distinct samples of a closed path")
-        seg = np.linalg.norm(np.diff(pts, axis=0), axis=-1)
-        gap = float(np.linalg.norm(pts[0] - pts[-1]))
+        pts = _samples(points, "points")
+        unit = max(float(np.abs(pts).max()), np.finfo(float).tiny)     # norms without overflow
+        seg = np.linalg.norm(np.diff(pts / unit, axis=0), axis=-1) * unit
+        gap = float(np.linalg.norm((pts[0] - pts[-1]) / unit)) * unit
         if gap > 4 * float(seg.max()):
             warnings.warn(f"points look like an open path: the closing segment from the last point back "
                           f"to the first has length {gap:.3g}, the longest other segment {float(seg.max()):.3g}; "
                           "the periodic spline closes it", GaitWarning, stacklevel=2)
-        T = float(check_positive(period, "period"))
+        T = positive_number(period, "period")
         K = pts.shape[0]
-        tk = np.linspace(0.0, T, K + 1)
-        spline = CubicSpline(tk, np.vstack([pts, pts[:1]]), bc_type="periodic", axis=0)
+        # the spline runs over one unit of phase s = t / T, so tiny or huge periods stay exact
+        spline = CubicSpline(np.linspace(0.0, 1.0, K + 1), np.vstack([pts, pts[:1]]), bc_type="periodic", axis=0)
         d = spline.derivative()
-        return cls(lambda t: spline(np.mod(t, T)), T, lambda t: d(np.mod(t, T)), name=name,
-                   knots=tk, feature_time=T / K)
+
+        def phase(t):
+            return np.mod(np.asarray(t, dtype=float) / T, 1.0)
+
+        return cls(lambda t: spline(phase(t)), T, lambda t: d(phase(t)) / T, name=name,
+                   knots=T * np.linspace(0.0, 1.0, K + 1), feature_time=T / K)
 
     def reparameterized(self, tau, tau_dot=None, *, name=None):
         """The same path with a new pacing: ``r'(t) = r(tau(t))``, for a map tau of [0, T] onto itself.
@@ -195,7 +206,7 @@ class CircleGait(Gait):
         #: semi-axes (2,) and centre (2,) of the circle (or ellipse)
         self.amplitude = np.broadcast_to(R, (2,)).astype(float)
         self.center = c.copy()
-        T = float(check_positive(period, "period"))
+        T = positive_number(period, "period")
         super().__init__(self._r, T, self._r_dot, feature_time=T,
                          name=f"circle R={self.amplitude[0]:g} about ({c[0]:g}, {c[1]:g})")
 
@@ -227,13 +238,13 @@ def ellipse_gait(a, b, tilt=0.0, center=(0.0, 0.0), period=1.0):
     ``a``, ``b`` are the semi-axes (positive), ``tilt`` the angle of the a-axis from the alpha1
     axis; traversed counterclockwise (for a, b > 0) once per period.
     """
-    a = float(check_positive(a, "a"))
-    b = float(check_positive(b, "b"))
-    tilt = float(as_array(tilt, "tilt", what=" (the ellipse's tilt angle in radians)"))
+    a = positive_number(a, "a")
+    b = positive_number(b, "b")
+    tilt = real_number(tilt, "tilt", what=" (the ellipse's tilt angle in radians)")
     c = as_array(center, "center", (2,), what=" (the gait's centre in shape space)")
     if c.ndim != 1:
         raise ValueError(f"center must have shape (2,); got shape {c.shape}")
-    T = float(check_positive(period, "period"))
+    T = positive_number(period, "period")
     ct, st = np.cos(tilt), np.sin(tilt)
     Rm = np.array([[ct, -st], [st, ct]])
 
@@ -260,14 +271,14 @@ def serpenoid_gait(amplitude, phase=np.pi / 2, frequency=1, center=(0.0, 0.0), p
     if A.ndim > 1 or A.size not in (1, 2):
         raise ValueError(f"amplitude must be a number or a pair (A1, A2); got shape {A.shape}")
     A = np.broadcast_to(A, (2,)).astype(float)
-    if isinstance(frequency, bool) or int(frequency) != frequency or frequency < 1:
+    if isinstance(frequency, (float, np.floating)) and np.isfinite(frequency) and frequency != int(frequency):
         raise ValueError(f"frequency must be a positive integer (so the loop closes); got {frequency!r}")
-    k = int(frequency)
-    ph = float(as_array(phase, "phase", what=" (the phase lag of the second joint in radians)"))
+    k = check_int(frequency, "frequency", minimum=1, maximum=1000, what=" (so the loop closes)")
+    ph = real_number(phase, "phase", what=" (the phase lag of the second joint in radians)")
     c = as_array(center, "center", (2,), what=" (the gait's centre in shape space)")
     if c.ndim != 1:
         raise ValueError(f"center must have shape (2,); got shape {c.shape}")
-    T = float(check_positive(period, "period"))
+    T = positive_number(period, "period")
 
     def r(t):
         w = 2 * np.pi * (np.asarray(t, float) / T)
@@ -293,15 +304,17 @@ def family_gait(family, size, center=(0.0, 0.0), aspect=1.0, angle=0.0, period=1
     ``angle``; ``serpenoid``: amplitudes (size, aspect * size), phase ``angle``; ``figure eight``:
     the same with the second joint at twice the frequency.
     """
+    family = check_option(family, "family", GAIT_FAMILIES)
+    size = positive_number(size, "size")
+    aspect = positive_number(aspect, "aspect")
+    angle = real_number(angle, "angle")
     if family == "circle":
         return circle_gait(size, center, period)
     if family == "ellipse":
         return ellipse_gait(size, aspect * size, angle, center, period)
     if family == "serpenoid":
         return serpenoid_gait((size, aspect * size), angle, 1, center, period)
-    if family == "figure eight":
-        return serpenoid_gait((size, aspect * size), angle, 2, center, period)
-    raise ValueError(f"family must be one of {GAIT_FAMILIES}; got {family!r}")
+    return serpenoid_gait((size, aspect * size), angle, 2, center, period)
 
 
 def sine_pacing(a, period=1.0):
@@ -310,10 +323,10 @@ def sine_pacing(a, period=1.0):
     Increasing for |a| < 1 (its rate 1 - a cos(2 pi t / T) stays positive); a > 0 lingers near
     t = 0 and T and hurries through the middle. For :meth:`Gait.reparameterized`, (3.3).
     """
-    a = float(as_array(a, "a", what=" (the pacing's unevenness)"))
+    a = real_number(a, "a", what=" (the pacing's unevenness)")
     if not abs(a) < 1:
         raise ValueError(f"a must satisfy |a| < 1 so that the pacing is increasing; got {a!r}")
-    T = float(check_positive(period, "period"))
+    T = positive_number(period, "period")
 
     def tau(t):
         t = np.asarray(t, float)
@@ -337,7 +350,11 @@ def constant_rate_path(r0, r_dot, duration, *, name="constant rate"):
     if r0.ndim != 1 or r_dot.shape != r0.shape or r0.size < 1:
         raise ValueError(f"r0 and r_dot must be vectors of the same length n >= 1; got shapes "
                          f"{r0.shape} and {r_dot.shape}")
-    T = float(check_positive(duration, "duration"))
+    T = positive_number(duration, "duration")
+    if T * float(np.max(np.abs(r_dot))) > 1e100 or float(np.max(np.abs(r0))) > 1e100:
+        raise ValueError(f"r0 and duration * r_dot must stay below 1e100 (shapes are angles and lengths); "
+                         f"got |r0| up to {float(np.max(np.abs(r0))):g} and duration * |r_dot| up to "
+                         f"{T * float(np.max(np.abs(r_dot))):g}")
     return Gait(lambda t: r0 + np.asarray(t, float)[..., None] * r_dot, T,
                 lambda t: np.broadcast_to(r_dot, np.shape(t) + r_dot.shape), name=name, feature_time=T)
 
@@ -350,4 +367,4 @@ def as_gait(gait, period=1.0):
         return Gait(gait, period)
     if gait is None or isinstance(gait, (str, bytes)):
         raise TypeError(f"gait must be a Gait, a callable t -> r(t) or an array of shapes; got {gait!r}")
-    return Gait.from_samples(gait, period)
+    return Gait.from_samples(_samples(gait, "gait"), period)

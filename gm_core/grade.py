@@ -156,10 +156,6 @@ def judge_part(part, evidence):
     return part.verdict([decode_outcome(o) for o in raw], output[:2000])
 
 
-def part_id(part):
-    return part.id
-
-
 def grade_notebook(path, weights=None, cell_timeout=120, time_limit=5.0):
     """Rows {notebook, exercise, part, status, score, max_score, message} for one notebook."""
     import nbformat

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_array, check_positive
+from ._validate import as_array, check_positive, positive_number
 from .groups import SE2, matvec
 
 __all__ = ["Joint", "Link", "Chain", "MobileChain", "METHODS", "world_to_body_jacobian",
@@ -400,7 +400,14 @@ def finite_difference_jacobians(fk, alpha, eps=1e-6):
 
     An independent route to (2.16): angles are differenced modulo 2 pi. ``alpha: (..., n)``.
     """
+    if not callable(fk):
+        raise TypeError(f"fk must be a function alpha (..., n) -> poses (..., k, 3); got {type(fk).__name__}")
     alpha = np.atleast_1d(as_array(alpha, "alpha"))
+    if alpha.shape[-1] == 0:
+        raise ValueError(f"alpha must have at least one joint angle; got shape {alpha.shape}")
+    eps = positive_number(eps, "eps", what=" (a finite-difference step)")
+    if eps >= 1:
+        raise ValueError(f"eps must be a small step in (0, 1); got {eps!r}")
     cols = []
     for j in range(alpha.shape[-1]):
         d = np.zeros(alpha.shape)

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import SingularShapeError, as_array, check_int, check_positive
+from ._validate import SingularShapeError, as_array, check_int, positive_number, real_number
 from .connection import (  # noqa: F401 - SINGULAR_TOL kept here too
     SINGULAR_TOL,
     connection_from_mass_matrix,
@@ -51,7 +51,7 @@ from .groups import SE2, matvec
 __all__ = [
     "connection_from_pfaffian", "connection_from_mass_matrix", "metric_from_jacobians",
     "pfaffian_determinant", "body_velocity", "connection_curl", "Gait", "CircleGait", "circle_gait",
-    "constant_rate_path", "as_gait", "check_gait", "net_displacement", "trajectory", "displacement_until", "Trajectory", "se2_bracket",
+    "constant_rate_path", "as_gait", "check_gait", "net_displacement", "trajectory", "displacement_until", "Trajectory", "se2_bracket", "drive",
     "SingularShapeError", "AccuracyWarning", "GaitWarning",
 ]
 
@@ -84,7 +84,12 @@ def body_velocity(system, r, r_dot):
         np.broadcast_shapes(r.shape, r_dot.shape)
     except ValueError:
         raise ValueError(f"r and r_dot have incompatible batch shapes {r.shape[:-1]} and {r_dot.shape[:-1]}") from None
-    return -matvec(system.connection(r), r_dot)
+    A = system.connection(r)
+    if not np.all(np.isfinite(A)):
+        raise SingularShapeError(f"r reaches a singular shape of {system.name} "
+                                 f"({getattr(system, 'singular_description', 'det omega_xi = 0')}): "
+                                 f"the local connection does not exist there")
+    return -matvec(A, r_dot)
 
 
 def connection_curl(system, r, h=1e-5):
@@ -98,7 +103,7 @@ def connection_curl(system, r, h=1e-5):
         raise ValueError(f"system must have a 2-D shape space for a scalar curl; {system.name} has "
                          f"{system.n_shape} shape variables")
     r = as_array(r, "r", (2,), what=" (a point of a 2-D shape space)")
-    h = float(check_positive(h, "h"))
+    h = positive_number(h, "h")
     e1, e2 = np.array([h, 0.0]), np.array([0.0, h])
     dA1 = (system.connection(r + e1) - system.connection(r - e1)) / (2 * h)
     dA2 = (system.connection(r + e2) - system.connection(r - e2)) / (2 * h)
@@ -350,8 +355,9 @@ def net_displacement(system, gait, *, steps=None, check=True, rtol=1e-10):
     _check_shapes(system, gait)
     if not isinstance(check, (bool, np.bool_)):
         raise TypeError(f"check must be True or False; got {check!r}")
-    if isinstance(rtol, bool) or not isinstance(rtol, numbers.Real):
+    if isinstance(rtol, bool):
         raise TypeError(f"rtol must be a number; got {rtol!r}")
+    rtol = real_number(rtol, "rtol", " (a relative tolerance)")
     if not 1e-14 <= float(rtol) < 1:
         raise ValueError(f"rtol must be a relative tolerance in [1e-14, 1) (double precision cannot "
                          f"do better than ~1e-14); got {rtol!r}")
@@ -433,7 +439,7 @@ def displacement_until(system, gait, t, *, steps=256, g0=(0.0, 0.0, 0.0)):
     """
     gait = as_gait(gait)
     _check_shapes(system, gait)
-    t = float(check_positive(t, "t"))
+    t = positive_number(t, "t")
     if t > gait.period * (1 + 1e-12):
         raise ValueError(f"t must be in (0, T] with T = {gait.period:g} the gait's period; got {t!r}")
     steps = check_int(steps, "steps", minimum=1, maximum=MAX_STEPS, what=" (equal Magnus steps)")
@@ -444,3 +450,13 @@ def displacement_until(system, gait, t, *, steps=256, g0=(0.0, 0.0, 0.0)):
     if d is not None:
         _scan(system, part, sq, d)
     return SE2.compose(g0, _product(SE2.exp(om)))
+
+
+def drive(system, r0, r_dot, duration, n_frames=81):
+    """Trajectory of ``system`` when its shape moves at the constant rate r_dot from r0 for ``duration``.
+
+    The shape path is :func:`gm_core.gaits.constant_rate_path` (open, not a gait); returns a
+    :class:`Trajectory` starting at the identity; raises SingularShapeError if the shape path
+    reaches a singular shape.
+    """
+    return trajectory(system, constant_rate_path(r0, r_dot, duration), n_frames, substeps=16)

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_array, check_positive
+from ._validate import as_array, batch_shape, positive_number, real_number
 
 __all__ = ["cylinder_xyz", "torus_xyz", "sphere_xyz", "wrap_segments", "chart_speed",
            "polar_chart_velocity", "circle_point_velocity", "sphere_tangent_basis", "sphere_velocity",
@@ -34,13 +34,14 @@ TWO_PI = 2.0 * np.pi
 def _pair(u, v, nu, nv):
     u = as_array(u, nu)
     v = as_array(v, nv)
+    batch_shape((nu, u, 0), (nv, v, 0))
     return np.broadcast_arrays(u, v)
 
 
 def cylinder_xyz(s, a, radius=1.0):
     """Points ``(..., 3)`` of the cylinder R^1 x S^1 of ``radius``: height ``s``, angle ``a``."""
     s, a = _pair(s, a, "s", "a")
-    radius = float(check_positive(radius, "radius"))
+    radius = positive_number(radius, "radius")
     return np.stack([radius * np.cos(a), radius * np.sin(a), s], -1)
 
 
@@ -51,8 +52,8 @@ def torus_xyz(a, b, R=2.0, r=0.7):
     (``R > r > 0`` for an embedded torus).
     """
     a, b = _pair(a, b, "a", "b")
-    R = float(check_positive(R, "R"))
-    r = float(check_positive(r, "r"))
+    R = positive_number(R, "R")
+    r = positive_number(r, "r")
     if r >= R:
         raise ValueError(f"the tube radius r must be smaller than R; got r = {r}, R = {R}")
     rho = R + r * np.cos(b)
@@ -62,7 +63,7 @@ def torus_xyz(a, b, R=2.0, r=0.7):
 def sphere_xyz(lat, lon, radius=1.0):
     """Point ``(..., 3)`` of the sphere S^2 of ``radius`` at latitude ``lat``, longitude ``lon`` (rad)."""
     lat, lon = _pair(lat, lon, "lat", "lon")
-    radius = float(check_positive(radius, "radius"))
+    radius = positive_number(radius, "radius")
     c = np.cos(lat)
     return radius * np.stack([c * np.cos(lon), c * np.sin(lon), np.sin(lat)], -1)
 
@@ -79,8 +80,8 @@ def wrap_segments(a, b, period_a=TWO_PI, period_b=TWO_PI):
     b = as_array(b, "b")
     if a.ndim != 1 or a.shape != b.shape:
         raise ValueError(f"a and b must be 1-D arrays of equal length; got shapes {a.shape} and {b.shape}")
-    pa = float(check_positive(period_a, "period_a", allow_zero=True))
-    pb = float(check_positive(period_b, "period_b", allow_zero=True))
+    pa = positive_number(period_a, "period_a", allow_zero=True)
+    pb = positive_number(period_b, "period_b", allow_zero=True)
     ia = np.floor(a / pa) if pa else np.zeros_like(a)
     ib = np.floor(b / pb) if pb else np.zeros_like(b)
     cuts = np.flatnonzero((np.diff(ia) != 0) | (np.diff(ib) != 0)) + 1
@@ -98,6 +99,7 @@ def chart_speed(lat, heading):
     """
     lat = as_array(lat, "lat", what=" (latitude in radians)")
     heading = as_array(heading, "heading", what=" (radians from north)")
+    batch_shape(("lat", lat, 0), ("heading", heading, 0))
     lat, heading = np.broadcast_arrays(lat, heading)
     c = np.cos(lat)
     dlat = np.cos(heading)
@@ -117,6 +119,7 @@ def polar_chart_velocity(lat, lon, heading):
     lat = as_array(lat, "lat")
     lon = as_array(lon, "lon")
     heading = as_array(heading, "heading")
+    batch_shape(("lat", lat, 0), ("lon", lon, 0), ("heading", heading, 0))
     lat, lon, heading = np.broadcast_arrays(lat, lon, heading)
     dlat = np.cos(heading)
     c, s = np.cos(lat), np.sin(lat)
@@ -135,7 +138,8 @@ def circle_point_velocity(a, a_dot=1.0, radius=1.0):
     the tangent line at p (v . p = 0), fig. 1.11."""
     a = as_array(a, "a")
     a_dot = as_array(a_dot, "a_dot")
-    radius = float(check_positive(radius, "radius"))
+    radius = positive_number(radius, "radius")
+    batch_shape(("a", a, 0), ("a_dot", a_dot, 0))
     a, a_dot = np.broadcast_arrays(a, a_dot)
     c, s = np.cos(a), np.sin(a)
     return radius * np.stack([c, s], -1), (radius * a_dot)[..., None] * np.stack([-s, c], -1)
@@ -159,7 +163,7 @@ def sphere_velocity(lat, lon, lat_dot, lon_dot, radius=1.0):
     lat = as_array(lat, "lat")
     lat_dot = as_array(lat_dot, "lat_dot")
     lon_dot = as_array(lon_dot, "lon_dot")
-    radius = float(check_positive(radius, "radius"))
+    radius = positive_number(radius, "radius")
     return radius * ((np.cos(lat) * lon_dot)[..., None] * east + lat_dot[..., None] * north)
 
 
@@ -173,13 +177,16 @@ def great_circle(p, v, t, radius=1.0, tol=1e-9):
     """
     p = as_array(p, "p", (3,), what=" (a point on the sphere)")
     v = as_array(v, "v", (3,), what=" (a tangent velocity)")
+    for name, x in (("p", p), ("v", v)):
+        if x.ndim != 1:
+            raise ValueError(f"{name} must be a single vector (3,); got shape {x.shape}")
     t = as_array(t, "t")
-    radius = float(check_positive(radius, "radius"))
-    if abs(np.linalg.norm(p) - radius) > tol * radius:
-        raise ValueError(f"p must lie on the sphere of radius {radius}; |p| = {np.linalg.norm(p):.6g}")
-    if abs(p @ v) > tol * radius * max(1.0, np.linalg.norm(v)):
+    radius = positive_number(radius, "radius")
+    norm_p, c = (float(np.hypot(np.hypot(x[0], x[1]), x[2])) for x in (p, v))   # no overflow
+    if abs(norm_p - radius) > tol * radius:
+        raise ValueError(f"p must lie on the sphere of radius {radius}; |p| = {norm_p:.6g}")
+    if abs(p @ (v / max(c, 1.0))) > tol * radius:
         raise ValueError(f"v must be tangent to the sphere at p (p . v = 0); got p . v = {p @ v:.3g}")
-    c = float(np.linalg.norm(v))
     if c == 0.0:
         return np.broadcast_to(p, t.shape + (3,)).copy(), np.zeros(t.shape + (3,))
     u = v / c
@@ -193,6 +200,6 @@ def cylinder_geodesic(s0, a0, s_dot, a_dot, t, radius=1.0):
     straight line in (r a, s) -- a loop (s_dot = 0), an axial line (a_dot = 0) or a helix,
     fig. 1.16. Speed sqrt(s_dot^2 + (r a_dot)^2)."""
     t = as_array(t, "t")
-    s0, a0, s_dot, a_dot = (float(as_array(x, n)) for x, n in
+    s0, a0, s_dot, a_dot = (real_number(x, n) for x, n in
                             ((s0, "s0"), (a0, "a0"), (s_dot, "s_dot"), (a_dot, "a_dot")))
     return cylinder_xyz(s0 + s_dot * t, a0 + a_dot * t, radius)

@@ -1,12 +1,17 @@
-"""gm_core.examples: example fields, rigid-body point velocities, the binomial table and the
-constant-rate drive, each against an independent route."""
+"""The small formulas the pictures need, each against an independent route: the example fields
+(gm_core.fields.FIELDS), rigid-body point velocities (gm_core.frames), the binomial table
+(gm_core.calculus) and the constant-rate drive (gm_core.locomotion)."""
 import math
 
 import numpy as np
 import pytest
 
 from gm_core import SE2
-from gm_core.examples import FIELDS, binomial_table, constant_rate_gait, drive, point_velocities
+from gm_core.calculus import binomial_table
+from gm_core.fields import FIELDS
+from gm_core.frames import icr, point_velocities
+from gm_core.gaits import constant_rate_path
+from gm_core.locomotion import drive
 
 
 def test_fields_are_the_book_examples():
@@ -30,6 +35,9 @@ def test_point_velocities_by_finite_differences_of_the_moving_body():
     fd = (SE2.act_on_points(SE2.compose(g, SE2.exp(h * xi)), body_pts)
           - SE2.act_on_points(SE2.compose(g, SE2.exp(-h * xi)), body_pts)) / (2 * h)
     assert np.allclose(point_velocities(g, g_dot, world), fd, atol=1e-8)
+    # the one point at rest is the instantaneous centre of rotation (written in world axes)
+    c, far = icr(SE2.world_to_spatial(g, g_dot))
+    assert not far and np.allclose(point_velocities(g, g_dot, c[None]), 0.0, atol=1e-12)
     with pytest.raises(ValueError, match="g"):
         point_velocities([1.0, 2.0], g_dot, world)
 
@@ -59,7 +67,7 @@ def test_drive_follows_the_exponential_of_a_constant_body_velocity():
     xi = car.body_velocity(np.zeros(2), rd)
     want = SE2.from_matrix(scipy.linalg.expm(2.0 * SE2.hat(xi)))
     assert SE2.isclose(traj.g[-1], want, atol=1e-8)
-    gait = constant_rate_gait([0.0, 0.1], [1.0, 0.5], 3.0)
+    gait = constant_rate_path([0.0, 0.1], [1.0, 0.5], 3.0)
     assert np.allclose(gait(np.array([0.0, 2.0])), [[0.0, 0.1], [2.0, 1.1]])
     with pytest.raises(ValueError, match="duration"):
-        constant_rate_gait([0.0, 0.0], [1.0, 1.0], 0.0)
+        constant_rate_path([0.0, 0.0], [1.0, 1.0], 0.0)

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from gm_core import SE2, SingularShapeError
-from gm_core.geometry import (centre_of_mass_coordinates, constraint_curvature, minimum_perturbation_coordinates,
+from gm_core.geometry import (centre_of_mass_coordinates, constraint_curvature, drift_and_turn, minimum_perturbation_coordinates,
                               reframe, stokes_estimate)
 from gm_core.locomotion import circle_gait, net_displacement
 from gm_core.systems import FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
@@ -93,6 +93,22 @@ def test_centre_of_mass_frame_of_floating_snake_does_not_move():
     # its rotation row is the middle link's, shifted by d(mean orientation)/dr
     w = np.array(fs.masses) / sum(fs.masses)
     np.testing.assert_allclose(A[..., 2, :], fs.connection(r)[..., 2, :] - [-w[0], w[2]], atol=1e-8)
+
+
+def test_drift_and_turn_from_the_world_positions_of_the_links():
+    """Independent route: the weighted mean of the links' world positions at the start and the
+    end of a cycle (trajectory's frames), for a swimmer (lengths) and the floating snake."""
+    from gm_core.locomotion import trajectory
+
+    for s, gait in ((LowReSwimmer(), circle_gait(0.5, (1.5, 1.5))), (FloatingSnake(), circle_gait(0.4, (0.3, 0.2)))):
+        w = np.asarray(getattr(s, "masses", None) or s.lengths, float)
+        tr = trajectory(s, gait, n_frames=3)
+        com = [(w / w.sum()) @ SE2.compose(tr.g[i][None], s.link_poses(tr.r[i]))[:, :2] for i in (0, 2)]
+        turn, drift = drift_and_turn(s, gait)
+        assert drift == pytest.approx(np.linalg.norm(com[1] - com[0]), abs=1e-9)
+        assert turn == pytest.approx(SE2.log(tr.g[2])[2], abs=1e-9)
+    with pytest.raises(TypeError, match="system"):
+        drift_and_turn("snake", circle_gait(0.5))
 
 
 def test_part_poses_move_with_the_frame(low_re):

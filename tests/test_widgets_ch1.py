@@ -53,12 +53,6 @@ def quiver_uv(q):
     return np.stack([np.asarray(q.U, float), np.asarray(q.V, float)], -1)
 
 
-@pytest.fixture(autouse=True)
-def _close_figures():
-    yield
-    plt.close("all")
-
-
 def test_every_ch1_panel_is_registered_and_builds():
     names = [n for n, c in PANELS.items() if c.__module__ == W.__name__]
     assert set(W.__all__) - {"show"} <= set(names)

@@ -229,18 +229,24 @@ def _flip_offset(f):
     return lambda alpha, delta, l1, l2, a: f(alpha, delta, l1, l2, -a)
 
 
+def _rp_mistakes(ref, other, other_msg, flip_msg):
+    """The mistakes tried for either Jacobian of exercise 2.2: the other part's answer, the
+    offset dropped or flipped, the columns swapped."""
+    return [(other, other_msg),
+            (_no_offset(ref), "your Jacobian ignores the lateral offset a."),
+            (_flip_offset(ref), flip_msg),
+            (_swapcols(ref), "your columns are in the order (delta_dot, alpha_dot); use (alpha_dot, delta_dot).")]
+
+
 ex2_2 = Exercise("2.2", "Jacobian of the offset rotary-prismatic arm", [
     FunctionPart(
         "a", "J(alpha, delta, l1, l2, a): world-velocity Jacobian of the end effector h2 (absolute "
              "positions, iterating (2.31)); columns (alpha_dot, delta_dot)",
         ref=_rp_world, inputs=_rp_inputs, arg_names=_RP_NAMES, shape=(3, 2),
-        mistakes=[(_rp_body, "that is the body-velocity Jacobian (part b); part a asks for the world "
-                   "velocity h2_dot."),
-                  (_no_offset(_rp_world), "your Jacobian ignores the lateral offset a."),
-                  (_flip_offset(_rp_world), "the offset terms have the wrong sign: the offset is along "
-                   "+y of link 1's distal frame."),
-                  (_swapcols(_rp_world), "your columns are in the order (delta_dot, alpha_dot); use "
-                   "(alpha_dot, delta_dot).")],
+        mistakes=_rp_mistakes(_rp_world, _rp_body, "that is the body-velocity Jacobian (part b); part a "
+                              "asks for the world velocity h2_dot.",
+                              "the offset terms have the wrong sign: the offset is along +y of link 1's "
+                              "distal frame."),
         hints=["Start from g1_dot = (0, 0, alpha_dot) and carry the velocity to the end of link 1 "
                "with the right lifted action, (2.24).",
                "The prismatic joint adds (delta_dot cos alpha, delta_dot sin alpha, 0) in world "
@@ -253,13 +259,10 @@ ex2_2 = Exercise("2.2", "Jacobian of the offset rotary-prismatic arm", [
         "b", "J_b(alpha, delta, l1, l2, a): body-velocity Jacobian of h2 (relative positions, "
              "(2.37)); columns (alpha_dot, delta_dot)",
         ref=_rp_body, inputs=_rp_inputs, arg_names=_RP_NAMES, shape=(3, 2),
-        mistakes=[(_rp_world, "that is the world-velocity Jacobian (part a); part b asks for the body "
-                   "velocity of h2, expressed in h2's own frame."),
-                  (_no_offset(_rp_body), "your Jacobian ignores the lateral offset a."),
-                  (_flip_offset(_rp_body), "the offset term has the wrong sign: a point offset by +a "
-                   "to the left moves backwards (-x) when the arm turns counterclockwise."),
-                  (_swapcols(_rp_body), "your columns are in the order (delta_dot, alpha_dot); use "
-                   "(alpha_dot, delta_dot).")],
+        mistakes=_rp_mistakes(_rp_body, _rp_world, "that is the world-velocity Jacobian (part a); part b "
+                              "asks for the body velocity of h2, expressed in h2's own frame.",
+                              "the offset term has the wrong sign: a point offset by +a to the left moves "
+                              "backwards (-x) when the arm turns counterclockwise."),
         hints=["Follow (2.38)-(2.45): body velocities, with Ad^-1 of each frame relative to the "
                "previous one.",
                "The only new ingredient is the offset: h2 sits at (delta + l2, a, 0) relative to "

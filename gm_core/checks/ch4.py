@@ -140,21 +140,11 @@ _N_SAMPLES = 256
 
 
 def drift_and_turn(gait, system=None):
-    """(turn angle, distance moved by the centre of mass) over one cycle of ``gait``.
+    """(turn angle, distance moved by the centre of mass) over one cycle of ``gait`` for the
+    exercises' swimmer (or ``system``): :func:`gm_core.geometry.drift_and_turn`."""
+    from ..geometry import drift_and_turn as _drift_and_turn
 
-    The shape is the same at the start and the end of a cycle, so the centre of mass sits at the
-    same place c in the body frame; the world moves it from c to g(T) c.
-    """
-    from ..groups import SE2
-    from ..locomotion import as_gait, net_displacement
-
-    system = system or swimmer()
-    gait = as_gait(gait)
-    r0 = gait(np.array([0.0]))[0]
-    w = np.array(system.lengths) / sum(system.lengths)
-    c = w @ system.link_poses(r0)[:, :2]
-    gT = net_displacement(system, gait)
-    return float(gT[2]), float(np.linalg.norm(SE2.act_on_points(gT, c) - c))
+    return _drift_and_turn(system or swimmer(), gait)
 
 
 def _sample_gait(answer):

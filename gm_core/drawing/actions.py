@@ -13,21 +13,13 @@ from ..axioms import powers
 from ..groups import S1, SE2, R2xS1
 from .base import BodyArtist, FrameArtist
 from .group_or_not import GroupOrNotScene
-from .toolkit import (PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, margins, new_figure, plane, set_arrows,
+from .toolkit import (PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, plane, set_arrows,
                       title)
 
-__all__ = ["BODY", "group_label", "GroupAxiomsScene", "SlideRuleScene", "CircleIsoScene",
+__all__ = ["BODY", "GroupAxiomsScene", "SlideRuleScene", "CircleIsoScene",
            "LeftRightActionScene", "ForwardLeftScene", "BodyPointsScene"]
 
 BODY = BodyArtist.triangle(0.35)
-
-
-def group_label(G):
-    """A short two-line label for a group, made from ``G.name`` alone (no per-group table)."""
-    s = str(G.name)
-    for a, b in (("^1", "¹"), ("^2", "²"), ("R+", "R⁺"), (" x ", " × "), ("2pi", "2π")):
-        s = s.replace(a, b)
-    return s.replace(", ", ",\n", 1) if len(s) > 7 else s
 
 
 #: the axioms' figure is now the "group or not?" table (the residual bar chart it replaced
@@ -42,10 +34,8 @@ class SlideRuleScene(Scene):
     log10(a) + log10(b) reads a*b on the fixed D scale (which runs over two decades, 1-100).
     """
 
-    def make_figure(self):
-        fig, ax = new_figure(figsize=(8, 2.6))
-        margins(fig, left=0.02, right=0.98, bottom=0.05, top=0.85)
-        return fig, [ax]
+    FIGSIZE = (8, 2.6)
+    MARGINS = dict(left=0.02, right=0.98, bottom=0.05, top=0.85)
 
     @staticmethod
     def _ticks(decades, y0, up):
@@ -110,10 +100,9 @@ class CircleIsoScene(Scene):
 
     G = S1(1.0)
 
-    def make_figure(self):
-        fig, axes = new_figure(1, 2, figsize=(7, 3.4))
-        margins(fig, left=0.02, right=0.98, bottom=0.05, top=0.84, wspace=0.1)
-        return fig, list(axes)
+    FIGSIZE = (7, 3.4)
+    NCOLS = 2
+    MARGINS = dict(left=0.02, right=0.98, bottom=0.05, top=0.84, wspace=0.1)
 
     def decorate(self):
         t = np.linspace(0, TWO_PI, 120)
@@ -163,10 +152,9 @@ class LeftRightActionScene(Scene):
 
     LIM = 4.0
 
-    def make_figure(self):
-        fig, axes = new_figure(1, 2, figsize=(9, 4.3))
-        margins(fig, left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
-        return fig, list(axes)
+    FIGSIZE = (9, 4.3)
+    NCOLS = 2
+    MARGINS = dict(left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
 
     def decorate(self):
         for ax in self.axes:
@@ -231,10 +219,9 @@ class ForwardLeftScene(Scene):
     N_MAX = 8
     LIM = 4.5
 
-    def make_figure(self):
-        fig, axes = new_figure(1, 2, figsize=(9, 4.4))
-        margins(fig, left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
-        return fig, list(axes)
+    FIGSIZE = (9, 4.4)
+    NCOLS = 2
+    MARGINS = dict(left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
 
     def decorate(self):
         for ax in self.axes:
@@ -295,10 +282,8 @@ class BodyPointsScene(Scene):
 
     OUTLINE = BodyArtist.rectangle(1.6, 0.8)
 
-    def make_figure(self):
-        fig, ax = new_figure(figsize=(5, 4.4))
-        margins(fig, left=0.1, right=0.98, bottom=0.1, top=0.9)
-        return fig, [ax]
+    FIGSIZE = (5, 4.4)
+    MARGINS = dict(left=0.1, right=0.98, bottom=0.1, top=0.9)
 
     def decorate(self):
         (ax,) = self.axes

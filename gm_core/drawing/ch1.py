@@ -3,7 +3,7 @@
 * :mod:`.toolkit`    -- figure standard, PathText, ArrowSet, ticks, Scene
 * :mod:`.spaces`     -- section 1.1, configuration spaces (maths: :mod:`gm_core.manifolds`)
 * :mod:`.actions`    -- sections 1.2-1.3, groups and SE(2) actions (maths: :mod:`gm_core.axioms`)
-* :mod:`.velocities` -- sections 1.4-1.5, vector fields and velocities (maths: :mod:`gm_core.examples`)
+* :mod:`.velocities` -- sections 1.4-1.5, vector fields and velocities (maths: :mod:`gm_core.fields`, :mod:`gm_core.frames`)
 * :mod:`.geodesics`  -- section 1.6, geodesics (of surfaces, fig. 1.16, and of groups) and exp
 * :mod:`.group_or_not` -- section 1.2, the group axioms tried on groups and non-groups
 * :mod:`.observer`   -- section 1.5, the adjoint as a change of observer, the Frames box
@@ -14,7 +14,9 @@ Every name notebooks and tests imported from here before the split still works.
 from __future__ import annotations
 
 from ..axioms import AXIOMS, axiom_residuals
-from ..examples import FIELDS, binomial_table, point_velocities
+from ..calculus import binomial_table
+from ..fields import FIELDS
+from ..frames import point_velocities
 from ..groups import ALL_GROUPS
 from ..manifolds import chart_speed, cylinder_xyz, sphere_xyz, torus_xyz, wrap_segments
 from .actions import (BODY, BodyPointsScene, CircleIsoScene, ForwardLeftScene, GroupAxiomsScene,

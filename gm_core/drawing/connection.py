@@ -17,7 +17,7 @@ from .toolkit import PALETTE, Scene, new_figure, readout
 
 __all__ = ["ROW_LABELS", "shape_grid", "connection_field", "ConnectionFieldArtist", "draw_singular_set",
            "ShapeCursorArtist", "style_shape_axes", "singular_contour_grid", "SHAPE_PAD", "connection_fields_figure", "regimes_figure",
-           "poor_pictures_figure", "ConnectionFieldScene", "field_grid_axes"]
+           "poor_pictures_figure", "ConnectionFieldScene", "field_grid_axes", "FieldGridScene"]
 
 ROW_LABELS = ("ξx (forward)", "ξy (sideways)", "ξθ (turning)")  # plain text: no mathtext parse cost
 
@@ -324,6 +324,15 @@ def field_grid_axes(figsize=(8, 7.5)):
     return fig, [axes[0, 0], axes[0, 1], axes[1, 0]], axes[1, 1]
 
 
+class FieldGridScene(Scene):
+    """A scene on the 2 x 2 grid of :func:`field_grid_axes`: ``self.field_axes`` (the three
+    connection rows over shape space) and ``self.ax`` (the world)."""
+
+    def make_figure(self):
+        fig, self.field_axes, self.ax = field_grid_axes()
+        return fig, self.field_axes + [self.ax]
+
+
 def thin_labels(field_axes, body_ax, body_labels=True):
     """Fewer texts, faster redraws: tick labels only on the outer edges of the 2 x 2 grid."""
     top_left, top_right, bottom_left = field_axes
@@ -340,7 +349,7 @@ def _fmt(xi):
     return f"ξ = ({xi[0]:+.3f}, {xi[1]:+.3f}, {xi[2]:+.3f})"
 
 
-class ConnectionFieldScene(Scene):
+class ConnectionFieldScene(FieldGridScene):
     """The three rows of A as vector fields over shape space, a shape cursor, and the body there.
 
     Values: ``alpha1``, ``alpha2`` (the shape) and ``alpha1_dot``, ``alpha2_dot`` (its velocity);
@@ -352,10 +361,6 @@ class ConnectionFieldScene(Scene):
     def __init__(self, system, n=None, velocity_scale=1.0, **options):
         self.system, self.n, self.velocity_scale = system, n, velocity_scale
         super().__init__(**options)
-
-    def make_figure(self):
-        fig, self.field_axes, self.ax = field_grid_axes()
-        return fig, self.field_axes + [self.ax]
 
     def decorate(self):
         s = self.system

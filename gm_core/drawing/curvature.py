@@ -11,7 +11,7 @@ import numpy as np
 
 from ..geometry import constraint_curvature
 from ..groups import SE2
-from .base import BodyArtist, SingularFlag, TrailArtist, animate, new_figure
+from .base import BodyArtist, TrailArtist, animate, new_figure
 from .connection import auto_grid, inset_limits
 from .toolkit import PALETTE
 
@@ -212,7 +212,3 @@ def animate_swimmer(system, gait, traj, n_frames=60, row=0, limits=None, figsize
     update(0)
     return fig, animate(fig, update, len(idx), interval=interval)
 
-
-def singular_flag(ax):
-    """A SingularFlag for an axes (re-exported for the widgets)."""
-    return SingularFlag(ax)

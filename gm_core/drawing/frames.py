@@ -55,10 +55,7 @@ class PinnedBodiesScene(Scene):
     lim = 2.2
     COLORS = (PALETTE["blue"], PALETTE["orange"])
 
-    def make_figure(self):
-        fig, ax = new_figure(figsize=(5.0, 4.6))
-        self.ax = ax
-        return fig, [ax]
+    FIGSIZE = (5.0, 4.6)
 
     def decorate(self):
         square_axes(self.ax, self.lim)

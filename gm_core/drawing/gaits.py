@@ -13,10 +13,10 @@ from .._validate import SingularShapeError
 from ..gaits import GAIT_FAMILIES, Gait, GaitWarning, family_gait
 from ..locomotion import as_gait, net_displacement, trajectory
 from .base import SingularFlag, TrailArtist, animate
-from .connection import (ROW_LABELS, ConnectionFieldArtist, ShapeCursorArtist, draw_singular_set, field_grid_axes,
+from .connection import (ROW_LABELS, ConnectionFieldArtist, ShapeCursorArtist, draw_singular_set, FieldGridScene,
                          style_shape_axes, thin_labels)
 from .motion import MovingView, SystemArtist, draw_system_naive, style_world_axes, system_extent
-from .toolkit import PALETTE, Scene, new_figure, readout
+from .toolkit import PALETTE, new_figure, readout
 
 __all__ = ["GaitScene", "GAIT_SHAPES", "animate_gait"]
 
@@ -26,7 +26,7 @@ __all__ = ["GaitScene", "GAIT_SHAPES", "animate_gait"]
 GAIT_SHAPES = GAIT_FAMILIES + ("drawn",)
 
 
-class GaitScene(Scene):
+class GaitScene(FieldGridScene):
     """A gait on the three connection fields and the motion it produces over one cycle.
 
     Values: ``family`` (one of :data:`GAIT_SHAPES`), ``amplitude`` (radius / semi-axis /
@@ -62,10 +62,6 @@ class GaitScene(Scene):
         #: called (with no arguments) after a mouse edit; a panel sets it to its refresh
         self.on_edit = None
         super().__init__(**options)
-
-    def make_figure(self):
-        fig, self.field_axes, self.ax = field_grid_axes()
-        return fig, self.field_axes + [self.ax]
 
     def decorate(self):
         s = self.system

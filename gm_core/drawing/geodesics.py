@@ -15,7 +15,7 @@ from ..groups import SE2, RPlus
 from ..manifolds import cylinder_geodesic, cylinder_xyz, great_circle, sphere_tangent_basis, sphere_xyz, wrap_segments
 from .actions import BODY
 from .base import BodyArtist, FrameArtist, TrailArtist, animate
-from .toolkit import (PALETTE, TWO_PI, PathText, Scene, arrow, axis_label, figure, margins, new_figure, plain_3d,
+from .toolkit import (PALETTE, TWO_PI, PathText, Scene, arrow, axes_row, axis_label, margins, new_figure, plain_3d,
                       plane, readout, set_arrows, title, wire, xticks, yticks)
 
 __all__ = ["SurfaceGeodesicsScene", "helix_geometry", "HelixScene", "PuckArcScene", "puck_vs_arc_animation", "RPlusGeodesicScene",
@@ -37,12 +37,7 @@ class SurfaceGeodesicsScene(Scene):
     N = 300
 
     def make_figure(self):
-        fig = figure(figsize=(9, 3.6))
-        ax_c = fig.add_subplot(1, 3, 1, projection="3d")
-        ax_f = fig.add_subplot(1, 3, 2)
-        ax_s = fig.add_subplot(1, 3, 3, projection="3d")
-        margins(fig, left=0.0, right=1.0, bottom=0.12, top=0.9, wspace=0.08)
-        return fig, [ax_c, ax_f, ax_s]
+        return axes_row((9, 3.6), ("3d", None, "3d"), left=0.0, right=1.0, bottom=0.12, top=0.9, wspace=0.08)
 
     def decorate(self):
         ax_c, ax_f, ax_s = self.axes
@@ -135,11 +130,7 @@ class HelixScene(Scene):
     T = np.linspace(-np.pi, np.pi, 121)
 
     def make_figure(self):
-        fig = figure(figsize=(9, 4.2))
-        ax3 = fig.add_subplot(1, 2, 1, projection="3d")
-        ax2 = fig.add_subplot(1, 2, 2)
-        margins(fig, left=0.0, right=0.98, bottom=0.04, top=0.9, wspace=0.05)
-        return fig, [ax3, ax2]
+        return axes_row((9, 4.2), ("3d", None), left=0.0, right=0.98, bottom=0.04, top=0.9, wspace=0.05)
 
     def decorate(self):
         ax3, ax2 = self.axes
@@ -262,10 +253,8 @@ class RPlusGeodesicScene(Scene):
 
     T = np.linspace(0.0, 3.0, 121)
 
-    def make_figure(self):
-        fig, ax = new_figure(figsize=(6.4, 4.2))
-        margins(fig, left=0.15, right=0.97, bottom=0.14, top=0.9)
-        return fig, [ax]
+    FIGSIZE = (6.4, 4.2)
+    MARGINS = dict(left=0.15, right=0.97, bottom=0.14, top=0.9)
 
     def decorate(self):
         (ax,) = self.axes
@@ -319,10 +308,9 @@ class ExpFourWaysScene(Scene):
     METHODS = (("taylor", PALETTE["green"], "Taylor partial sums"), ("product", PALETTE["blue"], "(I + ξ^/n)ᵏ"),
                ("euler", PALETTE["orange"], "Euler steps"))
 
-    def make_figure(self):
-        fig, axes = new_figure(1, 2, figsize=(9.6, 4.0))
-        margins(fig, left=0.08, right=0.98, bottom=0.11, top=0.9, wspace=0.15)
-        return fig, list(axes)
+    FIGSIZE = (9.6, 4.0)
+    NCOLS = 2
+    MARGINS = dict(left=0.08, right=0.98, bottom=0.11, top=0.9, wspace=0.15)
 
     def decorate(self):
         a, b = self.axes

@@ -11,7 +11,7 @@ from matplotlib.patches import Rectangle
 
 from ..axioms import GROUP_AXIOMS, STRUCTURES, check_axioms, try_elements
 from ..axioms import structure as find_structure
-from .toolkit import PALETTE, PathText, Scene, margins, new_figure
+from .toolkit import PALETTE, PathText, Scene, text_panel
 
 __all__ = ["GroupOrNotScene"]
 
@@ -32,16 +32,12 @@ class GroupOrNotScene(Scene):
     ROW = 0.2            # height of one axiom row, axes units
     TOP = 0.84
 
-    def make_figure(self):
-        fig, ax = new_figure(figsize=(8.6, 3.9))
-        margins(fig, left=0.01, right=0.99, bottom=0.01, top=0.99)
-        return fig, [ax]
+    FIGSIZE = (8.6, 3.9)
+    MARGINS = dict(left=0.01, right=0.99, bottom=0.01, top=0.99)
 
     def decorate(self):
         (ax,) = self.axes
-        ax.set_axis_off()
-        ax.set_xlim(0, 1)
-        ax.set_ylim(0, 1)
+        text_panel(ax)
         PathText(ax, 0.085, self.TOP + 0.02, "axiom", size=8, weight="bold", color="0.35")
         PathText(ax, 0.33, self.TOP + 0.02, "search over sample elements   ·   at your a, b, c (blue)", size=8,
                  weight="bold", color="0.35")

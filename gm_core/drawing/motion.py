@@ -9,11 +9,11 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import SingularShapeError
-from ..examples import drive
+from ..locomotion import drive
 from ..groups import SE2
 from ..systems import Ackerman, DifferentialDrive
 from .base import BodyArtist, FrameArtist, SingularFlag, TrailArtist
-from .toolkit import PALETTE, PathText, Scene, new_figure, readout, square_axes
+from .toolkit import PALETTE, PathText, Scene, readout, square_axes
 
 __all__ = ["PART_STYLES", "SystemArtist", "system_extent", "draw_system_naive", "VelocityArtist",
            "style_world_axes", "MovingView", "CarScene", "DiffDriveScene", "AckermanScene"]
@@ -250,10 +250,7 @@ class CarScene(Scene):
     def shape_path(self, values):
         raise NotImplementedError
 
-    def make_figure(self):
-        fig, ax = new_figure(figsize=(5.5, 5.0))
-        self.ax = ax
-        return fig, [ax]
+    FIGSIZE = (5.5, 5.0)
 
     def decorate(self):
         style_world_axes(self.ax, self.lim)

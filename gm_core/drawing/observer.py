@@ -13,7 +13,7 @@ from ..frames import conjugation, icr, observed_velocity, point_in_frame, relati
 from ..groups import SE2
 from .actions import BODY
 from .base import BodyArtist, FrameArtist, TrailArtist
-from .toolkit import PALETTE, ArrowSet, PathText, Scene, margins, new_figure, plane, readout, set_arrows, title
+from .toolkit import PALETTE, ArrowSet, PathText, Scene, margins, new_figure, plane, readout, set_arrows, text_panel, title
 from .velocities import vec_text
 
 __all__ = ["ObserverScene", "FramesScene", "matrix_text"]
@@ -53,9 +53,7 @@ class ObserverScene(Scene):
         FrameArtist(ax, (0, 0, 0), length=0.5, colors=("0.6", "0.6"), zorder=2)
         PathText(ax, -0.1, -0.1, "page", size=7.5, color="0.5", ha="right", va="top")
         title(ax, "one motion, watched from the frame h")
-        tx.set_axis_off()
-        tx.set_xlim(0, 1)
-        tx.set_ylim(0, 1)
+        text_panel(tx)
         title(tx, "what h measures; Ad as conjugation, g ξ^ g⁻¹ = (Ad_g ξ)^")
         PathText(tx, 0.02, 0.70, "ξ^  (body, same for every h)", size=8, weight="bold")
         PathText(tx, 0.52, 0.70, "g = h⁻¹ g_body", size=8, weight="bold")
@@ -151,10 +149,8 @@ class FramesScene(Scene):
     LIM = 3.0
     DT = 0.8
 
-    def make_figure(self):
-        fig, ax = new_figure(figsize=(6.2, 5.2))
-        margins(fig, left=0.01, right=0.99, bottom=0.01, top=0.94)
-        return fig, [ax]
+    FIGSIZE = (6.2, 5.2)
+    MARGINS = dict(left=0.01, right=0.99, bottom=0.01, top=0.94)
 
     def decorate(self):
         (ax,) = self.axes

@@ -11,7 +11,7 @@ from matplotlib.patches import ConnectionPatch
 
 from ..gaits import circle_gait, sine_pacing
 from ..locomotion import displacement_until, trajectory
-from ..systems.directional import RATE_MAPS, _unit_path, rate_map, replay
+from ..systems.directional import RATE_MAPS, rate_map, replay
 from .base import FrameArtist
 from .toolkit import PALETTE, Scene, new_figure, readout
 

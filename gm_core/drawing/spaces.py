@@ -12,7 +12,7 @@ from matplotlib.collections import LineCollection
 
 from ..manifolds import chart_speed, cylinder_xyz, polar_chart_velocity, sphere_xyz, torus_xyz, wrap_segments
 from .base import SingularFlag
-from .toolkit import (PALETTE, TWO_PI, PathText, Scene, arrow, axis_label, figure, margins, new_figure,
+from .toolkit import (PALETTE, TWO_PI, PathText, Scene, arrow, axes_row, axis_label, figure, margins, new_figure,
                       plain_3d, set_arrows, title, wire, xticks, yticks)
 
 __all__ = ["configuration_space_gallery", "flattened_views", "TorusPathScene", "LoopsScene",
@@ -182,11 +182,7 @@ class TorusPathScene(Scene):
     N = 360
 
     def make_figure(self):
-        fig = figure(figsize=(8, 3.6))
-        ax3 = fig.add_subplot(1, 2, 1, projection="3d")
-        ax2 = fig.add_subplot(1, 2, 2)
-        margins(fig, left=0.02, right=0.97, bottom=0.14, top=0.9, wspace=0.15)
-        return fig, [ax3, ax2]
+        return axes_row((8, 3.6), ("3d", None), left=0.02, right=0.97, bottom=0.14, top=0.9, wspace=0.15)
 
     def decorate(self):
         ax3, ax2 = self.axes
@@ -248,10 +244,7 @@ class LoopsScene(Scene):
     R, r, rho = 2.0, 0.7, 1.6
 
     def make_figure(self):
-        fig = figure(figsize=(8, 3.6))
-        axes = [fig.add_subplot(1, 2, k, projection="3d") for k in (1, 2)]
-        margins(fig, left=0.0, right=1.0, bottom=0.02, top=0.88, wspace=0.0)
-        return fig, axes
+        return axes_row((8, 3.6), ("3d", "3d"), left=0.0, right=1.0, bottom=0.02, top=0.88, wspace=0.0)
 
     def decorate(self):
         ax_t, ax_s = self.axes

@@ -11,7 +11,7 @@ import numpy as np
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
 from ..manifolds import circle_point_velocity, sphere_tangent_basis, sphere_velocity, sphere_xyz
-from .toolkit import PALETTE, TWO_PI, ArrowSet, PathText, Scene, figure, margins, plain_3d, readout, set_arrows, wire
+from .toolkit import PALETTE, TWO_PI, ArrowSet, PathText, Scene, axes_row, plain_3d, readout, set_arrows, wire
 from .velocities import vec_text
 
 __all__ = ["TangentSpaceScene", "arrow_3d"]
@@ -51,11 +51,7 @@ class TangentSpaceScene(Scene):
     LINE_RATE = 0.6     # the point on R^1 sits at x = LINE_RATE (s - pi)
 
     def make_figure(self):
-        fig = figure(figsize=(9, 4.3))
-        ax2 = fig.add_subplot(1, 2, 1)
-        ax3 = fig.add_subplot(1, 2, 2, projection="3d")
-        margins(fig, left=0.01, right=0.99, bottom=0.01, top=0.92, wspace=0.02)
-        return fig, [ax2, ax3]
+        return axes_row((9, 4.3), (None, "3d"), left=0.01, right=0.99, bottom=0.01, top=0.92, wspace=0.02)
 
     def decorate(self):
         ax2, ax3 = self.axes

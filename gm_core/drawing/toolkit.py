@@ -14,8 +14,11 @@
 * **Arrows**: :class:`ArrowSet` (a PolyCollection, cheap to redraw) and :func:`arrow` (a quiver).
 * **Ticks and titles** without matplotlib's Axis machinery: :func:`xticks`, :func:`yticks`,
   :func:`title`, :func:`axis_label`.
-* **Scenes**: :class:`Scene`, the base of every live drawing: it owns its figure; ``set(**values)``
-  moves artists; ``replot(**values)`` is the clear-and-replot baseline of the benchmark.
+* **Axes** (in :mod:`.axes`, importable here): :func:`plane`, :func:`square_axes`, :func:`plain_3d`,
+  :func:`wire`; figure layouts :func:`axes_row` (one row, 2D or 3D) and :func:`text_panel`.
+* **Scenes**: :class:`Scene`, the base of every live drawing: it owns its figure (``FIGSIZE`` /
+  ``NCOLS`` / ``MARGINS`` for one row of plain axes); ``set(**values)`` moves artists;
+  ``replot(**values)`` is the clear-and-replot baseline of the benchmark.
 """
 from __future__ import annotations
 
@@ -28,11 +31,13 @@ from matplotlib.path import Path
 from matplotlib.textpath import TextPath
 from matplotlib.transforms import blended_transform_factory as _blend
 
+from .axes import plain_3d, plane, square_axes, wire  # the axes helpers live in .axes, importable here
+
 __all__ = [
     "DPI", "MAX_WIDTH_IN", "MIN_TEXT_PX", "MIN_TEXT_PT", "PALETTE", "STYLE", "apply_style",
     "new_figure", "figure", "margins", "freeze_layout", "PathText", "readout", "ArrowSet", "arrow", "set_arrows",
     "title",
-    "xticks", "yticks", "axis_label", "plane", "square_axes", "plain_3d", "wire", "Scene", "TWO_PI",
+    "xticks", "yticks", "axis_label", "plane", "square_axes", "plain_3d", "wire", "axes_row", "text_panel", "Scene", "TWO_PI",
 ]
 
 TWO_PI = 2.0 * np.pi
@@ -401,75 +406,39 @@ def set_arrows(q, origins, vectors):
     q.set_UVC(vectors[:, 0], vectors[:, 1])
 
 
-# ------------------------------------------------------------------------------------- axes
-def plane(ax, lim=2.5, grid=True, step=1.0):
-    """Square plot window for SE(2) pictures: a unit grid drawn as one collection, no tick labels.
-
-    (Tick labels are the most expensive thing matplotlib redraws; the grid spacing is one unit.)
-    """
-    ax.set_xlim(-lim, lim)
-    ax.set_ylim(-lim, lim)
-    ax.set_aspect("equal")
-    ax.set_xticks([])
-    ax.set_yticks([])
-    if grid:
-        k = np.arange(np.ceil(-lim / step), np.floor(lim / step) + 1) * step
-        segs = [[(v, -lim), (v, lim)] for v in k] + [[(-lim, v), (lim, v)] for v in k]
-        colors = ["0.6" if v == 0 else "0.88" for v in k] * 2
-        ax.add_collection(LineCollection(segs, colors=colors, linewidths=0.7, zorder=0))
+def axes_row(figsize, projections, **margin_kw):
+    """A figure with one row of axes, ``projections`` giving each one's kind (None or "3d"); the
+    keywords go to :func:`margins`. Returns ``(fig, [axes...])``."""
+    fig = figure(figsize=figsize)
+    n = len(projections)
+    axes = [fig.add_subplot(1, n, k + 1, projection=p) for k, p in enumerate(projections)]
+    margins(fig, **margin_kw)
+    return fig, axes
 
 
-def square_axes(ax, half, center=(0.0, 0.0), nticks=None):
-    """Square world axes of half-width ``half`` about ``center`` with a light grid
-    (``nticks``: at most that many ticks per axis, fewer labels redraw faster)."""
-    ax.set_xlim(center[0] - half, center[0] + half)
-    ax.set_ylim(center[1] - half, center[1] + half)
-    ax.set_aspect("equal")
-    ax.grid(True, alpha=0.3)
-    if nticks:
-        from matplotlib.ticker import MaxNLocator
-
-        ax.xaxis.set_major_locator(MaxNLocator(nticks))
-        ax.yaxis.set_major_locator(MaxNLocator(nticks))
-
-
-def plain_3d(ax, lim=None, labels=("x", "y", "z"), axes_lines=True):
-    """Make a 3D axes cheap to draw: no panes, ticks or grid; three labelled axis lines instead."""
-    from mpl_toolkits.mplot3d.art3d import Line3DCollection
-
+def text_panel(ax):
+    """Turn ``ax`` into a blank panel for text and tables: no axis, limits (0, 1) both ways."""
     ax.set_axis_off()
-    if lim is not None:
-        ax.set_xlim(-lim, lim)
-        ax.set_ylim(-lim, lim)
-        ax.set_zlim(-lim, lim)
-    if axes_lines:
-        L = lim if lim is not None else 1.0
-        segs = [[(-L, 0, 0), (L, 0, 0)], [(0, -L, 0), (0, L, 0)], [(0, 0, -L), (0, 0, L)]]
-        ax.add_collection3d(Line3DCollection(segs, colors="0.55", linewidths=0.8))
-        for k, name in enumerate(labels):
-            pos = [0.0, 0.0, 0.0]
-            pos[k] = 1.08 * L
-            ax.text(*pos, name, fontsize=9, color="0.3")
+    ax.set_xlim(0, 1)
+    ax.set_ylim(0, 1)
+    return ax
 
 
-def wire(ax, X, Y, Z, color="0.75", lw=0.4, behind=False):
-    """A light wireframe on a 3D axes; ``behind=True`` keeps it under every marker and curve
-    (no depth sorting on that axes), so a wireframe never hides the dots drawn on the surface."""
-    w = ax.plot_wireframe(X, Y, Z, color=color, lw=lw, rstride=1, cstride=1)
-    if behind:
-        ax.computed_zorder = False
-        w.set_zorder(0.5)
-    return w
-
-
-# ------------------------------------------------------------------------------------ scenes
+# ------------------------------------------------------------------------------------ figures and scenes
 class Scene:
     """Base of every live drawing: it owns its figure; ``set`` moves, ``replot`` rebuilds.
 
     Subclasses implement ``make_figure()`` (returns the figure and a list of axes),
     ``decorate()`` (limits, labels, static artists) and ``create()`` (the moving artists), and
     ``set(**values)``. A widget panel pairs the scene with controls (gm_core.widgets).
+    A scene with one row of plain axes may instead set ``FIGSIZE`` (and ``NCOLS``, default 1,
+    and ``MARGINS``, keywords of :func:`margins`): the default ``make_figure`` then makes them
+    (a single axes is also ``self.ax``).
     """
+
+    FIGSIZE = None
+    NCOLS = 1
+    MARGINS = None
 
     def __init__(self, **options):
         self.options = options
@@ -478,7 +447,15 @@ class Scene:
         self.create()
 
     def make_figure(self):
-        raise NotImplementedError
+        if self.FIGSIZE is None:
+            raise NotImplementedError(f"{type(self).__name__} must set FIGSIZE or implement make_figure")
+        fig, axes = new_figure(1, self.NCOLS, figsize=self.FIGSIZE)
+        if self.MARGINS:
+            margins(fig, **self.MARGINS)
+        if self.NCOLS > 1:
+            return fig, list(axes)
+        self.ax = axes
+        return fig, [axes]
 
     def decorate(self):
         pass

@@ -1,7 +1,8 @@
 """Velocities (book sections 1.4-1.5): vector fields and integral curves, lifted actions, world,
 body and spatial velocities, and the adjoint.
 
-The example fields and rigid-body point velocities are mathematics in :mod:`gm_core.examples`;
+The example fields are mathematics in :mod:`gm_core.fields`, rigid-body point velocities in
+:mod:`gm_core.frames`;
 integral curves come from :func:`gm_core.fields.integral_curve` (scipy's solve_ivp).
 """
 from __future__ import annotations
@@ -9,14 +10,13 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.collections import LineCollection
 
-from ..examples import FIELDS, point_velocities
-from ..fields import integral_curve
-from ..frames import icr
+from ..fields import FIELDS, integral_curve
+from ..frames import icr, point_velocities
 from ..groups import SE2, RPlus
 from .actions import BODY
 from .base import BodyArtist, FrameArtist
 from .toolkit import (PALETTE, ArrowSet, PathText, Scene, arrow, margins, new_figure, plane, set_arrows,
-                      title, xticks)
+                      text_panel, title, xticks)
 
 __all__ = ["VectorFieldScene", "LiftedScalarScene", "LiftedSE2Scene", "VelocityScene", "AdjointScene",
            "vec_text"]
@@ -34,10 +34,8 @@ class VectorFieldScene(Scene):
     T = 6.0
     N = 240
 
-    def make_figure(self):
-        fig, ax = new_figure(figsize=(5.2, 5.0))
-        margins(fig, left=0.03, right=0.97, bottom=0.03, top=0.93)
-        return fig, [ax]
+    FIGSIZE = (5.2, 5.0)
+    MARGINS = dict(left=0.03, right=0.97, bottom=0.03, top=0.93)
 
     def decorate(self):
         (ax,) = self.axes
@@ -189,10 +187,8 @@ class LiftedSE2Scene(Scene):
     G_XY = np.array([-1.2, -1.0])
     SCALE = 0.7
 
-    def make_figure(self):
-        fig, ax = new_figure(figsize=(5.8, 4.9))
-        margins(fig, left=0.02, right=0.98, bottom=0.02, top=0.93)
-        return fig, [ax]
+    FIGSIZE = (5.8, 4.9)
+    MARGINS = dict(left=0.02, right=0.98, bottom=0.02, top=0.93)
 
     def decorate(self):
         (ax,) = self.axes
@@ -309,16 +305,12 @@ class AdjointScene(Scene):
     Values ``x, y, theta`` (g) and ``vx, vy, w`` (body velocity xi).
     """
 
-    def make_figure(self):
-        fig, ax = new_figure(figsize=(7.6, 2.9))
-        margins(fig, left=0.0, right=1.0, bottom=0.0, top=1.0)
-        return fig, [ax]
+    FIGSIZE = (7.6, 2.9)
+    MARGINS = dict(left=0.0, right=1.0, bottom=0.0, top=1.0)
 
     def decorate(self):
         (ax,) = self.axes
-        ax.set_axis_off()
-        ax.set_xlim(0, 1)
-        ax.set_ylim(0, 1)
+        text_panel(ax)
         heads = ["Ad_g, closed form (1.43)", "T_gR_g⁻¹ · T_eL_g  (1.40)", "same, finite differences"]
         for k, s in enumerate(heads):
             PathText(ax, 0.02 + 0.33 * k, 0.92, s, size=8, weight="bold")

@@ -5,11 +5,12 @@ choice of body frame, and Ramasamy & Hatton (2019) for gait optimisation; conven
 book's (``xi = -A(r) r_dot``, (3.10)).
 
 * :mod:`.curvature`: ``constraint_curvature``, ``stokes_estimate``, ``body_velocity_integral``;
-* :mod:`.coordinates`: ``reframe``, ``centre_of_mass_coordinates``, ``minimum_perturbation_coordinates``;
+* :mod:`.coordinates`: ``reframe``, ``centre_of_mass``, ``drift_and_turn``, ``centre_of_mass_coordinates``, ``minimum_perturbation_coordinates``;
 * :mod:`.metrics`: ``dissipation_metric``, ``path_length``, ``efficiency``;
 * :mod:`.optimal`: ``fourier_gait``, ``optimize_gait``, ``sysplotter_stroke``.
 """
-from .coordinates import (MinimumPerturbationCoordinates, Reframed, body_frames, centre_of_mass_coordinates,
+from .coordinates import (MinimumPerturbationCoordinates, Reframed, body_frames, centre_of_mass, centre_of_mass_coordinates,
+                          drift_and_turn,
                           minimum_perturbation_coordinates, reframe)
 from .curvature import body_velocity_integral, connection_derivative, constraint_curvature, stokes_estimate
 from .metrics import dissipation_metric, efficiency, path_length
@@ -17,7 +18,7 @@ from .optimal import FourierGait, OptimalGait, fourier_gait, gait_objective, opt
 from .strokes import SYSPLOTTER_STROKES, sysplotter_stroke, sysplotter_swimmer
 
 __all__ = ["constraint_curvature", "connection_derivative", "stokes_estimate", "body_velocity_integral",
-           "Reframed", "reframe", "centre_of_mass_coordinates", "minimum_perturbation_coordinates",
+           "Reframed", "reframe", "centre_of_mass", "drift_and_turn", "centre_of_mass_coordinates", "minimum_perturbation_coordinates",
            "MinimumPerturbationCoordinates", "body_frames", "dissipation_metric", "path_length", "efficiency",
            "FourierGait", "OptimalGait", "fourier_gait", "gait_objective", "optimize_gait",
            "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer"]

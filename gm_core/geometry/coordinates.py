@@ -21,11 +21,13 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import SingularShapeError, as_array
+from ..gaits import as_gait
 from ..groups import SE2
+from ..locomotion import net_displacement
 from ..systems.base import LocomotionSystem
 from .curvature import check_system
 
-__all__ = ["Reframed", "reframe", "centre_of_mass_coordinates", "minimum_perturbation_coordinates",
+__all__ = ["Reframed", "reframe", "centre_of_mass", "centre_of_mass_coordinates", "drift_and_turn", "minimum_perturbation_coordinates",
            "MinimumPerturbationCoordinates", "body_frames"]
 
 
@@ -107,24 +109,51 @@ def reframe(system, beta, jacobian=None, name=None):
     return Reframed(system, beta, jacobian, name)
 
 
-def centre_of_mass_coordinates(system):
-    """A three-link ``system`` seen from its centre of mass with the mean link orientation.
-
-    Links are weighted by mass if the system has ``masses``, else by length (uniform slender
-    links, as for the swimmers). Hatton & Choset (2011) show this frame is close to the
-    minimum-perturbation one for three-link swimmers.
-    """
+def _link_weights(system):
+    """Normalised link weights: masses if the system has them, else lengths (slender uniform links)."""
     check_system(system)
     if not callable(getattr(system, "link_poses", None)):
         raise TypeError(f"system must be a three-link system with link_poses(r); got {system!r}")
     w = np.asarray(getattr(system, "masses", None) or system.lengths, dtype=float)
-    w = w / w.sum()
+    return w / w.sum()
+
+
+def centre_of_mass(system, r):
+    """Weighted mean ``(..., 3)`` of the link poses of a three-link ``system`` at shapes ``r``,
+    in its body frame: (x, y) the centre of mass, theta the mean link orientation.
+
+    Links are weighted by mass if the system has ``masses``, else by length (uniform slender
+    links, as for the swimmers).
+    """
+    w = _link_weights(system)
+    return np.einsum("i,...ij->...j", w, system.link_poses(r))
+
+
+def centre_of_mass_coordinates(system):
+    """A three-link ``system`` seen from its centre of mass with the mean link orientation
+    (:func:`centre_of_mass`). Hatton & Choset (2011) show this frame is close to the
+    minimum-perturbation one for three-link swimmers.
+    """
+    _link_weights(system)
 
     def beta(r):
-        P = system.link_poses(r)
-        return np.einsum("i,...ij->...j", w, P)
+        return centre_of_mass(system, r)
 
     return Reframed(system, beta, None, name=f"{system.name} (centre of mass, mean orientation)")
+
+
+def drift_and_turn(system, gait):
+    """(net turn angle, distance moved by the centre of mass) over one cycle of ``gait``.
+
+    The shape is the same at the start and the end of a cycle, so the centre of mass sits at the
+    same point c of the body frame; the net displacement g(T) carries it from c to g(T) c. Both
+    numbers are independent of the choice of body frame.
+    """
+    _link_weights(system)
+    gait = as_gait(gait)
+    gT = net_displacement(system, gait)
+    c = centre_of_mass(system, gait(np.array([0.0]))[0])[:2]
+    return float(gT[2]), float(np.linalg.norm(SE2.act_on_points(gT, c) - c))
 
 
 # ---------------------------------------------------------------------------------------------

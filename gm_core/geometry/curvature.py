@@ -11,15 +11,15 @@ second from the second-order Magnus term of ``g_dot = g xi``. ``[.,.]`` is the g
 ``SE2.bracket``. The theta row is exact (SE(2)'s rotation part is abelian); the (x, y) rows
 have an error of third order in the size of the gait.
 
-Derivatives of A: exact for the systems whose connection has a closed form (see
-``_EXACT_DERIVATIVES``), otherwise second-order central differences with a step near the
+Derivatives of A: exact for the systems whose connection has a closed form (their
+``connection_derivative`` method), otherwise second-order central differences with a step near the
 optimum eps**(1/3) (tested against exact derivatives in tests/test_geometry.py).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .._validate import SingularShapeError, as_array
+from .._validate import SingularShapeError, as_array, positive_number
 from ..groups import SE2, matvec
 from ..locomotion import as_gait, check_gait
 
@@ -42,65 +42,15 @@ def check_system(system, name="system"):
     return system
 
 
-# ---------------------------------------------------------------------------------------------
-# Exact derivatives for closed-form connections
-# ---------------------------------------------------------------------------------------------
-def _dd_derivative(system, r):
-    A = system.connection(r)
-    return A, np.zeros(A.shape + (2,))
-
-
-def _ackerman_derivative(system, r):
-    A = system.connection(r)
-    R, L = system.wheel_radius, system.wheelbase
-    dA = np.zeros(A.shape + (2,))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        # xi_theta = (R/L) tan(a2) a1'  =>  A[2, 0] = -(R/L) tan a2
-        dA[..., 2, 0, 1] = -(R / L) / np.cos(r[..., 1]) ** 2
-    dA[~np.isfinite(A).all(axis=(-1, -2))] = np.nan
-    return A, dA
-
-
-def _snake_derivative(system, r):
-    """Quotient rule on the closed form N/D of :meth:`KinematicSnake.connection_closed_form`."""
-    a1, a2 = r[..., 0], r[..., 1]
-    l1, l2, l3 = system.lengths
-    D = l3 * np.sin(a1) - l1 * np.sin(a2) + l2 * np.sin(a1 - a2)
-    dD = np.stack([l3 * np.cos(a1) + l2 * np.cos(a1 - a2), -l1 * np.cos(a2) - l2 * np.cos(a1 - a2)], -1)
-    N = np.zeros(r.shape[:-1] + (3, 2))
-    dN = np.zeros(r.shape[:-1] + (3, 2, 2))
-    N[..., 0, 0] = l1 * (l3 + l2 * np.cos(a2)) / 2
-    N[..., 0, 1] = l3 * (l1 + l2 * np.cos(a1)) / 2
-    N[..., 2, 0] = l1 * np.sin(a2)
-    N[..., 2, 1] = l3 * np.sin(a1)
-    dN[..., 0, 0, 1] = -l1 * l2 * np.sin(a2) / 2
-    dN[..., 0, 1, 0] = -l3 * l2 * np.sin(a1) / 2
-    dN[..., 2, 0, 1] = l1 * np.cos(a2)
-    dN[..., 2, 1, 0] = l3 * np.cos(a1)
-    A = system.connection(r)  # NaN at singular shapes, same values as N / D elsewhere
-    with np.errstate(divide="ignore", invalid="ignore"):
-        dA = dN / D[..., None, None, None] - N[..., None] * dD[..., None, None, :] / D[..., None, None, None] ** 2
-    dA[~np.isfinite(A).all(axis=(-1, -2))] = np.nan
-    return A, dA
-
-
-def _exact_derivatives():
-    from ..systems import Ackerman, DifferentialDrive, KinematicSnake
-
-    # Exact classes only: a subclass may change the connection. These belong on the systems
-    # themselves as ``connection_derivative(r)`` (see the report of issue #15).
-    return {DifferentialDrive: _dd_derivative, Ackerman: _ackerman_derivative,
-            KinematicSnake: _snake_derivative}
-
-
 def connection_derivative(system, r, *, method="auto"):
     """Connection and its shape derivative: ``(A (..., 3, n), dA (..., 3, n, n))``, ``dA[..., i, j, k] = d A_ij / d r_k``.
 
-    ``method="auto"`` uses the system's own ``connection_derivative`` if it has one, then a
-    closed form for the systems that have one, else central differences; ``"fd"`` forces
+    ``method="auto"`` uses the system's own closed-form ``connection_derivative(r)`` if it has
+    one (differential drive, Ackerman car, kinematic snake), else central differences; ``"fd"`` forces
     central differences (step ``FD_STEP`` relative to ``max(1, |r|)``). In the difference route A
     itself is the mean of the stencil values (error O(h^2), about 1e-11).
     """
+    check_system(system)
     r = as_array(r, "r", (system.n_shape,), what=f" (a shape of {system.name})")
     if method not in ("auto", "fd"):
         raise ValueError(f"method must be 'auto' or 'fd'; got {method!r}")
@@ -108,9 +58,6 @@ def connection_derivative(system, r, *, method="auto"):
         own = getattr(system, "connection_derivative", None)
         if callable(own):
             return own(r)
-        exact = _exact_derivatives().get(type(system))
-        if exact is not None:
-            return exact(system, r)
     n = system.n_shape
     h = FD_STEP * np.maximum(1.0, np.abs(r))
     offsets = np.zeros((2 * n,) + r.shape)
@@ -184,6 +131,13 @@ def _stokes_once(system, gait, nt, ns, center, method):
     return (radial * cross[:, None]).sum(axis=0) * (T / nt)
 
 
+def _check_rtol(rtol):
+    r = positive_number(rtol, "rtol", what=" (a relative tolerance)")
+    if not 1e-15 <= r < 1:
+        raise ValueError(f"rtol must be a relative tolerance in [1e-15, 1); got {rtol!r}")
+    return r
+
+
 def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True, samples=None):
     """Area integral (3,) of the constraint curvature over the region the gait encloses.
 
@@ -200,6 +154,7 @@ def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True, samp
     """
     check_system(system)
     gait = closed_gait(gait, system)
+    rtol = _check_rtol(rtol)
     if check:
         check_gait(system, gait)
     center = _centroid(gait(np.linspace(0, gait.period, 1024, endpoint=False)))
@@ -226,6 +181,7 @@ def body_velocity_integral(system, gait, *, rtol=1e-12, check=True, samples=None
     gait = closed_gait(gait, system)
     if check:
         check_gait(system, gait)
+    rtol = _check_rtol(rtol)
     T = gait.period
 
     def once(n):

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import SingularShapeError, as_array, check_positive
+from .._validate import SingularShapeError, as_array, check_int, check_option, positive_number
 from ..groups import SE2, matvec
 from ..locomotion import Gait, check_gait, net_displacement, trajectory
 from .curvature import check_system, connection_derivative
@@ -86,7 +86,7 @@ def fourier_gait(a, b=None, center=None, *, period=2 * np.pi, name="Fourier gait
     center = np.zeros(a.shape[0]) if center is None else as_array(center, "center", (a.shape[0],))
     if center.ndim != 1:
         raise ValueError(f"center must have shape ({a.shape[0]},); got shape {center.shape}")
-    T = float(check_positive(period, "period"))
+    T = positive_number(period, "period")
     return FourierGait(a.copy(), b.copy(), center.copy(), T, name)
 
 
@@ -105,6 +105,13 @@ def _metric_derivative(Mf, r):
     return vals.mean(axis=0), dM
 
 
+def _check_intervals(intervals):
+    n = check_int(intervals, "intervals", minimum=8, maximum=2**20, what=" (even)")
+    if n % 2:
+        raise ValueError(f"intervals must be an even integer >= 8; got {intervals!r}")
+    return n
+
+
 def gait_objective(system, gait, objective="displacement", *, intervals=512, metric=None, gradient=True):
     """Objective value and gradient with respect to ``gait.parameters`` (to be *maximised*).
 
@@ -112,9 +119,10 @@ def gait_objective(system, gait, objective="displacement", *, intervals=512, met
     length in the cost metric). Uses ``intervals`` equal time steps (even), two Magnus steps each.
     Returns ``(value, grad or None, info)`` with info = dict(g=g(T), length=L or None).
     """
-    if objective not in ("displacement", "efficiency"):
-        raise ValueError(f"objective must be 'displacement' or 'efficiency'; got {objective!r}")
-    N = int(intervals)
+    if not isinstance(gait, FourierGait):
+        raise TypeError(f"gait must be a FourierGait (from fourier_gait); got {type(gait).__name__}")
+    objective = check_option(objective, "objective", ("displacement", "efficiency"))
+    N = _check_intervals(intervals)
     T = gait.period
     tr = trajectory(system, gait, n_frames=N + 1, substeps=2, check=False)
     gT = tr.g[-1]
@@ -155,7 +163,6 @@ def gait_objective(system, gait, objective="displacement", *, intervals=512, met
     grad_d = _to_parameter_order(grads, gait.order)
     if objective == "displacement":
         return value, grad_d, dict(g=gT, length=None)
-    t0 = t[:-1]
     phi0, dphi0 = phi[:, :-1], dphi[:, :-1]
     Mv = matvec(M, v)
     gl = []
@@ -250,8 +257,7 @@ def optimize_gait(system, objective="displacement", order=3, start=None, *, coor
         raise ValueError(f"order must be a positive integer; got {order!r}")
     if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
         raise ValueError(f"maxiter must be a positive integer; got {maxiter!r}")
-    if isinstance(intervals, bool) or not isinstance(intervals, (int, np.integer)) or intervals < 8 or intervals % 2:
-        raise ValueError(f"intervals must be an even integer >= 8; got {intervals!r}")
+    _check_intervals(intervals)
     if objective == "efficiency":
         metric_function(system, metric)  # fails early if the system has no metric
     g0 = _start_gait(system, int(order), start, period)

@@ -22,7 +22,7 @@ import abc
 
 import numpy as np
 
-from .._validate import as_array, batch_shape, check_option, check_shape
+from .._validate import as_array, batch_shape, check_option, check_shape, real_number
 
 __all__ = ["LieGroup", "wrap_angle", "wrap_periodic", "matvec", "check_group", "TWO_PI"]
 
@@ -292,7 +292,7 @@ class LieGroup(abc.ABC):
         side = check_option(side, "side", ("left", "right"))
         g = self._element(g)
         xi = self._algebra(xi)
-        dt = _scalar(dt, "dt", " (a time step)")
+        dt = real_number(dt, "dt", " (a time step)")
         lifted = self.left_lifted_action if side == "left" else self.right_lifted_action
         return g + dt * _matvec(lifted(g, self.identity()), xi)
 
@@ -415,13 +415,6 @@ def _rng(rng):
         return np.random.default_rng(int(rng))
     raise TypeError(f"rng must be a numpy random Generator (np.random.default_rng(seed)) or a "
                     f"non-negative int seed; got {type(rng).__name__}")
-
-
-def _scalar(x, name, what=""):
-    arr = as_array(x, name, what=what)
-    if arr.ndim != 0:
-        raise ValueError(f"{name} must be a single number{what}; got shape {arr.shape}")
-    return float(arr)
 
 
 def _scale(scale):

@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, check_option, check_shape
-from .base import LieGroup, _rng, _scalar, _scale
+from .._validate import as_array, check_option, check_shape, real_number
+from .base import LieGroup, _rng, _scale
 
 __all__ = ["RPlus"]
 
@@ -115,7 +115,7 @@ class _RPlus(LieGroup):
         check_option(side, "side", ("left", "right"))
         g = as_array(g, "g", (1,), what=" (an Euler state of (R+, x), possibly <= 0)")
         xi = self._algebra(xi)
-        dt = _scalar(dt, "dt", " (a time step)")
+        dt = real_number(dt, "dt", " (a time step)")
         return g * (1.0 + dt * xi)
 
     def random(self, rng, size=(), scale=1.0):

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_positive
+from .._validate import positive_number
 from .base import LocomotionSystem, Part, rectangle_outline
 
 __all__ = ["Ackerman"]
@@ -27,8 +27,8 @@ class Ackerman(LocomotionSystem):
     shape_limits = ((-np.pi, np.pi), (-1.3, 1.3))
 
     def __init__(self, wheel_radius=1.0, wheelbase=1.0):
-        self.wheel_radius = float(check_positive(wheel_radius, "wheel_radius"))
-        self.wheelbase = float(check_positive(wheelbase, "wheelbase"))
+        self.wheel_radius = positive_number(wheel_radius, "wheel_radius")
+        self.wheelbase = positive_number(wheelbase, "wheelbase")
 
     def pfaffian(self, r):
         """Pfaffian (..., 3, 5): rear no-slip, rear no-slide, front no-slide."""
@@ -43,6 +43,20 @@ class Ackerman(LocomotionSystem):
         om[..., 2, 1] = np.cos(a2)
         om[..., 2, 2] = L * np.cos(a2)
         return om
+
+    def connection_derivative(self, r):
+        """``(A (..., 3, 2), dA (..., 3, 2, 2))`` with ``dA[..., i, j, k] = d A_ij / d r_k``; NaN where A is.
+
+        Only A_theta,1 = -(R/L) tan(a2) depends on the shape: d/d a2 = -(R/L) / cos(a2)^2.
+        """
+        r = self._shape(r)
+        A = self.connection(r)
+        R, L = self.wheel_radius, self.wheelbase
+        dA = np.zeros(A.shape + (2,))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            dA[..., 2, 0, 1] = -(R / L) / np.cos(r[..., 1]) ** 2
+        dA[~np.isfinite(A).all(axis=(-1, -2))] = np.nan
+        return A, dA
 
     def parts(self):
         R, L = self.wheel_radius, self.wheelbase

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_positive
+from .._validate import positive_number
 from .base import LocomotionSystem, Part, rectangle_outline
 
 __all__ = ["DifferentialDrive"]
@@ -22,8 +22,8 @@ class DifferentialDrive(LocomotionSystem):
     shape_names = ("alpha1", "alpha2")
 
     def __init__(self, wheel_radius=1.0, half_width=1.0):
-        self.wheel_radius = float(check_positive(wheel_radius, "wheel_radius"))
-        self.half_width = float(check_positive(half_width, "half_width"))
+        self.wheel_radius = positive_number(wheel_radius, "wheel_radius")
+        self.half_width = positive_number(half_width, "half_width")
 
     def pfaffian(self, r):
         """Pfaffian (..., 3, 5) of (3.26): no slip at each wheel, no sideways slide."""
@@ -40,6 +40,11 @@ class DifferentialDrive(LocomotionSystem):
         R, w = self.wheel_radius, self.half_width
         A = np.array([[-R / 2, -R / 2], [0.0, 0.0], [R / (2 * w), -R / (2 * w)]])
         return np.broadcast_to(A, r.shape[:-1] + (3, 2)).copy()
+
+    def connection_derivative(self, r):
+        """``(A (..., 3, 2), dA (..., 3, 2, 2))`` with ``dA[..., i, j, k] = d A_ij / d r_k``: zero, A is constant."""
+        A = self.connection(r)
+        return A, np.zeros(A.shape + (2,))
 
     def parts(self):
         R, w = self.wheel_radius, self.half_width

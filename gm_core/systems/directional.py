@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, check_positive
+from .._validate import positive_number, real_number
 
 __all__ = ["RATE_MAPS", "rate_map", "replay", "rate_map_properties"]
 
@@ -70,8 +70,8 @@ def replay(name, pace=1.0, reverse=False, x0=0.0, n=2000):
     there, by the midpoint rule on x_dot = b(r_dot) (exact to O(1/n^2)).
     """
     b = rate_map(name)
-    k = float(check_positive(pace, "pace"))
-    x0 = float(as_array(x0, "x0", what=" (the starting position)"))
+    k = positive_number(pace, "pace")
+    x0 = real_number(x0, "x0", what=" (the starting position)")
     s = np.linspace(0.0, 1.0, int(n) + 1)
     mid = 0.5 * (s[1:] + s[:-1])
     if reverse:

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_positive
+from .._validate import positive_number
 from ..fluids import ellipse_added_mass
 from .base import Part, ellipse_outline
 from .three_link import LinkMetricSystem
@@ -26,12 +26,12 @@ class HighReSwimmer(LinkMetricSystem):
 
     def __init__(self, lengths=(1.0, 1.0, 1.0), aspect_ratio=10.0, fluid_density=1.0, body_density=0.0):
         super().__init__(lengths)
-        ar = float(check_positive(aspect_ratio, "aspect_ratio"))
+        ar = positive_number(aspect_ratio, "aspect_ratio")
         if ar < 1:
             raise ValueError(f"aspect_ratio must be >= 1 (semi-major over semi-minor axis); got {aspect_ratio!r}")
         self.aspect_ratio = ar
-        self.fluid_density = float(check_positive(fluid_density, "fluid_density"))
-        self.body_density = float(check_positive(body_density, "body_density", allow_zero=True))
+        self.fluid_density = positive_number(fluid_density, "fluid_density")
+        self.body_density = positive_number(body_density, "body_density", allow_zero=True)
 
     def semi_axes(self):
         """[(a_i, b_i)] for the three links."""

@@ -34,19 +34,43 @@ class KinematicSnake(ThreeLinkSystem):
         J1, J2, J3 = self.middle_link_jacobians(r)
         return np.stack([J1[..., 1, :], J2[..., 1, :], J3[..., 1, :]], -2)
 
-    def connection_closed_form(self, r):
-        """The closed form of the class docstring, (..., 3, 2) (an independent check of the solve)."""
-        r = self._shape(r)
+    def _closed_form_parts(self, r):
+        """Numerator N (..., 3, 2), denominator D (...,) of the closed form A = N / D and their
+        shape derivatives dN (..., 3, 2, 2), dD (..., 2)."""
         a1, a2 = r[..., 0], r[..., 1]
         l1, l2, l3 = self.lengths
         D = l3 * np.sin(a1) - l1 * np.sin(a2) + l2 * np.sin(a1 - a2)
-        A = np.zeros(r.shape[:-1] + (3, 2))
+        dD = np.stack([l3 * np.cos(a1) + l2 * np.cos(a1 - a2), -l1 * np.cos(a2) - l2 * np.cos(a1 - a2)], -1)
+        N = np.zeros(r.shape[:-1] + (3, 2))
+        dN = np.zeros(r.shape[:-1] + (3, 2, 2))
+        N[..., 0, 0] = l1 * (l3 + l2 * np.cos(a2)) / 2
+        N[..., 0, 1] = l3 * (l1 + l2 * np.cos(a1)) / 2
+        N[..., 2, 0] = l1 * np.sin(a2)
+        N[..., 2, 1] = l3 * np.sin(a1)
+        dN[..., 0, 0, 1] = -l1 * l2 * np.sin(a2) / 2
+        dN[..., 0, 1, 0] = -l3 * l2 * np.sin(a1) / 2
+        dN[..., 2, 0, 1] = l1 * np.cos(a2)
+        dN[..., 2, 1, 0] = l3 * np.cos(a1)
+        return N, D, dN, dD
+
+    def connection_closed_form(self, r):
+        """The closed form of the class docstring, (..., 3, 2) (an independent check of the solve)."""
+        N, D, _, _ = self._closed_form_parts(self._shape(r))
         with np.errstate(divide="ignore", invalid="ignore"):
-            A[..., 0, 0] = l1 * (l3 + l2 * np.cos(a2)) / 2 / D
-            A[..., 0, 1] = l3 * (l1 + l2 * np.cos(a1)) / 2 / D
-            A[..., 2, 0] = l1 * np.sin(a2) / D
-            A[..., 2, 1] = l3 * np.sin(a1) / D
-        return A
+            A = N / D[..., None, None]
+        return np.where(np.isfinite(A), A, np.nan)      # NaN at singular shapes, like connection
+
+    def connection_derivative(self, r):
+        """``(A (..., 3, 2), dA (..., 3, 2, 2))`` with ``dA[..., i, j, k] = d A_ij / d r_k``: the
+        quotient rule on the closed form N / D; A is :meth:`connection` (the solve), NaN at
+        singular shapes, where dA is NaN too."""
+        r = self._shape(r)
+        N, D, dN, dD = self._closed_form_parts(r)
+        A = self.connection(r)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            dA = dN / D[..., None, None, None] - N[..., None] * dD[..., None, None, :] / D[..., None, None, None] ** 2
+        dA[~np.isfinite(A).all(axis=(-1, -2))] = np.nan
+        return A, dA
 
     def parts(self):
         out = super().parts()

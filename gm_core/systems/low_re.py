@@ -1,7 +1,7 @@
 """Three-link swimmer at low Reynolds number (resistive force theory), book section 3.4.4."""
 from __future__ import annotations
 
-from .._validate import check_positive
+from .._validate import positive_number
 from ..fluids import slender_link_drag
 from .base import Part, ellipse_outline
 from .three_link import LinkMetricSystem
@@ -33,7 +33,7 @@ class LowReSwimmer(LinkMetricSystem):
 
     def __init__(self, lengths=(1.0, 1.0, 1.0), drag_ratio=2.0):
         super().__init__(lengths)
-        self.drag_ratio = float(check_positive(drag_ratio, "drag_ratio"))
+        self.drag_ratio = positive_number(drag_ratio, "drag_ratio")
 
     def link_matrices(self):
         """Link drag matrices diag(l, k l, k l^3/12), each (3, 3), in the links' centre frames."""

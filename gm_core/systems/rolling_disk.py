@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, check_positive
+from .._validate import as_array, positive_number, real_number
 from ..groups import SE2
 
 __all__ = ["DISK_DRIVE", "DISK_TURN", "disk_body_velocity", "disk_constraint_world", "disk_moves_path",
@@ -79,10 +79,10 @@ def disk_moves_path(moves, g0=(0.0, 0.0, 0.0), n_per_move=25):
 
 def parallel_park_moves(d, phi, speed=1.0, turn_rate=1.0):
     """The cycle drive d, turn phi, drive back d, turn back phi as moves (4, 3) of (v, w, duration)."""
-    d = float(as_array(d, "d", what=" (the drive distance)"))
-    phi = float(as_array(phi, "phi", what=" (the turn angle)"))
-    v = float(check_positive(speed, "speed"))
-    w = float(check_positive(turn_rate, "turn_rate"))
+    d = real_number(d, "d", what=" (the drive distance)")
+    phi = real_number(phi, "phi", what=" (the turn angle)")
+    v = positive_number(speed, "speed")
+    w = positive_number(turn_rate, "turn_rate")
     sd, sp = np.sign(d) or 1.0, np.sign(phi) or 1.0
     Td, Tp = abs(d) / v, abs(phi) / w
     return np.array([[sd * v, 0.0, Td], [0.0, sp * w, Tp], [-sd * v, 0.0, Td], [0.0, -sp * w, Tp]])
@@ -94,8 +94,8 @@ def parallel_park_displacement(d, phi):
     X = :data:`DISK_DRIVE`, Y = :data:`DISK_TURN`; each factor is one allowed move (its body
     velocity has no sideways part), yet the product moves the disk sideways.
     """
-    d = float(as_array(d, "d", what=" (the drive distance)"))
-    phi = float(as_array(phi, "phi", what=" (the turn angle)"))
+    d = real_number(d, "d", what=" (the drive distance)")
+    phi = real_number(phi, "phi", what=" (the turn angle)")
     E = SE2.exp(np.array([d * DISK_DRIVE, phi * DISK_TURN, -d * DISK_DRIVE, -phi * DISK_TURN]))
     g = E[0]
     for e in E[1:]:
@@ -109,15 +109,15 @@ def bracket_estimate(d, phi):
     The loop (d, phi) -> (d, phi) in the plane of move amounts encloses the signed area d phi;
     for a small loop the commutator of the two flows is exp(area [X, Y]) up to third order.
     """
-    d = float(as_array(d, "d", what=" (the drive distance)"))
-    phi = float(as_array(phi, "phi", what=" (the turn angle)"))
+    d = real_number(d, "d", what=" (the drive distance)")
+    phi = real_number(phi, "phi", what=" (the turn angle)")
     return d * phi * SE2.bracket(DISK_DRIVE, DISK_TURN)
 
 
 def radial_loop_moves(a, b):
     """The loop 'a along X1, b along X2, back a along X1, back b along X2' for (3.viii), as (4, 2) rows (field, amount)."""
-    a = float(as_array(a, "a", what=" (the amount along X1)"))
-    b = float(as_array(b, "b", what=" (the amount along X2)"))
+    a = real_number(a, "a", what=" (the amount along X1)")
+    b = real_number(b, "b", what=" (the amount along X2)")
     return np.array([[1.0, a], [2.0, b], [1.0, -a], [2.0, -b]])
 
 

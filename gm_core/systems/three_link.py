@@ -51,6 +51,7 @@ class ThreeLinkSystem(LocomotionSystem):
 
     def frame_change(self, r):
         """(..., 5, 5) map from (xi_frame, r_dot) to (xi_middle, r_dot), or None for the middle frame."""
+        self._shape(r)
         return None
 
     def frame_offset(self, r):

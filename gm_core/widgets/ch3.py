@@ -18,7 +18,7 @@ from ..drawing.motion import AckermanScene, DiffDriveScene
 from ..drawing.nonholonomy import ParallelParkScene
 from ..drawing.pacing import DirectionalScene, PacingSquareScene
 from ..systems.directional import RATE_MAPS
-from ..examples import drive
+from ..locomotion import drive
 from ..systems import FloatingSnake, KinematicSnake
 from .base import ScenePanel, register, slider
 
