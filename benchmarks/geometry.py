@@ -14,8 +14,14 @@ import timeit
 
 import numpy as np
 
-from gm_core.geometry import (SYSPLOTTER_STROKES, constraint_curvature, minimum_perturbation_coordinates,
-                              optimize_gait, stokes_estimate, sysplotter_swimmer)
+from gm_core.geometry import (
+    SYSPLOTTER_STROKES,
+    constraint_curvature,
+    minimum_perturbation_coordinates,
+    optimize_gait,
+    stokes_estimate,
+    sysplotter_swimmer,
+)
 from gm_core.locomotion import circle_gait
 from gm_core.systems import ALL_SYSTEMS
 

@@ -14,7 +14,8 @@ returns one line per breach, naming the figure (``where``) and the text:
 * readouts (texts placed on an axes with ``ax.text``/``ax.annotate`` and anchored inside it) lie
   wholly inside their axes (a caption anchored outside its axes is judged as any other text);
 * every vector field (a quiver, or a collection marked ``gm_arrow_set`` like the toolkit's
-  ArrowSet, of ``MIN_FIELD_ARROWS`` arrows or more; an SE(2) frame's two arrows are not a field) has a longest arrow of at least ``MIN_ARROW_PX`` (25) px.
+  ArrowSet, of ``MIN_FIELD_ARROWS`` arrows or more; an SE(2) frame's two arrows are not a field)
+  has a longest arrow of at least ``MIN_ARROW_PX`` (25) px.
 
 Texts drawn as glyph outlines by gm_core.drawing.toolkit.PathText (found through the
 ``gm_path_text`` attribute of their PathCollection) are measured like Text artists.
@@ -316,7 +317,7 @@ def breaches(fig, tight: bool = False) -> list[str]:
                 out.append(f"{desc} runs past its axes ("
                            + ", ".join(f"{k} by {v:.0f} px" for k, v in past.items()) + ")")
         boxes.append((t, desc, bb))
-    for (t1, d1, b1), (t2, d2, b2) in itertools.combinations(boxes, 2):
+    for (_t1, d1, b1), (_t2, d2, b2) in itertools.combinations(boxes, 2):
         ox = min(b1.x1, b2.x1) - max(b1.x0, b2.x0)
         oy = min(b1.y1, b2.y1) - max(b1.y0, b2.y0)
         if ox > OVERLAP_TOL_PX and oy > OVERLAP_TOL_PX:

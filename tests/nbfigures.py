@@ -24,10 +24,9 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
+import figstd  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import animation  # noqa: E402
-
-import figstd  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 COURSE_DIRS = ("book", "exercises", "solutions")

@@ -3,7 +3,7 @@ direct computations (matrix products for associativity, known non-elements)."""
 import numpy as np
 import pytest
 
-from gm_core import ALL_GROUPS, RPlus, SE2
+from gm_core import ALL_GROUPS, SE2, RPlus
 from gm_core.axioms import AXIOMS, axiom_residuals, powers
 
 
@@ -51,8 +51,7 @@ def test_powers_match_matrix_powers():
 # ------------------------------------------------------------------ group or not? (Structure)
 from fractions import Fraction  # noqa: E402
 
-from gm_core.axioms import (GROUP_AXIOMS, STRUCTURES, check_axioms, group_structure, is_group,  # noqa: E402
-                            structure, try_elements)
+from gm_core.axioms import GROUP_AXIOMS, STRUCTURES, check_axioms, group_structure, is_group, structure, try_elements  # noqa: E402
 
 
 def test_the_real_groups_pass_every_axiom():

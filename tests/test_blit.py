@@ -81,6 +81,7 @@ def test_no_blitting_on_static_canvases():
 def test_saving_a_blitted_figure_draws_each_artist_once(blitting, tmp_path):
     """savefig of a live panel equals the picture of a panel that never blitted."""
     import matplotlib.image as mpimg
+
     from gm_core.widgets.start import FrameDemo
 
     Panel.blit_everywhere = True

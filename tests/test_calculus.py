@@ -9,11 +9,12 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 from scipy.linalg import expm
 
-from gm_core import ALL_GROUPS, RPlus, SE2, SingularShapeError
+from gm_core import ALL_GROUPS, SE2, RPlus, SingularShapeError
 from gm_core import calculus as C
 
 HYP = settings(max_examples=30, deadline=None)

@@ -3,7 +3,8 @@ the velocity of a generalized body frame split into its causes (2.60)-(2.67), an
 carried out along a chain (2.33)-(2.37)."""
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gm_core import SE2, SO2, RPlus
 from gm_core import chains as C

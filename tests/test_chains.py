@@ -1,7 +1,8 @@
 """Tests for gm_core.chains: forward kinematics and Jacobians of chapter 2, checked by independent routes."""
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gm_core import SE2
 from gm_core import chains as C

@@ -10,10 +10,11 @@ import re
 
 import numpy as np
 import pytest
-from hypothesis import assume, given, settings, strategies as st
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 from scipy.linalg import expm
 
-from gm_core import ALL_GROUPS, R2xS1, RPlus, SE2
+from gm_core import ALL_GROUPS, SE2, R2xS1, RPlus
 from gm_core import fields as F
 from gm_core.groups import matvec
 

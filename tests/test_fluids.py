@@ -6,7 +6,8 @@ and their circle and flat-plate limits; sympy integration of the resistive-force
 import numpy as np
 import pytest
 import sympy as sp
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gm_core import SE2
 from gm_core.fluids import added_mass_bem, drag_wrench, ellipse_added_mass, slender_link_drag

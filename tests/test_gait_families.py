@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from gm_core.gaits import (GAIT_FAMILIES, Gait, ellipse_gait, family_gait, serpenoid_gait, sine_pacing)
+from gm_core.gaits import GAIT_FAMILIES, ellipse_gait, family_gait, serpenoid_gait, sine_pacing
 from gm_core.locomotion import net_displacement
 from gm_core.systems import LowReSwimmer
 

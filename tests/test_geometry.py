@@ -5,11 +5,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gm_core import SingularShapeError
-from gm_core.geometry import (body_velocity_integral, connection_derivative, constraint_curvature, fourier_gait,
-                              stokes_estimate)
+from gm_core.geometry import (
+    body_velocity_integral,
+    connection_derivative,
+    constraint_curvature,
+    fourier_gait,
+    stokes_estimate,
+)
 from gm_core.locomotion import Gait, circle_gait, net_displacement
-from gm_core.systems import (Ackerman, DifferentialDrive, FloatingSnake, HighReSwimmer, KinematicSnake,
-                             LowReSwimmer)
+from gm_core.systems import Ackerman, DifferentialDrive, FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
 
 REGULAR = [LowReSwimmer(), HighReSwimmer(), FloatingSnake(), FloatingSnake(frame="middle"),
            LowReSwimmer(lengths=(0.5, 1.0, 1.5), drag_ratio=3.0)]

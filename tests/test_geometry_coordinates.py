@@ -3,8 +3,14 @@ import numpy as np
 import pytest
 
 from gm_core import SE2, SingularShapeError
-from gm_core.geometry import (centre_of_mass_coordinates, constraint_curvature, drift_and_turn, minimum_perturbation_coordinates,
-                              reframe, stokes_estimate)
+from gm_core.geometry import (
+    centre_of_mass_coordinates,
+    constraint_curvature,
+    drift_and_turn,
+    minimum_perturbation_coordinates,
+    reframe,
+    stokes_estimate,
+)
 from gm_core.locomotion import circle_gait, net_displacement
 from gm_core.systems import FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
 

@@ -3,9 +3,19 @@ import numpy as np
 import pytest
 
 from gm_core import SE2, SingularShapeError
-from gm_core.geometry import (SYSPLOTTER_STROKES, FourierGait, dissipation_metric, efficiency, fourier_gait,
-                              gait_objective, minimum_perturbation_coordinates, optimize_gait, path_length,
-                              sysplotter_stroke, sysplotter_swimmer)
+from gm_core.geometry import (
+    SYSPLOTTER_STROKES,
+    FourierGait,
+    dissipation_metric,
+    efficiency,
+    fourier_gait,
+    gait_objective,
+    minimum_perturbation_coordinates,
+    optimize_gait,
+    path_length,
+    sysplotter_stroke,
+    sysplotter_swimmer,
+)
 from gm_core.locomotion import Gait, check_gait, circle_gait, net_displacement, trajectory
 from gm_core.systems import DifferentialDrive, FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
 

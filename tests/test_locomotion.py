@@ -3,15 +3,32 @@ import warnings
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
 from gm_core import SE2, SingularShapeError
-from gm_core.locomotion import (Gait, as_gait, body_velocity, check_gait, circle_gait,
-                                connection_from_mass_matrix, connection_from_pfaffian,
-                                metric_from_jacobians, net_displacement, se2_bracket, trajectory)
-from gm_core.systems import (ALL_SYSTEMS, Ackerman, DifferentialDrive, FloatingSnake, HighReSwimmer,
-                             KinematicSnake, LowReSwimmer)
+from gm_core.locomotion import (
+    Gait,
+    as_gait,
+    body_velocity,
+    check_gait,
+    circle_gait,
+    connection_from_mass_matrix,
+    connection_from_pfaffian,
+    metric_from_jacobians,
+    net_displacement,
+    se2_bracket,
+    trajectory,
+)
+from gm_core.systems import (
+    ALL_SYSTEMS,
+    Ackerman,
+    DifferentialDrive,
+    HighReSwimmer,
+    KinematicSnake,
+    LowReSwimmer,
+)
 
 RNG = np.random.default_rng(7)
 

@@ -6,16 +6,26 @@ import warnings
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
-
-from gm_core import SE2, SingularShapeError
-from gm_core import chains
-from gm_core.gaits import GaitWarning
-from gm_core.locomotion import (AccuracyWarning, Gait, body_velocity, check_gait, circle_gait, connection_curl,
-                                metric_from_jacobians, net_displacement, pfaffian_determinant, se2_bracket,
-                                trajectory)
-from gm_core.systems import FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from test_locomotion import reference_displacement  # the solve_ivp route, written once
+
+from gm_core import SE2, SingularShapeError, chains
+from gm_core.gaits import GaitWarning
+from gm_core.locomotion import (
+    AccuracyWarning,
+    Gait,
+    body_velocity,
+    check_gait,
+    circle_gait,
+    connection_curl,
+    metric_from_jacobians,
+    net_displacement,
+    pfaffian_determinant,
+    se2_bracket,
+    trajectory,
+)
+from gm_core.systems import FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
 
 SNAKE = KinematicSnake()
 SAFE = circle_gait(0.8, (0.4, -1.0))

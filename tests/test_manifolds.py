@@ -5,8 +5,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gm_core.manifolds import (chart_speed, cylinder_xyz, polar_chart_velocity, sphere_xyz, torus_xyz,
-                               wrap_segments)
+from gm_core.manifolds import chart_speed, cylinder_xyz, polar_chart_velocity, sphere_xyz, torus_xyz, wrap_segments
 
 angles = st.floats(-10.0, 10.0, allow_nan=False)
 
@@ -103,8 +102,13 @@ def test_wrap_segments_against_a_brute_force_walk():
 
 
 # ------------------------------------------------- tangent spaces (figs 1.11-1.12), geodesics (1.16)
-from gm_core.manifolds import (circle_point_velocity, cylinder_geodesic, great_circle,  # noqa: E402
-                               sphere_tangent_basis, sphere_velocity)
+from gm_core.manifolds import (  # noqa: E402
+    circle_point_velocity,
+    cylinder_geodesic,
+    great_circle,
+    sphere_tangent_basis,
+    sphere_velocity,
+)
 
 
 def _fd(f, t, h=1e-6):

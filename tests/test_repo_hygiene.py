@@ -59,3 +59,15 @@ def test_book_links_resolve(path):
         if "workspace/" in target:
             resolved = ROOT / "exercises" / resolved.name
         assert resolved.exists(), f"{path}: broken link {target}"
+
+
+def test_ruff_is_clean():
+    """`ruff check` passes with the project's configuration (pyproject.toml [tool.ruff])."""
+    import shutil
+    import sys
+
+    ruff = shutil.which("ruff") or str(Path(sys.executable).parent / "ruff")
+    if not Path(ruff).exists():
+        pytest.skip("ruff is not installed (it is in the test extra: pip install -e '.[test]')")
+    out = subprocess.run([ruff, "check", "--no-cache", "--quiet", "."], cwd=ROOT, capture_output=True, text=True)
+    assert out.returncode == 0, "ruff check found problems:\n" + out.stdout[-4000:] + out.stderr[-2000:]

@@ -19,8 +19,16 @@ import gm_core
 from gm_core import SE2, SingularShapeError
 from gm_core.chains import MobileChain, three_link_jacobians
 from gm_core.locomotion import connection_from_mass_matrix, connection_from_pfaffian
-from gm_core.systems import (ALL_SYSTEMS, Ackerman, DifferentialDrive, FloatingSnake, HighReSwimmer,
-                             KinematicSnake, LowReSwimmer, ellipse_added_mass)
+from gm_core.systems import (
+    ALL_SYSTEMS,
+    Ackerman,
+    DifferentialDrive,
+    FloatingSnake,
+    HighReSwimmer,
+    KinematicSnake,
+    LowReSwimmer,
+    ellipse_added_mass,
+)
 from gm_core.systems.three_link import three_link_link_poses
 
 RNG = np.random.default_rng(20261122)

@@ -17,7 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from gm_core import R2xS1, SE2, S1  # noqa: E402
+from gm_core import S1, SE2, R2xS1  # noqa: E402
 from gm_core.drawing import ch1 as D  # noqa: E402
 from gm_core.widgets import ch1 as W  # noqa: E402
 from gm_core.widgets.base import PANELS  # noqa: E402
@@ -376,13 +376,13 @@ def test_exp_four_ways_errors_and_paths():
     x, y = p.scene.path_lines["product"].get_data()
     assert len(x) == 17 and np.allclose([x[-1], y[-1]], prod[:2, 2])
     # errors fall as n grows for every method
-    for m, h in p.scene.histories.items():
+    for _m, h in p.scene.histories.items():
         assert h.error[-1] < h.error[0]
 
 
 def test_binomial_table_limits():
     rows = D.binomial_table(ns=(10, 10000), kmax=4)
-    for n, k, c, ratio, inv_fact, draft in rows:
+    for n, k, c, ratio, inv_fact, _draft in rows:
         assert c == __import__("math").comb(n, k)
         if n == 10000:
             assert abs(ratio - inv_fact) < 1e-3

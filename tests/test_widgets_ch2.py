@@ -136,7 +136,7 @@ def test_jacobian_methods_panel_agree_live():
         q = np.array([p.controls[f"q{i + 1}"].value for i in range(3)])
         qd = np.array([p.controls[f"q{i + 1}_dot"].value for i in range(3)])
         fd = C.finite_difference_jacobians(lambda x: p.chain.frames(x)["h"], q)[-1] @ qd
-        for m, arrow in p.arrows.items():
+        for _m, arrow in p.arrows.items():
             np.testing.assert_allclose(arrow.vectors[0], fd[:2], atol=1e-7)
 
 
@@ -184,7 +184,7 @@ def test_relative_pose_panel_draws_g_ab_and_checks_cancellation():
     p = ch2.RelativePosePanel()
     p.set(alpha1=0.7, alpha2=-1.1, frame="h2", seen_from="g2", via="g1")
     fr = p.chain.frames([0.7, -1.1])
-    a, b, c = fr["h"][1], fr["g"][1], fr["g"][0]
+    a, b, _c = fr["h"][1], fr["g"][1], fr["g"][0]
     rel = C.relative_pose(a, b)
     assert SE2.isclose(p.rel, rel) and SE2.isclose(p.chained, rel) and SE2.isclose(p.swapped, SE2.inverse(rel))
     np.testing.assert_allclose(p.arrow.points[0], b[:2], atol=1e-12)

@@ -11,9 +11,9 @@ import pytest  # noqa: E402
 
 from gm_core import SE2  # noqa: E402
 from gm_core.drawing import ch3 as D  # noqa: E402
+from gm_core.drawing import nonholonomy as D_nh  # noqa: E402
 from gm_core.locomotion import circle_gait, net_displacement  # noqa: E402
 from gm_core.systems import ALL_SYSTEMS, FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer  # noqa: E402
-from gm_core.drawing import nonholonomy as D_nh  # noqa: E402
 from gm_core.widgets import ch3  # noqa: E402
 from gm_core.widgets.base import PANELS, all_panels  # noqa: E402
 
@@ -311,7 +311,8 @@ def test_parallel_park_panel_shows_the_sideways_net_and_the_closed_radial_loop()
 
 
 def test_pacing_square_panel_markers_commute_as_in_fig_3_1():
-    from gm_core.gaits import circle_gait as cg, sine_pacing
+    from gm_core.gaits import circle_gait as cg
+    from gm_core.gaits import sine_pacing
     from gm_core.locomotion import displacement_until
 
     p = ch3.PacingSquarePanel()

@@ -43,10 +43,10 @@ def headless(out: Path, only: str | None) -> list[dict]:
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     import figstd
+    import matplotlib.pyplot as plt
     import nbfigures
+
     from gm_core.widgets.base import all_panels
 
     entries = []
@@ -121,10 +121,9 @@ def _window_shot(nbp, rel: str, d: Path) -> dict | None:
 
 
 def browser(out: Path, only: str | None) -> list[dict]:
-    from playwright.sync_api import sync_playwright
-
     import browserlab
     import labview
+    from playwright.sync_api import sync_playwright
 
     notebooks = [p for p in labview.figure_notebooks() if not only or only in p.relative_to(ROOT).as_posix()]
     d = out / "browser"

@@ -3,8 +3,7 @@
 Imports gm_core's mathematics; the mathematics never imports this package. Importing it applies
 the course's figure standard to matplotlib (see :mod:`gm_core.drawing.toolkit`).
 """
-from .base import (BodyArtist, FrameArtist, SingularFlag, TrailArtist, animate, jshtml, n_frames, new_figure,
-                   testing)
+from .base import BodyArtist, FrameArtist, SingularFlag, TrailArtist, animate, jshtml, n_frames, new_figure, testing
 from .toolkit import PALETTE, PathText, Scene, figure
 
 __all__ = ["BodyArtist", "FrameArtist", "TrailArtist", "SingularFlag", "animate", "jshtml",

@@ -13,8 +13,7 @@ from ..axioms import powers
 from ..groups import S1, SE2, R2xS1
 from .base import BodyArtist, FrameArtist
 from .group_or_not import GroupOrNotScene
-from .toolkit import (PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, plane, set_arrows,
-                      title)
+from .toolkit import PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, plane, set_arrows, title
 
 __all__ = ["BODY", "GroupAxiomsScene", "SlideRuleScene", "CircleIsoScene",
            "LeftRightActionScene", "ForwardLeftScene", "BodyPointsScene"]

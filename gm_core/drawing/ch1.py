@@ -19,14 +19,28 @@ from ..fields import FIELDS
 from ..frames import point_velocities
 from ..groups import ALL_GROUPS
 from ..manifolds import chart_speed, cylinder_xyz, sphere_xyz, torus_xyz, wrap_segments
-from .actions import (BODY, BodyPointsScene, CircleIsoScene, ForwardLeftScene, GroupAxiomsScene,
-                      LeftRightActionScene, SlideRuleScene)
-from .geodesics import (ExpFourWaysScene, HelixScene, PuckArcScene, RPlusGeodesicScene, SurfaceGeodesicsScene,
-                        helix_geometry, puck_vs_arc_animation)
+from .actions import (
+                      BODY,
+                      BodyPointsScene,
+                      CircleIsoScene,
+                      ForwardLeftScene,
+                      GroupAxiomsScene,
+                      LeftRightActionScene,
+                      SlideRuleScene,
+)
+from .geodesics import (
+                      ExpFourWaysScene,
+                      HelixScene,
+                      PuckArcScene,
+                      RPlusGeodesicScene,
+                      SurfaceGeodesicsScene,
+                      helix_geometry,
+                      puck_vs_arc_animation,
+)
 from .group_or_not import GroupOrNotScene
 from .observer import FramesScene, ObserverScene
-from .tangent import TangentSpaceScene
 from .spaces import LoopsScene, PoleChartScene, TorusPathScene, configuration_space_gallery, flattened_views
+from .tangent import TangentSpaceScene
 from .toolkit import ArrowSet, PathText, Scene, figure
 from .velocities import AdjointScene, LiftedScalarScene, LiftedSE2Scene, VectorFieldScene, VelocityScene
 

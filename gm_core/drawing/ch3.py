@@ -4,12 +4,28 @@ gait animation)."""
 from __future__ import annotations
 
 from .base import SingularFlag
-from .connection import (ROW_LABELS, ConnectionFieldArtist, ShapeCursorArtist, connection_field,
-                         connection_fields_figure, draw_singular_set, poor_pictures_figure, regimes_figure,
-                         shape_grid, style_shape_axes)
+from .connection import (
+                         ROW_LABELS,
+                         ConnectionFieldArtist,
+                         ShapeCursorArtist,
+                         connection_field,
+                         connection_fields_figure,
+                         draw_singular_set,
+                         poor_pictures_figure,
+                         regimes_figure,
+                         shape_grid,
+                         style_shape_axes,
+)
 from .gaits import animate_gait
-from .motion import (PART_STYLES, MovingView, SystemArtist, VelocityArtist, draw_system_naive, style_world_axes,
-                     system_extent)
+from .motion import (
+                         PART_STYLES,
+                         MovingView,
+                         SystemArtist,
+                         VelocityArtist,
+                         draw_system_naive,
+                         style_world_axes,
+                         system_extent,
+)
 
 _style_shape_axes = style_shape_axes
 

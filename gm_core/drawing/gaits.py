@@ -13,8 +13,15 @@ from .._validate import SingularShapeError
 from ..gaits import GAIT_FAMILIES, Gait, GaitWarning, family_gait
 from ..locomotion import as_gait, net_displacement, trajectory
 from .base import SingularFlag, TrailArtist, animate
-from .connection import (ROW_LABELS, ConnectionFieldArtist, ShapeCursorArtist, draw_singular_set, FieldGridScene,
-                         style_shape_axes, thin_labels)
+from .connection import (
+    ROW_LABELS,
+    ConnectionFieldArtist,
+    FieldGridScene,
+    ShapeCursorArtist,
+    draw_singular_set,
+    style_shape_axes,
+    thin_labels,
+)
 from .motion import MovingView, SystemArtist, draw_system_naive, style_world_axes, system_extent
 from .toolkit import PALETTE, new_figure, readout
 

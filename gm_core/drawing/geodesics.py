@@ -10,13 +10,30 @@ from matplotlib.collections import LineCollection
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
 from ..calculus import exp_history
-from ..fields import puck_vs_arc, rplus_geodesics, se2_helix, se2_helices
+from ..fields import puck_vs_arc, rplus_geodesics, se2_helices, se2_helix
 from ..groups import SE2, RPlus
 from ..manifolds import cylinder_geodesic, cylinder_xyz, great_circle, sphere_tangent_basis, sphere_xyz, wrap_segments
 from .actions import BODY
 from .base import BodyArtist, FrameArtist, TrailArtist, animate
-from .toolkit import (PALETTE, TWO_PI, PathText, Scene, arrow, axes_row, axis_label, margins, new_figure, plain_3d,
-                      plane, readout, set_arrows, title, wire, xticks, yticks)
+from .toolkit import (
+    PALETTE,
+    TWO_PI,
+    PathText,
+    Scene,
+    arrow,
+    axes_row,
+    axis_label,
+    margins,
+    new_figure,
+    plain_3d,
+    plane,
+    readout,
+    set_arrows,
+    title,
+    wire,
+    xticks,
+    yticks,
+)
 
 __all__ = ["SurfaceGeodesicsScene", "helix_geometry", "HelixScene", "PuckArcScene", "puck_vs_arc_animation", "RPlusGeodesicScene",
            "ExpFourWaysScene"]

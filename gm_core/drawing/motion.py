@@ -9,8 +9,8 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import SingularShapeError
-from ..locomotion import drive
 from ..groups import SE2
+from ..locomotion import drive
 from ..systems import Ackerman, DifferentialDrive
 from .base import BodyArtist, FrameArtist, SingularFlag, TrailArtist
 from .toolkit import PALETTE, PathText, Scene, readout, square_axes

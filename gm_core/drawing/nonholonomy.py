@@ -8,8 +8,14 @@ from __future__ import annotations
 import numpy as np
 
 from ..groups import SE2
-from ..systems.rolling_disk import (bracket_estimate, disk_moves_path, parallel_park_displacement,
-                                    parallel_park_moves, radial_loop_moves, radial_point_path)
+from ..systems.rolling_disk import (
+    bracket_estimate,
+    disk_moves_path,
+    parallel_park_displacement,
+    parallel_park_moves,
+    radial_loop_moves,
+    radial_point_path,
+)
 from .base import BodyArtist, FrameArtist, TrailArtist
 from .toolkit import PALETTE, ArrowSet, Scene, new_figure, plane, readout
 

@@ -13,7 +13,19 @@ from ..frames import conjugation, icr, observed_velocity, point_in_frame, relati
 from ..groups import SE2
 from .actions import BODY
 from .base import BodyArtist, FrameArtist, TrailArtist
-from .toolkit import PALETTE, ArrowSet, PathText, Scene, margins, new_figure, plane, readout, set_arrows, text_panel, title
+from .toolkit import (
+    PALETTE,
+    ArrowSet,
+    PathText,
+    Scene,
+    margins,
+    new_figure,
+    plane,
+    readout,
+    set_arrows,
+    text_panel,
+    title,
+)
 from .velocities import vec_text
 
 __all__ = ["ObserverScene", "FramesScene", "matrix_text"]

@@ -12,8 +12,24 @@ from matplotlib.collections import LineCollection
 
 from ..manifolds import chart_speed, cylinder_xyz, polar_chart_velocity, sphere_xyz, torus_xyz, wrap_segments
 from .base import SingularFlag
-from .toolkit import (PALETTE, TWO_PI, PathText, Scene, arrow, axes_row, axis_label, figure, margins, new_figure,
-                      plain_3d, set_arrows, title, wire, xticks, yticks)
+from .toolkit import (
+    PALETTE,
+    TWO_PI,
+    PathText,
+    Scene,
+    arrow,
+    axes_row,
+    axis_label,
+    figure,
+    margins,
+    new_figure,
+    plain_3d,
+    set_arrows,
+    title,
+    wire,
+    xticks,
+    yticks,
+)
 
 __all__ = ["configuration_space_gallery", "flattened_views", "TorusPathScene", "LoopsScene",
            "PoleChartScene"]

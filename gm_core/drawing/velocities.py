@@ -15,8 +15,20 @@ from ..frames import icr, point_velocities
 from ..groups import SE2, RPlus
 from .actions import BODY
 from .base import BodyArtist, FrameArtist
-from .toolkit import (PALETTE, ArrowSet, PathText, Scene, arrow, margins, new_figure, plane, set_arrows,
-                      text_panel, title, xticks)
+from .toolkit import (
+    PALETTE,
+    ArrowSet,
+    PathText,
+    Scene,
+    arrow,
+    margins,
+    new_figure,
+    plane,
+    set_arrows,
+    text_panel,
+    title,
+    xticks,
+)
 
 __all__ = ["VectorFieldScene", "LiftedScalarScene", "LiftedSE2Scene", "VelocityScene", "AdjointScene",
            "vec_text"]

@@ -9,9 +9,16 @@ book's (``xi = -A(r) r_dot``, (3.10)).
 * :mod:`.metrics`: ``dissipation_metric``, ``path_length``, ``efficiency``;
 * :mod:`.optimal`: ``fourier_gait``, ``optimize_gait``, ``sysplotter_stroke``.
 """
-from .coordinates import (MinimumPerturbationCoordinates, Reframed, body_frames, centre_of_mass, centre_of_mass_coordinates,
+from .coordinates import (
+                          MinimumPerturbationCoordinates,
+                          Reframed,
+                          body_frames,
+                          centre_of_mass,
+                          centre_of_mass_coordinates,
                           drift_and_turn,
-                          minimum_perturbation_coordinates, reframe)
+                          minimum_perturbation_coordinates,
+                          reframe,
+)
 from .curvature import body_velocity_integral, connection_derivative, constraint_curvature, stokes_estimate
 from .metrics import dissipation_metric, efficiency, path_length
 from .optimal import FourierGait, OptimalGait, fourier_gait, gait_objective, optimize_gait

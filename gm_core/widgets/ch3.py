@@ -11,15 +11,15 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
-from ..drawing.connection import ConnectionFieldScene
 from ..drawing.base import jshtml
+from ..drawing.connection import ConnectionFieldScene
 from ..drawing.gaits import GAIT_SHAPES, GaitScene
 from ..drawing.motion import AckermanScene, DiffDriveScene
 from ..drawing.nonholonomy import ParallelParkScene
 from ..drawing.pacing import DirectionalScene, PacingSquareScene
-from ..systems.directional import RATE_MAPS
 from ..locomotion import drive
 from ..systems import FloatingSnake, KinematicSnake
+from ..systems.directional import RATE_MAPS
 from .base import ScenePanel, register, slider
 
 __all__ = ["drive", "DiffDriveCarPanel", "AckermanCarPanel", "ConnectionFieldPanel", "GaitPanel", "body_frames", "ParallelParkPanel",

@@ -12,9 +12,9 @@ import numpy as np
 
 from .._validate import SingularShapeError
 from ..drawing.base import SingularFlag, new_figure
-from ..drawing.toolkit import PALETTE
 from ..drawing.curvature import DPI, FONT, ROWS, CurvatureMapArtist, FieldArtist, GaitArtist, _style
-from ..geometry import (body_frames, body_velocity_integral, fourier_gait, optimize_gait, stokes_estimate)
+from ..drawing.toolkit import PALETTE
+from ..geometry import body_frames, body_velocity_integral, fourier_gait, optimize_gait, stokes_estimate
 from ..locomotion import net_displacement
 from ..systems import LowReSwimmer
 from .base import Panel, register, slider

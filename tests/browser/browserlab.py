@@ -867,7 +867,9 @@ def check_interactive_notebook(lab: LabBrowser, relpath: str, change_timeout: fl
 # Self-check notebook: one working panel and one whose callback does nothing
 # --------------------------------------------------------------------------------------------
 
-def _code(src, n=[0]):
+def _code(src, n=None):
+    if n is None:
+        n = [0]
     n[0] += 1
     return {"cell_type": "code", "execution_count": None, "id": f"selfcheck-{n[0]}", "metadata": {},
             "outputs": [], "source": src}

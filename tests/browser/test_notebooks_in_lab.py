@@ -17,10 +17,9 @@ from __future__ import annotations
 
 import warnings
 
-import pytest
-
 import browserlab
 import labview
+import pytest
 
 pytestmark = pytest.mark.browser
 
@@ -66,4 +65,4 @@ def test_interactive_notebook_runs_and_responds(notebook, lab, record_timing, pr
     assert not problems, (f"{relpath} as the student sees it ({seen['counts']}; screenshot "
                           f"{seen.get('screenshot')}):\n  " + "\n  ".join(problems))
     if not result.detail.startswith("panel #0, slider #0"):
-        warnings.warn(f"{relpath}: the first slider of the first panel could not be judged; used {result.detail}")
+        warnings.warn(f"{relpath}: the first slider of the first panel could not be judged; used {result.detail}", stacklevel=2)

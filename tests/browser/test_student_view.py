@@ -18,10 +18,9 @@ from __future__ import annotations
 import json
 import time
 
-import pytest
-
 import browserlab
 import labview
+import pytest
 
 pytestmark = pytest.mark.browser
 
