@@ -10,7 +10,7 @@
   the notebook; each message names the cell (``In[k]``, as numbered by Run All), the figure
   and the text. The notebooks run once per session (a session-scoped cache).
 
-``python tests/test_figure_standard.py`` writes the current list of breaches (notes/breaches.txt).
+``python tests/test_figure_standard.py`` writes the current list of breaches (build/breaches.txt, git-ignored).
 """
 from __future__ import annotations
 
@@ -294,6 +294,6 @@ if __name__ == "__main__":
     import os
 
     os.environ.setdefault("GM_COURSE_TESTING", "1")
-    target = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "notes" / "breaches.txt"
+    target = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "build" / "breaches.txt"
     target.parent.mkdir(parents=True, exist_ok=True)
     print(f"{write_report(target)} breaches -> {target}")

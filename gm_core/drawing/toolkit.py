@@ -1,6 +1,6 @@
 """The rendering toolkit every chapter draws with, and the course's figure standard.
 
-* **The figure standard** (see ``notes/drawing-map.md``): figures are made by :func:`new_figure`
+* **The figure standard** (see CONTRIBUTING.md, "The figure standard"): figures are made by :func:`new_figure`
   or :func:`figure`, which fix the resolution (:data:`DPI`, one inch = 100 CSS px in JupyterLab,
   inline and in ``to_jshtml`` frames) and cap the width at :data:`MAX_WIDTH_IN` inches (900 px);
   :data:`STYLE` (applied on import) sets font sizes so no text is below :data:`MIN_TEXT_PX`
