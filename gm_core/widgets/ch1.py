@@ -91,7 +91,8 @@ class GroupAxiomsPanel(ScenePanel):
     scene_class = G.GroupOrNotScene
 
     def controls_spec(self):
-        return {"structure": W.Dropdown(options=G.CHOICES, value="(ℤ, ×)", description="set, operation"),
+        return {"structure": W.Dropdown(options=G.CHOICES, value="(ℤ, ×)", description="set, operation",
+                                 style={"description_width": "initial"}),
                 "a": slider(2.0, -4.0, 4.0, step=0.5, description="a", readout_format=".1f"),
                 "b": slider(3.0, -4.0, 4.0, step=0.5, description="b", readout_format=".1f"),
                 "c": slider(-1.0, -4.0, 4.0, step=0.5, description="c", readout_format=".1f")}

@@ -78,7 +78,7 @@ class GaitStokesPanel(Panel):
     Each slider change recomputes the three at fixed interactive resolutions (``EXACT_STEPS``,
     ``STOKES_SAMPLES``, ``BVI_SAMPLES``: all within about 1e-7 of the library's refined values)
     and redraws by blitting. The bars of each row (x, y, θ) are scaled by the largest of that
-    row's three values, so the axis never rescales; the numbers are in an HTML table under the
+    row's three values (rows under 5 % of the largest row stay small), so the axis never rescales; the numbers are in an HTML table under the
     figure (``self.numbers``: text rendered by the browser, not redrawn by matplotlib).
     """
 
@@ -137,10 +137,15 @@ class GaitStokesPanel(Panel):
 
     @staticmethod
     def bar_heights(exact, stokes, bvi):
-        """The bars (3 methods, 3 rows): each row divided by its largest |value| (a tiny row stays small)."""
+        """The bars (3 methods, 3 rows): each row divided by its largest |value|.
+
+        A row whose values are all below 5 % of the largest value of any row is divided by that 5 %
+        instead, so a row that is practically zero (2e-4 beside 0.27) draws as practically zero,
+        not as a full-height bar.
+        """
         vals = np.array([exact, stokes, bvi], dtype=float)
         top = np.abs(vals).max(axis=0)
-        scale = np.maximum(top, 1e-3 * top.max() + 1e-12)
+        scale = np.maximum(top, 0.05 * top.max() + 1e-12)
         return vals / scale
 
     def update(self, **v):
