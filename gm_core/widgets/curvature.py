@@ -24,7 +24,7 @@ __all__ = ["shaped_gait", "numbers_table", "GaitStokesPanel", "FrameFieldsPanel"
 FRAMES = ("middle link", "centre of mass", "minimum perturbation")
 #: ToggleButtons' default buttons are too narrow for "minimum perturbation" (cut to "minimum perturb…"):
 #: wide enough for the longest frame name at the widgets' 13 px font
-FRAME_BUTTONS = {"button_width": "12em"}
+FRAME_BUTTONS = {"button_width": "15em"}
 
 
 def shaped_gait(c1=0.0, c2=0.0, a=1.0, b=1.0, tilt=0.0, bend=0.0, period=1.0):
