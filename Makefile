@@ -11,7 +11,7 @@ LAB_ARGS ?=
 ROOT_FLAG := $(if $(filter 0,$(shell id -u)),--ServerApp.allow_root=True,)
 PYTEST_ARGS ?=
 
-.PHONY: setup lab lab-settings test exercises workspace bench screenshots clean help
+.PHONY: setup lab lab-settings test exercises workspace bench screenshots gradescope clean help
 
 help:
 	@echo "make lab        set up and open JupyterLab on the course (book/00-start-here.ipynb)"
@@ -19,6 +19,7 @@ help:
 	@echo "make exercises  regenerate exercises/ from solutions/"
 	@echo "make bench      print the benchmark tables"
 	@echo "make screenshots  a PNG of every figure of the course + index.html in build/screenshots/"
+	@echo "make gradescope  the Gradescope autograder zip in build/gradescope/ (EXERCISES=\"1.4 2.1\" for some)"
 
 $(PY):
 	$(PYTHON) -m venv $(VENV)
@@ -59,6 +60,11 @@ bench: setup
 # One PNG per figure (real browser when chromium exists, else headless matplotlib) + index.html.
 screenshots: setup
 	$(PY) tools/screenshots.py
+
+# Gradescope autograder zip (setup.sh + run_autograder installing the course from the zip itself).
+EXERCISES ?=
+gradescope: setup
+	$(PY) tools/gradescope_kit.py $(if $(EXERCISES),--exercises $(EXERCISES),)
 
 clean:
 	rm -rf $(VENV) .hypothesis
