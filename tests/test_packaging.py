@@ -168,7 +168,8 @@ def _imports(paths):
 
 
 def _third_party(names):
-    local = {p.stem for p in ROOT.rglob("*.py") if ".venv" not in p.parts} | {"gm_core"}
+    local = {p.stem for d in ("gm_core", "tests", "tools", "benchmarks") for p in (ROOT / d).rglob("*.py")}
+    local |= {"gm_core", "conftest"}
     stdlib = set(sys.stdlib_module_names)
     return {n for n in names if n not in stdlib and n not in local and not n.startswith("_")}
 
