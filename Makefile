@@ -11,7 +11,7 @@ LAB_ARGS ?=
 ROOT_FLAG := $(if $(filter 0,$(shell id -u)),--ServerApp.allow_root=True,)
 PYTEST_ARGS ?=
 
-.PHONY: setup lab lab-settings test exercises workspace bench screenshots gradescope clean help
+.PHONY: setup lab lab-settings test exercises workspace bench screenshots gradescope kits site clean help
 
 help:
 	@echo "make lab        set up and open JupyterLab on the course (book/00-start-here.ipynb)"
@@ -20,6 +20,8 @@ help:
 	@echo "make bench      print the benchmark tables"
 	@echo "make screenshots  a PNG of every figure of the course + index.html in build/screenshots/"
 	@echo "make gradescope  the Gradescope autograder zip in build/gradescope/ (EXERCISES=\"1.4 2.1\" for some)"
+	@echo "make kits       otter-grader master notebooks and nbgrader source notebooks in build/kits/"
+	@echo "make site       the course website, offline, in build/site/_build/html/ (checked in headless Chromium)"
 
 $(PY):
 	$(PYTHON) -m venv $(VENV)
@@ -66,5 +68,17 @@ EXERCISES ?=
 gradescope: setup
 	$(PY) tools/gradescope_kit.py $(if $(EXERCISES),--exercises $(EXERCISES),)
 
+# otter-grader / nbgrader versions of the exercises (their tools live in .venv-kits, made from PyPI).
+kits: setup
+	$(PY) tools/export_kits.py $(if $(EXERCISES),--exercises $(EXERCISES),)
+	$(PYTHON) tools/venvs.py kits
+
+# The website: Jupyter Book 1 in its own .venv-site (PyPI), front-end files from npm (site/), every
+# page executed, built, then opened in headless Chromium with the network blocked (axe-core too).
+site:
+	$(PYTHON) tools/venvs.py site
+	PYTHONPATH="$(CURDIR)" nice .venv-site/bin/python tools/build_site.py $(if $(PAGES),--only $(PAGES),)
+	PYTHONPATH="$(CURDIR)" .venv-site/bin/python tools/check_site.py
+
 clean:
-	rm -rf $(VENV) .hypothesis
+	rm -rf $(VENV) .hypothesis .venv-site .venv-kits site/node_modules build

@@ -34,8 +34,9 @@ import shutil
 import subprocess
 import sys
 import time
-import tomllib
 from pathlib import Path
+
+import tomllib
 
 ROOT = Path(__file__).resolve().parent.parent
 NPM_DIR = ROOT / "site"
@@ -262,8 +263,6 @@ def compress_animation(html, keep_every=1):
     if keep_every > 1:
         html = re.sub(r"(new Animation\(frames, img_id, slider_id, )(\d+(?:\.\d+)?)",
                       lambda k: k.group(1) + f"{float(k.group(2)) * keep_every:g}", html, count=1)
-        html = re.sub(r'(id="_anim_slider\w+" name="points"\s+min="0" max=")(\d+)"',
-                      lambda k: k.group(1) + f'{len(encoded) - 1}"', html, count=1)
     return html
 
 
@@ -288,6 +287,7 @@ def prepare(nb, rel, page_set):
                 n = len(_frames(src))
                 alt = f"Animation ({n} frames) for “{_heading_before(nb, i)}”; the player's buttons step through it"
                 src = re.sub(r'<img id="(_anim_img\w+)"', lambda k: f'<img id="{k.group(1)}" alt="{alt}"', src, count=1)
+                src = src.replace('class="anim-slider"', 'class="anim-slider" aria-label="Animation frame"', 1)
                 out["data"]["text/html"] = src
                 anims.append([out, src, 1])
             data = out.get("data", {})
@@ -346,6 +346,8 @@ def copy_static(src_dir):
     mods = npm_assets()
     static = src_dir / "_assets"      # copied into the site's _static; not _static itself, whose
                                       # every .js Jupyter Book would add to every page
+    static.mkdir(parents=True, exist_ok=True)
+    shutil.copyfile(NPM_DIR / "gm-site.css", static / "gm-site.css")
     for name, dest in (("mathjax/es5", "mathjax"), ("@jupyter-widgets/html-manager/dist", "widgets"),
                        ("font-awesome", "font-awesome")):
         if (static / dest).exists():
@@ -382,6 +384,7 @@ def write_book(src_dir, rels):
             "html_static_path": ["_assets"],
             "suppress_warnings": ["mystnb.unknown_mime_type", "myst.header"],
             "html_show_sourcelink": False,
+            "html_css_files": ["gm-site.css"],
         }},
     }
     (src_dir / "_config.yml").write_text(json.dumps(config, indent=1) + "\n")   # JSON is YAML
@@ -418,6 +421,9 @@ def finish(html_dir, alts, rels):
             return tag.replace("<img", f'<img alt="{value}"', 1)
 
         text = re.sub(r"<img\b[^>]*>", alt, text)
+        # the theme's search button is named "Search" but shows "Search Ctrl+K" (WCAG 2.5.3): let
+        # its visible text be its name
+        text = re.sub(r'(<button class="btn search-button-field[^"]*"[^>]*?) aria-label="Search"', r"\1", text)
         # sphinx-thebe (part of Jupyter Book, not enabled here) names its CDN script in a constant.
         # (and Jupyter Book writes that script twice, which is a page error: keep one, without the URL).
         thebe = re.compile(r'<script>const THEBE_JS_URL = "[^"]*";.*?</script>\s*', re.S)
