@@ -1,4 +1,5 @@
-"""Section 3.2 panel: parallel parking, a Lie-bracket motion (scene of :mod:`gm_core.drawing.nonholonomy`).
+"""Section 3.2 panel: parallel parking, a Lie-bracket motion
+(scene of :mod:`gm_core.drawing.nonholonomy`).
 
 Each panel pairs controls with its scene, which owns the figure, computes through the math
 modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
