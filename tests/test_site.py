@@ -1,8 +1,8 @@
 """The course website (tools/build_site.py), built for a representative subset of pages and read
 in headless Chromium with the network blocked (tools/check_site.py).
 
-The subset: the start page (live panels, math), chapter 4 (panels, formulas and an animation)
-and exercise 1.1 (check widgets). `make site` builds and checks every page. The build runs in its
+The subset: chapter 4 (live panels, formulas and an animation) and exercise 1.1 (check
+widgets). `make site` builds and checks every page. The build runs in its
 own venv (.venv-site, Jupyter Book 1 from PyPI, made by tools/venvs.py); the front-end files come
 from npm (site/package.json). Skipped, saying why, only when Chromium, npm or the packages are
 not to be had."""
@@ -22,7 +22,7 @@ import build_site  # noqa: E402
 import check_site  # noqa: E402
 import venvs  # noqa: E402
 
-PAGES = ["book/00-start-here", "book/04-geodesics-and-exp", "exercises/ex1_1"]
+PAGES = ["book/04-geodesics-and-exp", "exercises/ex1_1"]
 
 pytestmark = pytest.mark.slow
 
@@ -59,8 +59,8 @@ def test_every_page_passes_the_offline_browser_check(site):
 
 def test_the_check_saw_pictures_formulas_and_an_animation(site):
     _, _, results = site
-    start, ch4 = results["book/00-start-here.html"], results["book/04-geodesics-and-exp.html"]
-    assert start["images"] >= 1 and ch4["images"] >= 3, "live panels show their first state as a picture"
+    ch4 = results["book/04-geodesics-and-exp.html"]
+    assert ch4["images"] >= 3, "live panels show their first state as a picture"
     assert ch4["math_rendered"] >= 10, "chapter 4's formulas are rendered by MathJax"
     assert ch4["animations"] >= 1, "chapter 4's animation is on the page and was played"
 
@@ -77,11 +77,11 @@ def test_pages_are_light_and_served_from_the_site(site):
 
 def test_panels_carry_alt_text_and_links_point_at_site_pages(site):
     html, _, _ = site
-    text = (html / "book" / "00-start-here.html").read_text()
+    text = (html / "book" / "04-geodesics-and-exp.html").read_text()
     alts = re.findall(r'<img alt="([^"]+)"[^>]*_images/', text)
     assert alts and any(a.startswith("Interactive figure:") for a in alts), alts
     assert "workspace/ex" not in re.sub(r"<code.*?</code>", "", text, flags=re.S), "no links into workspace/"
-    assert "mybinder.org/v2/gh/" in text and "urlpath=lab/tree/book/00-start-here.ipynb" in text
+    assert "mybinder.org/v2/gh/" in text and "urlpath=lab/tree/book/04-geodesics-and-exp.ipynb" in text
     ex = (html / "exercises" / "ex1_1.html").read_text()
     assert "urlpath=lab/tree/exercises/ex1_1.ipynb" in ex
 

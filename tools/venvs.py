@@ -22,7 +22,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 TOOLS = {
     "kits": ["otter-grader>=6", "nbgrader>=0.9", "ipympl>=0.9.3"],
-    "site": ["jupyter-book>=1.0.4,<2", "playwright>=1.40"],
+    "site": ["jupyter-book>=1.0.4,<2", "playwright>=1.40", "pillow>=10.0"],
 }
 
 
