@@ -237,7 +237,7 @@ def prune_widgets(nb):
 
 
 def _frames(html):
-    return list(re.finditer(r'frames\[(\d+)\] = "data:image/(\w+);base64,(.*?)"\n', html, flags=re.S))
+    return list(re.finditer(r'frames\[(\d+)\] = "data:image/(\w+);base64,(.*?)";?\n', html, flags=re.S))
 
 
 def compress_animation(html, keep_every=1):
@@ -255,7 +255,7 @@ def compress_animation(html, keep_every=1):
         Image.open(io.BytesIO(raw)).save(buf, "WEBP", quality=82, method=4)
         encoded.append(base64.b64encode(buf.getvalue()).decode("ascii"))
     start, end = frames[0].start(), frames[-1].end()
-    body = "".join(f'  frames[{i}] = "data:image/webp;base64,{e}"\n' for i, e in enumerate(encoded))
+    body = "".join(f'  frames[{i}] = "data:image/webp;base64,{e}";\n' for i, e in enumerate(encoded))
     html = html[:start] + body + html[end:]
     html = re.sub(r"new Array\(\d+\)", f"new Array({len(encoded)})", html, count=1)
     html = re.sub(r'(<img id="_anim_img\w+" src=")data:image/\w+;base64,[^"]*"',
@@ -347,7 +347,8 @@ def copy_static(src_dir):
     static = src_dir / "_assets"      # copied into the site's _static; not _static itself, whose
                                       # every .js Jupyter Book would add to every page
     static.mkdir(parents=True, exist_ok=True)
-    shutil.copyfile(NPM_DIR / "gm-site.css", static / "gm-site.css")
+    for own in ("gm-site.css", "gm-site.js"):
+        shutil.copyfile(NPM_DIR / own, static / own)
     for name, dest in (("mathjax/es5", "mathjax"), ("@jupyter-widgets/html-manager/dist", "widgets"),
                        ("font-awesome", "font-awesome")):
         if (static / dest).exists():
@@ -385,6 +386,7 @@ def write_book(src_dir, rels):
             "suppress_warnings": ["mystnb.unknown_mime_type", "myst.header"],
             "html_show_sourcelink": False,
             "html_css_files": ["gm-site.css"],
+            "html_js_files": ["gm-site.js"],
         }},
     }
     (src_dir / "_config.yml").write_text(json.dumps(config, indent=1) + "\n")   # JSON is YAML
@@ -424,6 +426,9 @@ def finish(html_dir, alts, rels):
         # the theme's search button is named "Search" but shows "Search Ctrl+K" (WCAG 2.5.3): let
         # its visible text be its name
         text = re.sub(r'(<button class="btn search-button-field[^"]*"[^>]*?) aria-label="Search"', r"\1", text)
+        # the colour-mode button shows the titles of its icons (Light, Dark, System Settings)
+        text = text.replace('theme-switch-button pst-js-only" aria-label="Color mode"',
+                            'theme-switch-button pst-js-only" aria-label="Color mode: Light, Dark or System Settings"')
         # sphinx-thebe (part of Jupyter Book, not enabled here) names its CDN script in a constant.
         # (and Jupyter Book writes that script twice, which is a page error: keep one, without the URL).
         thebe = re.compile(r'<script>const THEBE_JS_URL = "[^"]*";.*?</script>\s*', re.S)

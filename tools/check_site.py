@@ -57,6 +57,15 @@ def serve(directory):
     return srv
 
 
+def _settle(page):
+    """Wait until no request has been open for 0.5 s (at most 20 s; a page that never settles is
+    judged as it is)."""
+    try:
+        page.wait_for_load_state("networkidle", timeout=20000)
+    except Exception:  # noqa: BLE001 - playwright's TimeoutError
+        pass
+
+
 def check_page(page, base, path):
     failed, outside, errors = [], [], []
 
@@ -72,7 +81,7 @@ def check_page(page, base, path):
     page.on("response", lambda r: failed.append(f"{r.status} {r.url}") if r.status >= 400 else None)
     page.on("pageerror", lambda e: errors.append(str(e)[:300]))
     page.goto(base + path, wait_until="load")
-    page.wait_for_load_state("networkidle")
+    _settle(page)
     page.wait_for_function("() => !window.MathJax || !MathJax.startup || MathJax.startup.promise", timeout=20000)
     page.evaluate("() => window.MathJax && MathJax.startup ? MathJax.startup.promise : null")
     out = {"page": path, "failed": failed, "outside": outside, "errors": errors}
@@ -81,7 +90,7 @@ def check_page(page, base, path):
     for y in range(0, height, 700):
         page.evaluate(f"window.scrollTo(0, {y})")
         page.wait_for_timeout(30)
-    page.wait_for_load_state("networkidle")
+    _settle(page)
     imgs = page.evaluate(_IMAGES)
     out["images"] = len(imgs)
     out["bad_images"] = [i for i in imgs if not (i["complete"] and i["nw"] > 0 and i["w"] > 0 and i["h"] > 0
@@ -133,6 +142,7 @@ def check(html_dir, pages=None):
                 page = browser.new_page(viewport={"width": 1366, "height": 768})
                 try:
                     results.append(check_page(page, base, path))
+                    print(f"  checked {path}", file=sys.stderr, flush=True)
                 finally:
                     page.close()
             browser.close()

@@ -154,7 +154,7 @@ def _robust_jshtml(html, width=None):
         html = re.sub(r'<img id="(_anim_img\w+)">', lambda k: f'<img id="{k.group(1)}" src="{first}"{size} '
                       'style="max-width: 100%; height: auto;">', html, count=1)
     html = re.sub(r"setTimeout\(function\(\) \{\s*(anim\w+ = new Animation\(.*?\);)\s*\}, 0\);",
-                  lambda k: ("(function start(tries) {\n"
+                  lambda k: (";(function start(tries) {  // ';': the frame lines above end without one\n"
                              "        if (document.getElementById(img_id) === null) {\n"
                              "            if (tries < 6000) { setTimeout(function() { start(tries + 1); }, 100); }\n"
                              "            return;\n"
