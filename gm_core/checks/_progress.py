@@ -11,7 +11,8 @@ Anywhere else (CI, ``solutions/``, ``exercises/``) it stays in this kernel's mem
 How it is never lost:
 
 * every change is a read-modify-write under a file lock (``filelock``, on
-  ``.progress.json.lock``), so kernels checking at the same moment never lose each other's parts;
+  ``.progress.json.lock``; the same ``flock`` without it), so kernels checking at the same moment
+  never lose each other's parts;
   the new record is written to a temporary file, flushed to disk and renamed over the old one;
 * a damaged or unreadable record (cut short, another encoding, not a JSON object, entries that
   make no sense) is moved aside as ``.progress.json.damaged-<date>-<time>`` (kept, never deleted),
@@ -33,8 +34,6 @@ import re
 import tempfile
 import time
 from pathlib import Path
-
-from filelock import FileLock
 
 PASSED, FAILED, UNATTEMPTED, IN_PROGRESS = "passed", "failed", "unattempted", "in progress"
 STATES = (PASSED, IN_PROGRESS, FAILED, UNATTEMPTED)
@@ -270,8 +269,42 @@ def _read_file(ws, fix):
     return entries, True
 
 
+class _Flock:
+    """The same lock as filelock's on POSIX (``flock`` on the same file), for a bare ``pip install
+    .`` without the [lab] extra; without fcntl (Windows) only the atomic write remains."""
+
+    def __init__(self, path, timeout):
+        self.path, self.timeout, self.fd = path, timeout, None
+
+    def __enter__(self):
+        try:
+            import fcntl
+        except ImportError:
+            return self
+        self.fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+        deadline = time.monotonic() + self.timeout
+        while True:
+            try:
+                fcntl.flock(self.fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                return self
+            except BlockingIOError:
+                if time.monotonic() > deadline:
+                    os.close(self.fd)
+                    raise TimeoutError(f"another kernel holds {self.path}") from None
+                time.sleep(0.01)
+
+    def __exit__(self, *exc):
+        if self.fd is not None:
+            os.close(self.fd)            # closing the file releases the lock
+
+
 def _lock(ws):
-    return FileLock(str(ws / (PROGRESS_FILE + LOCK_SUFFIX)), timeout=LOCK_TIMEOUT)
+    path = str(ws / (PROGRESS_FILE + LOCK_SUFFIX))
+    try:
+        from filelock import FileLock
+    except ImportError:
+        return _Flock(path, LOCK_TIMEOUT)
+    return FileLock(path, timeout=LOCK_TIMEOUT)
 
 
 def _merge(data, extra):
