@@ -21,7 +21,7 @@ import copy
 
 import numpy as np
 
-from . import _progress
+from . import _grading, _progress
 from ._answers import (  # noqa: F401
     describe,
     fmt_args,
@@ -43,7 +43,6 @@ from ._exercise import (  # noqa: E402,F401
     solutions_viewed,
 )
 from ._progress import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED
-from . import _grading
 from ._sandbox import Unattempted, Wrong, collect, decode_outcome, safe_text
 
 
@@ -461,19 +460,10 @@ class CustomPart(Part):
 
 
 # ------------------------------------------------------------------------------ input helpers
-#: The grader's per-run salt (None outside grading): mixed into every probe input's seed, so the
-#: random inputs of a graded run cannot be known when the notebook is written.
-_PROBE_SALT = [None]
-
-
-def set_probe_salt(salt):
-    """Set (or clear, with None) the salt mixed into the seeds of the checkers' random inputs."""
-    _PROBE_SALT[0] = None if salt is None else int(salt)
-
-
 def probe_rng(seed):
-    """The random generator for a checker's inputs: ``seed``, salted by the grader when grading."""
-    salt = _PROBE_SALT[0]
+    """The random generator for a checker's inputs: ``seed``, salted by the grader when grading
+    (:func:`._grading.set_probe_salt`), so a graded run's inputs cannot be known in advance."""
+    salt = _grading.probe_salt()
     return np.random.default_rng(seed if salt is None else [int(seed), salt])
 
 
@@ -491,5 +481,4 @@ def rng_inputs(seed, n, make, edges=()):
 __all__ = ["PASSED", "FAILED", "UNATTEMPTED", "IN_PROGRESS", "REGISTRY", "Verdict", "Part",
            "FunctionPart", "TuplePart", "CustomPart", "Exercise", "Wrong", "Unattempted",
            "progress", "part_progress", "reset_progress", "exercise_ids", "rng_inputs", "probe_rng",
-           "set_probe_salt",
            "to_array", "to_numbers", "describe", "fmt_args", "is_starter", "is_sympy"]

@@ -286,6 +286,9 @@ def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=
                 elif streams[fd] == "e":
                     if len(evidence) < MAX_EVIDENCE_BYTES:
                         evidence += chunk
+                        if b'"t": "done"' in evidence[-200:]:
+                            streams.clear()     # the runner has said all: end the sandbox now
+                            break
                     else:
                         killed = killed or "evidence"
                 elif len(log) < MAX_LOG_BYTES:

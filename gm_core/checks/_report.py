@@ -41,6 +41,7 @@ def _atomic_write(path: Path, text: str):
 
 def results(rows, *, message="", elapsed=0.0, visibility="visible", max_score=None):
     """Gradescope's results dict. ``rows`` carry ``visibility`` per test (default ``visibility``)."""
+    check_visibility(visibility)
     tests = []
     for r in rows:
         name = f"{r['notebook']}: exercise {r['exercise']} part {r['part']}" if r["part"] else r["notebook"]
@@ -53,7 +54,7 @@ def results(rows, *, message="", elapsed=0.0, visibility="visible", max_score=No
     out = {"score": total, "execution_time": round(float(elapsed), 1), "output": message,
            "visibility": visibility, "stdout_visibility": "hidden", "tests": tests}
     if max_score is not None and top > 0 and abs(top - float(max_score)) > 1e-9:
-        out["score"] = round(total * float(max_score) / top, 4)
+        out["score"] = round(total * float(max_score) / top, 6)
         out["output"] = (message + "\n" if message else "") + (
             f"Points: {total:g} of {top:g}, scaled to the assignment's maximum of {float(max_score):g}.")
     return out

@@ -39,9 +39,10 @@ import re
 import secrets
 import sys
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from . import _core, _report
+from . import _grading, _report
 from ._core import REGISTRY, exercise_ids
 from ._evidence import judge_part, summarise
 from ._isolate import Limits, run_submission, sandbox_problem
@@ -176,7 +177,7 @@ def _rows_for(ex_id, rel, weights, part_vis, message_of):
 
 
 def grade(paths, out_dir, weights=None, *, limits=None, sandbox=True, assignment=None,
-          visibility="visible"):
+          visibility="visible", jobs=1):
     """Grade every submission under ``paths``; write results.json and grades.csv; return results."""
     t0 = time.monotonic()
     limits = limits or Limits()
@@ -192,7 +193,7 @@ def grade(paths, out_dir, weights=None, *, limits=None, sandbox=True, assignment
     subs = _submissions(paths)
     hide = [str(Path(out_dir).resolve())] + [str(Path(p).resolve()) for p in paths]
     hide += [str(q.resolve()) for _, found, _ in subs for q, _ in found]
-    salt, rows, lines = secrets.randbits(62), [], []
+    salt, plan, lines = secrets.randbits(62), [], []
     expected = assignment.get("exercises")
     for prefix, found, skipped in subs:
         lines += skipped
@@ -203,8 +204,8 @@ def grade(paths, out_dir, weights=None, *, limits=None, sandbox=True, assignment
                 why = (f"there is no exercise {ex_id} in this course" if ex_id else
                        "it is not one of the course's exercise notebooks (exN_M.ipynb, e.g. "
                        "ex1_4.ipynb)")
-                rows.append({"notebook": rel, "exercise": "", "part": "", "status": "failed",
-                             "score": 0.0, "max_score": 0.0, "message": f"Not graded: {why}."})
+                plan.append(("row", {"notebook": rel, "exercise": "", "part": "", "status": "failed",
+                                     "score": 0.0, "max_score": 0.0, "message": f"Not graded: {why}."}))
                 lines.append(f"{rel}: not graded ({why})")
                 continue
             if expected is not None and ex_id not in expected:
@@ -220,15 +221,31 @@ def grade(paths, out_dir, weights=None, *, limits=None, sandbox=True, assignment
         for ex_id, (path, rel, note, _, data) in sorted(chosen.items()):
             if note:
                 lines.append(f"{rel}: {note}")
-            rows += _grade_one(path, rel, ex_id, data, limits, sandbox, salt, hide, weights,
-                               part_vis, lines)
+            plan.append(("run", (path, rel, ex_id, data)))
         for ex_id in expected or []:
             if ex_id not in chosen:
                 want = f"{prefix}ex{ex_id.replace('.', '_')}.ipynb"
                 msg = (f"{want} was not found in the submission (upload the exercise notebook "
                        "under this name)")
-                rows += _rows_for(ex_id, want, weights, part_vis, lambda n, p, m=msg: ("failed", m))
+                plan.append(("missing", (want, ex_id, msg)))
                 lines.append(msg)
+    runs = [item for kind, item in plan if kind == "run" and item[3] is not None]
+    done = {}
+    with ThreadPoolExecutor(max_workers=max(1, int(jobs))) as pool:
+        futures = {pool.submit(run_submission, path, limits=limits, hide=hide, sandbox=sandbox,
+                               salt=salt): path for path, _, _, _ in runs}
+        for fut, path in futures.items():
+            done[path] = fut.result()
+    rows = []
+    for kind, item in plan:
+        if kind == "row":
+            rows.append(item)
+        elif kind == "missing":
+            want, ex_id, msg = item
+            rows += _rows_for(ex_id, want, weights, part_vis, lambda n, p, m=msg: ("failed", m))
+        else:
+            path, rel, ex_id, data = item
+            rows += _judge_one(path, rel, ex_id, data, done.get(path), weights, part_vis, lines)
     if not rows:
         lines.insert(0, "No exercise notebook of this course was found in the submission: upload "
                      "the notebooks named exN_M.ipynb (e.g. ex1_4.ipynb) from your workspace.")
@@ -237,26 +254,25 @@ def grade(paths, out_dir, weights=None, *, limits=None, sandbox=True, assignment
     return res
 
 
-def _grade_one(path, rel, ex_id, data, limits, sandbox, salt, hide, weights, part_vis, lines):
+def _judge_one(path, rel, ex_id, data, run, weights, part_vis, lines):
     ex = REGISTRY[ex_id]
-    if data is None:
+    if data is None or run is None:
         _, why = _metadata(path)
         msg = f"the notebook could not be graded: {why}"
         lines.append(f"{rel}: {msg}")
         return _rows_for(ex_id, rel, weights, part_vis, lambda n, p: ("failed", msg))
-    run = run_submission(path, limits=limits, hide=hide, sandbox=sandbox, salt=salt)
     cells = data.get("cells", [])
     sources = {}
     for i, c in enumerate(cells):
         src = c.get("source", "") if isinstance(c, dict) else ""
         sources[i] = "".join(src) if isinstance(src, list) and all(isinstance(s, str) for s in src) \
             else (src if isinstance(src, str) else "")
-    old = _core._PROBE_SALT[0]
+    old = _grading.probe_salt()
     try:
-        _core.set_probe_salt(run["salt"])
+        _grading.set_probe_salt(run["salt"])
         verdicts, problem, notes, where = summarise(run, ex, sources)
     finally:
-        _core.set_probe_salt(old)
+        _grading.set_probe_salt(old)
     if problem:
         lines.append(f"{rel}: {problem}")
     lines += [f"{rel}: {n}" for n in notes]
@@ -288,6 +304,7 @@ def main(argv=None):
     ap.add_argument("--notebook-timeout", type=float, default=900.0, help="seconds per notebook in all")
     ap.add_argument("--memory", type=int, default=4096, help="MiB of memory per notebook")
     ap.add_argument("--max-processes", type=int, default=256, help="processes per notebook")
+    ap.add_argument("--jobs", type=int, default=1, help="notebooks run at the same time (default 1)")
     ap.add_argument("--no-sandbox", action="store_true",
                     help="run without bubblewrap (only where each submission already has its own "
                     "container, e.g. on Gradescope)")
@@ -302,7 +319,7 @@ def main(argv=None):
         limits = Limits(args.cell_timeout, args.time_limit, args.notebook_timeout, args.memory,
                         args.max_processes)
         results = grade(args.paths, args.out, weights, limits=limits, sandbox=not args.no_sandbox,
-                        assignment=assignment, visibility=args.visibility)
+                        assignment=assignment, visibility=args.visibility, jobs=args.jobs)
     except SandboxUnavailable as exc:
         print(f"grade: refusing to run student notebooks without a sandbox: {exc}. Install "
               "bubblewrap, or pass --no-sandbox where each submission already runs in its own "
