@@ -26,7 +26,7 @@ import numpy as np
 import pytest
 
 from gm_core.checks import _evidence, _grading, _report, ex1_1, ex1_2
-from gm_core.checks._core import REGISTRY, exercise_ids
+from gm_core.checks._exercise import REGISTRY, exercise_ids
 from gm_core.checks._isolate import sandbox_problem
 from gm_core.checks.grade import identify, leftover_reason, load_assignment
 

@@ -43,8 +43,8 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from . import _grading, _report
-from ._core import REGISTRY, exercise_ids
-from ._evidence import judge_part, summarise
+from ._evidence import summarise
+from ._exercise import REGISTRY, exercise_ids
 from ._isolate import Limits, run_submission, sandbox_problem
 from ._progress import PASSED
 
@@ -337,5 +337,4 @@ def main(argv=None):
     return 0
 
 
-__all__ = ["grade", "main", "judge_part", "identify", "leftover_reason", "load_assignment",
-           "SandboxUnavailable", "Limits"]
+__all__ = ["grade", "main", "identify", "leftover_reason", "load_assignment", "SandboxUnavailable"]
