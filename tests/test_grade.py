@@ -115,7 +115,8 @@ def tamper_cells(out, honest):
             "daemon = ('import time, os\\ntime.sleep(2.5)\\nfor f in (\"results.json\", \"grades.csv\"):\\n'\n"
             "          '    open(os.path.join(%r, f), \"w\").write(\"forged\")\\n' % OUT)\n"
             f"subprocess.Popen([sys.executable, '-c', daemon, {TOKEN!r}], start_new_session=True)",
-            "ex1_2.a.check(lambda h, g: h * g)",
+            "try:\n    big = bytearray(3 << 30)        # over the 2 GiB memory limit\n"
+            "except MemoryError:\n    ex1_2.a.check(lambda h, g: h * g)",
             "os.kill(os.getppid(), 9)",
             "ex1_2.b.check(lambda h, g: np.diag(h))"]
 
@@ -144,7 +145,7 @@ def batch(tmp_path_factory):
     course, pth = tree_hash(ROOT / "gm_core"), honest.read_bytes()
     t = time.monotonic()
     res = grade_cli(tmp / "tamper", tmp / "honest", tmp / "forger", tmp / "solutions",
-                    tmp / "exercises", "--out", out, "--cell-timeout", "4", "--jobs", "3", cwd=tmp)
+                    tmp / "exercises", "--out", out, "--cell-timeout", "4", "--jobs", "3", "--memory", "2048", cwd=tmp)
     elapsed = time.monotonic() - t
     assert res.returncode == 0, res.stderr + res.stdout
     snapshot = {f: (out / f).read_bytes() for f in ("results.json", "grades.csv")}
@@ -181,7 +182,7 @@ def test_forged_evidence_never_passes(batch):
 
 @needs_sandbox
 def test_tampering_reaches_nothing_and_no_process_survives(batch):
-    assert scores(batch, "tamper") == {"a": 2.0, "b": 0.0, "c": 0.0}
+    assert scores(batch, "tamper") == {"a": 2.0, "b": 0.0, "c": 0.0}   # a: the memory limit held
     assert "not checked before" in rows_of(batch, "tamper")["b"]["message"]
     time.sleep(3.0)                                      # the daemon would have written by now
     for f, data in batch["snapshot"].items():
@@ -355,3 +356,28 @@ def test_results_are_written_atomically(tmp_path):
     with pytest.raises(ValueError, match="visibility"):
         _report.write(rows, tmp_path, visibility="later")
     assert ex1_1.a.weight == 1.0 and REGISTRY["1.4"].parts["a"].weight == 2.0
+
+
+def test_every_way_a_run_ends_gives_every_part_a_row_and_a_reason():
+    ex = REGISTRY["1.2"]
+    good = json.dumps({"n": "s", "ex": "1.2", "part": "a", "o": [
+        {"k": "ok", "v": {"__nd__": [2], "d": list(map(float, ex.parts["a"].ref(*a)))}}
+        for a in ex.parts["a"].inputs()], "out": ""})
+    base = [{"t": "start"}, {"t": "k", "cell": 1, "line": good}, {"t": "cell", "i": 1, "status": "ok"}]
+    endings = {"killed by the notebook limit": ([], "time", "longer than the time allowed"),
+               "kernel died": ([{"t": "cell", "i": 2, "status": "died"}], "", "kernel stopped in cell 3"),
+               "cell limit, then killed": ([{"t": "cell", "i": 2, "status": "timeout"}], "",
+                                           "after it exceeded the cell limit"),
+               "runner killed": ([], "", "stopped its own grading"),
+               "unreadable": ([{"t": "fatal", "m": "the notebook could not be read (ValueError)"}], "",
+                              "could not be read"),
+               "finished": ([{"t": "done"}], "", "")}
+    for what, (tail, killed, phrase) in endings.items():
+        run = {"nonce": "s", "records": base + tail, "killed": killed}
+        verdicts, problem, notes, _ = _evidence.summarise(run, ex, {1: "ex1_2.a.check(f)", 2: "boom()"})
+        assert set(verdicts) == {"a", "b", "c"}, what
+        assert verdicts["a"][0].passed and verdicts["a"][1] == 1, what     # checked before: kept
+        assert phrase in problem if phrase else problem == "", (what, problem)
+        for name in "bc":
+            v = verdicts[name][0]
+            assert not v.passed and (phrase in v.message if phrase else "no check" in v.message), (what, v)

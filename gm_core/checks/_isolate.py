@@ -103,7 +103,7 @@ class _Cgroups:
     """Child cgroups (memory, pids) for one sandbox, where this process may create them."""
 
     def __init__(self, limits, tag):
-        self.dirs = []
+        self.dirs, self.kinds = [], []
         try:
             found = _own_cgroup_dirs()
         except Exception:  # noqa: BLE001
@@ -119,13 +119,12 @@ class _Cgroups:
                 else:
                     (d / "memory.max").write_text(str(limits.memory_mb << 20))
                 self.dirs.append(d)
+                self.kinds.append(ctrl)
             except OSError:
                 try:
                     d.rmdir()
                 except OSError:
                     pass
-        self.kinds = sorted({d.parent.name if d.parent.name in ("memory", "pids") else "cgroup"
-                             for d in self.dirs})
 
     def join(self):  # runs in the child between fork and exec
         for d in self.dirs:
@@ -231,7 +230,7 @@ def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=
               "mpl_cache": _mpl_cache()}
     (inbox / "config.json").write_text(json.dumps(config))
     cmd = [sys.executable, "-m", "gm_core.checks._runner", f"{inside}/config.json"]
-    cgroups = _Cgroups(limits, f"gm-grade-{os.getpid()}-{secrets.token_hex(4)}") if sandbox else None
+    cgroups = _Cgroups(limits, f"gm-grade-{os.getpid()}-{secrets.token_hex(4)}")
     if sandbox:
         cmd = ["bwrap", "--ro-bind", "/", "/", "--dev", "/dev", "--proc", "/proc",
                "--size", str(limits.tmp_mb << 20), "--perms", "1777", "--tmpfs", "/tmp",
@@ -244,8 +243,7 @@ def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=
     is_root = os.geteuid() == 0
 
     def preexec():
-        if cgroups is not None:
-            cgroups.join()
+        cgroups.join()
         mem = limits.memory_mb << 20
         for res, val in ((resource.RLIMIT_AS, mem), (resource.RLIMIT_CORE, 0),
                          (resource.RLIMIT_FSIZE, limits.tmp_mb << 20)):
@@ -301,8 +299,7 @@ def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=
         if proc is not None:
             _stop(proc)
         os.close(rfd)
-        if cgroups is not None:
-            cgroups.close()
+        cgroups.close()
         shutil.rmtree(private, ignore_errors=True)
     records = _records(evidence)
     for r in records:
@@ -312,7 +309,7 @@ def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=
         _killpg(kernel_pid)   # the kernel has its own session; without a pid namespace end it here
     return {"records": records, "log": log.decode("utf-8", "replace")[-4000:], "killed": killed,
             "seconds": time.monotonic() - started, "nonce": config["nonce"], "salt": config["salt"],
-            "limits": sorted(cgroups.kinds) if cgroups else []}
+            "cgroups": sorted(cgroups.kinds)}
 
 
 def _user_processes():

@@ -274,7 +274,12 @@ def main(argv=None):
     _not_dumpable()
     with open(argv[0], encoding="utf-8") as f:
         config = json.load(f)
-    return run(config)
+    try:
+        return run(config)
+    except Exception as exc:  # noqa: BLE001 - say so on the channel rather than vanish
+        _Out(int(config["evidence_fd"])).send(
+            {"t": "fatal", "m": f"the grader's runner failed ({type(exc).__name__}: {exc})"[:300]})
+        raise
 
 
 if __name__ == "__main__":
