@@ -25,9 +25,9 @@ from ..geometry.estimates import (
     shaped_gait,
 )
 from ..systems import LowReSwimmer
-from .base import SingularFlag, TrailArtist, animate
 from .connection import ConnectionFieldArtist, shape_grid, style_shape_axes
 from .motion import SystemArtist
+from .primitives import SingularFlag, TrailArtist, animate
 from .toolkit import PALETTE, Scene, freeze_layout, new_figure
 
 __all__ = ["ROWS", "LIMITS", "CurvatureMapArtist", "GaitArtist", "curvature_maps_figure", "animate_swimmer",
