@@ -88,9 +88,9 @@ def outcome_error(o, what, label):
         raise Wrong(f"{what} took longer than {o['m']} s when called with {label}, so the check "
                     "stopped it (an endless loop? a very slow method?). Your kernel is fine; "
                     "set_time_limit(seconds) allows more time.")
-    if k == "crash":
-        raise Wrong(f"{what} crashed the Python process it ran in when called with {label} (too "
-                    "much memory, or a recursion the interpreter could not survive).")
+    if k == "crash":  # the sandbox says how ("x"): a signal, an exit status, a segfault
+        how = o.get("x") or "too much memory, or a recursion the interpreter could not survive"
+        raise Wrong(f"{what} crashed the Python process it ran in when called with {label} ({how}).")
     raise Wrong(f"{what} could not be checked further after an earlier call stopped.")
 
 
