@@ -282,6 +282,8 @@ def test_leftovers_and_identification(tmp_path):
     assert identify(write_nb(tmp_path / "x.ipynb", [], "a string"))[0] is None
     (tmp_path / "deep.ipynb").write_text("{" + '"a":' * 1 + "[" * 100000)
     assert identify(tmp_path / "deep.ipynb")[0] is None
+    (tmp_path / "ex1_1.ipynb").symlink_to("/dev/zero")            # never read, never run
+    assert identify(tmp_path / "ex1_1.ipynb") == ("1.1", "", None)
 
 
 def test_assignment_validation(tmp_path):
