@@ -183,7 +183,8 @@ def test_forged_evidence_never_passes(batch):
 @needs_sandbox
 def test_tampering_reaches_nothing_and_no_process_survives(batch):
     assert scores(batch, "tamper") == {"a": 2.0, "b": 0.0, "c": 0.0}   # a: the memory limit held
-    assert "not checked before" in rows_of(batch, "tamper")["b"]["message"]
+    msg = rows_of(batch, "tamper")["b"]["message"]
+    assert "not checked before the notebook ended its own grading in cell 3 (`os.kill" in msg, msg
     time.sleep(3.0)                                      # the daemon would have written by now
     for f, data in batch["snapshot"].items():
         assert (batch["out"] / f).read_bytes() == data
@@ -281,6 +282,8 @@ def test_leftovers_and_identification(tmp_path):
     assert identify(write_nb(tmp_path / "x.ipynb", [], "a string"))[0] is None
     (tmp_path / "deep.ipynb").write_text("{" + '"a":' * 1 + "[" * 100000)
     assert identify(tmp_path / "deep.ipynb")[0] is None
+    (tmp_path / "ex1_1.ipynb").symlink_to("/dev/zero")            # never read, never run
+    assert identify(tmp_path / "ex1_1.ipynb") == ("1.1", "", None)
 
 
 def test_assignment_validation(tmp_path):
@@ -365,10 +368,12 @@ def test_every_way_a_run_ends_gives_every_part_a_row_and_a_reason():
         for a in ex.parts["a"].inputs()], "out": ""})
     base = [{"t": "start"}, {"t": "k", "cell": 1, "line": good}, {"t": "cell", "i": 1, "status": "ok"}]
     endings = {"killed by the notebook limit": ([], "time", "longer than the time allowed"),
-               "kernel died": ([{"t": "cell", "i": 2, "status": "died"}], "", "kernel stopped in cell 3"),
+               "kernel died": ([{"t": "run", "i": 2}, {"t": "cell", "i": 2, "status": "died"}], "",
+                               "kernel stopped in cell 3"),
                "cell limit, then killed": ([{"t": "cell", "i": 2, "status": "timeout"}], "",
                                            "after it exceeded the cell limit"),
-               "runner killed": ([], "", "stopped its own grading"),
+               "runner killed": ([{"t": "run", "i": 2}], "", "ended its own grading in cell 3"),
+               "runner killed between cells": ([], "", "ended its own grading"),
                "unreadable": ([{"t": "fatal", "m": "the notebook could not be read (ValueError)"}], "",
                               "could not be read"),
                "finished": ([{"t": "done"}], "", "")}
