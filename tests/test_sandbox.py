@@ -195,6 +195,12 @@ time.sleep(30)
     finally:
         proc.kill()
         proc.wait()
+        for f in tmp_path.glob("*.pid"):          # should anything have escaped: not past the test
+            try:
+                if str(tmp_path).encode() in Path(f"/proc/{f.stem}/cmdline").read_bytes():
+                    os.kill(int(f.stem), signal.SIGKILL)
+            except OSError:
+                pass
 
 
 # ------------------------------------------------------------------------------ what happened, said plainly
