@@ -386,3 +386,15 @@ def test_every_way_a_run_ends_gives_every_part_a_row_and_a_reason():
         for name in "bc":
             v = verdicts[name][0]
             assert not v.passed and (phrase in v.message if phrase else "no check" in v.message), (what, v)
+
+
+@needs_sandbox
+def test_the_notebook_limit_ends_the_sandbox_and_everything_in_it(tmp_path):
+    from gm_core.checks._isolate import Limits, run_submission
+    nb = write_nb(tmp_path / "ex1_1.ipynb", ["import time\ntime.sleep(10**6)"])
+    t = time.monotonic()
+    run = run_submission(nb, limits=Limits(notebook_timeout=2.0), hide=[tmp_path])
+    assert run["killed"] == "time" and time.monotonic() - t < 30
+    verdicts, problem, _, _ = _evidence.summarise(run, REGISTRY["1.1"], {})
+    assert "longer than the time allowed" in problem and not any(v.passed for v, _ in verdicts.values())
+    assert alive_with(str(tmp_path)) == []          # bwrap (its command line names tmp_path) is gone
