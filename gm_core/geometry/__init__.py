@@ -10,14 +10,12 @@ book's (``xi = -A(r) r_dot``, (3.10)).
 * :mod:`.optimal`: ``fourier_gait``, ``optimize_gait``, ``sysplotter_stroke``.
 """
 from .coordinates import (
-                          MinimumPerturbationCoordinates,
-                          Reframed,
-                          body_frames,
-                          centre_of_mass,
-                          centre_of_mass_coordinates,
-                          drift_and_turn,
-                          minimum_perturbation_coordinates,
-                          reframe,
+    body_frames,
+    centre_of_mass,
+    centre_of_mass_coordinates,
+    drift_and_turn,
+    minimum_perturbation_coordinates,
+    reframe,
 )
 from .curvature import body_velocity_integral, connection_derivative, constraint_curvature, stokes_estimate
 from .metrics import dissipation_metric, efficiency, path_length
@@ -25,7 +23,7 @@ from .optimal import FourierGait, OptimalGait, fourier_gait, gait_objective, opt
 from .strokes import SYSPLOTTER_STROKES, sysplotter_stroke, sysplotter_swimmer
 
 __all__ = ["constraint_curvature", "connection_derivative", "stokes_estimate", "body_velocity_integral",
-           "Reframed", "reframe", "centre_of_mass", "drift_and_turn", "centre_of_mass_coordinates", "minimum_perturbation_coordinates",
-           "MinimumPerturbationCoordinates", "body_frames", "dissipation_metric", "path_length", "efficiency",
+           "reframe", "body_frames", "centre_of_mass", "drift_and_turn", "centre_of_mass_coordinates", "minimum_perturbation_coordinates",
+           "dissipation_metric", "path_length", "efficiency",
            "FourierGait", "OptimalGait", "fourier_gait", "gait_objective", "optimize_gait",
            "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer"]

@@ -20,8 +20,10 @@ import numpy as np
 
 from .._validate import SingularShapeError, as_array, check_int, check_option, positive_number
 from ..groups import SE2, matvec
-from ..locomotion import Gait, check_gait, net_displacement, trajectory
-from .curvature import check_system, connection_derivative
+from ..locomotion import Gait, check_gait, check_system, net_displacement, trajectory
+from ..systems.minimum_perturbation import MinimumPerturbationFrame
+from ..systems.reframed import Reframed
+from .curvature import connection_derivative
 from .metrics import metric_function, path_length
 
 __all__ = ["FourierGait", "fourier_gait", "optimize_gait", "OptimalGait", "gait_objective"]
@@ -249,7 +251,8 @@ def optimize_gait(system, objective="displacement", order=3, start=None, *, coor
     check_system(system)
     if coordinates not in ("minimum perturbation", "given"):
         raise ValueError(f"coordinates must be 'minimum perturbation' or 'given'; got {coordinates!r}")
-    if coordinates == "minimum perturbation" and not hasattr(system, "discrete_divergence"):
+    already = isinstance(system, Reframed) and isinstance(system.frame, MinimumPerturbationFrame)
+    if coordinates == "minimum perturbation" and not already:
         system = minimum_perturbation_coordinates(system, bounds)
     if objective not in ("displacement", "efficiency"):
         raise ValueError(f"objective must be 'displacement' or 'efficiency'; got {objective!r}")

@@ -15,11 +15,15 @@ from .diff_drive import DifferentialDrive
 from .floating_snake import FloatingSnake
 from .high_re import HighReSwimmer, ellipse_added_mass
 from .kinematic_snake import KinematicSnake
+from .link_chain import LinkChain
 from .low_re import LowReSwimmer
+from .minimum_perturbation import MinimumPerturbationFrame
+from .reframed import BodyFrame, PoseFrame, Reframed
 from .three_link import LinkMetricSystem, ThreeLinkSystem
 
 __all__ = ["LocomotionSystem", "Part", "ThreeLinkSystem", "LinkMetricSystem", "DifferentialDrive", "Ackerman",
            "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer", "ellipse_added_mass",
+           "LinkChain", "BodyFrame", "PoseFrame", "Reframed", "MinimumPerturbationFrame",
            "ALL_SYSTEMS"]
 
 
