@@ -41,7 +41,7 @@ __all__ = [
     "rp_arm_frames", "rp_arm_body_jacobians", "three_link_chain", "three_link_frames",
     "three_link_poses", "three_link_jacobians", "beta_frame_jacobian", "links_from_beta_frame", "com_frame",
     "com_frame_jacobians", "circle_constraints", "sphere_plane_constraints",
-    "sample_accessible_manifold", "accessible_circle", "link_chain_poses", "link_chain_jacobians",
+    "sample_accessible_manifold", "accessible_circle",
 ]
 
 # ------------------------------------------------------------------------ book examples
@@ -391,62 +391,3 @@ def accessible_circle(n=100):
     t = np.linspace(0.0, 2 * np.pi, n)
     return np.stack([np.cos(t), np.sin(t), np.ones_like(t)], -1)
 
-
-# ------------------------------------------------------------------ chains of any length
-def _chain_args(alpha, lengths):
-    if isinstance(lengths, (str, bytes)) or np.ndim(lengths) != 1 or len(lengths) < 2:
-        raise ValueError(f"lengths must be a sequence of N >= 2 positive link lengths; got {lengths!r}")
-    L = _lengths(lengths, len(lengths))
-    alpha = as_array(alpha, "alpha", (L.size - 1,), what=f" (the {L.size - 1} joint angles of a {L.size}-link chain)")
-    return alpha, L
-
-
-def link_chain_poses(alpha, lengths):
-    """Link-centre poses ``(..., N, 3)`` of an N-link chain in link 1's centre frame and their body Jacobians.
-
-    The chain of fig. 2.8 with any number of links: link i + 1 is turned by alpha_i relative to
-    link i (chapter 2's convention), each link frame sits at its centre with x along the link
-    towards link N. Returns ``(P, B)``: ``P (..., N, 3)`` the poses relative to link 1 and
-    ``B (..., N, 3, N - 1)`` the body-velocity Jacobians of those relative poses,
-    ``P_i^-1 dP_i = B_i dalpha`` (link 1 held still). A joint j turns every link beyond it about
-    the joint: ``d p_i / d alpha_j = perp(p_i - q_j)`` for i > j, ``d theta_i / d alpha_j = 1``.
-    """
-    alpha, L = _chain_args(alpha, lengths)
-    N, n = L.size, L.size - 1
-    batch = alpha.shape[:-1]
-    th = np.concatenate([np.zeros(batch + (1,)), np.cumsum(alpha, axis=-1)], -1)       # (..., N)
-    c, s = np.cos(th), np.sin(th)
-    half = L / 2
-    # joint j (between links j and j + 1) and link centres, all in link 1's frame
-    step_x, step_y = half * c, half * s
-    qx = np.cumsum(2 * step_x, axis=-1)[..., :n] - step_x[..., :1]
-    qy = np.cumsum(2 * step_y, axis=-1)[..., :n] - step_y[..., :1]
-    px = np.concatenate([np.zeros(batch + (1,)), qx + step_x[..., 1:]], -1)
-    py = np.concatenate([np.zeros(batch + (1,)), qy + step_y[..., 1:]], -1)
-    P = np.stack([px, py, th], -1)
-    beyond = (np.arange(N)[:, None] > np.arange(n)[None, :]).astype(float)             # (N, n): i > j
-    dx = -(py[..., :, None] - qy[..., None, :]) * beyond                              # d p_x,i / d alpha_j
-    dy = (px[..., :, None] - qx[..., None, :]) * beyond
-    B = np.empty(batch + (N, 3, n))
-    B[..., 0, :] = c[..., None] * dx + s[..., None] * dy                              # R(-theta_i) dp
-    B[..., 1, :] = -s[..., None] * dx + c[..., None] * dy
-    B[..., 2, :] = beyond
-    return P, B
-
-
-def link_chain_jacobians(P, B, beta, B_beta):
-    """Link Jacobians ``(..., N, 3, 3 + n)`` mapping (xi, alpha_dot) to each link's body velocity.
-
-    ``P, B`` from :func:`link_chain_poses`; the body frame sits at ``beta (..., 3)`` relative to
-    link 1 with body-velocity Jacobian ``B_beta (..., 3, n)``. With Q_i = beta^-1 P_i (link i in
-    the body frame), ``xi_i = Ad_{Q_i^-1} xi + (B_i - Ad_{P_i^-1} Ad_beta B_beta) alpha_dot``
-    (body velocities of products and inverses, section 1.5; (2.68) for any number of links).
-    Returns ``(Q (..., N, 3), J (..., N, 3, 3 + n))``.
-    """
-    b = beta[..., None, :]
-    Q = SE2.compose(SE2.inverse(b), P)
-    n = B.shape[-1]
-    J = np.empty(Q.shape[:-1] + (3, 3 + n))
-    J[..., :3] = SE2.Ad_inv(Q)
-    J[..., 3:] = B - SE2.Ad_inv(P) @ (SE2.Ad(b) @ B_beta[..., None, :, :])
-    return Q, J

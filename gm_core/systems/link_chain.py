@@ -3,7 +3,7 @@
 N >= 2 links of lengths l_1 .. l_N joined end to end; the shape is r = (alpha_1, ..., alpha_{N-1})
 with alpha_j the rotation of link j + 1 relative to link j (chapter 2's convention); each link
 frame sits at the link's centre with x along the link towards link N. The poses and Jacobians
-are :func:`gm_core.chains.link_chain_poses` and :func:`gm_core.chains.link_chain_jacobians`
+are :func:`gm_core.kinematics.link_chain_poses` and :func:`gm_core.kinematics.link_chain_jacobians`
 (written once, for every N). Physics per link, as in section 3.4 for three links:
 
 * ``"low_re"``: resistive force theory, each link's drag matrix diag(l, k l, k l^3 / 12)
@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array, check_option, check_positive, positive_number
-from ..chains import link_chain_jacobians, link_chain_poses
+from ..kinematics import link_chain_jacobians, link_chain_poses
 from ..connection import connection_from_pfaffian, shape_space_metric
 from ..fluids import ellipse_added_mass, slender_link_drag
 from ..groups import SE2
@@ -106,11 +106,14 @@ class LinkChain(LocomotionSystem):
         return LinkChain(self.lengths, frame=frame, bounds=bounds, nodes=nodes, **self._options())
 
     def body_frames(self, bounds=None, *, n=None, minimum_perturbation=True):
-        """{name: system}: the middle link (or joint), the centre of mass and, if asked, minimum
-        perturbation over ``bounds`` (default ``shape_limits``; ``n`` nodes per axis)."""
+        """{name: system}: the middle link (or joint), the centre of mass and, if asked and feasible
+        (at most MAX_DIMENSION joints), minimum perturbation over ``bounds`` (default
+        ``shape_limits``; ``n`` nodes per axis)."""
+        from .minimum_perturbation import MAX_DIMENSION
+
         middle = "middle link" if self.n_links % 2 else "middle joint"
         out = {middle: self.with_frame("middle"), "centre of mass": self.with_frame("com")}
-        if minimum_perturbation:
+        if minimum_perturbation and self.n_shape <= MAX_DIMENSION:
             out["minimum perturbation"] = self.with_frame("minimum perturbation", bounds, n)
         return out
 
@@ -179,14 +182,14 @@ class LinkChain(LocomotionSystem):
     def metric(self, r):
         """System matrix (..., 3 + n, 3 + n): ``sum J_i^T M_i J_i`` over the links (drag or mass matrix)."""
         r, Q, J = self._kinematics(r)
-        return self._masked(r, np.einsum("...kai,ka,...kaj->...ij", J, self._diag, J))
+        return self._masked(r, self._weighted(J, J))
 
     drag_matrix = metric
 
     def pfaffian(self, r):
         """Pfaffian (..., 3, 3 + n): the top rows of :meth:`metric` (total wrench or momentum = 0)."""
         r, Q, J = self._kinematics(r)
-        return self._masked(r, np.einsum("...kai,ka,...kaj->...ij", J[..., :3], self._diag, J))
+        return self._masked(r, self._weighted(J[..., :3], J))
 
     def connection(self, r):
         """Local connection (..., 3, n): xi = -A r_dot (3.10) from the Pfaffian, (3.40)."""
@@ -196,6 +199,12 @@ class LinkChain(LocomotionSystem):
         """Cost metric on shape space M(r) = [-A; I]^T D [-A; I] (..., n, n) (power or twice kinetic energy)."""
         D = self.metric(r)
         return shape_space_metric(D, connection_from_pfaffian(D[..., :3, :]))
+
+    def _weighted(self, left, J):
+        """sum_i left_i^T M_i J_i for diagonal link matrices M_i, as one batched product (..., k, 3 + n)."""
+        N = self.n_links
+        Jw = (J * self._diag[:, :, None]).reshape(J.shape[:-3] + (3 * N, J.shape[-1]))
+        return np.swapaxes(left.reshape(left.shape[:-3] + (3 * N, left.shape[-1])), -1, -2) @ Jw
 
     def _masked(self, r, X):
         if self._mp is None:

@@ -10,8 +10,9 @@ elements on a grid of ``n`` nodes per axis (bilinear in two dimensions, as syspl
 2 Gauss points per axis and cell, and scipy.sparse; beta between nodes is a biquintic spline in
 two dimensions and a tensor-product cubic spline in more.
 
-Feasible here up to about 40 000 nodes (33 x 33 in 2-D, 13^3 for a four-link chain, 9^4 for a
-five-link one); larger grids are refused with the node count.
+Feasible here for boxes of dimension 1 to 3 (chains of up to four links; 33 x 33 nodes in 2-D, 13^3
+in 3-D, a few seconds) and up to 40 000 nodes; larger problems are refused with a message that
+says why (a 9^4 grid for a five-link chain works but takes about two minutes here).
 """
 from __future__ import annotations
 
@@ -23,10 +24,11 @@ from .._validate import SingularShapeError, as_array
 from .base import check_system
 from .reframed import BodyFrame, body_jacobian
 
-__all__ = ["MinimumPerturbationFrame", "MAX_NODES", "default_nodes"]
+__all__ = ["MinimumPerturbationFrame", "MAX_NODES", "MAX_DIMENSION", "default_nodes"]
 
-#: Largest finite-element grid (nodes) the solver accepts.
+#: Largest finite-element grid (nodes) and box dimension the solver accepts.
 MAX_NODES = 40_000
+MAX_DIMENSION = 3
 _GAUSS = ((1 - 1 / np.sqrt(3)) / 2, (1 + 1 / np.sqrt(3)) / 2)
 
 
@@ -95,7 +97,11 @@ class _TensorSpline:
         out = None
         for ax, (b, db) in enumerate(self._basis):
             B = (db if ax == derivative else b)(r[:, ax])      # (P, n_ax)
-            out = np.einsum("pi,i...->p...", B, self._coef) if out is None else np.einsum("pi,pi...->p...", B, out)
+            if out is None:
+                out = (B @ self._coef.reshape(B.shape[1], -1)).reshape((len(r),) + self._coef.shape[1:])
+            else:
+                rest = out.shape[2:]
+                out = (B[:, None, :] @ out.reshape(out.shape[:2] + (-1,)))[:, 0].reshape((len(r),) + rest)
         return out
 
 
@@ -117,6 +123,12 @@ class MinimumPerturbationFrame(BodyFrame):
         import scipy.sparse.linalg as spla
 
         d = check_system(system)
+        if d > MAX_DIMENSION:
+            raise ValueError(f"minimum-perturbation coordinates are feasible here for at most {MAX_DIMENSION} shape "
+                             f"variables (chains of up to {MAX_DIMENSION + 1} links): {system.name} has {d}, and the "
+                             f"finite-element problem on a {d}-dimensional box takes minutes (about 2 minutes for 9^4 "
+                             "nodes on this machine). Use frame='com' (centre of mass, mean orientation), which is "
+                             "close to it for swimmers, or a 2-D slice (gm_core.systems.shape_slice)")
         bounds = system.shape_limits if bounds is None else bounds
         B = as_array(bounds, "bounds", (2,), what=f" (a box of shape space: one (lo, hi) per shape variable, {d} here)")
         if B.shape != (d, 2):
