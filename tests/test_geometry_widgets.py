@@ -11,6 +11,7 @@ import pytest  # noqa: E402
 
 from gm_core import SE2  # noqa: E402
 from gm_core.drawing import curvature as D  # noqa: E402
+from gm_core.gaits import circle_gait
 from gm_core.geometry import (  # noqa: E402
     body_velocity_integral,
     constraint_curvature,
@@ -18,7 +19,7 @@ from gm_core.geometry import (  # noqa: E402
     sysplotter_stroke,
     sysplotter_swimmer,
 )
-from gm_core.locomotion import circle_gait, net_displacement, trajectory  # noqa: E402
+from gm_core.locomotion import net_displacement, trajectory
 from gm_core.systems import FloatingSnake, KinematicSnake, LowReSwimmer  # noqa: E402
 from gm_core.widgets import curvature as Wc  # noqa: E402
 from gm_core.widgets.base import PANELS  # noqa: E402

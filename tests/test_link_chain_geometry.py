@@ -16,7 +16,8 @@ from gm_core.geometry import (
     stokes_estimate,
 )
 from gm_core.gaits import Gait
-from gm_core.locomotion import circle_gait, net_displacement
+from gm_core.gaits import circle_gait
+from gm_core.locomotion import net_displacement
 from gm_core.systems import (
     LinkChain,
     LowReSwimmer,

@@ -147,6 +147,13 @@ def test_a_new_exercise_module_only_needs_to_register():
         REGISTRY.pop("9.1", None)
 
 
-def test_chapter_modules_are_discovered():
-    from gm_core.checks import _chapter_modules
-    assert _chapter_modules()[:3] == ["ch1", "ch2", "ch3"]
+def test_every_exercise_comes_from_a_declared_module():
+    import sys
+
+    from gm_core.checks import EXERCISE_MODULES
+
+    assert EXERCISE_MODULES == ("ch1", "ch2", "ch3", "curvature")
+    declared = [sys.modules[f"gm_core.checks.{m}"] for m in EXERCISE_MODULES]
+    where = {eid: [m.__name__ for m in declared if any(v is ex for v in vars(m).values())]
+             for eid, ex in REGISTRY.items()}
+    assert len(where) >= 15 and all(len(w) == 1 for w in where.values()), where

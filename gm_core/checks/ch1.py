@@ -5,6 +5,14 @@ import numpy as np
 
 from ..groups import SE2
 from ._answers import is_starter, is_sympy, to_numbers
+from ._ch1_exp import (
+    EXP_METHODS,
+    _d_judge,
+    _d_probes,
+    _exp_part,
+    _helix_inputs,
+    _helix_ref,
+)
 from ._choice import ChoicePart
 from ._core import (
     CustomPart,
@@ -277,18 +285,6 @@ ex1_3 = Exercise("1.3", "T_g L_{g^-1} = (T_e L_g)^-1 and T_g R_{g^-1} = (T_e R_g
 
 
 # ============================================================================ 1.4
-from ._ch1_exp import (  # noqa: E402,F401
-    EXP_METHODS,
-    _d_judge,
-    _d_probes,
-    _euler,
-    _exp_part,
-    _exp_ref,
-    _helix_inputs,
-    _helix_ref,
-    _product,
-    _taylor,
-)
 
 ex1_4 = Exercise("1.4", "The exponential map on SE(2)", [
     _exp_part("a", "left"),

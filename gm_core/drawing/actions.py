@@ -1,8 +1,7 @@
 """Lie groups and SE(2) (book sections 1.2-1.3): the slide rule,
 the circle vs SO(2), left and right actions, repeated steps, points on a rigid body.
 
-The group axioms ("group or not?") are drawn by :mod:`.group_or_not`; ``GroupAxiomsScene`` is
-that scene under its old name.
+The group axioms ("group or not?") are drawn by :mod:`.group_or_not`.
 """
 from __future__ import annotations
 
@@ -11,11 +10,11 @@ from matplotlib.collections import LineCollection, PolyCollection
 
 from ..axioms import powers
 from ..groups import S1, SE2, R2xS1
-from .base import BodyArtist, FrameArtist
-from .group_or_not import GroupOrNotScene
-from .toolkit import PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, plane, set_arrows, title
+from .axes import plane
+from .primitives import BodyArtist, FrameArtist
+from .toolkit import PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, set_arrows, title
 
-__all__ = ["BODY", "GroupAxiomsScene", "SlideRuleScene", "CircleIsoScene",
+__all__ = ["BODY", "SlideRuleScene", "CircleIsoScene",
            "LeftRightActionScene", "ForwardLeftScene", "BodyPointsScene"]
 
 BODY = BodyArtist.triangle(0.35)
@@ -23,7 +22,6 @@ BODY = BodyArtist.triangle(0.35)
 
 #: the axioms' figure is now the "group or not?" table (the residual bar chart it replaced
 #: showed only that round-off is small); kept under its old name
-GroupAxiomsScene = GroupOrNotScene
 
 
 class SlideRuleScene(Scene):

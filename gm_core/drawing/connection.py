@@ -11,8 +11,8 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.patches import Rectangle
 
-from .base import SingularFlag
 from .motion import SystemArtist, VelocityArtist, draw_system_naive, style_world_axes, system_extent
+from .primitives import SingularFlag
 from .toolkit import PALETTE, Scene, new_figure, readout
 
 __all__ = ["ROW_LABELS", "shape_grid", "connection_field", "ConnectionFieldArtist", "draw_singular_set",

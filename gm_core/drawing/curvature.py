@@ -1,6 +1,6 @@
 """Drawing for the geometry notebook: curvature maps, gaits on them, connection fields, swimmer animations.
 
-Built on :mod:`gm_core.drawing.base` only. Every artist is created once and moved with
+Built on :mod:`gm_core.drawing.primitives` only. Every artist is created once and moved with
 ``set(...)``. Figures are at most 9 in x 100 dpi = 900 px wide, use constrained layout and fonts
 of 9 pt or more (12.5 px at 100 dpi). Singular or undefined shapes are masked (grey), never
 handed to matplotlib as NaN colours silently.
@@ -11,9 +11,9 @@ import numpy as np
 
 from ..geometry import constraint_curvature
 from ..groups import SE2
-from .base import BodyArtist, TrailArtist, animate, new_figure
 from .connection import auto_grid, inset_limits
-from .toolkit import PALETTE
+from .primitives import BodyArtist, TrailArtist, animate
+from .toolkit import PALETTE, new_figure
 
 __all__ = ["ROWS", "shape_grid", "CurvatureMapArtist", "GaitArtist", "FieldArtist", "SwimmerArtist",
            "curvature_maps_figure", "animate_swimmer", "FONT", "DPI"]

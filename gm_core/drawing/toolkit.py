@@ -14,7 +14,7 @@
 * **Arrows**: :class:`ArrowSet` (a PolyCollection, cheap to redraw) and :func:`arrow` (a quiver).
 * **Ticks and titles** without matplotlib's Axis machinery: :func:`xticks`, :func:`yticks`,
   :func:`title`, :func:`axis_label`.
-* **Axes** (in :mod:`.axes`, importable here): :func:`plane`, :func:`square_axes`, :func:`plain_3d`,
+* **Axes** (in :mod:`.axes`): :func:`plane`, :func:`square_axes`, :func:`plain_3d`,
   :func:`wire`; figure layouts :func:`axes_row` (one row, 2D or 3D) and :func:`text_panel`.
 * **Scenes**: :class:`Scene`, the base of every live drawing: it owns its figure (``FIGSIZE`` /
   ``NCOLS`` / ``MARGINS`` for one row of plain axes); ``set(**values)`` moves artists;
@@ -31,13 +31,11 @@ from matplotlib.path import Path
 from matplotlib.textpath import TextPath
 from matplotlib.transforms import blended_transform_factory as _blend
 
-from .axes import plain_3d, plane, square_axes, wire  # the axes helpers live in .axes, importable here
-
 __all__ = [
     "DPI", "MAX_WIDTH_IN", "MIN_TEXT_PX", "MIN_TEXT_PT", "PALETTE", "STYLE", "apply_style",
     "new_figure", "figure", "margins", "freeze_layout", "PathText", "readout", "ArrowSet", "arrow", "set_arrows",
     "title",
-    "xticks", "yticks", "axis_label", "plane", "square_axes", "plain_3d", "wire", "axes_row", "text_panel", "Scene", "TWO_PI",
+    "xticks", "yticks", "axis_label", "axes_row", "text_panel", "Scene", "TWO_PI",
 ]
 
 TWO_PI = 2.0 * np.pi

@@ -2,7 +2,7 @@
 body and spatial velocities, and the adjoint.
 
 The example fields are mathematics in :mod:`gm_core.fields`, rigid-body point velocities in
-:mod:`gm_core.frames`;
+:mod:`gm_core.observers`;
 integral curves come from :func:`gm_core.fields.integral_curve` (scipy's solve_ivp).
 """
 from __future__ import annotations
@@ -11,10 +11,11 @@ import numpy as np
 from matplotlib.collections import LineCollection
 
 from ..fields import FIELDS, integral_curve
-from ..frames import icr, point_velocities
 from ..groups import SE2, RPlus
+from ..observers import icr, point_velocities
 from .actions import BODY
-from .base import BodyArtist, FrameArtist
+from .axes import plane
+from .primitives import BodyArtist, FrameArtist
 from .toolkit import (
     PALETTE,
     ArrowSet,
@@ -23,7 +24,6 @@ from .toolkit import (
     arrow,
     margins,
     new_figure,
-    plane,
     set_arrows,
     text_panel,
     title,

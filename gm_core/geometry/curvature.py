@@ -22,8 +22,9 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import SingularShapeError, as_array, check_int, positive_number
+from ..gaits import as_gait
 from ..groups import matvec
-from ..locomotion import as_gait, check_gait, check_system, curvature_form, fd_connection_derivative
+from ..locomotion import check_gait, check_system, curvature_form, fd_connection_derivative
 from ..systems.base import LocomotionSystem
 
 __all__ = ["constraint_curvature", "connection_derivative", "stokes_estimate",

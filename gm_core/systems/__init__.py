@@ -13,7 +13,7 @@ from .ackerman import Ackerman
 from .base import LocomotionSystem, Part
 from .diff_drive import DifferentialDrive
 from .floating_snake import FloatingSnake
-from .high_re import HighReSwimmer, ellipse_added_mass
+from .high_re import HighReSwimmer
 from .kinematic_snake import KinematicSnake
 from .link_chain import LinkChain
 from .low_re import LowReSwimmer
@@ -24,7 +24,7 @@ from .slender_body import SlenderBody, chain_approximation, serpenoid_modes
 from .three_link import LinkMetricSystem, ThreeLinkSystem
 
 __all__ = ["LocomotionSystem", "Part", "ThreeLinkSystem", "LinkMetricSystem", "DifferentialDrive", "Ackerman",
-           "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer", "ellipse_added_mass",
+           "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer",
            "LinkChain", "BodyFrame", "PoseFrame", "CentreOfMassFrame", "Reframed", "MinimumPerturbationFrame",
            "AffineRestriction", "shape_slice", "SlenderBody", "chain_approximation", "serpenoid_modes",
            "ALL_SYSTEMS"]

@@ -15,7 +15,7 @@ from .._validate import as_array
 from ..connection import SINGULAR_TOL, connection_from_pfaffian, pfaffian_determinant
 from ..locomotion import body_velocity, check_system, curvature_form, fd_connection_derivative
 
-__all__ = ["LocomotionSystem", "Part", "ellipse_outline", "rectangle_outline", "check_system"]
+__all__ = ["LocomotionSystem", "Part", "ellipse_outline", "rectangle_outline"]
 
 
 @dataclass(frozen=True)
@@ -101,10 +101,15 @@ class LocomotionSystem:
         raise TypeError(f"system {self.name!r} has no physical cost metric (no drag or mass matrix); "
                         "pass metric='euclidean' or a callable r -> M(r)")
 
-    def body_frames(self, bounds=None, *, n=None, minimum_perturbation=True):
-        """The body frames this system can be seen from, {name: system}, its own first; this one
-        alone unless a system offers more (systems made of links: their centre of mass and, with
-        ``minimum_perturbation``, Hatton's frame over ``bounds`` with ``n`` nodes per axis)."""
+    def body_frames(self, bounds=None, *, n=None, centre_of_mass=True, minimum_perturbation=True):
+        """The body frames this system can be seen from, {name: system}, its own first.
+
+        This one alone unless a system offers more: systems made of links add, when asked, their
+        centre of mass with the mean link orientation (``centre_of_mass``) and Hatton's
+        minimum-perturbation frame over ``bounds`` with ``n`` nodes per axis
+        (``minimum_perturbation``); a system whose physics defines several frames (the floating
+        snake) always lists them.
+        """
         return {"own frame": self}
 
     def singularity(self, r):

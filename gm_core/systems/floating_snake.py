@@ -4,8 +4,8 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array, check_positive
-from ..chains import com_frame
 from ..connection import connection_from_pfaffian, metric_from_jacobians
+from ..three_link_chain import com_frame
 from .three_link import LinkMetricSystem
 
 __all__ = ["FloatingSnake"]
@@ -102,9 +102,11 @@ class FloatingSnake(LinkMetricSystem):
         w = np.array(self.masses)
         return w / w.sum()
 
-    def body_frames(self, bounds=None, *, n=None, minimum_perturbation=True):
-        """{name: system}: this frame, the other one of section 3.4.3 (centre of mass oriented with
-        the middle link, or the middle link) and, if asked, minimum perturbation over ``bounds``."""
+    def body_frames(self, bounds=None, *, n=None, centre_of_mass=True, minimum_perturbation=True):
+        """{name: system}: this frame and the other one of section 3.4.3 (centre of mass oriented
+        with the middle link, or the middle link): the frames its physics defines, always listed;
+        ``centre_of_mass`` adds nothing (its centre-of-mass frame is one of them); and, if asked,
+        minimum perturbation over ``bounds``."""
         from .minimum_perturbation import MinimumPerturbationFrame
         from .reframed import Reframed
 

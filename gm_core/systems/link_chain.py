@@ -3,7 +3,7 @@
 N >= 2 links of lengths l_1 .. l_N joined end to end; the shape is r = (alpha_1, ..., alpha_{N-1})
 with alpha_j the rotation of link j + 1 relative to link j (chapter 2's convention); each link
 frame sits at the link's centre with x along the link towards link N. The poses and Jacobians
-are :func:`gm_core.kinematics.link_chain_poses` and :func:`gm_core.kinematics.link_chain_jacobians`
+are :func:`gm_core.chains.link_chain_poses` and :func:`gm_core.chains.link_chain_jacobians`
 (written once, for every N). Physics per link, as in section 3.4 for three links:
 
 * ``"low_re"``: resistive force theory, each link's drag matrix diag(l, k l, k l^3 / 12)
@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array, check_option, check_positive, positive_number
-from ..kinematics import link_chain_jacobians, link_chain_poses
+from ..chains import link_chain_jacobians, link_chain_poses
 from ..connection import connection_from_pfaffian, shape_space_metric
 from ..fluids import ellipse_added_mass, slender_link_drag
 from ..groups import SE2
@@ -105,14 +105,16 @@ class LinkChain(LocomotionSystem):
         """The same chain seen from another body frame (one of :data:`FRAMES`)."""
         return LinkChain(self.lengths, frame=frame, bounds=bounds, nodes=nodes, **self._options())
 
-    def body_frames(self, bounds=None, *, n=None, minimum_perturbation=True):
+    def body_frames(self, bounds=None, *, n=None, centre_of_mass=True, minimum_perturbation=True):
         """{name: system}: the middle link (or joint), the centre of mass and, if asked and feasible
         (at most MAX_DIMENSION joints), minimum perturbation over ``bounds`` (default
         ``shape_limits``; ``n`` nodes per axis)."""
         from .minimum_perturbation import MAX_DIMENSION
 
         middle = "middle link" if self.n_links % 2 else "middle joint"
-        out = {middle: self.with_frame("middle"), "centre of mass": self.with_frame("com")}
+        out = {middle: self.with_frame("middle")}
+        if centre_of_mass:
+            out["centre of mass"] = self.with_frame("com")
         if minimum_perturbation and self.n_shape <= MAX_DIMENSION:
             out["minimum perturbation"] = self.with_frame("minimum perturbation", bounds, n)
         return out

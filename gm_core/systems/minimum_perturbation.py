@@ -21,7 +21,7 @@ import itertools
 import numpy as np
 
 from .._validate import SingularShapeError, as_array
-from .base import check_system
+from ..locomotion import check_system
 from .reframed import BodyFrame, body_jacobian
 
 __all__ = ["MinimumPerturbationFrame", "MAX_NODES", "MAX_DIMENSION", "default_nodes"]

@@ -20,7 +20,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..groups import SE2, matvec
-from .base import LocomotionSystem, check_system
+from ..locomotion import check_system
+from .base import LocomotionSystem
 
 __all__ = ["BodyFrame", "PoseFrame", "CentreOfMassFrame", "Reframed", "body_jacobian"]
 
@@ -191,8 +192,9 @@ class Reframed(LocomotionSystem):
     def link_weights(self):
         return self.base_system.link_weights()
 
-    def body_frames(self, bounds=None, *, n=None, minimum_perturbation=True):
-        return self.base_system.body_frames(bounds, n=n, minimum_perturbation=minimum_perturbation)
+    def body_frames(self, bounds=None, *, n=None, centre_of_mass=True, minimum_perturbation=True):
+        return self.base_system.body_frames(bounds, n=n, centre_of_mass=centre_of_mass,
+                                            minimum_perturbation=minimum_perturbation)
 
     def __repr__(self):
         return f"Reframed({self.base_system!r}, {self.frame.name!r})"

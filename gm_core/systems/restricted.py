@@ -16,7 +16,8 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array, check_int
-from .base import LocomotionSystem, check_system
+from ..locomotion import check_system
+from .base import LocomotionSystem
 
 __all__ = ["AffineRestriction", "shape_slice"]
 

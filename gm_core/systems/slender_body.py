@@ -196,8 +196,12 @@ class SlenderBody(LocomotionSystem):
         D = self.metric(r)
         return shape_space_metric(D, connection_from_pfaffian(D[..., :3, :]))
 
-    def body_frames(self, bounds=None, *, n=None, minimum_perturbation=True):
-        out = {"middle of the body": self._twin("middle"), "centre of mass": self._twin("com")}
+    def body_frames(self, bounds=None, *, n=None, centre_of_mass=True, minimum_perturbation=True):
+        """{name: system}: the middle of the body and, if asked, the centre of mass (mean
+        orientation) and minimum perturbation over ``bounds``."""
+        out = {"middle of the body": self._twin("middle")}
+        if centre_of_mass:
+            out["centre of mass"] = self._twin("com")
         if minimum_perturbation:
             from .minimum_perturbation import MinimumPerturbationFrame
             from .reframed import Reframed

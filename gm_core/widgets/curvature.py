@@ -11,9 +11,9 @@ import ipywidgets as W
 import numpy as np
 
 from .._validate import SingularShapeError
-from ..drawing.base import SingularFlag, new_figure
 from ..drawing.curvature import DPI, FONT, ROWS, CurvatureMapArtist, FieldArtist, GaitArtist, _style
-from ..drawing.toolkit import PALETTE
+from ..drawing.primitives import SingularFlag
+from ..drawing.toolkit import PALETTE, new_figure
 from ..geometry import body_frames, body_velocity_integral, fourier_gait, optimize_gait, stokes_estimate
 from ..locomotion import net_displacement
 from ..systems import LowReSwimmer
