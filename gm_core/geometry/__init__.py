@@ -7,8 +7,10 @@ book's (``xi = -A(r) r_dot``, (3.10)).
 * :mod:`.curvature`: ``constraint_curvature``, ``stokes_estimate``, ``body_velocity_integral``;
 * :mod:`.coordinates`: ``reframe``, ``centre_of_mass``, ``drift_and_turn``, ``centre_of_mass_coordinates``, ``minimum_perturbation_coordinates``;
 * :mod:`.metrics`: ``dissipation_metric``, ``path_length``, ``efficiency``;
-* :mod:`.optimal`: ``fourier_gait``, ``optimize_gait``, ``sysplotter_stroke``.
+* :mod:`.optimal`: ``fourier_gait``, ``optimize_gait``; :mod:`.strokes`: ``sysplotter_stroke``;
+  :mod:`.chain_strokes`: optimal strokes of 3-, 4- and 5-link chains (``chain_stroke``).
 """
+from .chain_strokes import CHAIN_STROKES, chain_stroke, chain_swimmer
 from .coordinates import (
     body_frames,
     centre_of_mass,
@@ -19,11 +21,11 @@ from .coordinates import (
 )
 from .curvature import body_velocity_integral, connection_derivative, constraint_curvature, stokes_estimate
 from .metrics import dissipation_metric, efficiency, path_length
-from .optimal import FourierGait, OptimalGait, fourier_gait, gait_objective, optimize_gait
+from .optimal import FourierGait, OptimalGait, fourier_gait, gait_objective, optimize_gait, travelling_wave
 from .strokes import SYSPLOTTER_STROKES, sysplotter_stroke, sysplotter_swimmer
 
 __all__ = ["constraint_curvature", "connection_derivative", "stokes_estimate", "body_velocity_integral",
            "reframe", "body_frames", "centre_of_mass", "drift_and_turn", "centre_of_mass_coordinates", "minimum_perturbation_coordinates",
            "dissipation_metric", "path_length", "efficiency",
-           "FourierGait", "OptimalGait", "fourier_gait", "gait_objective", "optimize_gait",
-           "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer"]
+           "FourierGait", "OptimalGait", "fourier_gait", "travelling_wave", "gait_objective", "optimize_gait",
+           "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer", "CHAIN_STROKES", "chain_stroke", "chain_swimmer"]

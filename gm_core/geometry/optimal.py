@@ -27,7 +27,7 @@ from ..systems.reframed import Reframed
 from .curvature import connection_derivative
 from .metrics import metric_function, path_length
 
-__all__ = ["FourierGait", "fourier_gait", "optimize_gait", "OptimalGait", "gait_objective"]
+__all__ = ["FourierGait", "fourier_gait", "travelling_wave", "optimize_gait", "OptimalGait", "gait_objective"]
 
 #: Cost returned for trial gaits that reach a singular shape (a finite wall the line search backs off from).
 _REJECT = 1e3
@@ -91,6 +91,20 @@ def fourier_gait(a, b=None, center=None, *, period=2 * np.pi, name="Fourier gait
         raise ValueError(f"center must have shape ({a.shape[0]},); got shape {center.shape}")
     T = positive_number(period, "period")
     return FourierGait(a.copy(), b.copy(), center.copy(), T, name)
+
+
+def travelling_wave(n_joints, amplitude=0.8, lag=np.pi / 2, *, period=2 * np.pi):
+    """The travelling wave ``alpha_j(t) = A sin(w t - (j - 1) lag)`` in joints j = 1..n (a Fourier gait of order 1).
+
+    Each joint lags its neighbour towards the head by ``lag``: the wave runs from link 1
+    towards link N. ``amplitude`` A > 0 (rad), w = 2 pi / ``period``.
+    """
+    n = check_int(n_joints, "n_joints", minimum=1, maximum=200, what=" (the number of joints)")
+    A = positive_number(amplitude, "amplitude")
+    lag = float(as_array(lag, "lag", what=" (the phase lag between joints, rad)"))
+    j = np.arange(n)
+    return fourier_gait((-A * np.sin(j * lag))[:, None], (A * np.cos(j * lag))[:, None], period=period,
+                        name=f"travelling wave: amplitude {A:.2f}, lag {lag:.2f} rad")
 
 
 # ---------------------------------------------------------------------------------------------

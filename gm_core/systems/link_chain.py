@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, check_option, check_positive, positive_number
+from .._validate import as_array, check_int, check_option, check_positive, positive_number
 from ..chains import link_chain_jacobians, link_chain_poses
 from ..connection import connection_from_pfaffian, shape_space_metric
 from ..fluids import ellipse_added_mass, slender_link_drag
@@ -97,6 +97,18 @@ class LinkChain(LocomotionSystem):
             raise ValueError("bounds and nodes are only for frame='minimum perturbation'")
 
     # -- construction helpers ----------------------------------------------------------------
+    @classmethod
+    def tapered(cls, links, physics="low_re", *, total_length=3.0, taper=0.0, **options):
+        """``links`` links of total length ``total_length`` shrinking linearly from head to tail:
+        link i (1-based) ~ 1 - taper (i - 1) / (N - 1), ``0 <= taper < 1`` (0: equal links)."""
+        N = check_int(links, "links", minimum=2, maximum=MAX_LINKS, what=" (the number of links)")
+        L = positive_number(total_length, "total_length")
+        taper = positive_number(taper, "taper", allow_zero=True)
+        if taper >= 1:
+            raise ValueError(f"taper must be in [0, 1) (the last link keeps a positive length); got {taper!r}")
+        w = 1.0 - taper * np.arange(N) / (N - 1)
+        return cls(tuple(L * w / w.sum()), physics, **options)
+
     def _options(self):
         return dict(physics=self.physics, drag_ratio=self.drag_ratio, masses=self.masses, inertias=self.inertias,
                     aspect_ratio=self.aspect_ratio, fluid_density=self.fluid_density, body_density=self.body_density)
