@@ -100,7 +100,7 @@ class ChainSliceScene(Scene):
         (self.joint_dots,) = ax0.plot([], [], "o", ms=7, color=PALETTE["vermillion"], zorder=6)
         style_shape_axes(ax1, self.slice)
         style_shape_axes(ax2, self.slice)
-        self.field = ConnectionFieldArtist(ax1, self.slice, 0, n=11, color="0.3")
+        self.field = ConnectionFieldArtist(ax1, self.slice, 0, color="0.3")
         self.map = CurvatureMapArtist(ax2, self.slice, 0, limits=self.limits, n=self.n_map)
         self.text = readout(ax0, 0.02, 0.02)
         self._key = None
