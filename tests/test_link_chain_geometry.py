@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from gm_core import SE2, SingularShapeError
+from gm_core.gaits import Gait, circle_gait
 from gm_core.geometry import (
     body_velocity_integral,
     constraint_curvature,
@@ -15,8 +16,6 @@ from gm_core.geometry import (
     optimize_gait,
     stokes_estimate,
 )
-from gm_core.gaits import Gait
-from gm_core.gaits import circle_gait
 from gm_core.locomotion import net_displacement
 from gm_core.systems import (
     LinkChain,

@@ -13,7 +13,7 @@ import numpy as np
 
 from .._validate import as_array
 from ..connection import SINGULAR_TOL, connection_from_pfaffian, pfaffian_determinant
-from ..locomotion import body_velocity, check_system, curvature_form, fd_connection_derivative
+from ..locomotion import body_velocity, curvature_form, fd_connection_derivative
 
 __all__ = ["LocomotionSystem", "Part", "ellipse_outline", "rectangle_outline"]
 
