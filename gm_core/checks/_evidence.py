@@ -112,6 +112,7 @@ def summarise(run, ex, sources):
     ``sources`` maps cell indices to their source (to name a cell by its first line)."""
     nonce = run["nonce"]
     latest, rejected, cells, problem, notes = {}, {}, {}, "", []
+    running = None
     fatal = done = False
     for r in run["records"]:
         t = r.get("t")
@@ -121,6 +122,8 @@ def summarise(run, ex, sources):
                 latest[name] = (ev, r.get("cell"))
             elif name is None:
                 rejected[ev] = rejected.get(ev, 0) + 1
+        elif t == "run":
+            running = r.get("i")
         elif t == "cell":
             cells[r.get("i")] = r
         elif t == "fatal":
@@ -153,10 +156,11 @@ def summarise(run, ex, sources):
             problem = (f"the notebook's kernel stopped in {where(stop_cell)}"
                        + (" after it exceeded the cell limit" if c.get("status") == "timeout" else
                           " (it crashed, ran out of memory, or ended the grader's runner)"))
+        elif isinstance(running, int) and running not in cells:
+            problem = (f"the notebook ended its own grading in {where(running)} (it stopped the "
+                       "grader's runner, or everything crashed)")
         else:
-            last = max((k for k in cells if isinstance(k, int)), default=None)
-            problem = ("the notebook stopped its own grading (the runner ended"
-                       + (f" after {where(last)}" if last is not None else "") + ")")
+            problem = "the notebook ended its own grading (it stopped the grader's runner)"
     if rejected:
         notes.append("the grader rejected evidence it could not verify: " + "; ".join(
             f"{n} x {why}" for why, n in sorted(rejected.items())))

@@ -240,23 +240,7 @@ def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=
                "--chdir", "/tmp", "--", *cmd]
     else:
         (private / "tmp").mkdir()
-    is_root = os.geteuid() == 0
-
-    def preexec():
-        cgroups.join()
-        mem = limits.memory_mb << 20
-        for res, val in ((resource.RLIMIT_AS, mem), (resource.RLIMIT_CORE, 0),
-                         (resource.RLIMIT_FSIZE, limits.tmp_mb << 20)):
-            try:
-                resource.setrlimit(res, (val, val))
-            except (ValueError, OSError):
-                pass
-        if not is_root:
-            try:
-                resource.setrlimit(resource.RLIMIT_NPROC, (limits.processes + _user_processes(),) * 2)
-            except (ValueError, OSError):
-                pass
-
+    cmd, preexec = _limited(cmd, limits, cgroups)
     started = time.monotonic()
     log, evidence, killed, kernel_pid = b"", b"", "", None
     proc = None
@@ -303,13 +287,52 @@ def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=
         shutil.rmtree(private, ignore_errors=True)
     records = _records(evidence)
     for r in records:
-        if r.get("t") == "kernel" and isinstance(r.get("pid"), int):
+        if r.get("t") == "kernel" and isinstance(r.get("pid"), int) and kernel_pid is None:
             kernel_pid = r["pid"]
-    if not sandbox and kernel_pid:
+    if not sandbox and kernel_pid and proc is not None and _session_of(kernel_pid) == kernel_pid \
+            and kernel_pid not in (os.getpid(), os.getpgrp(), os.getsid(0)):
         _killpg(kernel_pid)   # the kernel has its own session; without a pid namespace end it here
     return {"records": records, "log": log.decode("utf-8", "replace")[-4000:], "killed": killed,
             "seconds": time.monotonic() - started, "nonce": config["nonce"], "salt": config["salt"],
             "cgroups": sorted(cgroups.kinds)}
+
+
+_JOIN = ('for c in "$@"; do [ "$c" = -- ] && break; echo $$ > "$c/cgroup.procs" 2>/dev/null; '
+         'shift; done; shift; exec "$@"')
+
+
+def _limited(cmd, limits, cgroups):
+    """(command, preexec_fn) applying the limits before ``cmd`` starts: a shell joins the cgroups
+    and ``prlimit`` sets the resource limits, then both exec (no Python runs between fork and
+    exec, which matters with --jobs); without prlimit, a preexec_fn does the same."""
+    mem, fsize = limits.memory_mb << 20, limits.tmp_mb << 20
+    nproc = limits.processes + _user_processes() if os.geteuid() != 0 else None
+    prlimit = shutil.which("prlimit")
+    if prlimit is not None and Path("/bin/sh").exists():
+        lim = [f"--as={mem}", f"--fsize={fsize}", "--core=0"]
+        if nproc is not None:   # root is not held by RLIMIT_NPROC: the pids cgroup does that
+            lim.append(f"--nproc={nproc}")
+        return ["/bin/sh", "-c", _JOIN, "sh", *map(str, cgroups.dirs), "--", prlimit, *lim,
+                "--", *cmd], None
+
+    def preexec():
+        cgroups.join()
+        for res, val in ((resource.RLIMIT_AS, mem), (resource.RLIMIT_CORE, 0),
+                         (resource.RLIMIT_FSIZE, fsize)) + (
+                ((resource.RLIMIT_NPROC, nproc),) if nproc is not None else ()):
+            try:
+                resource.setrlimit(res, (val, val))
+            except (ValueError, OSError):
+                pass
+    return cmd, preexec
+
+
+def _session_of(pid):
+    """The session id of a live process (the kernel leads its own), or None."""
+    try:
+        return os.getsid(pid)
+    except OSError:
+        return None
 
 
 def _user_processes():

@@ -6,7 +6,8 @@ It writes plain records, one JSON line each, to the evidence descriptor it inher
 grader (``config["evidence_fd"]``):
 
 * ``{"t": "start"}``, ``{"t": "kernel", "pid": ...}``;
-* ``{"t": "cell", "i": index, "status": "ok" | "error" | "timeout" | "died", ...}`` per cell;
+* ``{"t": "run", "i": index}`` as a code cell starts, ``{"t": "cell", "i": index, "status":
+  "ok" | "error" | "timeout" | "died", ...}`` when it ends;
 * ``{"t": "k", "cell": index, "line": "..."}``: a line the kernel's checks wrote on the pipe
   this runner created *before the kernel started* (forwarded as text; the grader parses it);
 * ``{"t": "fatal", "m": ...}`` and ``{"t": "done"}``.
@@ -239,6 +240,7 @@ def run(config):
                     state.check_time, state.check_since = 0.0, None
                     state.interrupted, state.timed_out = None, False
                 client.last_error = None
+                out.send({"t": "run", "i": index})
                 try:
                     client.execute_cell(cell, index + 1)
                 except Exception as exc:  # noqa: BLE001 - DeadKernelError and kin

@@ -74,6 +74,8 @@ def leftover_reason(path: Path):
 def _metadata(path: Path):
     """The notebook's top-level metadata dict, or (None, reason) -- never raises."""
     try:
+        if path.is_symlink() or not path.is_file():
+            return None, "it is not a plain file (a link, a folder or a device)"
         size = path.stat().st_size
         if size > MAX_NOTEBOOK_BYTES:
             return None, f"it is too large ({size >> 20} MB)"
@@ -191,7 +193,10 @@ def grade(paths, out_dir, weights=None, *, limits=None, sandbox=True, assignment
         if problem:
             raise SandboxUnavailable(problem)
     subs = _submissions(paths)
+    # hidden from every sandbox: the output, the batch, and the folders around each submission
+    # (where other students' uploads usually sit, graded in this run or not)
     hide = [str(Path(out_dir).resolve())] + [str(Path(p).resolve()) for p in paths]
+    hide += [str(Path(p).resolve().parent) for p in paths]
     hide += [str(q.resolve()) for _, found, _ in subs for q, _ in found]
     salt, plan, lines = secrets.randbits(62), [], []
     expected = assignment.get("exercises")
@@ -235,7 +240,10 @@ def grade(paths, out_dir, weights=None, *, limits=None, sandbox=True, assignment
         futures = {pool.submit(run_submission, path, limits=limits, hide=hide, sandbox=sandbox,
                                salt=salt): path for path, _, _, _ in runs}
         for fut, path in futures.items():
-            done[path] = fut.result()
+            try:
+                done[path] = fut.result()
+            except Exception as exc:  # noqa: BLE001 - the grader's own failure: a row, not a crash
+                done[path] = f"the grader could not run it ({type(exc).__name__}: {exc})"[:300]
     rows = []
     for kind, item in plan:
         if kind == "row":
@@ -256,8 +264,8 @@ def grade(paths, out_dir, weights=None, *, limits=None, sandbox=True, assignment
 
 def _judge_one(path, rel, ex_id, data, run, weights, part_vis, lines):
     ex = REGISTRY[ex_id]
-    if data is None or run is None:
-        _, why = _metadata(path)
+    if data is None or not isinstance(run, dict):
+        why = run if isinstance(run, str) else _metadata(path)[1]
         msg = f"the notebook could not be graded: {why}"
         lines.append(f"{rel}: {msg}")
         return _rows_for(ex_id, rel, weights, part_vis, lambda n, p: ("failed", msg))
