@@ -21,9 +21,9 @@ from types import MappingProxyType
 import numpy as np
 
 from .._validate import SingularShapeError, as_array, check_int, positive_number, real_number
-from ..locomotion import net_displacement
+from ..locomotion import check_system, net_displacement
 from .coordinates import body_frames
-from .curvature import body_velocity_integral, check_system, constraint_curvature, stokes_estimate
+from .curvature import body_velocity_integral, constraint_curvature, stokes_estimate
 from .optimal import fourier_gait
 
 __all__ = ["FRAMES", "INTERACTIVE", "Estimates", "shaped_gait", "displacement_estimates", "row_scaled",
