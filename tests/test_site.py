@@ -70,7 +70,8 @@ def test_pages_are_light_and_served_from_the_site(site):
     for page, r in report["pages"].items():
         assert r["bytes"] < 5_000_000, f"{page} is {r['bytes'] / 1e6:.1f} MB"
     text = (html / "book" / "04-geodesics-and-exp.html").read_text()
-    assert "_static/mathjax/tex-mml-chtml.js" in text and "_static/widgets/embed.js" in text
+    assert "_static/mathjax/tex-mml-chtml.js" in text
+    assert "_static/widgets/embed.js" in (html / "exercises" / "ex1_1.html").read_text(), "the check widgets"
     assert not re.search(r'(?:src|href)="https?://[^"]*(?:cdn|unpkg)', text)
     assert (html / "_static" / "font-awesome" / "css" / "font-awesome.min.css").exists()
 
@@ -98,6 +99,9 @@ def test_prepare_rewrites_links_and_halves_frames_within_budget():
     assert "(../exercises/ex1_1.ipynb)" in src
     assert "/blob/main/book/02-lie-groups-and-se2.ipynb" in src and "/blob/main/README.md" in src
     assert "mybinder.org" in out.cells[1].source
+    nb.cells = [nbformat.v4.new_markdown_cell("# T\n<details><summary>A</summary>$\\mathbb{R}^1$, not $x$</details>")]
+    out = build_site.prepare(nb, "book/01-configuration-spaces.ipynb", set())
+    assert out.cells[0].source.count('<span class="math notranslate nohighlight">\\(') == 2
 
 
 def test_compress_animation_keeps_a_playable_player():

@@ -274,6 +274,12 @@ def _page_bytes(nb):
     return len(json.dumps([c.get("outputs", []) for c in nb.cells]))
 
 
+def _html_math(m):
+    """$...$ inside a raw HTML block (MyST leaves it alone) -> a span MathJax renders."""
+    return re.sub(r"(?<![\\$])\$([^$\n]+?)\$",
+                  lambda k: f'<span class="math notranslate nohighlight">\\({k.group(1)}\\)</span>', m.group(0))
+
+
 def prepare(nb, rel, page_set):
     import nbformat
 
@@ -323,6 +329,7 @@ def prepare(nb, rel, page_set):
     for cell in nb.cells:
         if cell.cell_type == "markdown":
             cell.source = re.sub(r"(\]\s*)\(([^)\s]+)\)", link, cell.source)
+            cell.source = re.sub(r"<details\b.*?</details>", _html_math, cell.source, flags=re.S)
     banner = (f"> **Live version.** [Open this notebook in JupyterLab on Binder]({binder_url(rel)}), "
               f"or run `make lab` in a copy of the course and open `{rel}`. On this page every live "
               "figure is a picture of its first state; animations play here.")

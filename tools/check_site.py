@@ -107,9 +107,14 @@ def check_page(page, base, path):
         before = img.get_attribute("src")[-200:]
         player.scroll_into_view_if_needed()
         player.query_selector("button[title='Play']").click()
-        page.wait_for_timeout(700)
+        try:                                  # the next frame shows within a few intervals
+            page.wait_for_function("([el, b]) => el.getAttribute('src').slice(-200) !== b", arg=[img, before],
+                                   timeout=8000)
+            moved = True
+        except Exception:  # noqa: BLE001 - playwright's TimeoutError
+            moved = False
         player.query_selector("button[title='Pause']").click()
-        if img.get_attribute("src")[-200:] == before or img.bounding_box()["width"] == 0:
+        if not moved or img.bounding_box()["width"] == 0:
             out["still_animations"].append(img.get_attribute("id"))
     page.add_script_tag(path=str(AXE))
     axe = page.evaluate("""async () => {

@@ -12,11 +12,13 @@ The zip holds, at its top (where Gradescope expects them):
 * ``run_autograder``: grades the notebooks of ``/autograder/submission`` with
   ``python -m gm_core.grade`` into ``/autograder/results/results.json`` (``kit_run.py`` does the
   work);
-* ``course/``: ``pyproject.toml``, ``README.md``, ``LICENSE``, ``gm_core/`` and ``exercises/``;
-* ``kit.json``: the exercises the assignment expects and the grading options.
+* ``course/``: ``pyproject.toml``, ``README.md``, ``LICENSE`` and ``gm_core/``;
+* ``assignment.json``: the exercises the assignment expects (and any weights), handed to the
+  grader's ``--assignment``, so a missing notebook still gets its rows with 0 points;
+* ``kit.json``: the grading options. The grader runs with ``--no-sandbox``, as its README says for
+  Gradescope, where every submission has its own container (``--sandbox`` keeps bubblewrap).
 
-An expected exercise the student did not submit is graded as its untouched exercise notebook, so
-every part appears in the results with 0 points and "not submitted". Both scripts take their
+Both scripts take their
 paths from ``GM_AUTOGRADER_ROOT`` (default ``/autograder``) and the Python that makes the venv
 from ``GM_AUTOGRADER_PYTHON`` (default ``python3``), so a test can run the kit in any folder.
 """
@@ -68,64 +70,31 @@ exec "$ROOT/gm-venv/bin/python" "$ROOT/source/kit_run.py"
 KIT_RUN = r'''"""Grade /autograder/submission into /autograder/results with the installed course."""
 import json
 import os
-import shutil
 import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 ROOT = Path(os.environ.get("GM_AUTOGRADER_ROOT", "/autograder"))
 SRC = ROOT / "source"
-SUB = ROOT / "submission"
 RES = ROOT / "results"
 KIT = json.loads((SRC / "kit.json").read_text())
 
 
-def fail(message):
-    RES.mkdir(parents=True, exist_ok=True)
-    (RES / "results.json").write_text(json.dumps({"score": 0.0, "output": message, "tests": []}, indent=1))
-    print(message)
-    return 0
-
-
 def main():
-    notebooks = sorted(p for p in SUB.rglob("ex*.ipynb") if ".ipynb_checkpoints" not in p.parts) if SUB.is_dir() else []
-    expected = KIT["exercises"]
-    with tempfile.TemporaryDirectory(prefix="gm-kit-") as tmp:
-        work = Path(tmp) / "submission"
-        work.mkdir()
-        names = {}
-        for i, nb in enumerate(notebooks):
-            dest = work / f"{nb.stem}__{i}.ipynb" if (work / nb.name).exists() else work / nb.name
-            shutil.copyfile(nb, dest)
-            names[dest.name] = str(nb.relative_to(SUB))
-        missing = []
-        for ex in expected:
-            stem = "ex" + ex.replace(".", "_")
-            if not any(n.startswith(stem) and not n[len(stem):len(stem) + 1].isdigit() for n in names):
-                shutil.copyfile(SRC / "course" / "exercises" / f"{stem}.ipynb", work / f"{stem}.ipynb")
-                missing.append(f"{stem}.ipynb")
-        if not notebooks and not missing:
-            return fail("No exercise notebook (exN_M.ipynb) was found in the submission.")
-        cmd = [sys.executable, "-m", "gm_core.grade", str(work), "--out", str(RES),
-               "--cell-timeout", str(KIT["cell_timeout"]), "--time-limit", str(KIT["time_limit"])]
-        if KIT.get("weights"):
-            cmd += ["--weights", str(SRC / "weights.json")]
-        res = subprocess.run(cmd, cwd=tmp, capture_output=True, text=True)
-        print(res.stdout[-4000:], res.stderr[-4000:], sep="\n")
-        path = RES / "results.json"
-        if res.returncode != 0 or not path.exists():
-            return fail("The autograder could not grade this submission; please tell your instructor.")
-        results = json.loads(path.read_text())
-        for test in results.get("tests", []):
-            nb, _, rest = test["name"].partition(": ")
-            base = Path(nb).name
-            if base in missing:
-                test["name"] = f"{base} (not submitted): {rest}"
-                test["output"] = "Not submitted. " + test.get("output", "")
-            else:
-                test["name"] = f"{names.get(base, base)}: {rest}"
-        path.write_text(json.dumps(results, indent=1) + "\n")
+    RES.mkdir(parents=True, exist_ok=True)
+    sub = ROOT / "submission"
+    sub.mkdir(parents=True, exist_ok=True)
+    cmd = [sys.executable, "-m", "gm_core.grade", str(sub), "--out", str(RES),
+           "--assignment", str(SRC / "assignment.json"),
+           "--cell-timeout", str(KIT["cell_timeout"]), "--time-limit", str(KIT["time_limit"])]
+    if not KIT["sandbox"]:
+        cmd.append("--no-sandbox")   # Gradescope gives every submission its own container
+    res = subprocess.run(cmd, cwd=str(ROOT), capture_output=True, text=True)
+    print(res.stdout[-4000:], res.stderr[-4000:], sep="\n")
+    if res.returncode != 0 or not (RES / "results.json").exists():
+        failed = {"score": 0.0, "tests": [],
+                  "output": "The autograder could not grade this submission; please tell your instructor."}
+        (RES / "results.json").write_text(json.dumps(failed, indent=1))
     return 0
 
 
@@ -145,7 +114,8 @@ def _add(zf: zipfile.ZipFile, arcname: str, data, executable=False):
     zf.writestr(info, data)
 
 
-def build_kit(out: Path = DEFAULT_OUT, exercises=None, weights=None, cell_timeout=120.0, time_limit=5.0) -> Path:
+def build_kit(out: Path = DEFAULT_OUT, exercises=None, weights=None, cell_timeout=120.0, time_limit=5.0,
+              sandbox=False) -> Path:
     """Write the zip; return its path. ``exercises``: ids such as "1.4" (default: all)."""
     known = _exercise_ids()
     exercises = list(exercises) if exercises else known
@@ -158,23 +128,19 @@ def build_kit(out: Path = DEFAULT_OUT, exercises=None, weights=None, cell_timeou
         raise ValueError("cell_timeout and time_limit must be positive seconds")
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
-    kit = {"exercises": exercises, "cell_timeout": float(cell_timeout), "time_limit": float(time_limit),
-           "weights": bool(weights)}
+    kit = {"cell_timeout": float(cell_timeout), "time_limit": float(time_limit), "sandbox": bool(sandbox)}
+    assignment = {"exercises": exercises, **({"weights": weights} if weights else {})}
     with zipfile.ZipFile(out, "w") as zf:
         _add(zf, "setup.sh", SETUP_SH, executable=True)
         _add(zf, "run_autograder", RUN_AUTOGRADER, executable=True)
         _add(zf, "kit_run.py", KIT_RUN)
         _add(zf, "kit.json", json.dumps(kit, indent=1) + "\n")
-        if weights:
-            _add(zf, "weights.json", json.dumps(weights, indent=1) + "\n")
+        _add(zf, "assignment.json", json.dumps(assignment, indent=1) + "\n")
         for name in COURSE_FILES:
             _add(zf, f"course/{name}", (ROOT / name).read_bytes())
         for path in sorted(p for p in (ROOT / "gm_core").rglob("*")
                            if p.is_file() and "__pycache__" not in p.parts and p.suffix != ".pyc"):
             _add(zf, f"course/{path.relative_to(ROOT).as_posix()}", path.read_bytes())
-        for ex in exercises:
-            name = "ex" + ex.replace(".", "_") + ".ipynb"
-            _add(zf, f"course/exercises/{name}", (ROOT / "exercises" / name).read_bytes())
     return out
 
 
@@ -185,10 +151,11 @@ def main(argv=None):
     ap.add_argument("--weights", type=Path, help="JSON {part id: points}, as for python -m gm_core.grade")
     ap.add_argument("--cell-timeout", type=float, default=120.0)
     ap.add_argument("--time-limit", type=float, default=5.0)
+    ap.add_argument("--sandbox", action="store_true", help="grade inside bubblewrap on the autograder too")
     args = ap.parse_args(argv)
     weights = json.loads(args.weights.read_text()) if args.weights else None
     try:
-        out = build_kit(args.out, args.exercises, weights, args.cell_timeout, args.time_limit)
+        out = build_kit(args.out, args.exercises, weights, args.cell_timeout, args.time_limit, args.sandbox)
     except (ValueError, TypeError) as exc:
         print(f"gradescope_kit: {exc}", file=sys.stderr)
         return 2
