@@ -58,12 +58,12 @@ _TOLD: set = set()
 def find_workspace(start=None):
     """The student workspace this kernel runs in, or None (then progress stays in memory)."""
     env = os.environ.get("GM_COURSE_WORKSPACE")
-    if env:
-        p = Path(env)
-        return p if p.is_dir() else None
     try:
+        if env:
+            p = Path(env)
+            return p if p.is_dir() else None
         here = Path(start or os.getcwd()).resolve()
-    except OSError:
+    except (OSError, ValueError):
         return None
     for d in (here, *here.parents):
         try:
@@ -350,6 +350,15 @@ def _new_record(old, changes):
 
 def _update(key, **changes):
     """Change one part's record. Never raises (a verdict is never lost to a bookkeeping error)."""
+    try:
+        _save(key, changes)
+    except Exception:  # noqa: BLE001 - last resort: this kernel's memory still has it
+        ws = find_workspace()
+        kept = _MEMORY if ws is None else _UNSAVED.setdefault(str(ws), {})
+        kept[key] = _new_record(kept.get(key), changes)
+
+
+def _save(key, changes):
     ws = find_workspace()
     if ws is None:
         _MEMORY[key] = _new_record(_MEMORY.get(key), changes)
@@ -437,6 +446,13 @@ def pending_updates(mark_seen=False):
     Files named ``*.course-update*.ipynb`` on disk are always listed while unseen, even if the
     notice file was lost.
     """
+    try:
+        return _pending_updates(mark_seen)
+    except Exception:  # noqa: BLE001 - a listing problem must not break the start page
+        return []
+
+
+def _pending_updates(mark_seen):
     ws = course_workspace()
     if ws is None:
         return []
