@@ -295,8 +295,8 @@ class _Flock:
             os.close(self.fd)            # closing the file releases the lock
 
 
-def _lock(ws):
-    path = str(ws / (PROGRESS_FILE + LOCK_SUFFIX))
+def _lock(ws, name=PROGRESS_FILE):
+    path = str(ws / (name + LOCK_SUFFIX))
     try:
         from filelock import FileLock
     except ImportError:
@@ -456,6 +456,24 @@ def _pending_updates(mark_seen):
     ws = course_workspace()
     if ws is None:
         return []
+    if not mark_seen:
+        return _listed(ws)[1]
+    try:     # read, mark and write under the lock tools/sync_workspace.py takes to add notices
+        with _lock(ws, NOTICES):
+            notices, pending = _listed(ws)
+            if pending:
+                shown = {p["new_version"] for p in pending}
+                for n in notices:
+                    if n["new_version"] in shown:
+                        n["seen"] = True
+                write_json_atomic(ws / NOTICES, notices)
+            return pending
+    except OSError:       # a read-only workspace: they are shown again next time
+        return _listed(ws)[1]
+
+
+def _listed(ws):
+    """(every notice, the unseen ones whose new version is still there)."""
     notices = _read_json(ws / NOTICES, [])
     notices = [n for n in notices if isinstance(n, dict) and isinstance(n.get("new_version"), str)]
     known = {n["new_version"] for n in notices}
@@ -466,12 +484,4 @@ def _pending_updates(mark_seen):
             notices.append({"file": (beside.parent.relative_to(ws) / (stem + ".ipynb")).as_posix(),
                             "new_version": rel, "seen": False})
     pending = [dict(n) for n in notices if not n.get("seen") and (ws / n["new_version"]).exists()]
-    if mark_seen and pending:
-        for n in notices:
-            if n["new_version"] in {p["new_version"] for p in pending}:
-                n["seen"] = True
-        try:
-            write_json_atomic(ws / NOTICES, notices)
-        except OSError:
-            pass
-    return pending
+    return notices, pending
