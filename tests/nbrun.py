@@ -85,7 +85,8 @@ def configure(config):
         BUILD.mkdir(parents=True, exist_ok=True)
         runs = sorted(p for p in BUILD.iterdir() if p.is_dir() and p.name.startswith("run-"))
         for old in runs[:max(0, len(runs) - KEEP_RUNS + 1)]:
-            shutil.rmtree(old, ignore_errors=True)
+            if time.time() - old.stat().st_mtime > 3600:   # never the folder of a run still going
+                shutil.rmtree(old, ignore_errors=True)
         d = BUILD / f"run-{time.strftime('%Y%m%d-%H%M%S')}-{os.getpid()}"
         d.mkdir()
         os.environ[ENV] = str(d)
@@ -361,11 +362,9 @@ _BY_FILE: dict[str, dict] = {}
 
 
 def category(nodeid: str) -> str:
-    """The row of benchmarks/suite_time.py's table: "nbval book" etc., "browser", else the test file."""
-    f = nodeid.split("@")[0].split("::")[0]
-    if f.endswith(".ipynb"):
-        return "nbval " + f.split("/")[0]
-    return "browser" if f.startswith("tests/browser/") else f
+    """The row of build/nbrun/run-*/by-file.json: "nbval book" etc. for notebooks, else the test file."""
+    f = nodeid.split("::")[0]
+    return "nbval " + f.split("/")[0] if f.endswith(".ipynb") else f
 
 
 def logreport(report):
