@@ -13,9 +13,9 @@ from matplotlib.animation import FuncAnimation
 from matplotlib.patches import Polygon
 
 from ..groups import SE2
-from .toolkit import DPI, PALETTE, new_figure
+from .toolkit import DPI, PALETTE
 
-__all__ = ["testing", "n_frames", "new_figure", "FrameArtist", "BodyArtist", "TrailArtist",
+__all__ = ["testing", "n_frames", "FrameArtist", "BodyArtist", "TrailArtist",
            "SingularFlag", "animate", "jshtml"]
 
 
