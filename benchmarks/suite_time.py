@@ -21,6 +21,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import resource
 import shlex
 import subprocess
 import sys
@@ -54,7 +55,7 @@ def latest_run() -> Path | None:
     return runs[-1] if runs else None
 
 
-def table(run: Path, wall: float | None = None, rc: int | None = None) -> str:
+def table(run: Path, wall: float | None = None, rc: int | None = None, cpu_all: float | None = None) -> str:
     by_file = json.loads((run / "by-file.json").read_text(encoding="utf-8"))
     rows = {name: {"tests": 0, "failed": 0, "seconds": 0.0, "files": 0} for name, _ in GROUPS}
     for cat, v in by_file.items():
@@ -78,6 +79,23 @@ def table(run: Path, wall: float | None = None, rc: int | None = None) -> str:
         verdict = "within" if wall <= GOAL_S else "OVER"
         lines.append(f"{'wall time of make test (after set-up)':<48} {'':>6} {'':>6} {wall:>8.1f}  "
                      f"(goal <= {GOAL_S:.0f} s: {verdict}; exit code {rc})")
+    cpu = {}
+    for f in run.glob("*.json"):
+        if f.name.endswith(".kernel.json") or f.name in ("by-file.json", "durations.json", "groups.json"):
+            continue
+        try:
+            rec = json.loads(f.read_text(encoding="utf-8"))
+        except ValueError:
+            continue
+        if isinstance(rec, dict) and "cpu_seconds" in rec:
+            top = rec["path"].split("/")[0]
+            cpu[top] = cpu.get(top, 0.0) + rec["cpu_seconds"]
+    if cpu:
+        lines.append("CPU seconds in nbval's kernels (cells + figure checks): "
+                     + ", ".join(f"{k} {v:.1f}" for k, v in sorted(cpu.items())))
+    if cpu_all is not None:
+        lines.append(f"CPU seconds of every process of make test: {cpu_all:.1f} "
+                     f"(on 2 quiet cores the wall time is at least {cpu_all / 2:.0f} s)")
     ex = run / "executions.jsonl"
     counts = Counter()
     hosts = Counter()
@@ -117,15 +135,16 @@ def main(argv=None):
         subprocess.run(["make", "setup"], cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
         before = latest_run()
         print("  running make test ...", file=sys.stderr, flush=True)
-        t0 = time.monotonic()
+        t0, r0 = time.monotonic(), resource.getrusage(resource.RUSAGE_CHILDREN)
         cmd = ["make", "test"] + ([f"PYTEST_ARGS={args.args}"] if args.args else [])
         p = subprocess.run(cmd, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
-        wall = time.monotonic() - t0
+        wall, r1 = time.monotonic() - t0, resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu_all = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
     run = latest_run()
     if run is None or run == before:
         print(f"make test left no record in build/nbrun/ (exit code {p.returncode}); see {args.log}")
         return 1
-    print(f"\n{table(run, wall, p.returncode)}\n\n(pytest output in {args.log}; command: {shlex.join(cmd)})")
+    print(f"\n{table(run, wall, p.returncode, cpu_all)}\n\n(pytest output in {args.log}; command: {shlex.join(cmd)})")
     return 0 if p.returncode == 0 else 1
 
 

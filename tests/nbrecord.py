@@ -14,9 +14,9 @@ same checks:
 
 After each cell, every figure the cell created is checked (tests/figstd.py); at the end every figure
 still open is checked again in its final state (a later ``panel.set(...)`` may have moved a readout).
-Animations are caught where they become HTML: while the recorder is installed,
-``matplotlib.animation.Animation.to_jshtml`` first renders every frame through
-:class:`figstd.FrameChecker` (a movie writer, public API), then returns the usual HTML.
+Animations are caught where their frames are rendered: while the recorder is installed,
+``matplotlib.animation.Animation.save`` (which ``to_jshtml`` and the course's own player both use)
+first renders every frame through :class:`figstd.FrameChecker` (a movie writer, public API).
 
 :meth:`Recorder.finish` returns the record as plain data (JSON-able), see :func:`empty_record`.
 """
@@ -72,6 +72,7 @@ def empty_record(rel: str, host: str) -> dict:
         "progress": None,       # gm_core.checks.progress() at the end, when the notebook imported it
         "epilogue": None,       # {"code": ..., "stdout": ...} when an epilogue was run at the end
         "seconds": 0.0,         # from install to finish
+        "cpu_seconds": 0.0,     # CPU time of the process running the cells, from install to finish
     }
 
 
@@ -98,7 +99,8 @@ class Recorder:
         self._next = 0          # index into self.cells where the next match is searched
         self._seen: dict[int, str] = {}   # figure number -> where it appeared
         self._t0 = time.monotonic()
-        self._original_to_jshtml = None
+        self._cpu0 = _cpu()
+        self._original_save = None
         self._finished = False
         self._install()
 
@@ -106,24 +108,27 @@ class Recorder:
     def _install(self):
         from matplotlib import animation
 
-        original = animation.Animation.to_jshtml
+        original = animation.Animation.save
         recorder = self
 
-        def to_jshtml(anim, *args, **kwargs):
-            recorder.on_animation(anim)
-            return original(anim, *args, **kwargs)
+        def save(anim, filename, writer=None, *args, **kwargs):
+            # every way to show an animation renders its frames through save (to_jshtml with
+            # matplotlib's HTML writer, the course's player with its own writer): check them first
+            if not isinstance(writer, figstd.FrameChecker):
+                recorder.on_animation(anim)
+            return original(anim, filename, writer, *args, **kwargs)
 
-        self._original_to_jshtml = original
-        animation.Animation.to_jshtml = to_jshtml
+        self._original_save = original
+        animation.Animation.save = save
         self.shell.events.register("pre_run_cell", self.pre_run_cell)
         self.shell.events.register("post_run_cell", self.post_run_cell)
 
     def uninstall(self):
         from matplotlib import animation
 
-        if self._original_to_jshtml is not None:
-            animation.Animation.to_jshtml = self._original_to_jshtml
-            self._original_to_jshtml = None
+        if self._original_save is not None:
+            animation.Animation.save = self._original_save
+            self._original_save = None
         for name, fn in (("pre_run_cell", self.pre_run_cell), ("post_run_cell", self.post_run_cell)):
             with contextlib.suppress(ValueError):
                 self.shell.events.unregister(name, fn)
@@ -204,8 +209,14 @@ class Recorder:
             self.record["complete"] = True
         finally:
             self.record["seconds"] = round(time.monotonic() - self._t0, 2)
+            self.record["cpu_seconds"] = round(_cpu() - self._cpu0, 2)
             self.uninstall()
         return self.record
+
+
+def _cpu() -> float:
+    t = os.times()
+    return t.user + t.system
 
 
 def log_execution(rel: str, host: str):

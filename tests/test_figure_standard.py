@@ -225,14 +225,29 @@ def test_notebook_runner_catches_animation_frames(tmp_path):
         "t = ax.set_title('tiny', fontsize=5)\n"
         "anim = FuncAnimation(fig, lambda k: None, frames=3)\n"
         "html = anim.to_jshtml()\n"
-        "plt.close(fig)\n")]
+        "plt.close(fig)\n"),
+        # any other movie writer (the course's player keeps PNG frames through one) is seen too
+        nbformat.v4.new_code_cell(
+        "from matplotlib.animation import AbstractMovieWriter\n"
+        "class Keep(AbstractMovieWriter):\n"
+        "    def setup(self, fig, outfile, dpi=None):\n"
+        "        super().setup(fig, outfile, dpi=dpi)\n"
+        "    def grab_frame(self, **kw):\n"
+        "        pass\n"
+        "    def finish(self):\n"
+        "        pass\n"
+        "fig2, ax2 = plt.subplots(figsize=(4, 3))\n"
+        "ax2.set_xlabel('small', fontsize=6)\n"
+        "FuncAnimation(fig2, lambda k: None, frames=2).save('kept', writer=Keep(fps=5))\n"
+        "plt.close(fig2)\n")]
     path = tmp_path / "anim.ipynb"
     nbformat.write(nb, path)
     res = nbfigures.run_notebook(path, root=tmp_path)
-    assert res.errors == [] and res.animations == 1 and res.figures == 0
+    assert res.errors == [] and res.animations == 2 and res.figures == 0
     text = _kinds(res.breaches)
     assert "anim.ipynb In[1] animation frame 0: figure 'tiny': 1000 px wide" in text
     assert "title 'tiny' is 6.9 px" in text
+    assert "anim.ipynb In[2] animation frame 0: " in text and "x-axis label 'small' is 8.3 px" in text
 
 
 def test_kernel_recorder_catches_animation_frames(selfcheck_records):
@@ -264,11 +279,11 @@ def test_panel_initial_state(name, cls):
     assert not msgs, f"{len(msgs)} breaches of the figure standard:\n  " + "\n  ".join(msgs)
 
 
-@pytest.mark.parametrize("notebook", nbrun.params(NOTEBOOKS))
-def test_notebook_figures(notebook, notebook_record):
-    res = nbfigures.NotebookFigures.from_record(notebook_record(notebook))
+@pytest.mark.parametrize("path", nbrun.params(NOTEBOOKS))
+def test_notebook_figures(path, notebook_record):
+    res = nbfigures.NotebookFigures.from_record(notebook_record(path))
     assert not res.errors, "cells failed, so not every figure was drawn:\n  " + "\n  ".join(res.errors)
-    assert notebook_record(notebook)["complete"], f"{res.path}: its execution did not reach the end"
+    assert notebook_record(path)["complete"], f"{res.path}: its execution did not reach the end"
     assert not res.breaches, (f"{len(res.breaches)} breaches of the figure standard in {res.path} "
                               f"({res.figures} figures, {res.animations} animations):\n  "
                               + "\n  ".join(res.breaches))

@@ -44,9 +44,9 @@ def warnings_in(record: dict) -> list[str]:
     return out
 
 
-@pytest.mark.parametrize("notebook", nbrun.params(NOTEBOOKS))
-def test_no_output_shows_a_warning(notebook, notebook_record):
-    rec = notebook_record(notebook)
+@pytest.mark.parametrize("path", nbrun.params(NOTEBOOKS))
+def test_no_output_shows_a_warning(path, notebook_record):
+    rec = notebook_record(path)
     assert rec["complete"] and rec.get("outputs"), f"{rec['path']}: no complete record of its outputs"
     found = warnings_in(rec)
     assert not found, f"{len(found)} outputs show a warning:\n  " + "\n  ".join(found)
