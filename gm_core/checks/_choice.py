@@ -31,8 +31,8 @@ class ChoicePart(Part):
         self.feedback = dict(feedback or {})
         if self.reference is None:
             self.reference = sorted(self.correct)[0]
-        if not self.wrong:
-            self.wrong = [k for k in self.options if k not in self.correct][:1]
+        if not self.wrong:  # default: every other option
+            self.wrong = [k for k in self.options if k not in self.correct]
 
     @staticmethod
     def _read(answer):

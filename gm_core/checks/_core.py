@@ -100,6 +100,9 @@ class Part:
 
     Attributes used by the tests: ``reference`` (a correct answer), ``wrong`` (plausible wrong
     answers), ``starter`` (what the exercise notebook starts with), ``weight`` (grading points).
+    Subclasses default ``reference`` and ``wrong`` from what the part already declares (the
+    reference function, the registered mistakes, the correct option), so a declaration names
+    only what is new.
     """
 
     kind = "numeric"
@@ -227,6 +230,8 @@ class FunctionPart(Part):
     ``mistakes``: ``(wrong_function, message)`` pairs; a message is given only when the answer
     equals that wrong function on every input checked. ``angles``: output entries compared
     modulo 2 pi. ``postprocess(out, args)`` normalises a student's output (runs with the probes).
+    ``reference`` defaults to ``ref``; ``wrong`` is every mistake's function plus any further
+    plausible wrong answers given as ``wrong=``.
     """
 
     kind = "function"
@@ -244,6 +249,10 @@ class FunctionPart(Part):
         self.shape = tuple(shape)
         self.rtol, self.atol = rtol, atol
         self.mistakes = list(mistakes)
+        if self.reference is None:
+            self.reference = ref
+        known = [fn for fn, _ in self.mistakes]
+        self.wrong = known + [w for w in self.wrong if all(w is not k for k in known)]
         self.postprocess = postprocess
         self.angles = tuple(angles)
         self.what = what
@@ -378,6 +387,8 @@ class TuplePart(Part):
     def __init__(self, name, prompt, components, extra=None, **kw):
         super().__init__(name, prompt, **kw)
         self.components = list(components)  # [(label, FunctionPart)]
+        if self.reference is None:  # default: each component's reference
+            self.reference = tuple(part.reference for _, part in self.components)
         self.extra = extra  # optional judge(values by component) for a property of the whole
 
     def _values(self, answer):

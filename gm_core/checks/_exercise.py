@@ -40,7 +40,8 @@ class Exercise:
 
     Creating one registers it (the course's list of exercises is the registry, in creation
     order): a new chapter only needs a module ``gm_core/checks/chN.py`` that creates its
-    ``Exercise`` objects. ``renamed`` maps old part names to new ones for old notebooks.
+    ``Exercise`` objects. ``renamed`` maps old part names to new ones (or to None for a removed
+    part) for old notebooks, which then keep working or get a friendly "course updated" note.
     """
 
     def __init__(self, id, title, parts, renamed=None):
@@ -55,10 +56,16 @@ class Exercise:
         REGISTRY[self.id] = self
 
     def __getattr__(self, name):
-        if name.startswith("_") or name in ("parts", "renamed", "id", "title"):
-            raise AttributeError(name)
-        new = self.__dict__.get("renamed", {}).get(name)
-        if new in self.__dict__.get("parts", {}):
+        # Only names the course once had get the "course was updated" answer (``renamed``: old
+        # name -> new name, or None for a removed part); any other name is an AttributeError,
+        # so hasattr works and a typo is not mistaken for a course update.
+        renamed = self.__dict__.get("renamed", {})
+        if name.startswith("_") or name not in renamed:
+            parts = ", ".join(self.__dict__.get("parts", {}))
+            raise AttributeError(f"exercise {self.__dict__.get('id', '?')} has no part or attribute "
+                                 f"{name!r}; its parts are {parts}")
+        new = renamed[name]
+        if new in self.parts:
             return self.parts[new]
         return _MissingPart(self, name)
 
