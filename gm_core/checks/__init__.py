@@ -12,7 +12,8 @@ Usage in an exercise notebook::
 Every exercise is an object ``exN_M`` whose parts are attributes (``ex2_3.a``, ``ex2_3.b``, ...).
 A check never raises into the notebook and never hangs: your code runs in a separate process
 under a time limit (``set_time_limit(seconds)``; see ``_sandbox``). ``check(answer, strict=True)``
-raises AssertionError instead, for nbgrader / otter-grader test cells. Inside a student workspace
+returns None when right and raises AssertionError when wrong, for nbgrader / otter-grader test
+cells. Inside a student workspace
 progress is saved in ``workspace/.progress.json``; ``reset_progress()`` forgets it.
 
 Adding a chapter: write a module in this folder creating its ``Exercise`` objects (they register

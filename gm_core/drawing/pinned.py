@@ -176,7 +176,7 @@ class RelativePoseScene(Scene):
         self.coord_y.set_data(corner[1:, 0], corner[1:, 1])
         self.arrow.set(b[:2], a[:2] - b[:2])
         self.route.set(np.stack([b[:2], c[:2]]), np.stack([c[:2] - b[:2], a[:2] - c[:2]]))
-        sub = lambda x, y: f"g_{{{x},{y}}}"                                  # noqa: E731
+        sub = lambda x, y: f"$g_{{{x},{y}}}$"                                # noqa: E731 (mathtext)
         err = float(np.max(np.abs(SE2.difference(chained, rel))))
         inv_err = float(np.max(np.abs(SE2.difference(SE2.inverse(rel), swapped))))
         self.text.set_text("\n".join([

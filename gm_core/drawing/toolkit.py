@@ -172,10 +172,18 @@ def _glyphs(line, size, weight, family="sans"):
     """Outline of one line of text as a Path in inches, left/baseline at (0, 0), and its width.
 
     Built from cached per-character outlines and advances (no kerning), so changing a numeric
-    readout costs a few array concatenations instead of a font layout.
+    readout costs a few array concatenations instead of a font layout. A line with a pair of
+    ``$`` is laid out whole as matplotlib mathtext (``"$T_gL_h$ = identity"``), once per
+    distinct line.
     """
     key = (line, size, weight, family, "line")
     hit = _PATH_CACHE.get(key)
+    if hit is None and line.count("$") >= 2:
+        prop = FontProperties(family=_FAMILIES[family], weight=weight)
+        tp = TextPath((0, 0), line, size=size / 72.0, prop=prop)
+        width = float(tp.get_extents().x1) if len(tp.vertices) else 0.0
+        hit = (Path(tp.vertices.copy(), tp.codes.copy()), width)
+        _PATH_CACHE[key] = hit
     if hit is None:
         verts, codes, x = [], [], 0.0
         for c in line:

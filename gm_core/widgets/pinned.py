@@ -42,7 +42,7 @@ class PinnedBodiesPanel(ScenePanel):
 class RelativePosePanel(ScenePanel):
     """Pick a frame, an observer and a frame in between: g_{a,b} = b^-1 a and its cancellation rules (2.iii)-(2.iv)."""
 
-    title = "The notation box of section 2.2: the pose of one frame seen from another, g_{a,b} = b⁻¹a"
+    title = "The notation box of section 2.2: the pose of one frame seen from another, <i>g</i><sub><i>a,b</i></sub> = <i>b</i>⁻¹<i>a</i>"
     scene_class = RelativePoseScene
 
     def controls_spec(self):

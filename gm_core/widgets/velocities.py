@@ -48,7 +48,7 @@ class LiftedScalarPanel(ScenePanel):
 class LiftedSE2Panel(ScenePanel):
     """(1.31), (1.37): left and right lifted actions of SE(2) on a moving body."""
 
-    title = "SE(2): T_gL_h keeps the body velocity, T_gR_h keeps the spatial velocity"
+    title = "SE(2): <i>T<sub>g</sub>L<sub>h</sub></i> keeps the body velocity, <i>T<sub>g</sub>R<sub>h</sub></i> keeps the spatial velocity"
     scene_class = LiftedSE2Scene
 
     def controls_spec(self):
@@ -75,7 +75,7 @@ class VelocityPanel(ScenePanel):
 class AdjointPanel(ScenePanel):
     """(1.40)-(1.45): the adjoint, checked three ways, live."""
 
-    title = "The adjoint Ad_g = T_gR_g⁻¹ T_eL_g, checked live"
+    title = "The adjoint Ad<sub><i>g</i></sub> = <i>T<sub>g</sub>R<sub>g⁻¹</sub> T<sub>e</sub>L<sub>g</sub></i>, checked live"
     scene_class = AdjointScene
 
     def controls_spec(self):
