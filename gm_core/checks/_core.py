@@ -166,7 +166,7 @@ class Part:
 
     # -- the three verbs
     def check(self, answer: Any = None, *, quiet: bool = False, strict: bool = False,
-              time_limit: float | None = None) -> Verdict:
+              time_limit: float | None = None) -> Verdict | None:
         """Check ``answer``; display and return a :class:`Verdict`. Never raises, unless
         ``strict=True`` (nbgrader / otter-grader test cells): then a passed check returns None
         (a doctest-style cell expects nothing) and a failed one raises AssertionError with the

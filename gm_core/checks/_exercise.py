@@ -83,7 +83,7 @@ class Exercise:
         """passed / in progress / failed / unattempted, from the latest check of each part."""
         return _progress.exercise_status(self.id, list(self.parts), data)
 
-    def check(self, answers: dict[str, Any] | None = None, **kw: Any) -> dict[str, Verdict]:
+    def check(self, answers: dict[str, Any] | None = None, **kw: Any) -> dict[str, Verdict | None]:
         """Check several parts at once from a dict {part name: answer}; returns the verdicts."""
         if not isinstance(answers, dict):
             show(FAILED, f"exercise {self.id}", "Pass a dict {part name: answer}, or check one part "
