@@ -239,23 +239,20 @@ def _aside_name(path):
 
 
 def _read_file(ws, fix):
-    """The workspace's record. A damaged file is moved aside (kept) when ``fix`` (under the lock)
-    and the student told; returns (entries, damaged: bool)."""
+    """The workspace's record; returns (entries, damaged: bool). A damaged or unreadable file (or
+    a folder in its place) is moved aside, kept, when ``fix`` (under the lock): the entries that
+    could be read go into a new file, and the student is told."""
     path = ws / PROGRESS_FILE
     try:
         raw = path.read_bytes()
     except FileNotFoundError:
         return {}, False
     except IsADirectoryError:
-        _tell(f"dir:{path}", f"{path} is a folder, not a file, so your progress cannot be saved "
-                             "there. Move that folder away; until then your progress is kept in "
-                             "this kernel's memory.")
-        return {}, False
+        entries, problem = {}, "it is a folder, not a file"
     except OSError as exc:
-        _tell(f"read:{path}", f"{path} cannot be read ({type(exc).__name__}); your progress is kept "
-                              "in this kernel's memory until it can be.")
-        return {}, False
-    entries, problem = parse_record(raw)
+        entries, problem = {}, f"it cannot be read: {type(exc).__name__}, {exc.strerror or exc}"
+    else:
+        entries, problem = parse_record(raw)
     if problem is None:
         return entries, False
     if fix:

@@ -8,13 +8,14 @@ frame) and where they sit in the system's body frame at a shape (:meth:`part_pos
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import BoolArray, FloatArray, as_array
 from ..connection import SINGULAR_TOL, connection_from_pfaffian, pfaffian_determinant
-from ..locomotion import body_velocity
+from ..locomotion import body_velocity, curvature_form, fd_connection_derivative
 
 __all__ = ["LocomotionSystem", "Part", "ellipse_outline", "rectangle_outline"]
 
@@ -79,6 +80,40 @@ class LocomotionSystem:
     def body_velocity(self, r: ArrayLike, r_dot: ArrayLike) -> FloatArray:
         """Body velocity xi = -A(r) r_dot (..., 3), book (3.10)."""
         return body_velocity(self, r, r_dot)
+
+    def connection_derivative(self, r: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """``(A (..., 3, n), dA (..., 3, n, n))``, ``dA[..., i, j, k] = d A_ij / d r_k``.
+
+        Central differences (:func:`gm_core.locomotion.fd_connection_derivative`) unless a system
+        has a closed form and overrides this.
+        """
+        return fd_connection_derivative(self, r)
+
+    def constraint_curvature(self, r: ArrayLike) -> FloatArray:
+        """Constraint curvature D(-A): (..., 3) for a 2-D shape space, else the 2-form (..., 3, n, n).
+
+        ``F_ij = -(d_i A_j - d_j A_i) + [A_i, A_j]`` (:func:`gm_core.locomotion.curvature_form`);
+        for two shape variables the one component F_12 is returned as (..., 3). NaN at singular shapes.
+        """
+        F = curvature_form(*self.connection_derivative(r))
+        return F[..., 0, 1] if self.n_shape == 2 else F
+
+    def shape_metric(self, r: ArrayLike) -> FloatArray:
+        """Cost metric on shape space (..., n, n); systems without a physical cost refuse (TypeError)."""
+        raise TypeError(f"system {self.name!r} has no physical cost metric (no drag or mass matrix); "
+                        "pass metric='euclidean' or a callable r -> M(r)")
+
+    def body_frames(self, bounds: Any = None, *, n: int | None = None, centre_of_mass: bool = True,
+                    minimum_perturbation: bool = True) -> dict[str, LocomotionSystem]:
+        """The body frames this system can be seen from, {name: system}, its own first.
+
+        This one alone unless a system offers more: systems made of links add, when asked, their
+        centre of mass with the mean link orientation (``centre_of_mass``) and Hatton's
+        minimum-perturbation frame over ``bounds`` with ``n`` nodes per axis
+        (``minimum_perturbation``); a system whose physics defines several frames (the floating
+        snake) always lists them.
+        """
+        return {"own frame": self}
 
     def singularity(self, r: ArrayLike) -> FloatArray:
         """Scaled det(omega_xi) (...,) in [-1, 1]; zero exactly at singular shapes."""
