@@ -237,6 +237,11 @@ GEOMETRY_CASES = [
          {"a": np.array([[0.5], [0.0]]), "b": np.array([[0.0], [0.5]]), "center": np.array([0.1, 0.0])},
          also_valid={"b": (None,), "center": (None,)}, out_tail=(2,)),
     Case("sysplotter_stroke", GE.sysplotter_stroke, {"which": "displacement"}, options={"which"}),
+    Case("shaped_gait", lambda c1, c2, a, b, tilt, bend: GE.shaped_gait(c1, c2, a, b, tilt, bend)(0.3),
+         {"c1": 0.1, "c2": -0.2, "a": 0.8, "b": 0.5, "tilt": 0.4, "bend": 0.2}, out_tail=(2,)),
+    Case("row_scaled", GE.row_scaled, {"values": np.array([[0.2, 1e-15, -0.1], [0.19, 0.0, -0.1]]), "floor": 0.05}),
+    Case("field_rms", GE.field_rms, {"system": SWIMMER, "grid": np.array([[0.4, -0.9], [0.1, 0.2]])},
+         objects={"system"}, out_tail=(3,)),
 ]
 SLOW_CASES += [
     Case("stokes_estimate", GE.stokes_estimate, {"system": SWIMMER, "gait": GAIT, "rtol": 1e-6},
@@ -244,6 +249,9 @@ SLOW_CASES += [
     Case("body_velocity_integral", GE.body_velocity_integral, {"system": SWIMMER, "gait": GAIT, "rtol": 1e-8},
          kwonly={"rtol"}, objects={"system", "gait"}, out_tail=(3,)),
     Case("drift_and_turn", GE.drift_and_turn, {"system": SWIMMER, "gait": GAIT}, objects={"system", "gait"}),
+    Case("displacement_estimates", lambda system, gait, interactive: GE.displacement_estimates(
+        system, gait, interactive=interactive).as_array(), {"system": SWIMMER, "gait": GAIT, "interactive": True},
+         objects={"system", "gait"}, flags={"interactive"}, out_tail=(3, 3)),
     Case("path_length", GE.path_length, {"system": SWIMMER, "gait": GAIT}, objects={"system", "gait"}),
     Case("efficiency", GE.efficiency, {"system": SWIMMER, "gait": GAIT}, objects={"system", "gait"}),
     Case("gait_objective", GE.gait_objective,

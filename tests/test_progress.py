@@ -396,3 +396,16 @@ def test_a_kernel_holding_the_lock_forever_costs_no_verdict(workspace, monkeypat
         holder.kill()
         holder.wait()
     assert FileLock(str(workspace / ".progress.json.lock"), timeout=5).acquire()
+
+
+def test_a_bookkeeping_error_never_costs_the_verdict(workspace, monkeypatch, capsys):
+    """Whatever goes wrong while saving (here: a bug that raises), the check still gives its
+    verdict and progress() still shows it."""
+    from gm_core.checks import _progress
+
+    def broken(*a, **k):
+        raise RuntimeError("a bug while saving")
+    monkeypatch.setattr(_progress, "write_json_atomic", broken)
+    assert checks.ex3_1.a.check(checks.ex3_1.a.reference, quiet=True).passed
+    assert progress()["3.1"] == IN_PROGRESS
+    assert "Traceback" not in capsys.readouterr().out
