@@ -11,9 +11,8 @@ import os
 
 import numpy as np
 import pytest
-from fuzzkit import Case, baseline, cases_table, mutations, run_case
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
+from fuzzkit import Case, baseline, cases_table, check_each, chunks, fuzz_each
+from hypothesis import HealthCheck, settings
 
 from gm_core import SE2, RPlus
 from gm_core import axioms as AX
@@ -308,20 +307,16 @@ CASES = cases_table(CHAIN_CASES, CONNECTION_CASES, GAIT_CASES, SYSTEM_CASES, LOC
 SLOW_CASES = cases_table(SLOW_CASES)
 
 
-@pytest.mark.parametrize("case", CASES + SLOW_CASES, ids=[c.name for c in CASES + SLOW_CASES])
-def test_valid_examples(case):
-    baseline(case)
+@pytest.mark.parametrize("cases", chunks(CASES + SLOW_CASES))
+def test_valid_examples(cases):
+    check_each(cases, baseline)
 
 
-@pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
-@FAST
-@given(data=st.data())
-def test_bad_input(case, data):
-    run_case(case, data.draw(mutations(case)))
+@pytest.mark.parametrize("cases", chunks(CASES))
+def test_bad_input(cases):
+    fuzz_each(cases, FAST)
 
 
-@pytest.mark.parametrize("case", SLOW_CASES, ids=[c.name for c in SLOW_CASES])
-@SLOW
-@given(data=st.data())
-def test_bad_input_integrating(case, data):
-    run_case(case, data.draw(mutations(case)))
+@pytest.mark.parametrize("cases", chunks(SLOW_CASES))
+def test_bad_input_integrating(cases):
+    fuzz_each(cases, SLOW)
