@@ -213,3 +213,25 @@ def test_order_two_optimum_of_a_five_link_swimmer(five_link_optimum):
     lag = np.diff(np.unwrap(np.arctan2(g.b[:, 0], g.a[:, 0])))
     assert amp.min() > 0.6 * amp.max()
     assert np.all(np.abs(lag - lag.mean()) < 0.25 * abs(lag.mean())) and abs(lag.mean()) > 0.5
+
+
+@pytest.mark.parametrize("N", [3, 4, 5])
+def test_stored_chain_strokes_are_local_optima(N):
+    """The stored strokes of notebook 11: their values, a vanishing exact gradient, and every small
+    random change of the coefficients makes them less efficient (a maximum, not a saddle)."""
+    from gm_core.geometry import CHAIN_STROKES, chain_stroke, chain_swimmer
+
+    s, g = chain_swimmer(N), chain_stroke(N)
+    val, grad, info = gait_objective(s, g, "efficiency", intervals=256)
+    assert val == pytest.approx(CHAIN_STROKES[N]["efficiency"], rel=2e-5)
+    assert np.hypot(*info["g"][:2]) == pytest.approx(CHAIN_STROKES[N]["displacement"], rel=2e-5)
+    assert np.abs(grad).max() < 1e-5
+    p = g.parameters
+    rng = np.random.default_rng(N)
+    for _ in range(6):
+        v = rng.normal(size=p.size)
+        for eps in (0.02, -0.02):
+            q = type(g).from_parameters(p + eps * v / np.linalg.norm(v), N - 1, 2, g.period)
+            assert gait_objective(s, q, "efficiency", intervals=256, gradient=False)[0] < val
+    if N > 3:   # more links swim more efficiently at the same total length
+        assert CHAIN_STROKES[N]["efficiency"] > 1.1 * CHAIN_STROKES[N - 1]["efficiency"]
