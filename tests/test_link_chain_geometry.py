@@ -191,7 +191,9 @@ def test_gradient_of_a_four_joint_gait_against_differences():
 
 @pytest.fixture(scope="module")
 def five_link_optimum():
-    chain = LinkChain((1.0,) * 5, "low_re", frame="com")
+    from gm_core.geometry import chain_swimmer
+
+    chain = chain_swimmer(5)            # from the default start, a circle in the first two joints
     return chain, optimize_gait(chain, "efficiency", order=2, coordinates="given", maxiter=200, intervals=256)
 
 
@@ -205,6 +207,9 @@ def test_order_two_optimum_of_a_five_link_swimmer(five_link_optimum):
     start = gait_objective(chain, fourier_gait(np.eye(4, 2), np.eye(4, 2)[:, ::-1]), "efficiency", intervals=256)
     assert np.abs(grad).max() < 1e-4 * np.abs(start[1]).max()
     assert val == pytest.approx(res.efficiency, rel=1e-3)
+    from gm_core.geometry import CHAIN_STROKES
+
+    assert res.efficiency == pytest.approx(CHAIN_STROKES[5]["efficiency"], rel=1e-4)   # the stored stroke
     circles = [efficiency(chain, fourier_gait(R * np.eye(4)[:, i:i + 1], R * np.eye(4)[:, j:j + 1]), check=False)
                for i in range(4) for j in range(i + 1, 4) for R in np.linspace(0.2, 2.0, 10)]
     assert res.efficiency > 1.5 * max(circles)
@@ -235,3 +240,21 @@ def test_stored_chain_strokes_are_local_optima(N):
             assert gait_objective(s, q, "efficiency", intervals=256, gradient=False)[0] < val
     if N > 3:   # more links swim more efficiently at the same total length
         assert CHAIN_STROKES[N]["efficiency"] > 1.1 * CHAIN_STROKES[N - 1]["efficiency"]
+
+
+def test_slices_bad_input_is_named():
+    chain = LinkChain((1.0,) * 5)
+    with pytest.raises(ValueError, match="axes"):
+        shape_slice(chain, None, (0, 0))
+    with pytest.raises(ValueError, match="axes"):
+        shape_slice(chain, None, (0, 4))
+    with pytest.raises(ValueError, match="axes"):
+        shape_slice(chain, None, np.ones((4, 2)))
+    with pytest.raises(ValueError, match="through"):
+        shape_slice(chain, np.zeros(3), (0, 1))
+    with pytest.raises(TypeError, match="system"):
+        shape_slice("chain", None, (0, 1))
+    with pytest.raises(ValueError, match="n_links"):
+        chain_approximation(SlenderBody(), 1)
+    with pytest.raises(TypeError, match="body"):
+        chain_approximation(chain, 8)
