@@ -404,3 +404,28 @@ def test_the_notebook_limit_ends_the_sandbox_and_everything_in_it(tmp_path):
     verdicts, problem, _, _ = _evidence.summarise(run, REGISTRY["1.1"], {})
     assert "longer than the time allowed" in problem and not any(v.passed for v, _ in verdicts.values())
     assert alive_with(str(tmp_path)) == []          # bwrap (its command line names tmp_path) is gone
+
+
+@needs_sandbox
+def test_hiding_outside_tmp_and_around_the_course(tmp_path):
+    """Submissions outside /tmp are hidden by tmpfs mounts; a folder holding the course is not
+    hidden (the kernel needs it), only its notebooks and result files are."""
+    import shutil
+    import tempfile
+
+    from gm_core.checks._isolate import _hide_args
+    base = Path(tempfile.mkdtemp(prefix="gm-hide-", dir="/var/tmp"))
+    try:
+        (base / "bob").mkdir()
+        (base / "bob" / "ex1_1.ipynb").write_text("secret")
+        args = _hide_args([base / "bob" / "ex1_1.ipynb", base])
+        assert args == ["--tmpfs", str(base)]
+        res = subprocess.run(["bwrap", "--ro-bind", "/", "/", "--dev", "/dev", "--proc", "/proc",
+                              *args, "--unshare-all", "--cap-drop", "ALL", "cat",
+                              str(base / "bob" / "ex1_1.ipynb")], capture_output=True, text=True)
+        assert res.returncode != 0 and "secret" not in res.stdout
+    finally:
+        shutil.rmtree(base)
+    args = _hide_args([ROOT, ROOT / "solutions" / "ex1_1.ipynb"])
+    mounts = [args[i + 1] for i, a in enumerate(args) if a == "--tmpfs"]
+    assert mounts == [str(ROOT / "solutions")]                  # never the course's own folder

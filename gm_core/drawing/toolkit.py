@@ -26,7 +26,9 @@ import matplotlib as mpl
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.collections import LineCollection, PathCollection, PolyCollection
+from matplotlib.figure import Figure
 from matplotlib.font_manager import FontProperties, findfont, get_font
+from matplotlib.layout_engine import ConstrainedLayoutEngine
 from matplotlib.path import Path
 from matplotlib.textpath import TextPath
 from matplotlib.transforms import blended_transform_factory as _blend
@@ -93,6 +95,18 @@ def _fit(figsize):
     return (w, h)
 
 
+class CourseFigure(Figure):
+    """The figures :func:`new_figure` makes: a matplotlib ``Figure`` whose ``tight_layout()`` may
+    also be called on a figure made with the toolkit's constrained layout. It then lays the figure
+    out tightly, once, exactly as matplotlib does; the constrained engine is released first, so
+    that asking for the tight layout is not reported as an unexpected change of layout."""
+
+    def tight_layout(self, *, pad=1.08, h_pad=None, w_pad=None, rect=None):
+        if isinstance(self.get_layout_engine(), ConstrainedLayoutEngine):
+            self.set_layout_engine("none")   # a placeholder: positions kept until the tight layout runs
+        super().tight_layout(pad=pad, h_pad=h_pad, w_pad=w_pad, rect=rect)
+
+
 def new_figure(nrows=1, ncols=1, *, figsize=(6, 4), subplot_kw=None, layout="constrained", dpi=DPI, **kw):
     """``(fig, axes)`` made to the figure standard, not auto-displayed (a panel places the canvas).
 
@@ -102,7 +116,7 @@ def new_figure(nrows=1, ncols=1, *, figsize=(6, 4), subplot_kw=None, layout="con
     """
     with plt.ioff():
         fig, ax = plt.subplots(nrows, ncols, figsize=_fit(figsize), subplot_kw=subplot_kw, dpi=dpi,
-                               layout=layout, **kw)
+                               layout=layout, FigureClass=kw.pop("FigureClass", CourseFigure), **kw)
     canvas = fig.canvas
     if hasattr(canvas, "header_visible"):
         canvas.header_visible = False
