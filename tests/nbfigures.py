@@ -5,9 +5,9 @@ the Agg backend (the ``%matplotlib widget`` / ``%matplotlib inline`` lines are d
 figures are the same matplotlib figures, measured at their own size and dpi). After each cell,
 the figures it created are checked; at the end every figure still open is checked again in its
 final state (a later ``panel.set(...)`` may have moved a readout). Animations are caught where
-they become HTML: while the notebook runs, ``matplotlib.animation.Animation.to_jshtml`` first
-renders every frame through :class:`figstd.FrameChecker` (a movie writer, public API), then
-returns the usual HTML. Much faster than a kernel per notebook: gm_core is imported once.
+they become HTML: while the notebook runs, ``matplotlib.animation.Animation.save`` (behind both
+``to_jshtml`` and the course's ``jshtml``) first renders every frame through
+:class:`figstd.FrameChecker` (a movie writer, public API), then saves as asked. Much faster than a kernel per notebook: gm_core is imported once.
 
 Used by tests/test_figure_standard.py and tools/screenshots.py (``visit`` callback).
 """
@@ -82,18 +82,21 @@ def _code_cells(path: Path):
 
 @contextlib.contextmanager
 def _catch_animations(on_animation):
-    """While active, ``Animation.to_jshtml`` first hands the animation to ``on_animation``."""
-    original = animation.Animation.to_jshtml
+    """While active, every ``Animation.save`` (what ``to_jshtml`` and ``gm_core.drawing.base.jshtml``
+    render their frames with) first hands the animation to ``on_animation``; the checker's own
+    save (a ``figstd.FrameChecker`` writer) passes straight through."""
+    original = animation.Animation.save
 
-    def to_jshtml(anim, *args, **kwargs):
-        on_animation(anim)
-        return original(anim, *args, **kwargs)
+    def save(anim, filename, writer=None, *args, **kwargs):
+        if not isinstance(writer, figstd.FrameChecker):
+            on_animation(anim)
+        return original(anim, filename, writer, *args, **kwargs)
 
-    animation.Animation.to_jshtml = to_jshtml
+    animation.Animation.save = save
     try:
         yield
     finally:
-        animation.Animation.to_jshtml = original
+        animation.Animation.save = original
 
 
 def _shell():

@@ -13,6 +13,15 @@ a student changes by dragging) or a missing background trigger one full draw (th
 callback then captures the background without the animated artists and paints them on top);
 every later frame is a blit. In 3D the moving artists are projected with the view of the last
 full draw, which the view check keeps current.
+
+:class:`KeyFrames` makes a live (webagg/ipympl) canvas always end on the truth. webagg sends
+each picture as a *difference* from the one sent before, and the browser drops a picture that
+arrives while the previous one is still loading (matplotlib issue 19116, PR 19762): after a
+fast drag the next differences are painted over a picture the browser never showed, and old
+arms, curves and readouts stay on the canvas. So once the changes stop for ``delay`` seconds, a
+key frame is sent: the figure is drawn in full and sent whole (webagg's own "refresh" request,
+which is what a newly connected browser asks for). A slider burst still gets the fast
+difference frames; its last picture is always complete.
 """
 from __future__ import annotations
 
@@ -22,13 +31,20 @@ from matplotlib.axis import Axis
 from matplotlib.legend import Legend
 from matplotlib.spines import Spine
 
-__all__ = ["Blitter", "can_blit"]
+__all__ = ["Blitter", "KeyFrames", "can_blit", "sends_differences"]
 
 
 def can_blit(fig) -> bool:
     """True if ``fig`` can be blitted: its canvas can copy and restore regions (Agg-based)."""
     canvas = fig.canvas
     return hasattr(canvas, "copy_from_bbox") and hasattr(canvas, "restore_region")
+
+
+def sends_differences(fig) -> bool:
+    """True if ``fig``'s canvas sends pictures to a browser as differences (webagg, ipympl)."""
+    from matplotlib.backends.backend_webagg_core import FigureCanvasWebAggCore
+
+    return isinstance(fig.canvas, FigureCanvasWebAggCore)
 
 
 def _view(ax):
@@ -82,8 +98,50 @@ class Blitter:
         self._limits = self._view_limits()
         self._paint()
 
+    def _make_dynamic(self, a):
+        a.set_animated(True)
+        self.dynamic.append(a)
+        self._ids.add(id(a))
+
+    def _covering(self):
+        """Static artists drawn *above* a moving one and overlapping it (a ✓ on a badge whose
+        colour changes): pasted under the moving artist they would vanish, so they move too.
+        Found once, when the set of moving artists grows (never per frame)."""
+        leaves = list(_leaf_artists(self.fig))
+        order = {id(a): (a.get_zorder(), i) for i, a in enumerate(leaves)}
+        renderer = self.canvas.get_renderer() if hasattr(self.canvas, "get_renderer") else None
+
+        def extent(a):
+            try:
+                return a.get_window_extent(renderer)
+            except Exception:  # an artist without a usable extent: assume it covers everything
+                return None
+
+        out, moving = [], [a for a in self.dynamic if a.figure is not None]
+        boxes = {id(a): extent(a) for a in moving}
+        changed = True
+        while changed:
+            changed = False
+            for s in leaves:
+                if id(s) in self._ids or id(s) in {id(o) for o in out} or not s.get_visible():
+                    continue
+                for d in moving:
+                    if d.axes is not s.axes or order.get(id(s), (0, 0)) <= order.get(id(d), (0, 0)):
+                        continue
+                    bs, bd = extent(s), boxes.get(id(d))
+                    if bs is None or bd is None or bs.overlaps(bd):
+                        out.append(s)
+                        moving.append(s)
+                        boxes[id(s)] = bs
+                        changed = True
+                        break
+        return out
+
     def _sorted(self):
-        return sorted((a for a in self.dynamic if a.figure is not None), key=lambda a: a.get_zorder())
+        # the moving artists in the order a full draw paints them (z-order, then insertion)
+        order = {id(a): (a.get_zorder(), i) for i, a in enumerate(_leaf_artists(self.fig))}
+        return sorted((a for a in self.dynamic if a.figure is not None),
+                      key=lambda a: order.get(id(a), (a.get_zorder(), 0)))
 
     def _paint(self):
         for a in self._sorted():
@@ -112,9 +170,10 @@ class Blitter:
             return
         if new or self._view_limits() != self._limits:
             for a in new:
-                a.set_animated(True)
-                self.dynamic.append(a)
-                self._ids.add(id(a))
+                self._make_dynamic(a)
+            if new:
+                for a in self._covering():
+                    self._make_dynamic(a)
             self._full_draw()
             return
         self.canvas.restore_region(self._background)
@@ -133,3 +192,56 @@ class Blitter:
             a.set_animated(False)
         self.dynamic.clear()
         self._ids.clear()
+
+
+class KeyFrames:
+    """Send one whole picture of ``fig`` after the last change of every burst (see module doc).
+
+    :meth:`touch` (called after every update) and every full draw restart a single-shot timer of
+    ``delay`` seconds on the canvas's own event loop; when it fires the figure is drawn in full
+    and sent as a complete image. The key frame's own draw does not restart the timer, and it
+    asks the browser for nothing, so the key frame is the last picture the browser receives.
+    """
+
+    def __init__(self, fig, delay: float = 0.25):
+        self.fig = fig
+        self.canvas = fig.canvas
+        self.delay = float(delay)
+        self.sent = 0
+        self._sending = False
+        self._timer = self.canvas.new_timer(interval=max(1, int(self.delay * 1000)))
+        self._timer.single_shot = True
+        self._timer.add_callback(self.send)
+        self._cid = self.canvas.mpl_connect("draw_event", self._on_draw)
+
+    def touch(self):
+        """A picture was just sent (or is about to be): the key frame follows ``delay`` s later."""
+        self._timer.stop()
+        self._timer.start()
+
+    def _on_draw(self, event):
+        if not self._sending and not self.canvas.is_saving():
+            self.touch()
+
+    def send(self):
+        """Draw the figure in full now and send it whole (not as a difference)."""
+        canvas = self.canvas
+        self._sending = True
+        try:
+            # webagg's "refresh" marks the next picture as a full one; it also asks the browser
+            # to request a draw, which would send one more (difference) picture after the key
+            # frame: that request is left out, the figure is drawn here instead.
+            real_draw_idle = canvas.draw_idle
+            canvas.draw_idle = lambda *a, **k: None
+            try:
+                canvas.handle_event({"type": "refresh"})
+            finally:
+                canvas.draw_idle = real_draw_idle
+            canvas.draw()
+            self.sent += 1
+        finally:
+            self._sending = False
+
+    def disconnect(self):
+        self._timer.stop()
+        self.canvas.mpl_disconnect(self._cid)

@@ -240,7 +240,8 @@ def optimize_with_progress(system, objective="displacement", order=3, **kw):
     from IPython.display import display
 
     maxiter = kw.pop("maxiter", 200)
-    bar = W.IntProgress(value=0, min=0, max=maxiter, description=f"max {objective}")
+    bar = W.IntProgress(value=0, min=0, max=maxiter, description=f"max {objective}",
+                        style={"description_width": "initial"})
     label = W.HTML("starting from a circle ...")
     display(W.HBox([bar, label]))
 
