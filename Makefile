@@ -27,7 +27,7 @@ $(PY):
 $(STAMP): pyproject.toml | $(PY)
 	$(PY) -m pip install --quiet --upgrade pip
 	@# setuptools' note about editable installs (not a problem here) is silenced; nothing else is.
-	PYTHONWARNINGS="ignore:::setuptools.command.editable_wheel" $(PY) -m pip install --quiet -e ".[test]"
+	PYTHONWARNINGS="ignore:::setuptools.command.editable_wheel" $(PY) -m pip install --quiet -e ".[lab,test]"
 	@touch $(STAMP)
 
 setup: $(STAMP)

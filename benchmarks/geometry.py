@@ -14,6 +14,7 @@ import timeit
 
 import numpy as np
 
+from gm_core.gaits import circle_gait
 from gm_core.geometry import (
     SYSPLOTTER_STROKES,
     constraint_curvature,
@@ -22,7 +23,6 @@ from gm_core.geometry import (
     stokes_estimate,
     sysplotter_swimmer,
 )
-from gm_core.locomotion import circle_gait
 from gm_core.systems import ALL_SYSTEMS
 
 

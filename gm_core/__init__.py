@@ -1,8 +1,9 @@
 """gm_core: the numeric core of the geometric mechanics course companion.
 
-The mathematics (this package's top level, ``groups``, ``calculus``, ``fields``, ``kinematics``,
-``chains``, ``connection``, ``gaits``, ``locomotion``, ``systems``, ``fluids``, ``geometry``,
-``manifolds``, ``axioms``, ``frames``) uses numpy and scipy only. Drawing
+The mathematics (this package's top level, ``groups``, ``calculus``, ``fields``, ``chains``,
+``arms``, ``three_link_chain``, ``holonomic``, ``connection``, ``gaits``, ``locomotion``,
+``systems``, ``fluids``, ``geometry``, ``manifolds``, ``axioms``, ``observers``) uses numpy and
+scipy only. Drawing
 (``gm_core.drawing``) and widgets (``gm_core.widgets``) sit on top and are imported only when
 asked for, so the flow runs one way: math -> drawing -> widgets -> notebooks.
 """
@@ -19,13 +20,13 @@ __all__ = [
 ]
 __version__ = "0.1.0"
 
-_SUBMODULES = {"groups", "calculus", "fields", "chains", "kinematics", "connection", "gaits",
-               "locomotion", "systems", "fluids", "geometry", "manifolds", "axioms", "frames",
+_SUBMODULES = {"groups", "calculus", "fields", "chains", "arms", "three_link_chain", "holonomic", "connection", "gaits",
+               "locomotion", "systems", "fluids", "geometry", "manifolds", "axioms", "observers",
                "checks", "grade", "drawing", "widgets"}
 
 
 def __getattr__(name):
-    # Lazy submodules: ``import gm_core; gm_core.chains.three_link_jacobians(...)`` works without
+    # Lazy submodules: ``import gm_core; gm_core.three_link_chain.three_link_jacobians(...)`` works without
     # importing matplotlib or ipywidgets for code that never draws.
     if name in _SUBMODULES:
         return importlib.import_module(f".{name}", __name__)

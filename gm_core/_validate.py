@@ -13,7 +13,7 @@ import numbers
 
 import numpy as np
 
-__all__ = ["as_array", "check_positive", "real_number", "positive_number", "check_int", "check_shape", "batch_shape",
+__all__ = ["as_array", "check_positive", "check_lengths", "real_number", "positive_number", "check_int", "check_shape", "batch_shape",
            "check_option", "SingularShapeError", "MAX_ELEMENTS"]
 
 #: Largest number of entries a size or batch-shape argument may ask for (about 0.8 GB of floats).
@@ -94,6 +94,14 @@ def check_positive(value, name, *, allow_zero=False):
     if np.any(bad):
         kind = "non-negative" if allow_zero else "positive"
         raise ValueError(f"{name} must be {kind}; got {value!r:.80}")
+    return arr
+
+
+def check_lengths(lengths, n, name="lengths"):
+    """Return ``lengths`` as a float array of exactly ``n`` positive numbers (link lengths, weights)."""
+    arr = check_positive(lengths, name)
+    if arr.ndim != 1 or arr.shape[0] != n:
+        raise ValueError(f"{name} must be a sequence of {n} positive numbers; got shape {arr.shape}")
     return arr
 
 

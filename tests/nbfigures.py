@@ -82,7 +82,7 @@ def _code_cells(path: Path):
 
 @contextlib.contextmanager
 def _catch_animations(on_animation):
-    """While active, every ``Animation.save`` (what ``to_jshtml`` and ``gm_core.drawing.base.jshtml``
+    """While active, every ``Animation.save`` (what ``to_jshtml`` and ``gm_core.drawing.primitives.jshtml``
     render their frames with) first hands the animation to ``on_animation``; the checker's own
     save (a ``figstd.FrameChecker`` writer) passes straight through."""
     original = animation.Animation.save

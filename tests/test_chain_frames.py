@@ -8,6 +8,8 @@ from hypothesis import strategies as st
 
 from gm_core import SE2, SO2, RPlus
 from gm_core import chains as C
+from gm_core.holonomic import pin_constraints, pinned_pair
+from gm_core.three_link_chain import beta_frame_velocity, com_frame
 
 EPS = 1e-6
 seeds = st.integers(0, 2**31 - 1)
@@ -64,8 +66,8 @@ def test_pinned_pair_satisfies_the_pin_and_keeps_alpha(seed):
     rng = np.random.default_rng(seed)
     g = SE2.random(rng)
     alpha = rng.uniform(-np.pi, np.pi)
-    g1, g2 = C.pinned_pair(g, alpha)
-    np.testing.assert_allclose(C.pin_constraints(g1, g2), 0.0, atol=1e-12)
+    g1, g2 = pinned_pair(g, alpha)
+    np.testing.assert_allclose(pin_constraints(g1, g2), 0.0, atol=1e-12)
     np.testing.assert_allclose(g1, g)
     # independent route: body 2's frame is body 1's frame turned by alpha about the common origin
     R = SE2.matrix(g1)[:2, :2] @ np.array([[np.cos(alpha), -np.sin(alpha)], [np.sin(alpha), np.cos(alpha)]])
@@ -76,12 +78,12 @@ def test_pinned_pair_satisfies_the_pin_and_keeps_alpha(seed):
 def test_pin_constraints_values_and_batching():
     rng = np.random.default_rng(2)
     g1, g2 = SE2.random(rng, (2, 4))
-    f = C.pin_constraints(g1, g2)
+    f = pin_constraints(g1, g2)
     assert f.shape == (4, 2)
     np.testing.assert_allclose(f, g1[:, :2] - g2[:, :2])
-    assert C.pinned_pair(g1, np.zeros(4)).shape == (4, 2, 3)
+    assert pinned_pair(g1, np.zeros(4)).shape == (4, 2, 3)
     with pytest.raises(ValueError, match="g2"):
-        C.pin_constraints([0, 0, 0], [0, 0])
+        pin_constraints([0, 0, 0], [0, 0])
 
 
 # ----------------------------------------------------- velocity of a generalized body frame
@@ -96,27 +98,27 @@ def test_beta_frame_velocity_parts_match_finite_differences(alpha, lengths, seed
     rng = np.random.default_rng(seed)
     alpha = np.array(alpha)
     g0, xi, alpha_dot = SE2.random(rng), rng.uniform(-1, 1, 3), rng.uniform(-1, 1, 2)
-    beta, dbeta = C.com_frame(alpha, lengths)
-    parts = C.beta_frame_velocity(beta, dbeta, xi, alpha_dot)
+    beta, dbeta = com_frame(alpha, lengths)
+    parts = beta_frame_velocity(beta, dbeta, xi, alpha_dot)
 
     def frame(xi_, ad_):   # g(t) = g0 exp(t xi) beta(alpha + t alpha_dot)
-        return lambda t: SE2.compose(SE2.compose(g0, SE2.exp(t * xi_)), C.com_frame(alpha + t * ad_, lengths)[0])
+        return lambda t: SE2.compose(SE2.compose(g0, SE2.exp(t * xi_)), com_frame(alpha + t * ad_, lengths)[0])
 
     np.testing.assert_allclose(parts["body"], _fd_body(frame(xi, alpha_dot)), atol=1e-7)
     np.testing.assert_allclose(parts["carried"], _fd_body(frame(xi, 0 * alpha_dot)), atol=1e-7)  # shape frozen
     np.testing.assert_allclose(parts["shape"], _fd_body(frame(0 * xi, alpha_dot)), atol=1e-7)    # base link still
     # (2.61): v_beta is the spatial velocity of beta relative to the base link, beta_dot beta^-1
-    b = lambda t: C.com_frame(alpha + t * alpha_dot, lengths)[0]
+    b = lambda t: com_frame(alpha + t * alpha_dot, lengths)[0]
     Bdot = (SE2.matrix(b(EPS)) - SE2.matrix(b(-EPS))) / (2 * EPS)
     np.testing.assert_allclose(SE2.hat(parts["v_beta"]), Bdot @ np.linalg.inv(SE2.matrix(b(0.0))), atol=1e-7)
 
 
 def test_beta_frame_velocity_bad_input():
-    beta, dbeta = C.com_frame([0.3, 0.4])
+    beta, dbeta = com_frame([0.3, 0.4])
     with pytest.raises(ValueError, match="alpha_dot"):
-        C.beta_frame_velocity(beta, dbeta, [0, 0, 1], [1.0, 2.0, 3.0])
+        beta_frame_velocity(beta, dbeta, [0, 0, 1], [1.0, 2.0, 3.0])
     with pytest.raises(ValueError, match="xi_base"):
-        C.beta_frame_velocity(beta, dbeta, [0, 1], [1.0, 2.0])
+        beta_frame_velocity(beta, dbeta, [0, 1], [1.0, 2.0])
 
 
 # ------------------------------------------------------- Jacobian columns carried to the tip

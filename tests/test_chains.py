@@ -6,6 +6,27 @@ from hypothesis import strategies as st
 
 from gm_core import SE2
 from gm_core import chains as C
+from gm_core.arms import (
+    rp_arm_body_jacobians,
+    rp_arm_frames,
+    rr_arm_frames,
+    rr_arm_jacobian,
+    single_link_frames,
+)
+from gm_core.holonomic import (
+    accessible_circle,
+    circle_constraints,
+    sample_accessible_manifold,
+    sphere_plane_constraints,
+)
+from gm_core.three_link_chain import (
+    com_frame,
+    com_frame_jacobians,
+    three_link_chain,
+    three_link_frames,
+    three_link_jacobians,
+    three_link_poses,
+)
 
 EPS = 1e-6
 
@@ -23,11 +44,11 @@ def fd_body_velocity(pose_fn, g0, alpha, xi, alpha_dot, eps=EPS):
 def test_three_link_jacobians_shapes_and_batching():
     rng = np.random.default_rng(0)
     a = rng.uniform(-2, 2, (4, 5, 2))
-    J = C.three_link_jacobians(a, (1.0, 2.0, 0.5))
+    J = three_link_jacobians(a, (1.0, 2.0, 0.5))
     assert len(J) == 3
     for Ji in J:
         assert Ji.shape == (4, 5, 3, 5)
-    single = C.three_link_jacobians(a[2, 3], (1.0, 2.0, 0.5))
+    single = three_link_jacobians(a[2, 3], (1.0, 2.0, 0.5))
     for Ji, Si in zip(J, single):
         np.testing.assert_allclose(Ji[2, 3], Si, atol=1e-15)
     np.testing.assert_array_equal(J[1][0, 0], np.hstack([np.eye(3), np.zeros((3, 2))]))  # (2.46)
@@ -43,11 +64,11 @@ def test_three_link_jacobians_match_finite_differences(alpha, lengths, seed):
     g0 = SE2.random(rng)
     xi = rng.normal(size=3)
     alpha_dot = rng.normal(size=2)
-    J = C.three_link_jacobians(alpha, lengths)
+    J = three_link_jacobians(alpha, lengths)
     u = np.concatenate([xi, alpha_dot])
     for i in range(3):
         def pose(g, a, i=i):
-            return C.three_link_frames(a, lengths, g)["g"][..., i, :]
+            return three_link_frames(a, lengths, g)["g"][..., i, :]
 
         expected = fd_body_velocity(pose, g0, alpha, xi, alpha_dot)
         np.testing.assert_allclose(J[i] @ u, expected, atol=1e-7)
@@ -55,23 +76,23 @@ def test_three_link_jacobians_match_finite_differences(alpha, lengths, seed):
 
 def test_three_link_sign_convention():
     # alpha1 = rotation of link 2 relative to link 1, so link 1 sits at -alpha1; link 3 at +alpha2 (fig. 2.6)
-    fr = C.three_link_frames([0.3, 0.5], (1.0, 1.0, 1.0))
+    fr = three_link_frames([0.3, 0.5], (1.0, 1.0, 1.0))
     np.testing.assert_allclose(fr["g"][..., 2], [-0.3, 0.0, 0.5], atol=1e-15)
     # joints coincide: h1 and f2 at the same point, h2 and f3 at the same point
     np.testing.assert_allclose(fr["h"][0, :2], fr["f"][1, :2], atol=1e-15)
     np.testing.assert_allclose(fr["h"][1, :2], fr["f"][2, :2], atol=1e-15)
     np.testing.assert_allclose(fr["joints"], [fr["f"][1, :2], fr["f"][2, :2]], atol=1e-15)
     # even shape (alpha1 = alpha2, a C): bilateral mirror symmetry about the middle link's y axis, fig 2.6
-    fr = C.three_link_frames([0.7, 0.7], (1.0, 2.0, 1.0))
+    fr = three_link_frames([0.7, 0.7], (1.0, 2.0, 1.0))
     np.testing.assert_allclose(fr["g"][0, :2] * [-1, 1], fr["g"][2, :2], atol=1e-14)
     # odd shape (alpha1 = -alpha2, an S): point symmetry about the middle link's centre
-    fr = C.three_link_frames([0.7, -0.7], (1.0, 2.0, 1.0))
+    fr = three_link_frames([0.7, -0.7], (1.0, 2.0, 1.0))
     np.testing.assert_allclose(-fr["g"][0, :2], fr["g"][2, :2], atol=1e-14)
 
 
 def test_three_link_draft_errata():
     alpha, L = np.array([0.4, -0.9]), (1.0, 1.5, 0.8)
-    J1, _, J3 = C.three_link_jacobians(alpha, L)
+    J1, _, J3 = three_link_jacobians(alpha, L)
     np.testing.assert_allclose(J3[2], [0, 0, 1, 0, 1])    # draft (2.59) prints (0, 0, 1, 1, 0)
     np.testing.assert_allclose(J1[2], [0, 0, 1, -1, 0])
     xi = np.array([0.3, -0.2, 0.7])
@@ -85,13 +106,13 @@ def test_three_link_draft_errata():
 
 def test_three_link_bad_input():
     with pytest.raises(ValueError, match="alpha"):
-        C.three_link_jacobians([0.1, 0.2, 0.3], (1, 1, 1))
+        three_link_jacobians([0.1, 0.2, 0.3], (1, 1, 1))
     with pytest.raises(ValueError, match="lengths"):
-        C.three_link_jacobians([0.1, 0.2], (1, 1))
+        three_link_jacobians([0.1, 0.2], (1, 1))
     with pytest.raises(ValueError, match="lengths"):
-        C.three_link_jacobians([0.1, 0.2], (1, -1, 1))
+        three_link_jacobians([0.1, 0.2], (1, -1, 1))
     with pytest.raises(TypeError, match="alpha"):
-        C.three_link_jacobians("ab", (1, 1, 1))
+        three_link_jacobians("ab", (1, 1, 1))
 
 
 @pytest.mark.parametrize("method", C.METHODS)
@@ -99,8 +120,8 @@ def test_three_link_generic_methods_agree_with_closed_form(method):
     rng = np.random.default_rng(3)
     a = rng.uniform(-3, 3, (20, 2))
     L = (0.7, 1.2, 1.9)
-    J = C.three_link_jacobians(a, L)
-    Jg = C.three_link_chain(L).body_jacobians(a, method=method)
+    J = three_link_jacobians(a, L)
+    Jg = three_link_chain(L).body_jacobians(a, method=method)
     for i in range(3):
         np.testing.assert_allclose(Jg[..., i, :, :], J[i], atol=1e-12)
 
@@ -150,18 +171,18 @@ def test_mobile_chain_methods_agree_and_match_fd(n_links, seed):
 
 def test_forward_kinematics_rr_arm_matches_book():
     a1, a2, l1, l2 = 0.3, -1.1, 1.2, 0.7
-    fr = C.rr_arm_frames([a1, a2], (l1, l2))
+    fr = rr_arm_frames([a1, a2], (l1, l2))
     np.testing.assert_allclose(fr[1], [l1 * np.cos(a1), l1 * np.sin(a1), a1])   # (2.4)
     np.testing.assert_allclose(fr[2], [l1 * np.cos(a1), l1 * np.sin(a1), a1 + a2])   # (2.5)
     np.testing.assert_allclose(fr[3], [l1 * np.cos(a1) + l2 * np.cos(a1 + a2),
                                        l1 * np.sin(a1) + l2 * np.sin(a1 + a2), a1 + a2])   # (2.7)
     ch = C.Chain("RR", (l1, l2))
-    np.testing.assert_allclose(C.rr_arm_jacobian([a1, a2], (l1, l2)),
+    np.testing.assert_allclose(rr_arm_jacobian([a1, a2], (l1, l2)),
                                C.finite_difference_jacobians(ch.end_effector, np.array([a1, a2])), atol=1e-8)
 
 
 def test_single_link_and_two_link_mobile_13():
-    g, h = C.single_link_frames(0.4, 2.0)
+    g, h = single_link_frames(0.4, 2.0)
     np.testing.assert_allclose(h, [2 * np.cos(0.4), 2 * np.sin(0.4), 0.4])   # (2.4)
     a, l1, l2 = 0.8, 1.0, 1.6
     fr = C.MobileChain((l1, l2), base_link=0).frames([a])
@@ -173,19 +194,19 @@ def test_rp_arm_frames_and_body_jacobians():
     for offset in (0.0, 0.35):
         alpha, delta = rng.uniform(-2, 2, 6), rng.uniform(0, 1, 6)
         l1, l2 = 1.1, 0.6
-        fr = C.rp_arm_frames(alpha, delta, l1, l2, offset)
+        fr = rp_arm_frames(alpha, delta, l1, l2, offset)
         if offset == 0.0:   # (2.10)-(2.11)
             r = l1 + delta
             np.testing.assert_allclose(fr["g2"], np.stack([r * np.cos(alpha), r * np.sin(alpha), alpha], -1))
             r = l1 + delta + l2
             np.testing.assert_allclose(fr["h2"], np.stack([r * np.cos(alpha), r * np.sin(alpha), alpha], -1))
-        J = C.rp_arm_body_jacobians(alpha, delta, l1, l2, offset)
+        J = rp_arm_body_jacobians(alpha, delta, l1, l2, offset)
         q = np.stack([alpha, delta], -1)
         # g2' is the link-2 frame momentarily aligned with h1: xi_g2' = xi_h1 + (delta_dot, 0, 0), (2.43)
         np.testing.assert_allclose(J["g2p"], J["h1"] + np.array([[0, 1.0], [0, 0], [0, 0]]))
         for key in ("g1", "h1", "g2", "h2"):
             def pose(x, key=key):
-                return C.rp_arm_frames(x[..., 0], x[..., 1], l1, l2, offset)[key]
+                return rp_arm_frames(x[..., 0], x[..., 1], l1, l2, offset)[key]
 
             Jw = C.finite_difference_jacobians(pose, q)
             np.testing.assert_allclose(J[key], C.world_to_body_jacobian(fr[key], Jw), atol=1e-8)
@@ -194,7 +215,7 @@ def test_rp_arm_frames_and_body_jacobians():
         Jc = ch.jacobians(q, velocity="body")
         np.testing.assert_allclose(Jc["f"][..., 1, :, :], J["g2"], atol=1e-12)
         np.testing.assert_allclose(Jc["h"][..., 1, :, :], J["h2"], atol=1e-12)
-    Jh = C.rp_arm_body_jacobians(0.3, 0.2, 1.0, 1.0)["h1"]
+    Jh = rp_arm_body_jacobians(0.3, 0.2, 1.0, 1.0)["h1"]
     np.testing.assert_allclose(Jh[:, 0], [0, 1.0, 1.0])   # (2.41): (0, l1, 1), not (0, 0, l1)
 
 
@@ -217,7 +238,7 @@ def test_bad_input_messages():
     with pytest.raises(ValueError, match="base_link"):
         C.MobileChain((1, 1), base_link=3)
     with pytest.raises(ValueError, match="alpha"):
-        C.three_link_frames([0.1], (1, 1, 1))
+        three_link_frames([0.1], (1, 1, 1))
 
 
 def test_batched_frames_match_loop():
@@ -237,12 +258,12 @@ def test_com_frame_matches_definition_and_fd():
     rng = np.random.default_rng(11)
     L = (0.8, 1.0, 1.4)
     alpha = rng.uniform(-2, 2, (8, 2))
-    beta, dbeta = C.com_frame(alpha, L)
-    fr = C.three_link_frames(alpha, L)
+    beta, dbeta = com_frame(alpha, L)
+    fr = three_link_frames(alpha, L)
     w = np.array(L) / sum(L)
     np.testing.assert_allclose(beta[..., :2], np.einsum("i,...ij->...j", w, fr["g"][..., :2]), atol=1e-14)
     np.testing.assert_allclose(beta[..., 2], np.einsum("i,...i->...", w, fr["g"][..., 2]), atol=1e-14)
-    fd = C.finite_difference_jacobians(lambda a: C.com_frame(a, L)[0][..., None, :], alpha)[..., 0, :, :]
+    fd = C.finite_difference_jacobians(lambda a: com_frame(a, L)[0][..., None, :], alpha)[..., 0, :, :]
     np.testing.assert_allclose(dbeta, fd, atol=1e-8)
 
 
@@ -253,19 +274,19 @@ def test_beta_frame_and_links_from_beta_match_fd():
         alpha = rng.uniform(-2, 2, 2)
         g0 = SE2.random(rng)
         xi, ad = rng.normal(size=3), rng.normal(size=2)
-        J_com, links = C.com_frame_jacobians(alpha, L)
+        J_com, links = com_frame_jacobians(alpha, L)
 
         def com_pose(g, a):
-            return SE2.compose(g, C.com_frame(a, L)[0])
+            return SE2.compose(g, com_frame(a, L)[0])
 
         xi_com = fd_body_velocity(com_pose, g0, alpha, xi, ad)
         np.testing.assert_allclose(J_com @ np.concatenate([xi, ad]), xi_com, atol=1e-7)   # (2.62)
         # (2.68): the same motion described by (xi_com, alpha_dot) gives the same link velocities
-        J = C.three_link_jacobians(alpha, L)
+        J = three_link_jacobians(alpha, L)
         for Ji, Ki in zip(J, links):
             np.testing.assert_allclose(Ki @ np.concatenate([xi_com, ad]), Ji @ np.concatenate([xi, ad]), atol=1e-7)
         # (2.63) and (2.66) expand the same Jacobian
-        beta, dbeta = C.com_frame(alpha, L)
+        beta, dbeta = com_frame(alpha, L)
         bx, by, bt = beta
         c, s = np.cos(bt), np.sin(bt)
         A = np.array([[c, s, bx * s - by * c], [-s, c, bx * c + by * s], [0, 0, 1]])
@@ -278,22 +299,22 @@ def test_beta_frame_and_links_from_beta_match_fd():
 
 # ----------------------------------------------------------------- holonomic constraints box
 def test_accessible_manifold_samples():
-    pts = C.sample_accessible_manifold(C.circle_constraints, n=100)
+    pts = sample_accessible_manifold(circle_constraints, n=100)
     assert len(pts) > 80
     np.testing.assert_allclose(pts[:, 2], 1.0, atol=1e-9)
     np.testing.assert_allclose(np.hypot(pts[:, 0], pts[:, 1]), 1.0, atol=1e-9)
     # exercise 2.1: a sphere about the origin and the plane give the same circle
-    pts2 = C.sample_accessible_manifold(C.sphere_plane_constraints, n=100, rng=np.random.default_rng(1))
-    np.testing.assert_allclose(C.circle_constraints(pts2), 0.0, atol=1e-8)
-    circ = C.accessible_circle(50)
-    np.testing.assert_allclose(C.circle_constraints(circ), 0.0, atol=1e-14)
-    np.testing.assert_allclose(C.sphere_plane_constraints(circ), 0.0, atol=1e-14)
+    pts2 = sample_accessible_manifold(sphere_plane_constraints, n=100, rng=np.random.default_rng(1))
+    np.testing.assert_allclose(circle_constraints(pts2), 0.0, atol=1e-8)
+    circ = accessible_circle(50)
+    np.testing.assert_allclose(circle_constraints(circ), 0.0, atol=1e-14)
+    np.testing.assert_allclose(sphere_plane_constraints(circ), 0.0, atol=1e-14)
 
 
 # ----------------------------------------------------------------- the matrices printed in section 2.5
 def test_world_iterative_matrices_of_225_and_229():
     a1, a2, l1, l2 = 0.4, 1.3, 1.2, 0.9
-    fr = C.rr_arm_frames([a1, a2], (l1, l2))
+    fr = rr_arm_frames([a1, a2], (l1, l2))
     g1, h1, g2, h2 = fr
     # (2.24)-(2.25): h1_dot = (T_e R_h1)(T_g1 R_g1^-1) g1_dot, with g1_dot = (0, 0, a1_dot)
     M = SE2.right_lifted_action(h1, SE2.identity()) @ SE2.right_lifted_action(SE2.inverse(g1), g1)
@@ -304,7 +325,7 @@ def test_world_iterative_matrices_of_225_and_229():
     np.testing.assert_allclose(A[:2, 2], [-(l1 * np.sin(a1) + l2 * np.sin(a1 + a2)), l1 * np.cos(a1) + l2 * np.cos(a1 + a2)])
     np.testing.assert_allclose(B[:2, 2], [l1 * np.sin(a1), -l1 * np.cos(a1)])
     J_g2 = np.array([[-l1 * np.sin(a1), 0], [l1 * np.cos(a1), 0], [1, 1]])   # (2.28)
-    np.testing.assert_allclose(A @ B @ J_g2, C.rr_arm_jacobian([a1, a2], (l1, l2)), atol=1e-14)   # (2.30)
+    np.testing.assert_allclose(A @ B @ J_g2, rr_arm_jacobian([a1, a2], (l1, l2)), atol=1e-14)   # (2.30)
 
 
 @settings(max_examples=30, deadline=None)
@@ -332,27 +353,40 @@ def test_three_link_poses_are_the_chain_product():
     rng = np.random.default_rng(12)
     L = (0.9, 1.3, 0.6)
     a = rng.uniform(-3, 3, (7, 2))
-    P = C.three_link_poses(a, L)
+    P = three_link_poses(a, L)
     for k in range(7):
         a1, a2 = a[k]
         g1 = SE2.compose(SE2.compose([-L[1] / 2, 0, 0], [0, 0, -a1]), [-L[0] / 2, 0, 0])   # (2.12), walking back
         g3 = SE2.compose(SE2.compose([L[1] / 2, 0, 0], [0, 0, a2]), [L[2] / 2, 0, 0])
         assert SE2.isclose(P[k], np.stack([g1, np.zeros(3), g3]), atol=1e-14).all()
     # the centre-of-mass frame is the weighted mean of these poses
-    beta, _ = C.com_frame(a, L, weights=(1.0, 2.0, 3.0))
+    beta, _ = com_frame(a, L, weights=(1.0, 2.0, 3.0))
     np.testing.assert_allclose(beta, np.einsum("i,...ij->...j", np.array([1, 2, 3]) / 6, P), atol=1e-15)
 
 
 def test_three_link_poses_and_sampling_bad_input():
     with pytest.raises(ValueError, match="alpha"):
-        C.three_link_poses([0.1, 0.2, 0.3])
+        three_link_poses([0.1, 0.2, 0.3])
     with pytest.raises(ValueError, match="lengths"):
-        C.three_link_poses([0.1, 0.2], (1, 1))
+        three_link_poses([0.1, 0.2], (1, 1))
     with pytest.raises(TypeError, match="alpha"):
-        C.com_frame(None)
+        com_frame(None)
     with pytest.raises(TypeError, match="n must be an integer"):
-        C.sample_accessible_manifold(C.circle_constraints, n=2.5)
+        sample_accessible_manifold(circle_constraints, n=2.5)
     with pytest.raises(ValueError, match="box"):
-        C.sample_accessible_manifold(C.circle_constraints, box=-1)
+        sample_accessible_manifold(circle_constraints, box=-1)
     with pytest.raises(TypeError, match="rng"):
-        C.sample_accessible_manifold(C.circle_constraints, rng=3)
+        sample_accessible_manifold(circle_constraints, rng=3)
+
+
+def test_a_previous_workspace_still_finds_three_link_frames_in_chains():
+    """Exercise 2.3's notebook of the previous version called ``chains.three_link_frames``: it
+    warns, names the new home and returns the same function; any other unknown name is an
+    AttributeError."""
+    import importlib
+
+    chains = importlib.import_module("gm_core.chains")
+    with pytest.warns(FutureWarning, match="gm_core.three_link_chain"):
+        old = chains.three_link_frames
+    assert old is three_link_frames
+    assert not hasattr(chains, "no_such_name")

@@ -5,9 +5,9 @@ from scipy.integrate import solve_ivp
 
 from gm_core import SE2
 from gm_core.checks import ch3, ex3_1, ex3_3, ex3_4
-from gm_core.locomotion import connection_from_pfaffian
+from gm_core.connection import connection_from_pfaffian
+from gm_core.fluids import ellipse_added_mass
 from gm_core.systems import Ackerman, DifferentialDrive, HighReSwimmer, LowReSwimmer
-from gm_core.systems.high_re import ellipse_added_mass
 
 pytestmark = pytest.mark.usefixtures("clean")
 

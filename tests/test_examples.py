@@ -1,5 +1,5 @@
 """The small formulas the pictures need, each against an independent route: the example fields
-(gm_core.fields.FIELDS), rigid-body point velocities (gm_core.frames), the binomial table
+(gm_core.fields.FIELDS), rigid-body point velocities (gm_core.observers), the binomial table
 (gm_core.calculus) and the constant-rate drive (gm_core.locomotion)."""
 import math
 
@@ -9,9 +9,9 @@ import pytest
 from gm_core import SE2
 from gm_core.calculus import binomial_table
 from gm_core.fields import FIELDS
-from gm_core.frames import icr, point_velocities
 from gm_core.gaits import constant_rate_path
 from gm_core.locomotion import drive
+from gm_core.observers import icr, point_velocities
 
 
 def test_fields_are_the_book_examples():

@@ -20,13 +20,38 @@ from gm_core import axioms as AX
 from gm_core import chains as CH
 from gm_core import connection as CO
 from gm_core import fluids as FL
-from gm_core import frames as FR
 from gm_core import gaits as GA
 from gm_core import geometry as GE
-from gm_core import kinematics as KI
 from gm_core import locomotion as LO
 from gm_core import manifolds as MA
+from gm_core import observers as FR
 from gm_core import systems as SY
+from gm_core.arms import (
+    rp_arm_body_jacobians,
+    rp_arm_frames,
+    rr_arm_frames,
+    rr_arm_jacobian,
+    single_link_frames,
+)
+from gm_core.holonomic import (
+    accessible_circle,
+    circle_constraints,
+    pin_constraints,
+    pinned_pair,
+    sample_accessible_manifold,
+    sphere_plane_constraints,
+)
+from gm_core.three_link_chain import (
+    beta_frame_jacobian,
+    beta_frame_velocity,
+    com_frame,
+    com_frame_jacobians,
+    links_from_beta_frame,
+    three_link_chain,
+    three_link_frames,
+    three_link_jacobians,
+    three_link_poses,
+)
 
 N = int(os.environ.get("FUZZ_EXAMPLES", 25))
 FAST = settings(max_examples=N, deadline=None, derandomize=not os.environ.get("FUZZ_RANDOM"),
@@ -40,52 +65,52 @@ ALPHA3 = np.array([0.3, -0.4])
 LENGTHS = (1.0, 0.8, 1.2)
 
 # ------------------------------------------------------------------ chains and kinematics
-ARM = KI.Chain(["revolute", "prismatic"], [1.0, 0.5])
+ARM = CH.Chain(["revolute", "prismatic"], [1.0, 0.5])
 CHAIN_CASES = [
     Case("world_to_body_jacobian", CH.world_to_body_jacobian, {"g": G, "J": np.ones((3, 2))},
          batch=("g", "J")),
     Case("finite_difference_jacobians", CH.finite_difference_jacobians,
-         {"fk": lambda a: CH.three_link_poses(a), "alpha": ALPHA3, "eps": 1e-6}, callables={"fk"},
+         {"fk": lambda a: three_link_poses(a), "alpha": ALPHA3, "eps": 1e-6}, callables={"fk"},
          out_tail=(3, 3, 2)),
-    Case("relative_pose", KI.relative_pose, {"g": G, "base": H}, batch=("g", "base"), out_tail=(3,)),
+    Case("relative_pose", CH.relative_pose, {"g": G, "base": H}, batch=("g", "base"), out_tail=(3,)),
     Case("transported_columns", CH.transported_columns, {"chain": ARM, "alpha": ALPHA3}, objects={"chain"}),
-    Case("pin_constraints", CH.pin_constraints, {"g1": G, "g2": H}, batch=("g1", "g2"), out_tail=(2,)),
-    Case("pinned_pair", CH.pinned_pair, {"g": G, "alpha": 0.4}, batch=("g", "alpha"), out_tail=(2, 3)),
-    Case("beta_frame_velocity", CH.beta_frame_velocity,
+    Case("pin_constraints", pin_constraints, {"g1": G, "g2": H}, batch=("g1", "g2"), out_tail=(2,)),
+    Case("pinned_pair", pinned_pair, {"g": G, "alpha": 0.4}, batch=("g", "alpha"), out_tail=(2, 3)),
+    Case("beta_frame_velocity", beta_frame_velocity,
          {"beta": G, "dbeta": np.ones((3, 2)), "xi_base": XI, "alpha_dot": np.array([0.5, -0.1])}),
-    Case("single_link_frames", CH.single_link_frames, {"alpha": 0.3, "length": 1.5}),
-    Case("rr_arm_frames", CH.rr_arm_frames, {"alpha": ALPHA3, "lengths": np.array([1.0, 0.5])}),
-    Case("rr_arm_jacobian", CH.rr_arm_jacobian, {"alpha": ALPHA3, "lengths": np.array([1.0, 0.5])},
+    Case("single_link_frames", single_link_frames, {"alpha": 0.3, "length": 1.5}),
+    Case("rr_arm_frames", rr_arm_frames, {"alpha": ALPHA3, "lengths": np.array([1.0, 0.5])}),
+    Case("rr_arm_jacobian", rr_arm_jacobian, {"alpha": ALPHA3, "lengths": np.array([1.0, 0.5])},
          out_tail=(3, 2)),
-    Case("rp_arm_frames", CH.rp_arm_frames, {"alpha": 0.3, "delta": 0.5, "l1": 1.0, "l2": 0.7, "offset": 0.1}),
-    Case("rp_arm_body_jacobians", CH.rp_arm_body_jacobians,
+    Case("rp_arm_frames", rp_arm_frames, {"alpha": 0.3, "delta": 0.5, "l1": 1.0, "l2": 0.7, "offset": 0.1}),
+    Case("rp_arm_body_jacobians", rp_arm_body_jacobians,
          {"alpha": 0.3, "delta": 0.5, "l1": 1.0, "l2": 0.7, "offset": 0.1}),
-    Case("three_link_chain", CH.three_link_chain, {"lengths": np.array(LENGTHS)}),
-    Case("three_link_frames", CH.three_link_frames, {"alpha": ALPHA3, "lengths": np.array(LENGTHS), "g": G},
+    Case("three_link_chain", three_link_chain, {"lengths": np.array(LENGTHS)}),
+    Case("three_link_frames", three_link_frames, {"alpha": ALPHA3, "lengths": np.array(LENGTHS), "g": G},
          also_valid={"g": (None,)}),
-    Case("three_link_poses", CH.three_link_poses, {"alpha": ALPHA3, "lengths": np.array(LENGTHS)},
+    Case("three_link_poses", three_link_poses, {"alpha": ALPHA3, "lengths": np.array(LENGTHS)},
          out_tail=(3, 3)),
-    Case("three_link_jacobians", CH.three_link_jacobians, {"alpha": ALPHA3, "lengths": np.array(LENGTHS)}),
-    Case("beta_frame_jacobian", CH.beta_frame_jacobian, {"beta": G, "dbeta": np.ones((3, 2))},
+    Case("three_link_jacobians", three_link_jacobians, {"alpha": ALPHA3, "lengths": np.array(LENGTHS)}),
+    Case("beta_frame_jacobian", beta_frame_jacobian, {"beta": G, "dbeta": np.ones((3, 2))},
          batch=("beta", "dbeta")),
-    Case("links_from_beta_frame", lambda beta, dbeta: CH.links_from_beta_frame(
-        CH.three_link_jacobians(ALPHA3), beta, dbeta), {"beta": G, "dbeta": np.ones((3, 2))}),
-    Case("com_frame", CH.com_frame, {"alpha": ALPHA3, "lengths": np.array(LENGTHS),
+    Case("links_from_beta_frame", lambda beta, dbeta: links_from_beta_frame(
+        three_link_jacobians(ALPHA3), beta, dbeta), {"beta": G, "dbeta": np.ones((3, 2))}),
+    Case("com_frame", com_frame, {"alpha": ALPHA3, "lengths": np.array(LENGTHS),
                                      "weights": np.array([1.0, 2.0, 1.0])}, also_valid={"weights": (None,)}),
-    Case("com_frame_jacobians", CH.com_frame_jacobians, {"alpha": ALPHA3, "lengths": np.array(LENGTHS),
+    Case("com_frame_jacobians", com_frame_jacobians, {"alpha": ALPHA3, "lengths": np.array(LENGTHS),
                                                          "weights": np.array([1.0, 2.0, 1.0])},
          also_valid={"weights": (None,)}),
-    Case("circle_constraints", CH.circle_constraints, {"p": np.array([0.5, 0.2, 1.0])}, out_tail=(2,)),
-    Case("sphere_plane_constraints", CH.sphere_plane_constraints, {"p": np.array([0.5, 0.2, 1.0])}),
-    Case("sample_accessible_manifold", CH.sample_accessible_manifold,
-         {"constraints": CH.circle_constraints, "n": 8, "rng": None, "box": 2.0, "dim": 3,
+    Case("circle_constraints", circle_constraints, {"p": np.array([0.5, 0.2, 1.0])}, out_tail=(2,)),
+    Case("sphere_plane_constraints", sphere_plane_constraints, {"p": np.array([0.5, 0.2, 1.0])}),
+    Case("sample_accessible_manifold", sample_accessible_manifold,
+         {"constraints": circle_constraints, "n": 8, "rng": None, "box": 2.0, "dim": 3,
           "iters": 20, "tol": 1e-12}, callables={"constraints"}, ints={"n", "dim", "iters"}, objects={"rng"},
          also_valid={"rng": (None,)}),
-    Case("accessible_circle", CH.accessible_circle, {"n": 12}, ints={"n"}, out_tail=(3,)),
-    Case("Chain", KI.Chain, {"joints": ["revolute", "prismatic"], "lengths": np.array([1.0, 0.5])},
+    Case("accessible_circle", accessible_circle, {"n": 12}, ints={"n"}, out_tail=(3,)),
+    Case("Chain", CH.Chain, {"joints": ["revolute", "prismatic"], "lengths": np.array([1.0, 0.5])},
          objects={"joints"}),
     Case("Chain.frames", ARM.frames, {"alpha": ALPHA3}),
-    Case("MobileChain", KI.MobileChain, {"lengths": np.array(LENGTHS)}),
+    Case("MobileChain", CH.MobileChain, {"lengths": np.array(LENGTHS)}),
 ]
 
 # ------------------------------------------------------------------ connection
@@ -100,9 +125,8 @@ CONNECTION_CASES = [
     Case("connection_from_mass_matrix", CO.connection_from_mass_matrix, {"M": M6, "n_position": 3},
          kwonly={"n_position"}, ints={"n_position"}, out_tail=(3, 2), nan_ok={"M"}, finite=False),
     Case("metric_from_jacobians", CO.metric_from_jacobians,
-         {"jacobians": list(CH.three_link_jacobians(ALPHA3)), "inertias": [np.eye(3)] * 3},
+         {"jacobians": list(three_link_jacobians(ALPHA3)), "inertias": [np.eye(3)] * 3},
          objects={"jacobians", "inertias"}),
-    Case("se2_bracket", LO.se2_bracket, {"xi1": XI, "xi2": G}, batch=("xi1", "xi2"), out_tail=(3,)),
 ]
 
 # ------------------------------------------------------------------ gaits

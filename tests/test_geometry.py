@@ -5,6 +5,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gm_core import SingularShapeError
+from gm_core.gaits import Gait, circle_gait
 from gm_core.geometry import (
     body_velocity_integral,
     connection_derivative,
@@ -12,7 +13,7 @@ from gm_core.geometry import (
     fourier_gait,
     stokes_estimate,
 )
-from gm_core.locomotion import Gait, circle_gait, net_displacement
+from gm_core.locomotion import net_displacement
 from gm_core.systems import Ackerman, DifferentialDrive, FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
 
 REGULAR = [LowReSwimmer(), HighReSwimmer(), FloatingSnake(), FloatingSnake(frame="middle"),

@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 
 from gm_core import SE2, SingularShapeError
+from gm_core.gaits import circle_gait
 from gm_core.geometry import (
     centre_of_mass_coordinates,
     constraint_curvature,
@@ -11,7 +12,7 @@ from gm_core.geometry import (
     reframe,
     stokes_estimate,
 )
-from gm_core.locomotion import circle_gait, net_displacement
+from gm_core.locomotion import net_displacement
 from gm_core.systems import FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
 
 

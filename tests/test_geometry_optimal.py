@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 
 from gm_core import SE2, SingularShapeError
+from gm_core.gaits import Gait, circle_gait
 from gm_core.geometry import (
     SYSPLOTTER_STROKES,
     FourierGait,
@@ -16,7 +17,7 @@ from gm_core.geometry import (
     sysplotter_stroke,
     sysplotter_swimmer,
 )
-from gm_core.locomotion import Gait, check_gait, circle_gait, net_displacement, trajectory
+from gm_core.locomotion import check_gait, net_displacement, trajectory
 from gm_core.systems import DifferentialDrive, FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
 
 

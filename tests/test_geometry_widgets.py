@@ -11,6 +11,7 @@ import pytest  # noqa: E402
 
 from gm_core import SE2  # noqa: E402
 from gm_core.drawing import curvature as D  # noqa: E402
+from gm_core.gaits import circle_gait  # noqa: E402
 from gm_core.geometry import (  # noqa: E402
     body_velocity_integral,
     constraint_curvature,
@@ -18,7 +19,8 @@ from gm_core.geometry import (  # noqa: E402
     sysplotter_stroke,
     sysplotter_swimmer,
 )
-from gm_core.locomotion import circle_gait, net_displacement, trajectory  # noqa: E402
+from gm_core.geometry.estimates import field_rms, shaped_gait, square_grid  # noqa: E402
+from gm_core.locomotion import net_displacement, trajectory  # noqa: E402
 from gm_core.systems import FloatingSnake, KinematicSnake, LowReSwimmer  # noqa: E402
 from gm_core.widgets import curvature as Wc  # noqa: E402
 from gm_core.widgets.base import PANELS  # noqa: E402
@@ -56,12 +58,13 @@ def test_bars_show_exact_stokes_and_integral(stokes_panel, frame):
     v = dict(c1=0.3, c2=-0.2, a=0.9, b=0.5, tilt=0.4, bend=0.25, frame=frame, row=2)
     p.set(**v)
     system = p.frames[frame]
-    gait = Wc.shaped_gait(0.3, -0.2, 0.9, 0.5, 0.4, 0.25)
+    gait = shaped_gait(0.3, -0.2, 0.9, 0.5, 0.4, 0.25)
     # the panel's fixed interactive resolutions against the library's refined (adaptive) values
     want = [net_displacement(system, gait), stokes_estimate(system, gait), body_velocity_integral(system, gait)]
-    for shown, w in zip(p.values_shown, want):
-        np.testing.assert_allclose(shown, w, atol=1e-7)
-    np.testing.assert_allclose(p.values_shown[0][2], p.values_shown[1][2], atol=1e-8)  # theta row is exact
+    shown = p.estimates.as_array()
+    for s, w in zip(shown, want):
+        np.testing.assert_allclose(s, w, atol=1e-7)
+    np.testing.assert_allclose(shown[0][2], shown[1][2], atol=1e-8)  # theta row is exact
     # bars: each row divided by its largest |value| (by 5 % of the largest row when it is smaller:
     # a practically zero row stays practically zero), the axis fixed (so the panel can blit)
     heights = np.array([[r.get_height() for r in bars] for bars in p.bars.values()])
@@ -77,7 +80,7 @@ def test_bars_show_exact_stokes_and_integral(stokes_panel, frame):
     line = np.column_stack(p.gait_artist.line.get_data())
     np.testing.assert_allclose(line, gait(np.linspace(0, 1, line.shape[0])), atol=1e-12)
     img = p.map.image.get_array()
-    _, _, grid = D.shape_grid(p.map.limits, p.map.n)
+    grid = square_grid(p.map.limits, p.map.n)
     np.testing.assert_allclose(img[10, 20], constraint_curvature(system, grid[10, 20])[2], rtol=1e-6, atol=1e-9)
 
 
@@ -86,7 +89,7 @@ def test_gait_leaving_the_map_raises_the_flag(stokes_panel):
     p.set(c1=1.5, c2=1.5, a=1.5, b=1.5, frame="minimum perturbation")
     assert p.flag.visible
     assert all(r.get_height() == 0 for bars in p.bars.values() for r in bars)
-    assert "singular" in p.numbers.value and p.values_shown is None
+    assert "singular" in p.numbers.value and p.estimates is None
     p.set(c1=0.0, c2=0.0, a=0.5, b=0.5)
     assert not p.flag.visible and "exact g(T)" in p.numbers.value
 
@@ -96,23 +99,28 @@ def test_stokes_panel_widget_has_the_numbers(stokes_panel):
     assert stokes_panel.numbers in box.children and stokes_panel.widget is box
 
 
-def test_bar_heights_keep_a_vanishing_row_small():
-    h = Wc.GaitStokesPanel.bar_heights([0.2, 1e-15, -0.1], [0.19, -2e-15, -0.1], [0.1, 0.0, -0.05])
-    np.testing.assert_allclose(h[:, 0], [1.0, 0.95, 0.5])
-    assert np.abs(h[:, 1]).max() < 1e-10 and np.allclose(h[:, 2], [-1, -1, -0.5])
+def test_panels_are_scene_panels_over_scenes():
+    from gm_core.drawing.toolkit import Scene
+    from gm_core.widgets.base import ScenePanel
+
+    for cls in (Wc.GaitStokesPanel, Wc.FrameFieldsPanel):
+        assert issubclass(cls, ScenePanel) and issubclass(cls.scene_class, Scene)
 
 
-def test_frame_fields_show_minus_the_connection():
+def test_frame_fields_show_minus_the_connection_at_one_scale():
     p = Wc.FrameFieldsPanel()
+    caps = [f.cap for f in p.fields]
     for frame in ("centre of mass", "minimum perturbation"):
         p.set(frame=frame)
         f = p.fields[1]
-        V = -p.frames[frame].connection(f.grid)[..., 1, :]
+        V = -p.frames[frame].connection(p.grid)[..., 1, :].reshape(-1, 2)
         U = np.column_stack([f.quiver.U.ravel(), f.quiver.V.ravel()])
-        k = np.argmax(np.linalg.norm(V.reshape(-1, 2), axis=1))
-        direction = V.reshape(-1, 2)[k] / np.linalg.norm(V.reshape(-1, 2)[k])
-        np.testing.assert_allclose(U[k] / np.linalg.norm(U[k]), direction, atol=1e-9)
-    assert p.field_norms("minimum perturbation")[2] < p.field_norms("middle link")[2]
+        k = np.argmax(np.linalg.norm(V, axis=1))
+        np.testing.assert_allclose(U[k] / np.linalg.norm(U[k]), V[k] / np.linalg.norm(V[k]), atol=1e-9)
+        assert [g.cap for g in p.fields] == caps          # the middle-link scale in every frame
+        np.testing.assert_allclose(p.rms, field_rms(p.frames[frame], p.grid))
+        assert f"{p.rms[1]:.3f}" in p.axes[1].get_title()
+    assert p.rms[2] < field_rms(p.frames["middle link"], p.grid)[2]
 
 
 def test_curvature_maps_figure_and_zero_rows():

@@ -4,20 +4,21 @@
   ipywidgets, gm_core.drawing or gm_core.widgets -- not even inside a function;
 * drawing never imports gm_core.widgets or ipywidgets;
 * gm_core has no import cycle (module-level and function-level imports, relative imports,
-  ``from package import submodule`` and ``importlib.import_module("constant")`` all count).
+  ``from package import submodule`` and ``importlib.import_module("constant")`` all count);
+* every public name has one home: a module's ``__all__`` lists only what it defines, no
+  compatibility modules (``drawing/ch1.py``...) exist, and every ``from gm_core... import name``
+  in the package, the tests, benchmarks, tools and notebooks names the module that defines it
+  (or a package that lists it in ``__all__``).
 """
 import ast
+import json
+import re
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = "gm_core"
-
-#: Cycles that exist today in modules owned by other engineers, each named by the import that
-#: closes it (importer, imported); the cycle test ignores these edges. The lead empties this list
-#: once the branches that remove them are merged.
-KNOWN_CYCLES_TO_REMOVE: list = []
 
 MATH_FORBIDDEN = ("matplotlib", "ipywidgets", "ipympl", "gm_core.drawing", "gm_core.widgets")
 DRAWING_FORBIDDEN = ("ipywidgets", "gm_core.widgets")
@@ -172,17 +173,124 @@ def test_drawing_never_imports_widgets(name):
 
 def test_no_import_cycles():
     edges = graph()
-    for a, b in KNOWN_CYCLES_TO_REMOVE:
-        edges[a].discard(b)
     cycles = strongly_connected(edges)
     assert not cycles, "import cycles in gm_core: " + "; ".join(
         " -> ".join(a_cycle(edges, c)) for c in cycles)
 
 
-def test_known_cycles_still_exist():
-    """Fails once a listed cycle is gone, so that KNOWN_CYCLES_TO_REMOVE gets emptied."""
-    edges = graph()
-    cyclic = strongly_connected(edges)
-    gone = [(a, b) for a, b in KNOWN_CYCLES_TO_REMOVE
-            if b not in edges[a] or not any(a in c and b in c for c in cyclic)]
-    assert not gone, f"remove these from KNOWN_CYCLES_TO_REMOVE, the cycles are gone: {gone}"
+def test_the_cycle_finder_sees_a_real_cycle_in_gm_core_shaped_input():
+    """The cycle test can fail: an edge back from groups.base to drawing.toolkit closes a cycle."""
+    edges = {k: set(v) for k, v in graph().items()}
+    assert "gm_core.groups.base" in edges["gm_core.drawing.primitives"] | {
+        t for m in edges["gm_core.drawing.primitives"] for t in edges.get(m, ())}
+    edges["gm_core.groups.base"].add("gm_core.drawing.primitives")
+    assert any("gm_core.groups.base" in c for c in strongly_connected(edges))
+
+
+# ------------------------------------------------------------------ one home for every public name
+#: Modules whose ``__all__`` still lists names they import, with the reason (empty this list).
+REEXPORTS_KEPT = {
+    "gm_core.checks._core": "the checking engine's internals; its helpers are re-homed in issue 18 item 5",
+}
+
+
+def _defined(tree):
+    names = set()
+    for n in tree.body:
+        if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            names.add(n.name)
+        elif isinstance(n, ast.Assign):
+            for t in n.targets:
+                names |= {e.id for e in ast.walk(t) if isinstance(e, ast.Name)}
+        elif isinstance(n, ast.AnnAssign) and isinstance(n.target, ast.Name):
+            names.add(n.target.id)
+    return names
+
+
+def _all_of(tree):
+    for n in tree.body:
+        if isinstance(n, ast.Assign) and any(isinstance(t, ast.Name) and t.id == "__all__" for t in n.targets):
+            try:
+                return list(ast.literal_eval(n.value))
+            except ValueError:      # computed (gm_core.checks): a package, checked at import
+                return None
+    return None
+
+
+TREES = {name: ast.parse(path.read_text(encoding="utf-8")) for name, (path, _) in MODULES.items()}
+DEFINED = {name: _defined(tree) for name, tree in TREES.items()}
+
+
+@pytest.mark.parametrize("name", [m for m, (_, pkg) in MODULES.items() if not pkg and m not in REEXPORTS_KEPT])
+def test_a_module_exports_only_what_it_defines(name):
+    exported = _all_of(TREES[name]) or []
+    foreign = [n for n in exported if n not in DEFINED[name]]
+    assert not foreign, f"{name}.__all__ re-exports {foreign}: import them from their home instead"
+
+
+def test_no_compatibility_modules():
+    """The chapter shims are gone: drawings and panels live in topic modules only."""
+    shims = [m for m in MODULES if _within(m, ("gm_core.drawing", "gm_core.widgets"))
+             and re.fullmatch(r"ch\d+", m.rsplit(".", 1)[1])]
+    gone = [m for m in ("gm_core.kinematics", "gm_core.frames", "gm_core.drawing.frames", "gm_core.drawing.base")
+            if m in MODULES]
+    assert not shims and not gone, f"compatibility or renamed modules still present: {shims + gone}"
+
+
+def _package_all(pkg):
+    """A package's public names: its literal ``__all__``, or (computed, gm_core.checks) its import."""
+    names = _all_of(TREES[pkg])
+    if names is None:
+        import importlib
+
+        names = list(importlib.import_module(pkg).__all__)
+    return set(names)
+
+
+def wrong_homes(source, importer=None, is_package=False):
+    """``(line, module, name)`` for every ``from gm_core... import name`` whose module is not the
+    name's home (it neither defines it nor, being a package, lists it in ``__all__``)."""
+    tree = ast.parse(re.sub(r"^(\s*)[%!].*$", r"\1pass", source, flags=re.M))
+    bad = []
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.ImportFrom):
+            continue
+        mod = (_resolve_relative(importer, is_package, node.level, node.module) if node.level
+               else node.module)
+        if mod not in MODULES:
+            continue
+        for a in node.names:
+            if f"{mod}.{a.name}" in MODULES or a.name == "*":
+                continue            # a submodule
+            home = a.name in DEFINED[mod] or (MODULES[mod][1] and a.name in _package_all(mod))
+            if not home and mod not in REEXPORTS_KEPT:
+                bad.append((node.lineno, mod, a.name))
+    return bad
+
+
+def test_wrong_homes_is_not_blind():
+    assert wrong_homes("from gm_core.locomotion import circle_gait\n") == [(1, "gm_core.locomotion", "circle_gait")]
+    assert wrong_homes("from gm_core.gaits import circle_gait\nfrom gm_core import SE2\n") == []
+    assert wrong_homes("from .toolkit import plane\n", "gm_core.drawing.actions") == [(1, "gm_core.drawing.toolkit", "plane")]
+
+
+def _sources():
+    for name, (path, pkg) in MODULES.items():
+        yield str(path.relative_to(ROOT)), path.read_text(encoding="utf-8"), name, pkg
+    for folder in ("tests", "benchmarks", "tools"):
+        for path in sorted((ROOT / folder).rglob("*.py")):
+            yield str(path.relative_to(ROOT)), path.read_text(encoding="utf-8"), None, False
+    for folder in ("book", "exercises", "solutions"):
+        for path in sorted((ROOT / folder).glob("*.ipynb")):
+            cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
+            for i, c in enumerate(cells):
+                if c["cell_type"] == "code":
+                    yield f"{path.relative_to(ROOT)} cell {i}", "".join(c["source"]), None, False
+
+
+def test_every_import_names_the_home_of_the_name():
+    """Notebooks import maths from the math layer, drawings from their topic module, and so on:
+    nothing reaches a name through a module that merely re-imports it."""
+    bad = [f"{where} line {line}: {name} from {mod}" for where, src, imp, pkg in _sources()
+           for line, mod, name in wrong_homes(src, imp, pkg)]
+    assert not bad, "imports through a module that is not the name's home:\n" + "\n".join(bad)

@@ -106,7 +106,7 @@ def blitting(monkeypatch):
 
 
 def test_group_axioms_badges_keep_their_marks(blitting, monkeypatch):
-    from gm_core.widgets.ch1 import GroupAxiomsPanel
+    from gm_core.widgets.group_or_not import GroupAxiomsPanel
 
     live = GroupAxiomsPanel()
     monkeypatch.setattr(Panel, "blit_everywhere", False)
@@ -128,7 +128,7 @@ def test_group_axioms_badges_keep_their_marks(blitting, monkeypatch):
 
 
 def test_integer_structures_take_whole_numbers():
-    from gm_core.widgets.ch1 import GroupAxiomsPanel
+    from gm_core.widgets.group_or_not import GroupAxiomsPanel
 
     p = GroupAxiomsPanel()
     p.set(structure="(ℤ, ×)", a=-0.5)

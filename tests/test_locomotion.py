@@ -8,19 +8,9 @@ from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
 from gm_core import SE2, SingularShapeError
-from gm_core.locomotion import (
-    Gait,
-    as_gait,
-    body_velocity,
-    check_gait,
-    circle_gait,
-    connection_from_mass_matrix,
-    connection_from_pfaffian,
-    metric_from_jacobians,
-    net_displacement,
-    se2_bracket,
-    trajectory,
-)
+from gm_core.connection import connection_from_mass_matrix, connection_from_pfaffian, metric_from_jacobians
+from gm_core.gaits import Gait, as_gait, circle_gait
+from gm_core.locomotion import body_velocity, check_gait, net_displacement, trajectory
 from gm_core.systems import (
     ALL_SYSTEMS,
     Ackerman,
@@ -117,7 +107,7 @@ def test_metric_from_jacobians_diagonal_and_full():
 def test_se2_bracket_is_the_matrix_commutator(v):
     x1, x2 = np.array(v[:3]), np.array(v[3:])
     X1, X2 = SE2.hat(x1), SE2.hat(x2)
-    np.testing.assert_allclose(SE2.hat(se2_bracket(x1, x2)), X1 @ X2 - X2 @ X1, atol=1e-12)
+    np.testing.assert_allclose(SE2.hat(SE2.bracket(x1, x2)), X1 @ X2 - X2 @ X1, atol=1e-12)
 
 
 def test_body_velocity_function():
@@ -329,3 +319,14 @@ def test_displacement_until_matches_trajectory_frames_and_the_pacing_square():
                                    displacement_until(sw, gait, float(tau(t)), steps=1024), atol=1e-8)
     with pytest.raises(ValueError, match="t must be"):
         displacement_until(sw, gait, 2.0)
+
+
+def test_a_previous_workspace_still_imports_circle_gait_from_locomotion():
+    """Exercise notebooks 4.1/4.2 of the previous version import circle_gait from here: it warns,
+    names gm_core.gaits and is the same function; other unknown names are AttributeErrors."""
+    import gm_core.gaits
+    import gm_core.locomotion as loc
+
+    with pytest.warns(FutureWarning, match="gm_core.gaits"):
+        assert loc.circle_gait is gm_core.gaits.circle_gait
+    assert not hasattr(loc, "Gait_typo")

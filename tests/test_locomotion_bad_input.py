@@ -11,21 +11,19 @@ from hypothesis import strategies as st
 from test_locomotion import reference_displacement  # the solve_ivp route, written once
 
 from gm_core import SE2, SingularShapeError, chains
-from gm_core.gaits import GaitWarning
+from gm_core.connection import metric_from_jacobians, pfaffian_determinant
+from gm_core.gaits import Gait, GaitWarning, circle_gait
+from gm_core.holonomic import accessible_circle
 from gm_core.locomotion import (
     AccuracyWarning,
-    Gait,
     body_velocity,
     check_gait,
-    circle_gait,
     connection_curl,
-    metric_from_jacobians,
     net_displacement,
-    pfaffian_determinant,
-    se2_bracket,
     trajectory,
 )
 from gm_core.systems import FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
+from gm_core.three_link_chain import three_link_jacobians
 
 SNAKE = KinematicSnake()
 SAFE = circle_gait(0.8, (0.4, -1.0))
@@ -144,12 +142,12 @@ def test_open_samples_warn_naming_the_gap():
 # ------------------------------------------------------------------ parameters
 def test_integer_parameters():
     with pytest.raises(TypeError, match="n must be an integer"):
-        chains.accessible_circle(20.7)
+        accessible_circle(20.7)
     with pytest.raises(TypeError, match="n must be an integer"):
-        chains.accessible_circle(np.inf)
+        accessible_circle(np.inf)
     with pytest.raises(ValueError, match="n must be"):
-        chains.accessible_circle(1)
-    assert chains.accessible_circle(20.0).shape == (20, 3)
+        accessible_circle(1)
+    assert accessible_circle(20.0).shape == (20, 3)
     with pytest.raises(ValueError, match="substeps"):
         trajectory(SNAKE, SAFE, 11, substeps=0)
     with pytest.raises(TypeError, match="n_frames"):
@@ -164,7 +162,7 @@ def test_integer_parameters():
 
 # ------------------------------------------------------------------ errors from inside
 def test_errors_name_the_argument():
-    np.testing.assert_allclose(se2_bracket([1, 0, 1], [0, 1, 0]), SE2.vee(
+    np.testing.assert_allclose(SE2.bracket([1, 0, 1], [0, 1, 0]), SE2.vee(
         SE2.hat([1, 0, 1]) @ SE2.hat([0, 1, 0]) - SE2.hat([0, 1, 0]) @ SE2.hat([1, 0, 1])))
     for call in [lambda: body_velocity(None, [0, 0], [0, 0]), lambda: connection_curl("snake", [0, 0]),
                  lambda: net_displacement(object(), SAFE), lambda: trajectory(KinematicSnake, SAFE),
@@ -235,7 +233,7 @@ def test_no_hidden_state_in_systems():
     r = np.array([0.4, -0.3])
     s.connection(r)
     assert s.frame == "com"
-    for J, Jm in zip(s.middle_link_jacobians(r), chains.three_link_jacobians(r, s.lengths)):
+    for J, Jm in zip(s.middle_link_jacobians(r), three_link_jacobians(r, s.lengths)):
         np.testing.assert_allclose(J, Jm, atol=0)
     assert "connection" not in vars(HighReSwimmer)
     g = circle_gait(0.7, (0.1, 0.2))
@@ -244,7 +242,7 @@ def test_no_hidden_state_in_systems():
 
 
 def test_constant_rate_path_is_a_cheaply_checked_open_path():
-    from gm_core.locomotion import constant_rate_path
+    from gm_core.gaits import constant_rate_path
     from gm_core.systems import Ackerman
     p = constant_rate_path([0.0, 0.3], [1.0, 0.2], 2.0)
     np.testing.assert_allclose(p(np.array([0.0, 1.0, 2.0])), [[0, 0.3], [1, 0.5], [2, 0.7]], atol=1e-15)

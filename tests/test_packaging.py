@@ -1,5 +1,9 @@
-"""Set-up stays consistent: environment.yml matches pyproject.toml, and the math never imports
-the drawing or widget libraries."""
+"""Set-up stays consistent: the environment files match pyproject.toml's dependency groups, every
+package the code imports is declared, the core installs without the lab or test tools, Binder
+gets an exact Python pin and no test tools, and the licences and citation are in place."""
+import ast
+import importlib.metadata as md
+import json
 import re
 import subprocess
 import sys
@@ -9,48 +13,225 @@ import tomllib
 import yaml
 
 ROOT = Path(__file__).resolve().parent.parent
+PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())
+PROJECT = PYPROJECT["project"]
+SELF = PROJECT["name"]
+
+# repo2docker's own pattern for the Python version of an environment.yml
+# (repo2docker/buildpacks/conda/__init__.py: PYTHON_REGEX, used with .match on each dependency).
+REPO2DOCKER_PYTHON = re.compile(r"python\s*=+\s*([\d\.]*)")
+
+# Peer libraries the SE(2) benchmark and one comparison test use when present (each guarded by an
+# ImportError / importorskip); never needed to run or test the course.
+OPTIONAL_PEERS = {"jax", "jaxlie", "geomstats"}
+TEST_TOOLS = {"pytest", "nbval", "hypothesis", "playwright", "ruff", "mpmath", "pyyaml"}
 
 
 def _parse(req):
-    m = re.match(r"^\s*([A-Za-z0-9_.\-]+)\s*(?:>=\s*([0-9][^,;\s]*))?", req)
-    name = m.group(1).lower().replace("_", "-")
-    return name, m.group(2)
+    m = re.match(r"^\s*([A-Za-z0-9_.\-]+)\s*(\[[^\]]*\])?\s*(?:>=\s*([0-9][^,;\s]*))?", req)
+    return m.group(1).lower().replace("_", "-"), m.group(3)
 
 
-def pyproject_requirements():
-    data = tomllib.loads((ROOT / "pyproject.toml").read_text())
-    reqs = data["project"]["dependencies"] + data["project"]["optional-dependencies"]["test"]
-    return dict(_parse(r) for r in reqs)
+def group(name):
+    """{distribution: lower bound} of the core ("core") or an extra, self-references left out."""
+    reqs = PROJECT["dependencies"] if name == "core" else PROJECT["optional-dependencies"][name]
+    return dict(_parse(r) for r in reqs if _parse(r)[0] != SELF)
 
 
-def environment_requirements():
-    env = yaml.safe_load((ROOT / "environment.yml").read_text())
+def groups(*names):
+    out = {}
+    for n in names:
+        out.update(group(n))
+    return out
+
+
+def env_file(path):
+    env = yaml.safe_load((ROOT / path).read_text())
     out = {}
     for dep in env["dependencies"]:
         if isinstance(dep, str):
             name, low = _parse(dep)
-            if name not in {"python", "pip"}:
+            if name not in {"python", "pip", "setuptools"}:
                 out[name] = low
     return env, out
 
 
-def test_environment_yml_matches_pyproject():
-    env, conda = environment_requirements()
-    assert conda == pyproject_requirements(), (
-        "environment.yml and pyproject.toml must list the same packages with the same lower bounds")
-
-
-def test_environment_yml_is_valid_for_conda_and_binder():
-    env, _ = environment_requirements()
-    assert env["name"] and env["channels"] == ["conda-forge"]
-    pip_sections = [d for d in env["dependencies"] if isinstance(d, dict)]
-    assert pip_sections == [{"pip": ["-e ."]}], "the course package itself is installed with pip"
-    assert any(isinstance(d, str) and d.startswith("python") for d in env["dependencies"])
+def test_extras_the_readme_promises():
+    assert set(group("core")) == {"numpy", "scipy", "matplotlib"}, "the core is numpy/scipy/matplotlib only"
+    assert {"jupyterlab", "ipywidgets", "ipympl", "ipykernel"} <= set(group("lab"))
+    assert "nbclient" in group("grade"), "the grader executes notebooks with nbclient"
+    assert any(_parse(r)[0] == SELF and "grade" in r for r in PROJECT["optional-dependencies"]["test"]), (
+        "[test] includes [grade] (tests/test_grade.py runs the grader)")
+    assert TEST_TOOLS - {"pyyaml"} <= set(group("test"))
 
 
 def test_lower_bounds_everywhere():
-    for name, low in pyproject_requirements().items():
+    for name, low in groups("core", "lab", "grade", "test").items():
         assert low, f"{name} needs a lower bound in pyproject.toml"
+
+
+def test_environment_files_match_pyproject():
+    expected = {
+        "environment.yml": groups("core", "lab"),
+        "binder/environment.yml": groups("core", "lab"),
+        "environment-dev.yml": groups("core", "lab", "grade", "test"),
+    }
+    for path, want in expected.items():
+        _, conda = env_file(path)
+        assert conda == want, (
+            f"{path} and pyproject.toml must list the same packages with the same lower bounds:\n"
+            f"  only in {path}: {sorted(set(conda.items()) - set(want.items()))}\n"
+            f"  only in pyproject: {sorted(set(want.items()) - set(conda.items()))}")
+
+
+def test_environment_files_are_valid_and_pin_python_for_repo2docker():
+    low = re.match(r">=\s*(\d+)\.(\d+)", PROJECT["requires-python"]).groups()
+    for path in ("environment.yml", "binder/environment.yml", "environment-dev.yml"):
+        env, _ = env_file(path)
+        assert env["name"] and env["channels"] == ["conda-forge"], path
+        pins = [REPO2DOCKER_PYTHON.match(d) for d in env["dependencies"] if isinstance(d, str)]
+        pins = [m.group(1) for m in pins if m]
+        assert len(pins) == 1 and re.fullmatch(r"\d+\.\d+", pins[0]), (
+            f"{path}: repo2docker reads only an exact pin such as python=3.11 (found {pins})")
+        assert tuple(map(int, pins[0].split("."))) >= tuple(map(int, low)), f"{path}: pin below requires-python"
+    for path in ("environment.yml", "environment-dev.yml"):
+        env, _ = env_file(path)
+        assert [d for d in env["dependencies"] if isinstance(d, dict)] == [{"pip": ["-e ."]}], path
+
+
+def test_binder_image_has_no_test_tools_and_installs_the_course():
+    env, conda = env_file("binder/environment.yml")
+    assert not TEST_TOOLS & set(conda), "test tools stay out of the student image"
+    assert not [d for d in env["dependencies"] if isinstance(d, dict)], "binder/postBuild installs the course"
+    post = (ROOT / "binder" / "postBuild").read_text()
+    assert "pip install --no-deps" in post and "-e ." in post
+    assert "sync_workspace.py" in post and "lab_settings.py" in post
+    assert (ROOT / "binder" / "postBuild").stat().st_mode & 0o111, "postBuild must be executable"
+    # repo2docker ignores the top-level files once binder/ exists: nothing Binder-only is left there.
+    assert not (ROOT / "postBuild").exists()
+
+
+def test_readme_binder_link_opens_the_start_page_in_jupyterlab():
+    repo = PYPROJECT["tool"]["gm-course"]["repository"]
+    branch = PYPROJECT["tool"]["gm-course"]["branch"]
+    owner_name = re.fullmatch(r"https://github\.com/([^/]+/[^/]+)", repo).group(1)
+    link = f"https://mybinder.org/v2/gh/{owner_name}/{branch}?urlpath=lab/tree/book/00-start-here.ipynb"
+    readme = (ROOT / "README.md").read_text()
+    assert link in readme, f"README needs the Binder launch link {link}"
+    assert re.search(r"\[!\[[^\]]*Binder[^\]]*\]\([^)]*badge[^)]*\)\]\(" + re.escape(link) + r"\)", readme), (
+        "README needs a Binder badge linking to the start page")
+    assert (ROOT / "book" / "00-start-here.ipynb").exists()
+
+
+def test_licences_and_citation():
+    lic = (ROOT / "LICENSE").read_text()
+    assert lic.startswith("MIT License") and "Permission is hereby granted" in lic and "<" not in lic
+    assert PROJECT["license"] == "MIT" and "LICENSE" in PROJECT["license-files"]
+    text = (ROOT / "LICENSE-text.md").read_text()
+    assert "CC BY 4.0" in text and "Creative Commons Attribution 4.0 International Public License" in text
+    assert len(text) > 15000, "the full legal code of CC BY 4.0 is included"
+    cff = yaml.safe_load((ROOT / "CITATION.cff").read_text())
+    assert cff["cff-version"] == "1.2.0" and cff["title"] and cff["authors"] and cff["message"]
+    assert cff["version"] == PROJECT["version"]
+    assert cff["repository-code"] == PYPROJECT["tool"]["gm-course"]["repository"]
+    assert set(cff["license"]) == {"MIT", "CC-BY-4.0"}
+
+
+# ---- every import declared -------------------------------------------------------------------
+
+def _imports_of_source(src):
+    try:
+        tree = ast.parse(src)
+    except SyntaxError:
+        return set()
+    names = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            names |= {a.name.split(".")[0] for a in node.names}
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            names.add(node.module.split(".")[0])
+    return names
+
+
+def _imports(paths):
+    names = set()
+    for path in paths:
+        if path.suffix == ".py":
+            names |= _imports_of_source(path.read_text())
+        elif path.suffix == ".ipynb":
+            for cell in json.loads(path.read_text())["cells"]:
+                if cell["cell_type"] == "code":
+                    src = "".join(cell["source"])
+                    src = "\n".join("" if ln.lstrip().startswith(("%", "!")) else ln for ln in src.splitlines())
+                    names |= _imports_of_source(src)
+    return names
+
+
+def _third_party(names):
+    local = {p.stem for p in ROOT.rglob("*.py") if ".venv" not in p.parts} | {"gm_core"}
+    stdlib = set(sys.stdlib_module_names)
+    return {n for n in names if n not in stdlib and n not in local and not n.startswith("_")}
+
+
+def _distributions(module):
+    dists = md.packages_distributions().get(module, [])
+    return {d.lower().replace("_", "-") for d in dists}
+
+
+def _check_declared(paths, declared, where):
+    missing = []
+    for mod in sorted(_third_party(_imports(paths)) - OPTIONAL_PEERS):
+        dists = _distributions(mod)
+        assert dists, f"{where} imports {mod!r}, which no installed distribution provides"
+        if not dists & set(declared):
+            missing.append(f"{mod} (from {sorted(dists)})")
+    assert not missing, f"{where} imports packages not declared in pyproject.toml: {missing}"
+
+
+def test_every_package_gm_core_imports_is_declared_for_students_or_the_grader():
+    _check_declared(sorted((ROOT / "gm_core").rglob("*.py")), groups("core", "lab", "grade"), "gm_core")
+
+
+def test_every_package_notebooks_import_is_declared_in_lab():
+    nbs = [p for d in ("book", "exercises", "solutions") for p in sorted((ROOT / d).glob("*.ipynb"))]
+    _check_declared(nbs, groups("core", "lab"), "the notebooks")
+
+
+def test_every_package_tests_and_tools_import_is_declared():
+    paths = [p for d in ("tests", "tools", "benchmarks") for p in sorted((ROOT / d).rglob("*.py"))]
+    paths.append(ROOT / "conftest.py")
+    _check_declared(paths, groups("core", "lab", "grade", "test"), "tests/tools/benchmarks")
+
+
+def test_the_import_scan_sees_what_it_should():
+    seen = _third_party(_imports(sorted((ROOT / "gm_core").rglob("*.py"))))
+    assert {"numpy", "scipy", "matplotlib", "ipywidgets", "sympy"} <= seen
+    assert _distributions("yaml") == {"pyyaml"}
+
+
+def test_core_imports_without_lab_grade_or_test_packages():
+    """`pip install .` gives numpy/scipy/matplotlib only: the math, the drawing and the checkers'
+    registry import with every other package made unimportable."""
+    blocked = sorted({"ipywidgets", "IPython", "ipykernel", "ipympl", "jupyterlab", "sympy", "nbclient",
+                      "nbformat", "traitlets", "jupyter_client", "pytest", "hypothesis", "mpmath", "yaml"})
+    code = f"""
+import importlib, importlib.abc, sys
+class Block(importlib.abc.MetaPathFinder):
+    def find_spec(self, name, path=None, target=None):
+        if name.split('.')[0] in {blocked!r}:
+            raise ModuleNotFoundError('blocked: ' + name, name=name)
+sys.meta_path.insert(0, Block())
+import gm_core, gm_core.drawing, gm_core.checks
+for m in ('calculus', 'fields', 'groups', 'chains', 'kinematics', 'locomotion', 'systems', 'geometry',
+          'connection', 'gaits', 'frames', 'manifolds', 'axioms', 'fluids'):
+    importlib.import_module('gm_core.' + m)
+import numpy as np
+from gm_core import SE2
+assert np.allclose(SE2.compose([1, 1, np.pi / 2], [1, 1, np.pi / 2]), [0, 2, np.pi])
+print('ok')
+"""
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True)
+    assert out.returncode == 0 and out.stdout.strip() == "ok", out.stderr[-2000:]
 
 
 def test_math_does_not_import_drawing_libraries():
@@ -65,7 +246,10 @@ def test_math_does_not_import_drawing_libraries():
     subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT)
 
 
-def test_ci_and_readme_use_the_two_commands():
+def test_makefile_installs_lab_and_test_and_ci_uses_the_two_commands():
+    make = (ROOT / "Makefile").read_text()
+    assert '".[lab,test]"' in make
     assert "make test" in (ROOT / ".ci" / "run").read_text()
     readme = (ROOT / "README.md").read_text()
     assert "make lab" in readme and "make test" in readme
+

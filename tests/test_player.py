@@ -1,4 +1,4 @@
-"""The animation player (gm_core.drawing.player, gm_core.drawing.base.jshtml) is self-contained.
+"""The animation player (gm_core.drawing.player, gm_core.drawing.primitives.jshtml) is self-contained.
 
 The browser tests press its ▶ button in JupyterLab; here, without a browser: every frame of the
 animation is in the page, the first one is the image's own source, nothing refers to the network,
@@ -13,8 +13,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pytest  # noqa: E402
 
-from gm_core.drawing.base import animate, jshtml  # noqa: E402
+from gm_core.drawing.primitives import animate, jshtml  # noqa: E402
 from gm_core.drawing.player import MODES, player_html  # noqa: E402
+
+# the refused FuncAnimation below is never rendered; matplotlib says so when it is collected
+pytestmark = pytest.mark.filterwarnings("ignore:Animation was deleted")
 
 
 def _anim(n=4):
@@ -55,7 +58,6 @@ def test_modes_are_accepted(mode):
     assert f"mode0 = \"{mode}\"" in page
 
 
-@pytest.mark.filterwarnings("ignore:Animation was deleted")
 def test_bad_arguments():
     with pytest.raises(ValueError, match="mode"):
         player_html(["data:,"], mode="bounce")

@@ -17,8 +17,9 @@ import sympy as sp
 
 import gm_core
 from gm_core import SE2, SingularShapeError
-from gm_core.chains import MobileChain, three_link_jacobians
-from gm_core.locomotion import connection_from_mass_matrix, connection_from_pfaffian
+from gm_core.chains import MobileChain
+from gm_core.connection import connection_from_mass_matrix, connection_from_pfaffian
+from gm_core.fluids import ellipse_added_mass
 from gm_core.systems import (
     ALL_SYSTEMS,
     Ackerman,
@@ -27,9 +28,8 @@ from gm_core.systems import (
     HighReSwimmer,
     KinematicSnake,
     LowReSwimmer,
-    ellipse_added_mass,
 )
-from gm_core.systems.three_link import three_link_link_poses
+from gm_core.three_link_chain import three_link_jacobians, three_link_poses
 
 RNG = np.random.default_rng(20261122)
 
@@ -184,16 +184,16 @@ def test_three_link_jacobians_agree_with_finite_differences_and_the_frame_graph(
     Jg = chain.body_jacobians(r, method="direct")
     for i in range(3):
         np.testing.assert_allclose(Jc[i], Jg[..., i, :, :], atol=1e-12)
-    assert SE2.isclose(three_link_link_poses(r, L), chain.frames(r)["g"], atol=1e-12).all()
+    assert SE2.isclose(three_link_poses(r, L), chain.frames(r)["g"], atol=1e-12).all()
     h = 1e-6
     for k in range(5):
         v = np.zeros(5)
         v[k] = 1.0
         g0 = np.zeros(3)
         gp, gm = SE2.exp(h * v[:3]), SE2.exp(-h * v[:3])
-        Pp = SE2.compose(gp[None], three_link_link_poses(r + h * v[3:], L))
-        Pm = SE2.compose(gm[None], three_link_link_poses(r - h * v[3:], L))
-        P0 = SE2.compose(g0[None], three_link_link_poses(r, L))
+        Pp = SE2.compose(gp[None], three_link_poses(r + h * v[3:], L))
+        Pm = SE2.compose(gm[None], three_link_poses(r - h * v[3:], L))
+        P0 = SE2.compose(g0[None], three_link_poses(r, L))
         for i in range(3):
             xi_fd = SE2.world_to_body(P0[:, i], (Pp[:, i] - Pm[:, i]) / (2 * h))
             np.testing.assert_allclose(Jc[i][..., k], xi_fd, atol=1e-8)

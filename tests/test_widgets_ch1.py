@@ -1,4 +1,5 @@
-"""Headless tests of the chapter-1 panels (gm_core.widgets.ch1) on the Agg backend.
+"""Headless tests of the chapter-1 panels on the Agg backend (gm_core.widgets.spaces, group_or_not,
+actions, tangent, velocities, observer, geodesics).
 
 Each test sets slider values the way a student would (``panel.controls[name].value = ...``) and
 reads the artists back: polygons, quivers, lines and text must have moved by exactly what
@@ -18,9 +19,42 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 from gm_core import S1, SE2, R2xS1  # noqa: E402
-from gm_core.drawing import ch1 as D  # noqa: E402
-from gm_core.widgets import ch1 as W  # noqa: E402
+from gm_core.calculus import binomial_table
+from gm_core.drawing.actions import BODY, ForwardLeftScene
+from gm_core.drawing.geodesics import HelixScene, puck_vs_arc_animation
+from gm_core.drawing.group_or_not import GroupOrNotScene
+from gm_core.drawing.spaces import PoleChartScene
+from gm_core.drawing.toolkit import PathText
+from gm_core.drawing.velocities import LiftedSE2Scene, VectorFieldScene
+from gm_core.fields import FIELDS
+from gm_core.manifolds import torus_xyz
+from gm_core.widgets import actions, geodesics, group_or_not, observer, spaces, tangent, velocities  # noqa: E402
+from gm_core.widgets.actions import (
+    BodyPointsPanel,
+    CircleIsoPanel,
+    ForwardLeftPanel,
+    LeftRightActionPanel,
+    SlideRulePanel,
+)
 from gm_core.widgets.base import PANELS  # noqa: E402
+from gm_core.widgets.geodesics import (
+    ExpFourWaysPanel,
+    HelixPanel,
+    PuckArcPanel,
+    RPlusGeodesicPanel,
+    SurfaceGeodesicsPanel,
+)
+from gm_core.widgets.group_or_not import GroupAxiomsPanel
+from gm_core.widgets.observer import FramesPanel, ObserverPanel
+from gm_core.widgets.spaces import LoopsPanel, PoleChartPanel, TorusPathPanel
+from gm_core.widgets.tangent import TangentSpacePanel
+from gm_core.widgets.velocities import (
+    AdjointPanel,
+    LiftedScalarPanel,
+    LiftedSE2Panel,
+    VectorFieldPanel,
+    VelocityPanel,
+)
 
 
 def rk4_curve(f, q0, T, n):
@@ -54,8 +88,9 @@ def quiver_uv(q):
 
 
 def test_every_ch1_panel_is_registered_and_builds():
-    names = [n for n, c in PANELS.items() if c.__module__ == W.__name__]
-    assert set(W.__all__) - {"show"} <= set(names)
+    modules = (spaces, group_or_not, actions, tangent, velocities, observer, geodesics)
+    names = [n for n, c in PANELS.items() if c.__module__ in {m.__name__ for m in modules}]
+    assert {n for m in modules for n in m.__all__} <= set(names) and len(names) == 22
     rng = np.random.default_rng(0)
     for n in names:
         p = PANELS[n]()
@@ -65,13 +100,13 @@ def test_every_ch1_panel_is_registered_and_builds():
 
 # ---------------------------------------------------------------- 1.1 configuration spaces
 def test_torus_path_pieces_stay_in_square_and_match_3d_curve():
-    p = slide(W.TorusPathPanel(), a0=1.0, b0=2.0, slope=1.5, turns=2.0)
+    p = slide(TorusPathPanel(), a0=1.0, b0=2.0, slope=1.5, turns=2.0)
     segs = p.scene.segments
     pts = np.concatenate(segs)
     assert pts.min() >= 0 and pts.max() < 2 * np.pi
     a, b = p.scene.path(1.0, 2.0, 1.5, 2.0)
     xs, ys, zs = p.scene.curve3d.get_data_3d()
-    assert np.allclose(np.c_[xs, ys, zs], D.torus_xyz(a, b))
+    assert np.allclose(np.c_[xs, ys, zs], torus_xyz(a, b))
     # straight: constant slope inside every piece
     for s in segs:
         d = np.diff(s, axis=0)
@@ -79,10 +114,10 @@ def test_torus_path_pieces_stay_in_square_and_match_3d_curve():
 
 
 def test_pole_chart_flags_instead_of_plotting_inf():
-    p = W.PoleChartPanel()
+    p = PoleChartPanel()
     slide(p, heading_deg=30.0, lat_deg=60.0)
     assert not p.scene.flag.visible and p.scene.arrow_c.get_visible()
-    want = D.PoleChartScene.ARROW * np.array([np.sin(np.deg2rad(30)) / np.cos(np.deg2rad(60)),
+    want = PoleChartScene.ARROW * np.array([np.sin(np.deg2rad(30)) / np.cos(np.deg2rad(60)),
                                               np.cos(np.deg2rad(30))])
     assert np.allclose(quiver_uv(p.scene.arrow_c)[0], want)
     slide(p, lat_deg=89.5)                   # finite but huge: warned, still drawn
@@ -99,7 +134,7 @@ def test_pole_chart_flags_instead_of_plotting_inf():
 
 
 def test_loops_sphere_contracts_torus_does_not():
-    p = W.LoopsPanel()
+    p = LoopsPanel()
     slide(p, s=0.5)
     L_t, L_s = p.scene.torus_length, p.scene.sphere_length
     assert np.isclose(L_s, 2 * np.pi * 1.6 * np.cos(np.pi / 4))
@@ -118,8 +153,8 @@ def test_group_or_not_badges_follow_the_verdicts():
 
     from gm_core.drawing.toolkit import PALETTE
 
-    assert W.GroupOrNotPanel is W.GroupAxiomsPanel and D.GroupAxiomsScene is W.GroupAxiomsPanel.scene_class
-    p = slide(W.GroupAxiomsPanel(), structure="(ℝ, −)", a=3.0, b=2.0, c=1.0)
+    assert GroupAxiomsPanel.scene_class is GroupOrNotScene
+    p = slide(GroupAxiomsPanel(), structure="(ℝ, −)", a=3.0, b=2.0, c=1.0)
     sc = p.scene
     assert not sc.is_group
     colours = [tuple(b.get_facecolor()) for b in sc.badges]
@@ -141,7 +176,7 @@ def test_group_or_not_badges_follow_the_verdicts():
 
 
 def test_slide_rule_reads_the_product():
-    p = slide(W.SlideRulePanel(), a=3.0, b=2.5)
+    p = slide(SlideRulePanel(), a=3.0, b=2.5)
     assert np.isclose(p.scene.reading, 7.5)
     x = p.scene.cursor.get_xdata()
     assert np.allclose(x, np.log10(7.5))
@@ -150,7 +185,7 @@ def test_slide_rule_reads_the_product():
 
 
 def test_circle_iso_matrix_product_equals_sum():
-    p = slide(W.CircleIsoPanel(), a1=0.7, a2=0.6)
+    p = slide(CircleIsoPanel(), a1=0.7, a2=0.6)
     G = S1(1.0)
     s = G.compose([0.7], [0.6])
     assert np.isclose(s[0], 0.3)
@@ -160,7 +195,7 @@ def test_circle_iso_matrix_product_equals_sum():
 
 
 def test_left_right_action_bodies_move_by_se2_products():
-    p = W.LeftRightActionPanel()
+    p = LeftRightActionPanel()
     g = np.array([1.2, -0.4, 0.8])
     h = np.array([-0.7, 1.1, -1.3])
     slide(p, x=g[0], y=g[1], theta=g[2], u=h[0], v=h[1], beta=h[2])
@@ -183,7 +218,7 @@ def test_left_right_action_bodies_move_by_se2_products():
 
 
 def test_forward_left_poses_and_body_displacements():
-    p = W.ForwardLeftPanel()
+    p = ForwardLeftPanel()
     slide(p, x=1.0, y=1.0, theta=np.pi / 2, n=4)
     add, se2 = p.scene.poses
     assert np.allclose(add[3], 3 * np.array([1.0, 1.0, np.pi / 2]))
@@ -193,10 +228,10 @@ def test_forward_left_poses_and_body_displacements():
     assert SE2.isclose(se2[4], SE2.identity())  # four quarter turns: back home
     verts = p.scene.bodies[1].get_paths()
     assert len(verts) == 5
-    assert np.allclose(verts[2].vertices[:3], SE2.act_on_points(se2[2], D.BODY))
-    d = D.ForwardLeftScene.body_displacements(se2)
+    assert np.allclose(verts[2].vertices[:3], SE2.act_on_points(se2[2], BODY))
+    d = ForwardLeftScene.body_displacements(se2)
     assert np.allclose(d, np.tile([1.0, 1.0], (4, 1)))
-    d_add = D.ForwardLeftScene.body_displacements(add)
+    d_add = ForwardLeftScene.body_displacements(add)
     assert np.allclose(d_add[1], [1.0, -1.0])
     assert "forward and to the right" in p.scene.texts[0].get_text()
     slide(p, n=1)
@@ -204,7 +239,7 @@ def test_forward_left_poses_and_body_displacements():
 
 
 def test_body_points_world_position():
-    p = W.BodyPointsPanel()
+    p = BodyPointsPanel()
     slide(p, x=-0.5, y=1.0, theta=2.0, px=0.7, py=-0.2)
     want = SE2.matrix([-0.5, 1.0, 2.0]) @ np.array([0.7, -0.2, 1.0])
     x, y = p.scene.point.get_data()
@@ -214,7 +249,7 @@ def test_body_points_world_position():
 
 def test_path_text_renders_and_updates():
     fig, ax = plt.subplots()
-    t = D.PathText(ax, 0.1, 0.2, "abc\ndef", ha="center")
+    t = PathText(ax, 0.1, 0.2, "abc\ndef", ha="center")
     assert len(t.collection.get_paths()) == 2
     t.set_text("x")
     assert t.get_text() == "x" and len(t.collection.get_paths()) == 1
@@ -224,29 +259,29 @@ def test_path_text_renders_and_updates():
 
 
 # ---------------------------------------------------------------------- 1.4-1.5 velocities
-@pytest.mark.parametrize("field", list(D.FIELDS))
+@pytest.mark.parametrize("field", list(FIELDS))
 def test_vector_field_curve_follows_the_field(field):
-    p = slide(W.VectorFieldPanel(), field=field, x0=0.8, y0=-0.6)
+    p = slide(VectorFieldPanel(), field=field, x0=0.8, y0=-0.6)
     fx, fy = p.scene.forward.get_data()
     assert np.allclose([fx[0], fy[0]], [0.8, -0.6])
     # independent route: classical RK4 with small steps, forward and backward
-    ref = rk4_curve(D.FIELDS[field], np.array([0.8, -0.6]), D.VectorFieldScene.T, 2400)[::10]
+    ref = rk4_curve(FIELDS[field], np.array([0.8, -0.6]), VectorFieldScene.T, 2400)[::10]
     m = len(fx)
     assert np.allclose(np.c_[fx, fy], ref[:m], atol=1e-4)
     bx, by = p.scene.backward.get_data()
-    back = rk4_curve(lambda q: -D.FIELDS[field](q), np.array([0.8, -0.6]), D.VectorFieldScene.T, 2400)[::10]
+    back = rk4_curve(lambda q: -FIELDS[field](q), np.array([0.8, -0.6]), VectorFieldScene.T, 2400)[::10]
     assert np.allclose(np.c_[bx, by], back[: len(bx)], atol=1e-4)
     assert np.all(np.isfinite(fx)) and np.all(np.isfinite(bx))
     # the background arrows point along the field
     uv = quiver_uv(p.scene.quiver)
-    v = D.FIELDS[field](p.scene._grid)
+    v = FIELDS[field](p.scene._grid)
     nz = np.linalg.norm(v, axis=1) > 1e-9
     cos = np.sum(uv[nz] * v[nz], 1) / np.linalg.norm(uv[nz], axis=1) / np.linalg.norm(v[nz], axis=1)
     assert np.allclose(cos, 1.0)
 
 
 def test_lifted_scalar_actions():
-    p = slide(W.LiftedScalarPanel(), hx=0.5, hy=-0.7, h=3.0)
+    p = slide(LiftedScalarPanel(), hx=0.5, hy=-0.7, h=3.0)
     uv = quiver_uv(p.scene.arrows2)
     assert np.allclose(uv[0], uv[1])                         # (1.22): identity on R^2
     off = p.scene.arrows2.get_offsets()
@@ -258,7 +293,7 @@ def test_lifted_scalar_actions():
 
 
 def test_lifted_se2_preserves_body_and_spatial_velocity():
-    p = W.LiftedSE2Panel()
+    p = LiftedSE2Panel()
     slide(p, theta=-0.8, u=1.1, v=-0.4, beta=2.1)
     g, hg, gh = p.scene.poses
     h = np.array([1.1, -0.4, 2.1])
@@ -274,11 +309,11 @@ def test_lifted_se2_preserves_body_and_spatial_velocity():
     g_next = g + eps * gd
     moved = SE2.act_on_points(SE2.compose(g_next, h), np.vstack([[0, 0], p.scene.bodies[2].outline]))
     fd = (moved - pts) / eps
-    assert np.allclose(quiver_uv(p.scene.vel[2]) / D.LiftedSE2Scene.SCALE, fd, atol=1e-4)
+    assert np.allclose(quiver_uv(p.scene.vel[2]) / LiftedSE2Scene.SCALE, fd, atol=1e-4)
 
 
 def test_velocity_panel_world_body_spatial():
-    p = W.VelocityPanel()
+    p = VelocityPanel()
     g = np.array([-1.0, 0.8, 2.0])
     xi = np.array([0.4, -0.9, 1.1])
     slide(p, x=g[0], y=g[1], theta=g[2], vx=xi[0], vy=xi[1], w=xi[2])
@@ -298,7 +333,7 @@ def test_velocity_panel_world_body_spatial():
 
 
 def test_adjoint_three_ways_agree():
-    p = W.AdjointPanel()
+    p = AdjointPanel()
     slide(p, x=2.0, y=-1.5, theta=-2.5, vx=0.3, vy=1.2, w=-0.8)
     assert p.scene.mismatch < 1e-6
     import scipy.linalg
@@ -313,12 +348,12 @@ def test_adjoint_three_ways_agree():
 
 # ---------------------------------------------------------------------- 1.6 geodesics and exp
 def test_helix_panel_follows_exp_and_flags_straight_line():
-    p = slide(W.HelixPanel(), thetadot=1.5)
+    p = slide(HelixPanel(), thetadot=1.5)
     x, y, z = p.scene.helix.get_data_3d()
     import scipy.linalg
 
     for k in (0, 40, 120):
-        t = D.HelixScene.T[k]
+        t = HelixScene.T[k]
         M = scipy.linalg.expm(t * SE2.hat([1.0, 0.0, 1.5]))
         assert np.allclose([x[k], y[k]], M[:2, 2])
         assert np.isclose(z[k], 1.5 * t)
@@ -332,7 +367,7 @@ def test_helix_panel_follows_exp_and_flags_straight_line():
 
 
 def test_puck_vs_arc_positions():
-    p = slide(W.PuckArcPanel(), w=1.0, t=2.0)
+    p = slide(PuckArcPanel(), w=1.0, t=2.0)
     xi = np.array([1.0, 1.0, 1.0])
     assert np.allclose(p.scene.bodies[0].g, R2xS1.exp(2.0 * xi))
     import scipy.linalg
@@ -346,15 +381,15 @@ def test_puck_vs_arc_positions():
 
 
 def test_puck_vs_arc_animation_runs():
-    from gm_core.drawing.base import jshtml
+    from gm_core.drawing.primitives import jshtml
 
-    anim = D.puck_vs_arc_animation(frames=3)
+    anim = puck_vs_arc_animation(frames=3)
     html = jshtml(anim).data
     assert "<img" in html or "data:image/png" in html
 
 
 def test_rplus_geodesic_ratios_and_slopes():
-    p = slide(W.RPlusGeodesicPanel(), xi=0.7)
+    p = slide(RPlusGeodesicPanel(), xi=0.7)
     assert np.allclose(p.scene.ratios, np.exp(0.7))
     t, g = p.scene.curve.get_data()
     # slope of the curve = xi * g, the left-invariant field (1.46) with T_eL_g = g (1.24)
@@ -364,7 +399,7 @@ def test_rplus_geodesic_ratios_and_slopes():
 
 
 def test_exp_four_ways_errors_and_paths():
-    p = slide(W.ExpFourWaysPanel(), thetadot=2.0, n=16, side="right")
+    p = slide(ExpFourWaysPanel(), thetadot=2.0, n=16, side="right")
     import scipy.linalg
 
     E = scipy.linalg.expm(SE2.hat([1.0, 0.0, 2.0]))
@@ -381,7 +416,7 @@ def test_exp_four_ways_errors_and_paths():
 
 
 def test_binomial_table_limits():
-    rows = D.binomial_table(ns=(10, 10000), kmax=4)
+    rows = binomial_table(ns=(10, 10000), kmax=4)
     for n, k, c, ratio, inv_fact, _draft in rows:
         assert c == __import__("math").comb(n, k)
         if n == 10000:
@@ -398,9 +433,9 @@ def test_jshtml_page_has_a_sized_first_frame_and_waits_for_its_elements():
     import re
     import struct
 
-    from gm_core.drawing.base import jshtml
+    from gm_core.drawing.primitives import jshtml
 
-    html = jshtml(D.puck_vs_arc_animation(frames=3)).data
+    html = jshtml(puck_vs_arc_animation(frames=3)).data
     img = re.search(r'<img id="_anim_img\w+" src="data:image/png;base64,([^"]+)" width="(\d+)"', html)
     assert img, "first frame not embedded in the <img>"
     png = base64.b64decode(img.group(1))
@@ -416,9 +451,9 @@ def _arrow(a):
 
 
 def test_observer_panel_body_velocity_stays_spatial_velocity_moves():
-    from gm_core.frames import icr
+    from gm_core.observers import icr
 
-    p = W.ObserverPanel()
+    p = ObserverPanel()
     g = p.scene.G
     xi = np.array([0.8, 0.3, 0.6])
     seen = []
@@ -449,7 +484,7 @@ def test_observer_panel_body_velocity_stays_spatial_velocity_moves():
 
 
 def test_frames_panel_same_arrow_different_numbers():
-    p = W.FramesPanel()
+    p = FramesPanel()
     p.set(t=2.5, bx=-1.0, by=2.0, btheta=0.7)
     sc = p.scene
     b = np.array([-1.0, 2.0, 0.7])
@@ -477,7 +512,7 @@ def test_frames_panel_same_arrow_different_numbers():
 def test_tangent_space_panel_velocity_lies_in_the_tangent_spaces():
     from gm_core.manifolds import sphere_xyz
 
-    p = W.TangentSpacePanel()
+    p = TangentSpacePanel()
     for s, speed in ((0.8, 1.0), (2.9, -1.5), (5.5, 0.7)):
         p.set(s=s, speed=speed)
         sc = p.scene
@@ -506,7 +541,7 @@ def test_tangent_space_panel_velocity_lies_in_the_tangent_spaces():
 
 
 def test_surface_geodesics_panel_matches_the_exact_curves():
-    p = W.SurfaceGeodesicsPanel()
+    p = SurfaceGeodesicsPanel()
     for heading in (0.0, 15.0, 60.0, 90.0, -40.0):
         p.set(heading_deg=heading, length=3 * np.pi)
         sc = p.scene
@@ -534,7 +569,7 @@ def test_surface_geodesics_panel_matches_the_exact_curves():
 
 
 def test_tangent_space_panel_line_point_and_its_velocity():
-    p = W.TangentSpacePanel()
+    p = TangentSpacePanel()
     p.set(s=2.0, speed=1.5)
     sc = p.scene
     h = 1e-6
@@ -546,7 +581,7 @@ def test_tangent_space_panel_line_point_and_its_velocity():
 
 
 def test_velocity_panel_marks_the_icr_at_rest():
-    p = W.VelocityPanel()
+    p = VelocityPanel()
     p.set(x=1.2, y=0.6, theta=0.7, vx=0.8, vy=0.3, w=0.6)
     sc = p.scene
     x, y = sc.icr_marks[0].get_data()

@@ -8,11 +8,35 @@ import pytest  # noqa: E402
 
 from gm_core import SE2  # noqa: E402
 from gm_core import chains as C  # noqa: E402
-from gm_core.drawing.ch2 import link_outline  # noqa: E402
-from gm_core.widgets import ch2  # noqa: E402
+from gm_core.arms import (
+    rp_arm_body_jacobians,
+    rp_arm_frames,
+    rr_arm_frames,
+    rr_arm_jacobian,
+    single_link_frames,
+)
+from gm_core.drawing.chains import link_outline
+from gm_core.holonomic import pin_constraints, pinned_pair
+from gm_core.three_link_chain import beta_frame_velocity, com_frame, three_link_frames, three_link_jacobians
+from gm_core.widgets import chains as chain_panels  # noqa: E402
+from gm_core.widgets import jacobian_steps, pinned  # noqa: E402
 from gm_core.widgets.base import PANELS  # noqa: E402
+from gm_core.widgets.chains import (
+    BetaFramePanel,
+    JacobianMethodsPanel,
+    OffsetRPArmPanel,
+    RPArmPanel,
+    RRArmPanel,
+    SingleLinkPanel,
+    ThreeLinkMobilePanel,
+    ThreeLinkVelocityPanel,
+    TwoLinkMobilePanel,
+)
+from gm_core.widgets.jacobian_steps import JacobianStepPanel
+from gm_core.widgets.pinned import BetaVelocityPanel, PinnedBodiesPanel, RelativePosePanel
 
-CH2_PANELS = [name for name, cls in PANELS.items() if cls.__module__ == ch2.__name__]
+CH2_PANELS = [name for name, cls in PANELS.items()
+              if cls.__module__ in {m.__name__ for m in (chain_panels, pinned, jacobian_steps)}]
 
 
 def frame_offsets(fa):
@@ -47,48 +71,48 @@ def test_panel_update_and_naive_update_run(name):
 
 
 def test_rr_arm_follows_sliders():
-    p = ch2.RRArmPanel()
+    p = RRArmPanel()
     p.set(alpha1=0.7, alpha2=-1.2, alpha1_dot=0.3, alpha2_dot=-0.8)
     L = p.chain.lengths
-    fr = C.rr_arm_frames([0.7, -1.2], L)
+    fr = rr_arm_frames([0.7, -1.2], L)
     assert_frame_at(p.art.frames["h"][1], fr[3])
     assert_frame_at(p.art.frames["f"][1], fr[2])
     np.testing.assert_allclose(p.art.link_corners(1), link_outline(fr[2, :2], fr[3, :2], p.art.width), atol=1e-12)
-    v = C.rr_arm_jacobian([0.7, -1.2], L) @ [0.3, -0.8]   # (2.19)
+    v = rr_arm_jacobian([0.7, -1.2], L) @ [0.3, -0.8]   # (2.19)
     np.testing.assert_allclose(p.vel.points[0], fr[3, :2], atol=1e-12)
     np.testing.assert_allclose(p.vel.vectors[0], v[:2], atol=1e-12)
     np.testing.assert_allclose(np.asarray(p.vel.quiver.get_offsets())[0], fr[3, :2], atol=1e-12)
 
 
 def test_single_link_follows_slider():
-    p = ch2.SingleLinkPanel()
+    p = SingleLinkPanel()
     p.controls["alpha"].value = 1.1
-    _, h = C.single_link_frames(1.1, 1.0)
+    _, h = single_link_frames(1.1, 1.0)
     assert_frame_at(p.art.frames["h"][0], h)
 
 
 def test_rp_arms_follow_sliders():
-    p = ch2.RPArmPanel()
+    p = RPArmPanel()
     p.set(alpha=0.9, delta=0.4, alpha_dot=0.5, delta_dot=0.7)
-    fr = C.rp_arm_frames(0.9, 0.4, *p.chain.lengths)
+    fr = rp_arm_frames(0.9, 0.4, *p.chain.lengths)
     assert_frame_at(p.art.frames["h"][1], fr["h2"])
     assert_frame_at(p.art.frames["f"][1], fr["g2"])
-    q = C.rp_arm_body_jacobians(0.9, 0.4, *p.chain.lengths)["h2"] @ [0.5, 0.7]
+    q = rp_arm_body_jacobians(0.9, 0.4, *p.chain.lengths)["h2"] @ [0.5, 0.7]
     np.testing.assert_allclose(p.vel.vectors[0], SE2.body_to_world(fr["h2"], q)[:2], atol=1e-12)
-    po = ch2.OffsetRPArmPanel()
+    po = OffsetRPArmPanel()
     po.set(alpha=-0.4, delta=0.6, alpha_dot=1.0, delta_dot=-0.3)
     a = po.chain.offsets[0]
-    fr = C.rp_arm_frames(-0.4, 0.6, *po.chain.lengths, offset=a)
+    fr = rp_arm_frames(-0.4, 0.6, *po.chain.lengths, offset=a)
     assert_frame_at(po.art.frames["h"][1], fr["h2"])
     assert_frame_at(po.art.frames["h"][0], fr["h1"])
     np.testing.assert_allclose(po.vel.vectors[0], po.closed_form[:2], atol=1e-12)
 
 
 def test_three_link_mobile_follows_sliders_and_base_link():
-    p = ch2.ThreeLinkMobilePanel()
+    p = ThreeLinkMobilePanel()
     p.set(x=0.3, y=-0.2, theta=0.5, alpha1=0.8, alpha2=-0.3, base_link=1, shape="free")
     g = np.array([0.3, -0.2, 0.5])
-    fr = C.three_link_frames([0.8, -0.3], (1, 1, 1), g)
+    fr = three_link_frames([0.8, -0.3], (1, 1, 1), g)
     for i in range(3):
         assert_frame_at(p.art.frames["g"][i], fr["g"][i])
     assert_frame_at(p.body, g)
@@ -111,16 +135,16 @@ def test_three_link_mobile_follows_sliders_and_base_link():
 
 
 def test_two_link_mobile_matches_213():
-    p = ch2.TwoLinkMobilePanel()
+    p = TwoLinkMobilePanel()
     p.set(x=0.0, y=0.0, theta=0.0, alpha1=0.9, base_link=0)
     a = 0.9
     assert_frame_at(p.art.frames["g"][1], np.array([0.5 + 0.5 * np.cos(a), 0.5 * np.sin(a), a]))
 
 
 def test_beta_frame_panel():
-    p = ch2.BetaFramePanel()
+    p = BetaFramePanel()
     p.set(alpha1=0.5, alpha2=1.0, frame="centre of mass")
-    beta, _ = C.com_frame([0.5, 1.0], p.lengths)
+    beta, _ = com_frame([0.5, 1.0], p.lengths)
     assert_frame_at(p.beta_art, beta)
     p.set(frame="sliders", beta_x=0.2, beta_y=-0.3, beta_theta=0.4)
     assert_frame_at(p.beta_art, np.array([0.2, -0.3, 0.4]))
@@ -128,7 +152,7 @@ def test_beta_frame_panel():
 
 
 def test_jacobian_methods_panel_agree_live():
-    p = ch2.JacobianMethodsPanel()
+    p = JacobianMethodsPanel()
     rng = np.random.default_rng(4)
     for _ in range(5):
         p.set(**p.sample_values(rng))
@@ -141,12 +165,12 @@ def test_jacobian_methods_panel_agree_live():
 
 
 def test_three_link_velocity_panel():
-    p = ch2.ThreeLinkVelocityPanel()
+    p = ThreeLinkVelocityPanel()
     p.set(alpha1=0.4, alpha2=-0.9, xi_x=0.2, xi_y=-0.1, xi_theta=0.5, alpha1_dot=0.3, alpha2_dot=-0.6)
     a = np.array([0.4, -0.9])
     u = np.array([0.2, -0.1, 0.5, 0.3, -0.6])
-    fr = C.three_link_frames(a, p.lengths)
-    J = C.three_link_jacobians(a, p.lengths)
+    fr = three_link_frames(a, p.lengths)
+    J = three_link_jacobians(a, p.lengths)
     for i in range(3):
         world = SE2.body_to_world(fr["g"][i], J[i] @ u)
         np.testing.assert_allclose(p.arrows.vectors[i], world[:2], atol=1e-12)
@@ -159,11 +183,11 @@ def test_new_ch2_panels_registered():
 
 
 def test_pinned_bodies_panel_follows_the_pin():
-    from gm_core.drawing.frames import BODY_OUTLINE
+    from gm_core.drawing.pinned import BODY_OUTLINE
 
-    p = ch2.PinnedBodiesPanel()
+    p = PinnedBodiesPanel()
     p.set(pinned=True, x1=0.4, y1=-0.3, theta1=0.2, x2=1.0, y2=1.0, theta2=1.5)
-    pair = C.pinned_pair([0.4, -0.3, 0.2], 1.3)
+    pair = pinned_pair([0.4, -0.3, 0.2], 1.3)
     for body, fa, g in zip(p.bodies, p.frames, pair):
         np.testing.assert_allclose(body.patch.get_xy()[:len(BODY_OUTLINE)], SE2.act_on_points(g, BODY_OUTLINE),
                                    atol=1e-12)
@@ -174,14 +198,14 @@ def test_pinned_bodies_panel_follows_the_pin():
     p.set(pinned=False)
     g2 = np.array([1.0, 1.0, 1.5])
     assert_frame_at(p.frames[1], g2)
-    np.testing.assert_allclose(p.constraints, C.pin_constraints(pair[0], g2))
+    np.testing.assert_allclose(p.constraints, pin_constraints(pair[0], g2))
     np.testing.assert_allclose(np.c_[p.gap.get_data()], [[0.4, -0.3], [1.0, 1.0]])
     assert p.gap.get_visible() and not p.pin.get_visible() and not p.controls["x2"].disabled
     assert "-0.60" in p.text.get_text() and "-1.30" in p.text.get_text()
 
 
 def test_relative_pose_panel_draws_g_ab_and_checks_cancellation():
-    p = ch2.RelativePosePanel()
+    p = RelativePosePanel()
     p.set(alpha1=0.7, alpha2=-1.1, frame="h2", seen_from="g2", via="g1")
     fr = p.chain.frames([0.7, -1.1])
     a, b, _c = fr["h"][1], fr["g"][1], fr["g"][0]
@@ -201,13 +225,13 @@ def test_relative_pose_panel_draws_g_ab_and_checks_cancellation():
 
 
 def test_beta_velocity_panel_arrows_match_the_split_and_finite_differences():
-    p = ch2.BetaVelocityPanel()
+    p = BetaVelocityPanel()
     v = dict(alpha1=0.5, alpha2=-0.7, alpha1_dot=0.9, alpha2_dot=-0.4, xi_x=0.3, xi_y=-0.2, xi_theta=0.6)
     p.set(**v)
     a, ad = np.array([0.5, -0.7]), np.array([0.9, -0.4])
     xi = np.array([0.3, -0.2, 0.6])
-    beta, dbeta = C.com_frame(a, p.lengths)
-    parts = C.beta_frame_velocity(beta, dbeta, xi, ad)
+    beta, dbeta = com_frame(a, p.lengths)
+    parts = beta_frame_velocity(beta, dbeta, xi, ad)
     s = p.scene.SCALE
     assert_frame_at(p.beta_art, beta)
     for k in ("carried", "body"):
@@ -217,7 +241,7 @@ def test_beta_velocity_panel_arrows_match_the_split_and_finite_differences():
     np.testing.assert_allclose(p.arrows["shape"].points[0], beta[:2] + s * p.arrows["carried"].vectors[0])
     # independent route: finite differences of the frame's world pose, middle link at e moving along exp(t xi)
     eps = 1e-6
-    pose = lambda t: SE2.compose(SE2.exp(t * xi), C.com_frame(a + t * ad, p.lengths)[0])   # noqa: E731
+    pose = lambda t: SE2.compose(SE2.exp(t * xi), com_frame(a + t * ad, p.lengths)[0])   # noqa: E731
     g_dot = SE2.difference(pose(eps), pose(-eps)) / (2 * eps)
     np.testing.assert_allclose(p.arrows["body"].vectors[0], g_dot[:2], atol=1e-7)
     # each dotted path passes through the frame's origin, tangent to its own arrow
@@ -232,7 +256,7 @@ def test_beta_velocity_panel_arrows_match_the_split_and_finite_differences():
 
 
 def test_jacobian_step_panel_accumulates_columns():
-    p = ch2.JacobianStepPanel()
+    p = JacobianStepPanel()
     q, qd = np.array([0.7, 0.4, -1.0]), np.array([0.5, -0.8, 1.3])
     vals = {**{f"q{i + 1}": q[i] for i in range(3)}, **{f"q{i + 1}_dot": qd[i] for i in range(3)}}
     Jb = p.chain.jacobians(q, method="direct", velocity="body")["h"][-1]

@@ -10,14 +10,22 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 from gm_core import SE2  # noqa: E402
-from gm_core.drawing import ch3 as D  # noqa: E402
 from gm_core.drawing import nonholonomy as D_nh  # noqa: E402
-from gm_core.locomotion import circle_gait, net_displacement  # noqa: E402
+from gm_core.drawing.connection import connection_fields_figure, regimes_figure, shape_grid
+from gm_core.drawing.gaits import animate_gait
+from gm_core.gaits import circle_gait
+from gm_core.locomotion import net_displacement
 from gm_core.systems import ALL_SYSTEMS, FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer  # noqa: E402
-from gm_core.widgets import ch3  # noqa: E402
+from gm_core.widgets import connection, gaits, motion, nonholonomy, pacing  # noqa: E402
 from gm_core.widgets.base import PANELS, all_panels  # noqa: E402
+from gm_core.widgets.connection import ConnectionFieldPanel
+from gm_core.widgets.gaits import GaitPanel
+from gm_core.widgets.motion import AckermanCarPanel, DiffDriveCarPanel
+from gm_core.widgets.nonholonomy import ParallelParkPanel
+from gm_core.widgets.pacing import DirectionalLinearityPanel, PacingSquarePanel
 
-CH3_PANELS = [name for name, cls in all_panels().items() if cls.__module__ == ch3.__name__]
+CH3_PANELS = [name for name, cls in all_panels().items()
+              if cls.__module__ in {m.__name__ for m in (motion, connection, gaits, nonholonomy, pacing)}]
 
 
 def outlines_at(system, g, r):
@@ -49,7 +57,7 @@ def test_update_keeps_figure_and_naive_update_runs(name):
 
 
 def test_diff_drive_car_follows_the_exponential():
-    p = ch3.DiffDriveCarPanel()
+    p = DiffDriveCarPanel()
     p.set(wheel1_speed=1.0, wheel2_speed=2.5, duration=2.0)
     s = p.system
     xi = s.body_velocity([0, 0], [1.0, 2.5])
@@ -68,7 +76,7 @@ def test_diff_drive_car_follows_the_exponential():
 
 
 def test_ackerman_car_constant_steering_is_a_circle_and_singular_flag():
-    p = ch3.AckermanCarPanel()
+    p = AckermanCarPanel()
     p.set(wheel_speed=2.0, steering=0.4, steering_speed=0.0, duration=3.0)
     s = p.system
     xi = s.body_velocity([0, 0.4], [2.0, 0.0])
@@ -90,7 +98,7 @@ def test_ackerman_car_constant_steering_is_a_circle_and_singular_flag():
 @pytest.mark.parametrize("system", [KinematicSnake(), FloatingSnake(), LowReSwimmer(), HighReSwimmer()],
                          ids=lambda s: type(s).__name__)
 def test_connection_field_panel_cursor_body_and_velocity(system):
-    p = ch3.ConnectionFieldPanel(system=system)
+    p = ConnectionFieldPanel(system=system)
     r, rd = np.array([1.1, -0.7]), np.array([0.4, -0.9])
     p.set(alpha1=r[0], alpha2=r[1], alpha1_dot=rd[0], alpha2_dot=rd[1])
     for c in p.cursors:
@@ -101,7 +109,7 @@ def test_connection_field_panel_cursor_body_and_velocity(system):
     np.testing.assert_allclose(p.vel.world_vector(), xi[:2] * p.vel.scale, atol=1e-12)
     # the quivers show -A^i on the grid (times the display factor, where not clipped)
     for i, f in enumerate(p.fields):
-        a1, a2, rg = D.shape_grid(system, f.n, f.grid_limits)
+        a1, a2, rg = shape_grid(system, f.n, f.grid_limits)
         A = system.connection(rg)
         U = np.ma.masked_invalid(-A[..., i, 0]).ravel()
         keep = ~np.ma.getmaskarray(U) & ~f.clipped.ravel()
@@ -109,7 +117,7 @@ def test_connection_field_panel_cursor_body_and_velocity(system):
 
 
 def test_connection_field_panel_singular_line_of_kinematic_snake():
-    p = ch3.ConnectionFieldPanel(system=KinematicSnake())
+    p = ConnectionFieldPanel(system=KinematicSnake())
     p.set(alpha1=0.5, alpha2=0.5)
     assert p.flag.visible
     assert not p.vel.quiver.get_visible()
@@ -126,7 +134,7 @@ def test_connection_field_panel_singular_line_of_kinematic_snake():
 
 
 def test_gait_panel_motion_matches_net_displacement():
-    p = ch3.GaitPanel(system=LowReSwimmer())
+    p = GaitPanel(system=LowReSwimmer())
     p.set(amplitude=1.2, center1=0.2, center2=-0.3)
     g = net_displacement(p.system, circle_gait(1.2, (0.2, -0.3)))
     np.testing.assert_allclose(p.net, g, atol=1e-8)
@@ -137,7 +145,7 @@ def test_gait_panel_motion_matches_net_displacement():
 
 
 def test_gait_panel_singular_gait_flags():
-    p = ch3.GaitPanel(system=KinematicSnake())
+    p = GaitPanel(system=KinematicSnake())
     p.set(amplitude=1.0, center1=0.0, center2=0.0)
     assert p.flag.visible and "singular" in p.message
     assert not p.trail.line.get_visible()
@@ -147,13 +155,13 @@ def test_gait_panel_singular_gait_flags():
 
 
 def test_static_figures_and_animation():
-    fig, axes, arts = D.connection_fields_figure(KinematicSnake(), n=9)
+    fig, axes, arts = connection_fields_figure(KinematicSnake(), n=9)
     assert len(arts) == 3
-    fig2, axes2 = D.regimes_figure([ALL_SYSTEMS()[k] for k in ("KinematicSnake", "LowReSwimmer")], n=7)
+    fig2, axes2 = regimes_figure([ALL_SYSTEMS()[k] for k in ("KinematicSnake", "LowReSwimmer")], n=7)
     assert axes2.shape == (2, 3)
-    anim, fig3, traj = D.animate_gait(LowReSwimmer(), circle_gait(1.0), n_frames=12)
+    anim, fig3, traj = animate_gait(LowReSwimmer(), circle_gait(1.0), n_frames=12)
     assert traj.g.shape == (12, 3)
-    from gm_core.drawing.base import jshtml
+    from gm_core.drawing.primitives import jshtml
     html = jshtml(anim)  # plays without a kernel; shortened under the test flag
     assert "<script" in html.data
     import matplotlib.pyplot as plt
@@ -187,11 +195,11 @@ def test_singular_set_of_the_snake_includes_the_fold_lines_on_the_window_edge():
 @pytest.mark.parametrize("name", sorted(ALL_SYSTEMS()))
 @pytest.mark.parametrize("family", ["ellipse", "serpenoid", "figure eight"])
 def test_gait_panel_families_for_every_system(name, family):
+    from gm_core import SingularShapeError
     from gm_core.gaits import family_gait
-    from gm_core.locomotion import SingularShapeError
 
     system = ALL_SYSTEMS()[name]
-    p = ch3.GaitPanel(system=system)
+    p = GaitPanel(system=system)
     (lo1, hi1), (lo2, hi2) = system.shape_limits
     c = (0.1 * hi1, -0.3 * hi2) if name != "KinematicSnake" else (0.5, -1.2)
     size = 0.25 * min(hi1 - lo1, hi2 - lo2) if name != "KinematicSnake" else 0.6
@@ -211,7 +219,7 @@ def test_gait_panel_families_for_every_system(name, family):
 
 
 def test_gait_panel_floating_snake_body_frame_choice():
-    p = ch3.GaitPanel(system=FloatingSnake())
+    p = GaitPanel(system=FloatingSnake())
     assert set(p.controls["frame"].options) == {"centre of mass", "middle link"}
     p.set(family="ellipse", amplitude=1.0, center1=0.6, center2=0.4, aspect=0.5, angle=0.3, frame="centre of mass")
     g_com = p.net.copy()
@@ -240,7 +248,7 @@ def _mouse(fig, name, ax, xy, button=1):
 def test_gait_panel_drawn_loop_is_edited_by_dragging_a_control_point():
     from gm_core.gaits import Gait
 
-    p = ch3.GaitPanel(system=LowReSwimmer())
+    p = GaitPanel(system=LowReSwimmer())
     p.set(amplitude=1.0, center1=0.0, center2=0.0)
     p.set(family="drawn")
     pts0 = p.points.copy()
@@ -266,7 +274,7 @@ def test_gait_panel_drawn_loop_is_edited_by_dragging_a_control_point():
 
 
 def test_gait_panel_drawn_loop_across_the_singular_line_raises_the_flag():
-    p = ch3.GaitPanel(system=KinematicSnake())
+    p = GaitPanel(system=KinematicSnake())
     p.set(amplitude=0.6, center1=0.5, center2=-1.2)
     p.set(family="drawn")
     assert not p.flag.visible
@@ -280,7 +288,7 @@ def test_gait_panel_drawn_loop_across_the_singular_line_raises_the_flag():
 
 
 def test_gait_panel_animation_plays_without_kernel():
-    p = ch3.GaitPanel(system=LowReSwimmer())
+    p = GaitPanel(system=LowReSwimmer())
     p.set(family="figure eight", amplitude=1.0, aspect=0.8, angle=0.0)
     html = p.animation(n_frames=12, cycles=1)
     assert "<script" in html.data
@@ -291,7 +299,7 @@ def test_gait_panel_animation_plays_without_kernel():
 def test_parallel_park_panel_shows_the_sideways_net_and_the_closed_radial_loop():
     from gm_core.systems.rolling_disk import bracket_estimate, parallel_park_displacement
 
-    p = ch3.ParallelParkPanel()
+    p = ParallelParkPanel()
     p.set(d=0.5, phi=0.4)
     g0 = np.array([0.0, -0.4, 0.0])
     np.testing.assert_allclose(p.net, parallel_park_displacement(0.5, 0.4), atol=1e-14)
@@ -315,7 +323,7 @@ def test_pacing_square_panel_markers_commute_as_in_fig_3_1():
     from gm_core.gaits import sine_pacing
     from gm_core.locomotion import displacement_until
 
-    p = ch3.PacingSquarePanel()
+    p = PacingSquarePanel()
     p.set(unevenness=0.6, t=0.3)
     tau, _ = sine_pacing(0.6)
     want = displacement_until(p.system, cg(1.0), float(tau(0.3)))
@@ -332,7 +340,7 @@ def test_directional_panel_numbers_prove_or_refute_each_property():
     from gm_core.systems.directional import RATE_MAPS
 
     A, B, C, D_ = list(RATE_MAPS)
-    p = ch3.DirectionalLinearityPanel()
+    p = DirectionalLinearityPanel()
     for ex, same_pace, returns in [(A, True, True), (B, True, True), (C, False, True), (D_, True, False)]:
         p.set(example=ex, pace=2.5)
         x1, xk, back = p.ends

@@ -182,3 +182,157 @@ def test_missing_exercises_folder_is_a_clear_error(tmp_path):
 
 def test_workspace_is_git_ignored():
     assert "workspace/" in (ROOT / ".gitignore").read_text().split()
+
+
+# ------------------------------------------------------------------------------ never stops halfway (issue 20, point 8)
+import os  # noqa: E402
+import shutil  # noqa: E402
+
+import pytest  # noqa: E402
+
+
+def run_cli(src, dst, wrap=()):
+    """The real command (optionally inside a sandbox wrapper); returns the CompletedProcess."""
+    return subprocess.run([*wrap, sys.executable, str(SCRIPT), "--exercises", str(src), "--workspace", str(dst)],
+                          capture_output=True, text=True, timeout=120)
+
+
+def course_of_three(tmp_path):
+    """A workspace after a first sync, then: 1.1 untouched, 1.2 edited by the student; the course
+    then updates 1.1 and 1.2 and adds 1.3."""
+    src = make_course(tmp_path)
+    (src / "ex1_2.ipynb").write_text('{"v": "course 1 of 1.2"}')
+    dst = tmp_path / "workspace"
+    run(src, dst)
+    (dst / "ex1_2.ipynb").write_text('{"v": "my work on 1.2"}')
+    (src / "ex1_1.ipynb").write_text('{"v": "course 2"}')
+    (src / "ex1_2.ipynb").write_text('{"v": "course 2 of 1.2"}')
+    (src / "ex1_3.ipynb").write_text('{"v": "new exercise"}')
+    return src, dst
+
+
+def _chattr(path, flag):
+    return subprocess.run(["chattr", flag, str(path)], capture_output=True).returncode == 0
+
+
+@pytest.fixture
+def immutable():
+    """immutable(path): really unchangeable, even by root (chattr +i); undone at the end."""
+    done = []
+
+    def make(path):
+        if os.geteuid() != 0 or not shutil.which("chattr") or not _chattr(path, "+i"):
+            pytest.skip("needs root and chattr (chmod does not stop root)")
+        done.append(path)
+    yield make
+    for path in done:
+        _chattr(path, "-i")
+
+
+def test_a_notebook_that_cannot_be_replaced_is_named_and_every_other_file_still_synced(tmp_path, immutable):
+    src, dst = course_of_three(tmp_path)
+    immutable(dst / "ex1_1.ipynb")
+    res = run_cli(src, dst)
+    assert res.returncode == 0 and "Traceback" not in res.stderr
+    assert "PROBLEM" in res.stderr and "ex1_1.ipynb could not be replaced" in res.stderr
+    assert "run `make workspace` again" in res.stderr
+    assert (dst / "ex1_1.ipynb").read_text() == '{"v": "course 1"}'              # unchanged
+    assert (dst / "ex1_2.ipynb").read_text() == '{"v": "my work on 1.2"}'         # never touched
+    assert (dst / "ex1_2.course-update.ipynb").read_text() == '{"v": "course 2 of 1.2"}'
+    assert (dst / "ex1_3.ipynb").read_text() == '{"v": "new exercise"}'
+    assert not [p for p in dst.iterdir() if p.name.endswith(".tmp")]
+    _chattr(dst / "ex1_1.ipynb", "-i")
+    res = run_cli(src, dst)                      # fixed: the update arrives on the next run
+    assert res.returncode == 0 and not res.stderr
+    assert (dst / "ex1_1.ipynb").read_text() == '{"v": "course 2"}'
+    assert (dst / "ex1_2.ipynb").read_text() == '{"v": "my work on 1.2"}'
+
+
+@pytest.mark.parametrize("how", ["immutable folder", "read-only mount"])
+def test_a_read_only_workspace_gives_a_message_per_file_and_changes_nothing(tmp_path, immutable, how):
+    src, dst = course_of_three(tmp_path)
+    before = snapshot(dst)
+    if how == "immutable folder":
+        immutable(dst)
+        res = run_cli(src, dst)
+    else:
+        if not shutil.which("bwrap"):
+            pytest.skip("bubblewrap is not installed")
+        res = run_cli(src, dst, wrap=("bwrap", "--bind", "/", "/", "--dev", "/dev", "--proc", "/proc",
+                                      "--ro-bind", str(dst), str(dst)))
+        if res.returncode and "bwrap:" in res.stderr:
+            pytest.skip(res.stderr[:200])
+    assert res.returncode == 0 and "Traceback" not in res.stderr, res.stderr
+    for name in ("ex1_1.ipynb", "ex1_2.ipynb", "ex1_3.ipynb", ".course-manifest.json"):
+        assert any(name in line and "PROBLEM" in line for line in res.stderr.splitlines()), name
+    assert "make the workspace (and this file) writable again" in res.stderr
+    assert "no file of yours was changed or lost" in res.stderr
+    assert snapshot(dst) == before
+
+
+def test_a_folder_where_a_notebook_should_be_is_kept_and_the_notebook_written_beside(tmp_path):
+    src, dst = course_of_three(tmp_path)
+    (dst / "ex1_3.ipynb").mkdir()
+    (dst / "ex1_3.ipynb" / "notes.txt").write_text("my notes")
+    res = run_cli(src, dst)
+    assert res.returncode == 0 and "Traceback" not in res.stderr
+    assert "ex1_3.ipynb is a folder" in res.stderr and "Rename or move the folder" in res.stderr
+    assert (dst / "ex1_3.ipynb" / "notes.txt").read_text() == "my notes"
+    assert (dst / "ex1_3.course-update.ipynb").read_text() == '{"v": "new exercise"}'
+    assert (dst / "ex1_1.ipynb").read_text() == '{"v": "course 2"}'                # the others
+    assert (dst / "ex1_2.course-update.ipynb").read_text() == '{"v": "course 2 of 1.2"}'
+    assert (dst / "ex1_2.ipynb").read_text() == '{"v": "my work on 1.2"}'
+
+
+@pytest.mark.parametrize("name", [".course-manifest.json", ".course-notices.json"])
+def test_a_folder_where_the_manifest_or_notices_should_be_stops_nothing(tmp_path, name):
+    src, dst = course_of_three(tmp_path)
+    (dst / name).unlink()
+    (dst / name).mkdir()
+    res = run_cli(src, dst)
+    assert res.returncode == 0 and "Traceback" not in res.stderr
+    assert f"{name} could not be saved" in res.stderr and "move that folder away" in res.stderr
+    if name == ".course-manifest.json":
+        assert f"{name} is a folder" in res.stderr
+        # without the record, the untouched 1.1 cannot be told from an edit: kept, new beside
+        assert (dst / "ex1_1.ipynb").read_text() == '{"v": "course 1"}'
+        assert (dst / "ex1_1.course-update.ipynb").read_text() == '{"v": "course 2"}'
+    else:
+        assert (dst / "ex1_1.ipynb").read_text() == '{"v": "course 2"}'
+    assert (dst / "ex1_2.ipynb").read_text() == '{"v": "my work on 1.2"}'
+    assert (dst / "ex1_2.course-update.ipynb").read_text() == '{"v": "course 2 of 1.2"}'
+    assert (dst / "ex1_3.ipynb").read_text() == '{"v": "new exercise"}'
+    assert (dst / name).is_dir()
+
+
+def test_a_symlinked_exercise_stays_a_link_and_its_file_is_never_written(tmp_path):
+    src, dst = course_of_three(tmp_path)
+    mine = tmp_path / "elsewhere" / "ex1_1.ipynb"
+    mine.parent.mkdir()
+    mine.write_text('{"v": "course 1"}')          # a link to a file with the untouched content
+    (dst / "ex1_1.ipynb").unlink()
+    (dst / "ex1_1.ipynb").symlink_to(mine)
+    res = run_cli(src, dst)
+    assert res.returncode == 0 and "Traceback" not in res.stderr
+    assert (dst / "ex1_1.ipynb").is_symlink() and os.readlink(dst / "ex1_1.ipynb") == str(mine)
+    assert mine.read_text() == '{"v": "course 1"}'
+    assert (dst / "ex1_1.course-update.ipynb").read_text() == '{"v": "course 2"}'
+    assert "kept your" in res.stdout and "ex1_1.ipynb" in res.stdout
+    res = run_cli(src, dst)                        # and stays so
+    assert (dst / "ex1_1.ipynb").is_symlink() and "up to date" in res.stdout
+
+
+def test_a_link_to_the_course_file_and_a_dangling_link_are_kept(tmp_path):
+    src, dst = course_of_three(tmp_path)
+    (dst / "ex1_3.ipynb").symlink_to(src / "ex1_3.ipynb")                # follows the course
+    (dst / "ex1_1.ipynb").unlink()
+    (dst / "ex1_1.ipynb").symlink_to(tmp_path / "deleted.ipynb")         # points nowhere
+    res = run_cli(src, dst)
+    assert res.returncode == 0 and "Traceback" not in res.stderr
+    assert (dst / "ex1_3.ipynb").is_symlink() and not (dst / "ex1_3.course-update.ipynb").exists()
+    assert (dst / "ex1_1.ipynb").is_symlink() and not (tmp_path / "deleted.ipynb").exists()
+    assert (dst / "ex1_1.course-update.ipynb").read_text() == '{"v": "course 2"}'
+    assert "which does not exist" in res.stderr and "Remove the link" in res.stderr
+    (src / "ex1_3.ipynb").write_text('{"v": "new exercise, corrected"}')
+    run_cli(src, dst)
+    assert (dst / "ex1_3.ipynb").is_symlink() and not (dst / "ex1_3.course-update.ipynb").exists()

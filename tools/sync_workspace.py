@@ -18,11 +18,20 @@ copied (its sha256). If it is missing or unreadable (a corrupt one is kept aside
 with the new version beside it. Notices live in ``workspace/.course-notices.json``; every write is
 atomic (temporary file + rename).
 
+It never stops halfway: a file that cannot be written (a read-only workspace, an immutable or
+locked notebook, a full disk), a folder where a notebook or the manifest should be, or a link
+pointing nowhere becomes a message naming the file and saying what to do, and every other file
+is still brought up to date (an edited copy still gets its new version beside it). A file that
+could not be updated keeps its old entry in the manifest, so the next run tries again. A
+symlinked exercise stays a link: it is never written through or replaced; a newer course version
+goes beside it.
+
     python tools/sync_workspace.py [--exercises DIR] [--workspace DIR] [--readme FILE] [--quiet]
 """
 from __future__ import annotations
 
 import argparse
+import errno
 import hashlib
 import json
 import os
@@ -82,9 +91,16 @@ def course_files(src: Path, readme: Path | None = README_TEMPLATE):
     return out
 
 
-def read_manifest(dst: Path):
+def read_manifest(dst: Path, problems: list | None = None):
     """(files {rel: digest}, beside {rel: digest}, ok). A corrupt manifest is kept aside."""
     path = dst / MANIFEST
+    if path.is_dir() and not path.is_symlink():
+        if problems is not None:
+            problems.append((path, "is a folder, where the course keeps its record of which versions "
+                                   "you have. Move that folder somewhere else and run this again; "
+                                   "until then every file that differs from the course is treated as "
+                                   "yours (kept, the new version written beside it)."))
+        return {}, {}, False
     if not path.exists():
         return {}, {}, False
     try:
@@ -116,13 +132,16 @@ def read_notices(dst: Path):
 
 
 def _beside_path(dst: Path, rel: str, new_digest: str, beside: dict) -> Path | None:
-    """Where to write the new version next to the student's file (None: it is already there)."""
+    """Where to write the new version next to the student's file (None: it is already there).
+    Never a folder, never a link, never a file the student has changed."""
     target = dst / rel
     stem, suffix = target.name[: -len(target.suffix)] if target.suffix else target.name, target.suffix
     for k in range(1, 100):
         name = f"{stem}{BESIDE}{'' if k == 1 else f'-{k}'}{suffix}"
         cand = target.parent / name
         key = cand.relative_to(dst).as_posix()
+        if cand.is_symlink() or cand.is_dir():
+            continue
         if not cand.exists():
             return cand
         cur = _digest(cand)
@@ -133,37 +152,48 @@ def _beside_path(dst: Path, rel: str, new_digest: str, beside: dict) -> Path | N
     raise RuntimeError(f"too many course updates beside {rel}")
 
 
+def _as(where: Path | None) -> str:
+    return f" as {where.name}" if where is not None else " (written there by an earlier run)"
+
+
+def _why(exc: BaseException) -> str:
+    text = getattr(exc, "strerror", None) or str(exc) or type(exc).__name__
+    return f"{type(exc).__name__}: {text}"
+
+
+def _what_to_do(exc: BaseException) -> str:
+    """What the student can do about ``exc``, as the end of a sentence starting "To fix it, "."""
+    if isinstance(exc, OSError) and exc.errno in (errno.EROFS, errno.EACCES, errno.EPERM):
+        return ("make the workspace (and this file) writable again - `chmod -R u+w workspace`, or "
+                "remount it read-write, or `chattr -i` an immutable file - and run `make workspace` "
+                "again")
+    if isinstance(exc, OSError) and exc.errno == errno.ENOSPC:
+        return "free some disk space and run `make workspace` again"
+    return ("close any program that holds the file, check that it can be written, and run "
+            "`make workspace` again")
+
+
 def sync(src: Path, dst: Path, readme: Path | None = README_TEMPLATE):
     """Bring ``dst`` up to date with ``src``. Returns a dict of lists of workspace paths:
-    ``copied``, ``updated`` (untouched copies replaced), ``kept`` ([(your file, new version)])."""
+    ``copied``, ``updated`` (untouched copies replaced), ``kept`` ([(your file, new version)]),
+    ``problems`` ([(path, what went wrong and what to do)]). A problem with one file never stops
+    the others, and never costs a file of yours."""
     src, dst = Path(src), Path(dst)
     if not src.is_dir():
         raise FileNotFoundError(f"no exercises folder at {src}")
-    dst.mkdir(parents=True, exist_ok=True)
-    files, beside, _ok = read_manifest(dst)
+    report = {"copied": [], "updated": [], "kept": [], "problems": []}
+    problems = report["problems"]
+    try:
+        dst.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        problems.append((dst, f"the workspace folder could not be made ({_why(exc)}); "
+                              f"{_what_to_do(exc)}."))
+        return report
+    files, beside, _ok = read_manifest(dst, problems)
     notices = read_notices(dst)
-    report = {"copied": [], "updated": [], "kept": []}
-    for rel, source in course_files(src, readme).items():
-        data = source.read_bytes()
-        new = _digest_bytes(data)
-        target = dst / rel
-        if not target.exists():
-            _atomic_write(target, data)
-            files[rel] = new
-            report["copied"].append(target)
-            continue
-        cur = _digest(target)
-        if cur == new:
-            files[rel] = new
-            continue
-        known = files.get(rel)
-        if known is not None and cur == known:
-            _atomic_write(target, data)  # the student never changed it: take the new version
-            files[rel] = new
-            report["updated"].append(target)
-            continue
-        if known == new:
-            continue  # the student edited the current course version: nothing new to announce
+
+    def beside_copy(rel, target, data, new, announce=True):
+        nonlocal notices
         where = _beside_path(dst, rel, new, beside)
         if where is not None:
             _atomic_write(where, data)
@@ -171,10 +201,86 @@ def sync(src: Path, dst: Path, readme: Path | None = README_TEMPLATE):
             beside[key] = new
             notices = [n for n in notices if n.get("new_version") != key]
             notices.append({"file": rel, "new_version": key, "seen": False})
-            report["kept"].append((target, where))
-        files[rel] = new
-    _write_json(dst / NOTICES, notices)
-    _write_json(dst / MANIFEST, {"version": 2, "files": files, "beside": beside})
+            if announce:
+                report["kept"].append((target, where))
+        return where
+
+    for rel, source in course_files(src, readme).items():
+        target = dst / rel
+        try:
+            data = source.read_bytes()
+        except OSError as exc:
+            problems.append((source, f"the course file could not be read ({_why(exc)}); "
+                                     "your workspace copy is unchanged."))
+            continue
+        new = _digest_bytes(data)
+        try:
+            if target.is_symlink():
+                # a link the student made: kept as a link, never written through or over
+                if target.exists() and _digest(target) == new:
+                    files[rel] = new
+                    continue
+                if files.get(rel) == new and target.exists():
+                    continue  # the linked file is their edit of the current version
+                where = beside_copy(rel, target, data, new, announce=target.exists())
+                if not target.exists():
+                    problems.append((target, f"is a link to {os.readlink(target)}, which does not "
+                                             "exist. The link is kept; the course's version is "
+                                             f"beside it{_as(where)}. "
+                                             "Remove the link to get a fresh copy next time."))
+                files[rel] = new
+                continue
+            if target.is_dir():
+                where = beside_copy(rel, target, data, new, announce=False)
+                problems.append((target, "is a folder, where this exercise notebook should be. Your "
+                                         f"folder is kept; the notebook is beside it{_as(where)}. "
+                                         "Rename or move the "
+                                         "folder and run `make workspace` again to get it in place."))
+                files[rel] = new
+                continue
+            if not target.exists():
+                _atomic_write(target, data)
+                files[rel] = new
+                report["copied"].append(target)
+                continue
+            cur = _digest(target)
+            if cur == new:
+                files[rel] = new
+                continue
+            known = files.get(rel)
+            if known is not None and cur == known:
+                try:
+                    _atomic_write(target, data)  # the student never changed it: the new version
+                except OSError as exc:
+                    problems.append((target, f"could not be replaced by the course's new version "
+                                             f"({_why(exc)}); it is unchanged. To get the update, "
+                                             f"{_what_to_do(exc)}."))
+                    continue                     # the manifest keeps the old version: retried
+                files[rel] = new
+                report["updated"].append(target)
+                continue
+            if known == new:
+                continue  # the student edited the current course version: nothing new to announce
+            beside_copy(rel, target, data, new)
+            files[rel] = new
+        except (OSError, RuntimeError) as exc:
+            problems.append((target, f"could not be brought up to date ({_why(exc)}); your file is "
+                                     f"unchanged. To fix it, {_what_to_do(exc)}."))
+    for name, data, what in (
+            (NOTICES, notices, "the list of course updates to show you (the start page still "
+                               "finds the *.course-update* files)"),
+            (MANIFEST, {"version": 2, "files": files, "beside": beside},
+             "the record of which course versions you have (next time, files that differ from "
+             "the course are treated as yours: kept, the new version beside)")):
+        path = dst / name
+        try:
+            if path.is_dir() and not path.is_symlink():
+                raise IsADirectoryError(errno.EISDIR, "a folder stands where the file should be")
+            _write_json(path, data)
+        except OSError as exc:
+            todo = ("move that folder away and run `make workspace` again"
+                    if isinstance(exc, IsADirectoryError) else _what_to_do(exc))
+            problems.append((path, f"could not be saved ({_why(exc)}): {what}. To fix it, {todo}."))
     return report
 
 
@@ -205,7 +311,12 @@ def main(argv=None):
     for mine, new in report["kept"]:
         say(f"workspace: kept your {show(mine)} as it is; the course's newer version is beside it: "
             f"{show(new)} (the start page lists it too)")
-    if not any(report.values()):
+    for path, text in report["problems"]:
+        print(f"workspace: PROBLEM: {show(path)} {text}", file=sys.stderr)
+    if report["problems"]:
+        print(f"workspace: {len(report['problems'])} problem(s) above; every other file was brought "
+              "up to date, and no file of yours was changed or lost.", file=sys.stderr)
+    elif not any(report.values()):
         say("workspace: up to date (your files are never overwritten)")
     return 0
 

@@ -12,19 +12,19 @@ Usage in an exercise notebook::
 Every exercise is an object ``exN_M`` whose parts are attributes (``ex2_3.a``, ``ex2_3.b``, ...).
 A check never raises into the notebook and never hangs: your code runs in a separate process
 under a time limit (``set_time_limit(seconds)``; see ``_sandbox``). ``check(answer, strict=True)``
-raises AssertionError instead, for nbgrader / otter-grader test cells. Inside a student workspace
+returns None when right and raises AssertionError when wrong, for nbgrader / otter-grader test
+cells. Inside a student workspace
 progress is saved in ``workspace/.progress.json``; ``reset_progress()`` forgets it.
 
-Adding a chapter: write ``gm_core/checks/chN.py`` creating its ``Exercise`` objects (they register
-themselves); every module named ``ch<number>.py`` in this folder is imported here, and its
-exercises are available as ``gm_core.checks.exN_M`` and listed by ``progress()``.
+Adding a chapter: write a module in this folder creating its ``Exercise`` objects (they register
+themselves) and add its name to ``EXERCISE_MODULES``; its exercises are then available as
+``gm_core.checks.exN_M`` and listed by ``progress()``.
 
 numpy only at import time: sympy is used only for sympy answers and ipywidgets only for widgets.
 """
 from __future__ import annotations
 
 import importlib
-import pkgutil
 import re
 
 from ._choice import ChoicePart
@@ -49,13 +49,10 @@ from ._core import (
 from ._progress import pending_updates
 from ._sandbox import set_time_limit
 
+#: The modules that declare exercises (each ``Exercise(...)`` registers itself on import).
+EXERCISE_MODULES = ("ch1", "ch2", "ch3", "curvature")
 
-def _chapter_modules():
-    names = [m.name for m in pkgutil.iter_modules(__path__) if re.fullmatch(r"ch\d+", m.name)]
-    return sorted(names, key=lambda n: int(n[2:]))
-
-
-for _name in _chapter_modules():
+for _name in EXERCISE_MODULES:
     importlib.import_module(f".{_name}", __name__)
 
 __all__ = [

@@ -6,7 +6,7 @@ import numpy as np
 
 from ..groups import SE2, wrap_angle
 from ._answers import fmt_value, is_starter, match_shape, to_numbers
-from ._core import FunctionPart, outcome_error, rng_inputs
+from ._core import FunctionPart, outcome_error, probe_rng, rng_inputs
 from ._sandbox import Unattempted, Wrong
 
 
@@ -74,7 +74,7 @@ def _helix_inputs():
     yield (np.array([1.0, 0.0, 1.0]),)
     yield (np.array([0.0, 0.0, 2.0]),)
     yield (np.array([1.0, 1.0, -0.5]),)
-    rng = np.random.default_rng(15)
+    rng = probe_rng(15)
     for _ in range(5):
         w = rng.choice([-1, 1]) * rng.uniform(0.2, 4)
         yield (np.array([rng.uniform(-2, 2), rng.uniform(-2, 2), w]),)

@@ -9,9 +9,9 @@ Design (after Kaggle's learntools and otter-grader): every exercise part has ``c
 2. **judge** -- ``part.judge(outcomes)`` compares those plain outcomes with the reference, here,
    in the checking process. Nothing the student's code does can change the judge.
 
-The grader (:mod:`gm_core.grade`) uses the same split: the probes run inside the student's
-notebook kernel, the judging in the grading process. ``check`` never raises (unless
-``strict=True``, for nbgrader/otter test cells, which raises AssertionError with the same message).
+The grader (:mod:`gm_core.checks.grade`) uses the same split: the probes run inside the student's
+notebook kernel at each check call, the judging in the grading process. ``check`` never raises (unless
+``strict=True``, for nbgrader/otter test cells: None on success, AssertionError on failure).
 
 numpy only at import time; sympy is imported only when an answer is a sympy object.
 """
@@ -21,7 +21,7 @@ import copy
 
 import numpy as np
 
-from . import _progress
+from . import _grading, _progress
 from ._answers import (  # noqa: F401
     describe,
     fmt_args,
@@ -43,7 +43,7 @@ from ._exercise import (  # noqa: E402,F401
     solutions_viewed,
 )
 from ._progress import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED
-from ._sandbox import Unattempted, Wrong, collect, safe_text
+from ._sandbox import Unattempted, Wrong, collect, decode_outcome, safe_text
 
 
 class Verdict:
@@ -88,9 +88,9 @@ def outcome_error(o, what, label):
         raise Wrong(f"{what} took longer than {o['m']} s when called with {label}, so the check "
                     "stopped it (an endless loop? a very slow method?). Your kernel is fine; "
                     "set_time_limit(seconds) allows more time.")
-    if k == "crash":
-        raise Wrong(f"{what} crashed the Python process it ran in when called with {label} (too "
-                    "much memory, or a recursion the interpreter could not survive).")
+    if k == "crash":  # the sandbox says how ("x"): a signal, an exit status, a segfault
+        how = o.get("x") or "too much memory, or a recursion the interpreter could not survive"
+        raise Wrong(f"{what} crashed the Python process it ran in when called with {label} ({how}).")
     raise Wrong(f"{what} could not be checked further after an earlier call stopped.")
 
 
@@ -161,23 +161,34 @@ class Part:
     # -- the three verbs
     def check(self, answer=None, *, quiet=False, strict=False, time_limit=None):
         """Check ``answer``; display and return a :class:`Verdict`. Never raises, unless
-        ``strict=True``: then a failed check raises AssertionError with the same message."""
+        ``strict=True`` (nbgrader / otter-grader test cells): then a passed check returns None
+        (a doctest-style cell expects nothing) and a failed one raises AssertionError with the
+        same message.
+
+        While the grader runs the notebook, the plain outcomes are also sent, at this call, on
+        the grader's evidence channel (:mod:`._grading`): the part is judged as it was now."""
+        _grading.begin(self)
+        raw = None
         try:
-            outcomes, output = collect(answer, self.probes(), time_limit)
-            verdict = self.verdict(outcomes, output)
+            raw, output = collect(answer, self.probes(), time_limit, raw=True)
+            verdict = self.verdict([decode_outcome(o) for o in raw], output)
         except KeyboardInterrupt:
             raise
         except BaseException as exc:  # noqa: BLE001 - never let anything escape into the notebook
             verdict = Verdict(FAILED, f"The check stopped unexpectedly ({type(exc).__name__}).",
                               self.title)
+        finally:
+            _grading.emit(self, raw if raw is not None else "stopped", "" if raw is None else output)
         self._record(verdict.status)
         if not quiet:
             try:
                 verdict.show()
             except Exception:  # noqa: BLE001
                 pass
-        if strict and not verdict.passed:
-            raise AssertionError(f"{self.title}: {verdict.message}")
+        if strict:
+            if not verdict.passed:
+                raise AssertionError(f"{self.title}: {verdict.message}")
+            return None
         return verdict
 
     def hint_text(self, n=1):
@@ -314,9 +325,12 @@ class FunctionPart(Part):
             if o["v"] is None:
                 raise Wrong(f"{what} returned None for {label} (a branch without a return "
                             "statement?), although it returns a value for other inputs.")
-            if isinstance(o["v"], str):  # "skip": a sympy closed form at its removable 0/0
-                got_all.append(None)
-                continue
+            if isinstance(o["v"], str):
+                # "skip": a sympy closed form at its removable 0/0, and only there
+                if o["v"] == "skip" and self.sympy_ok is not None and not self.sympy_ok(*args):
+                    got_all.append(None)
+                    continue
+                raise Wrong(f"{what} returned text for {label}; numbers were expected.")
             got = np.asarray(o["v"], dtype=float)
             if got.shape != self.shape:
                 raise Wrong(f"the value {what} returned for {label} has shape {got.shape}, but "
@@ -325,7 +339,7 @@ class FunctionPart(Part):
                 raise Wrong(f"the value {what} returned for {label} contains NaN or infinite "
                             "entries (a division by zero at this input?).")
             got_all.append(got)
-        if len(outcomes) != len(all_args):
+        if len(outcomes) != len(all_args) or all(g is None for g in got_all):
             raise Wrong("the check could not evaluate your answer on every input.")
         expected = [np.asarray(self.ref(*a), dtype=float) for a in all_args]
         bad = [i for i, g in enumerate(got_all) if g is not None and not self.close(g, expected[i])]
@@ -446,12 +460,19 @@ class CustomPart(Part):
 
 
 # ------------------------------------------------------------------------------ input helpers
+def probe_rng(seed):
+    """The random generator for a checker's inputs: ``seed``, salted by the grader when grading
+    (:func:`._grading.set_probe_salt`), so a graded run's inputs cannot be known in advance."""
+    salt = _grading.probe_salt()
+    return np.random.default_rng(seed if salt is None else [int(seed), salt])
+
+
 def rng_inputs(seed, n, make, edges=()):
     """A function yielding the edge cases first, then ``n`` seeded random argument tuples."""
     def inputs():
         for e in edges:
             yield tuple(e)
-        rng = np.random.default_rng(seed)
+        rng = probe_rng(seed)
         for _ in range(n):
             yield tuple(make(rng))
     return inputs
@@ -459,5 +480,5 @@ def rng_inputs(seed, n, make, edges=()):
 
 __all__ = ["PASSED", "FAILED", "UNATTEMPTED", "IN_PROGRESS", "REGISTRY", "Verdict", "Part",
            "FunctionPart", "TuplePart", "CustomPart", "Exercise", "Wrong", "Unattempted",
-           "progress", "part_progress", "reset_progress", "exercise_ids", "rng_inputs",
+           "progress", "part_progress", "reset_progress", "exercise_ids", "rng_inputs", "probe_rng",
            "to_array", "to_numbers", "describe", "fmt_args", "is_starter", "is_sympy"]

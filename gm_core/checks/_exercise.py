@@ -87,9 +87,14 @@ def progress():
     """{exercise id: "passed" | "in progress" | "failed" | "unattempted"} for every exercise.
 
     Inside a student workspace this is the saved record (all notebooks, across restarts);
-    elsewhere it covers this kernel.
+    elsewhere it covers this kernel. When the workspace cannot be written, it also shows this
+    kernel's unsaved verdicts, and says so.
     """
     data = _progress.load()
+    why = _progress.not_saved()
+    if why:
+        print(f"(Not saved: the workspace cannot be written ({why}); these verdicts are kept in "
+              "this kernel's memory only.)")
     return {ex_id: REGISTRY[ex_id].status(data) for ex_id in exercise_ids()}
 
 

@@ -1,38 +1,77 @@
-"""The student-side half of grading: run inside the graded notebook's own kernel.
+"""The student-side half of grading: the evidence channel inside the graded notebook's kernel.
 
-``collect_all`` runs every part's probes on the notebook's answers (in the sandbox, under the
-time limit) and returns JSON text of plain outcomes. The grader (:mod:`gm_core.grade`) decodes it
-and judges in its own process, so nothing the notebook did to gm_core, the checkers or their
-state in its kernel can change the verdicts.
+When the grader runs a notebook (:mod:`gm_core.checks.grade`), its runner executes one hidden
+cell *before any of the student's cells*: :func:`open_channel` binds the write end of a pipe the
+runner created before the kernel started, and records this run's nonce and probe-input salt
+(chosen by the grader, unpredictable to the notebook). From then on every ``part.check(...)``
+in the notebook, whatever form the call takes (keywords, ``Exercise.check({...})``, an alias, a
+helper function), writes one line to that pipe at the moment it is called: the part, and the
+plain outcomes its probes produced on the answer *as it was then*. The grader reads that pipe,
+never the notebook's printed output, and judges in its own process.
+
+Lines on the pipe: ``B <part id>`` when a check starts (the runner stops the cell clock while
+probes run: each probe has its own per-call limit), then ``R <json>`` with the evidence.
 """
 from __future__ import annotations
 
 import json
+import os
 
-from ._core import REGISTRY
-from ._sandbox import collect, safe_name, safe_text
-
-MARKER = "<<gm-course-grading>>"
+_STATE = {"fd": None, "nonce": None, "salt": None}
+MAX_RECORD_BYTES = 4_000_000
 
 
-def collect_all(ex_id, getters, time_limit=None):
-    """{part name: {"outcomes": [...], "output": text} or {"missing": reason}} as JSON text.
+def open_channel(fd, nonce, salt, time_limit=None):
+    """Bind the evidence pipe (called by the grader's runner before any student code runs)."""
+    from . import _sandbox
+    _STATE["fd"], _STATE["nonce"] = int(fd), str(nonce)
+    set_probe_salt(salt)
+    if time_limit is not None:
+        _sandbox.set_time_limit(time_limit)
 
-    ``getters`` maps part names to zero-argument functions returning the answer (so a missing
-    variable is a per-part NameError, not a failed cell).
-    """
-    ex = REGISTRY[str(ex_id)]
-    out = {}
-    for name, part in ex.parts.items():
-        get = getters.get(name)
-        if get is None:
-            out[name] = {"missing": "no check cell for this part was found in the notebook"}
-            continue
-        try:
-            answer = get()
-        except BaseException as exc:  # noqa: BLE001 - NameError for a deleted variable, anything
-            out[name] = {"missing": f"the answer could not be read ({safe_name(exc)}: {safe_text(exc, 120)})"}
-            continue
-        outcomes, output = collect(answer, part.probes(), time_limit, raw=True)
-        out[name] = {"outcomes": outcomes, "output": output}
-    return json.dumps(out)
+
+def set_probe_salt(salt):
+    """Set (or clear, with None) the salt mixed into the seeds of the checkers' random inputs."""
+    _STATE["salt"] = None if salt is None else int(salt)
+
+
+def probe_salt():
+    return _STATE["salt"]
+
+
+def active():
+    return _STATE["fd"] is not None
+
+
+def _write(data: bytes):
+    fd = _STATE["fd"]
+    if fd is None:
+        return
+    try:
+        while data:
+            n = os.write(fd, data)
+            data = data[n:]
+    except OSError:
+        _STATE["fd"] = None   # the runner is gone; the kernel carries on
+
+
+def begin(part):
+    """A check of ``part`` starts (its probes' time is not counted against the cell)."""
+    if active():
+        _write(f"B {part.exercise.id}/{part.name}\n".encode())
+
+
+def emit(part, outcomes, output=""):
+    """Send the evidence of one check call: plain (JSON-able) outcomes, the captured output."""
+    if not active():
+        return
+    rec = {"n": _STATE["nonce"], "ex": part.exercise.id, "part": part.name,
+           "o": outcomes, "out": str(output)[:2000]}
+    try:
+        line = json.dumps(rec)
+    except (TypeError, ValueError):
+        line = json.dumps({**rec, "o": "unserialisable"})
+    data = ("R " + line + "\n").encode()
+    if len(data) > MAX_RECORD_BYTES:
+        data = ("R " + json.dumps({**rec, "o": "too large", "out": ""}) + "\n").encode()
+    _write(data)

@@ -6,7 +6,9 @@ slide rule is drawn as SVG inside an HTML widget (no matplotlib), built by the p
 """
 from __future__ import annotations
 
+import contextlib
 import html
+import io
 
 import numpy as np
 
@@ -18,6 +20,7 @@ from ._progress import (
     PASSED,
     UNATTEMPTED,
     find_workspace,
+    not_saved,
     pending_updates,
 )
 
@@ -148,7 +151,8 @@ def updates_html(pending):
 
 def progress_html(mark_seen=False):
     """An HTML table of every exercise's status (the saved record), with parts passed."""
-    status = progress()
+    with contextlib.redirect_stdout(io.StringIO()):   # the table says it itself when not saved
+        status = progress()
     parts = part_progress()
     viewed = solutions_viewed()
     rows = []
@@ -161,8 +165,11 @@ def progress_html(mark_seen=False):
         rows.append(f'<tr><td>{ex_id}</td><td style="color:{COLORS[s]}">{_ICON[s]} {s}</td>'
                     f'<td style="color:#555">{done}/{len(p)} parts</td>'
                     f'<td style="color:#555">{html.escape(note)}</td></tr>')
-    where = ("saved in your workspace" if find_workspace() is not None
+    why = not_saved()
+    where = (f"NOT SAVED, kept in this kernel only: the workspace cannot be written ({why})" if why
+             else "saved in your workspace" if find_workspace() is not None
              else "this kernel only (not in a workspace)")
+    where = html.escape(where)
     table = ('<table style="font-size:90%"><tr><th>exercise</th><th>status</th><th></th><th></th>'
              "</tr>" + "".join(rows) + f'</table><span style="color:#555;font-size:85%">Record: {where}.</span>')
     pending = pending_updates(mark_seen=mark_seen)

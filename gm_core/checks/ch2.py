@@ -9,8 +9,8 @@ import inspect
 
 import numpy as np
 
-from .. import chains
 from ..groups import SE2
+from ..three_link_chain import com_frame, com_frame_jacobians, three_link_jacobians
 from ._answers import (
     describe,
     fmt_value,
@@ -277,30 +277,30 @@ ex2_2 = Exercise("2.2", "Jacobian of the offset rotary-prismatic arm", [
 # ============================================================================ 2.3
 def com_beta(alpha, lengths, weights=None):
     """beta(alpha): the length-weighted CoM / mean-orientation frame, (3,); ex. 2.3a (gm_core.chains)."""
-    return chains.com_frame(alpha, lengths, weights)[0]
+    return com_frame(alpha, lengths, weights)[0]
 
 
 def com_dbeta(alpha, lengths):
-    return chains.com_frame(alpha, lengths)[1]
+    return com_frame(alpha, lengths)[1]
 
 
 def three_link_body_jacobians(alpha, lengths):
-    """Adapter: gm_core.chains.three_link_jacobians stacked into one (3, 3, 5) array."""
-    return np.stack(chains.three_link_jacobians(alpha, lengths))
+    """Adapter: gm_core.three_link_chain.three_link_jacobians stacked into one (3, 3, 5) array."""
+    return np.stack(three_link_jacobians(alpha, lengths))
 
 
 def com_jacobian(alpha, lengths):
     """Body Jacobian (3, 5) of the CoM frame, (2.62) (gm_core.chains)."""
-    return chains.com_frame_jacobians(alpha, lengths)[0]
+    return com_frame_jacobians(alpha, lengths)[0]
 
 
 def links_from_com(alpha, lengths):
     """Link body Jacobians (3, 3, 5) with the CoM frame as body frame, (2.68) (gm_core.chains)."""
-    return np.stack(chains.com_frame_jacobians(alpha, lengths)[1])
+    return np.stack(com_frame_jacobians(alpha, lengths)[1])
 
 
 def _com_dbeta_only(al, le):
-    beta, dbeta = chains.com_frame(al, le)
+    beta, dbeta = com_frame(al, le)
     return np.hstack([SE2.Ad_inv(beta), dbeta])
 
 

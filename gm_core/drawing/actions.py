@@ -1,8 +1,7 @@
 """Lie groups and SE(2) (book sections 1.2-1.3): the slide rule,
 the circle vs SO(2), left and right actions, repeated steps, points on a rigid body.
 
-The group axioms ("group or not?") are drawn by :mod:`.group_or_not`; ``GroupAxiomsScene`` is
-that scene under its old name.
+The group axioms ("group or not?") are drawn by :mod:`.group_or_not`.
 """
 from __future__ import annotations
 
@@ -11,11 +10,11 @@ from matplotlib.collections import LineCollection, PolyCollection
 
 from ..axioms import powers
 from ..groups import S1, SE2, R2xS1
-from .base import BodyArtist, FrameArtist
-from .group_or_not import GroupOrNotScene
-from .toolkit import PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, plane, set_arrows, title
+from .axes import plane
+from .primitives import BodyArtist, FrameArtist
+from .toolkit import PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, set_arrows, title
 
-__all__ = ["BODY", "GroupAxiomsScene", "SlideRuleScene", "CircleIsoScene",
+__all__ = ["BODY", "SlideRuleScene", "CircleIsoScene",
            "LeftRightActionScene", "ForwardLeftScene", "BodyPointsScene"]
 
 BODY = BodyArtist.triangle(0.35)
@@ -23,7 +22,6 @@ BODY = BodyArtist.triangle(0.35)
 
 #: the axioms' figure is now the "group or not?" table (the residual bar chart it replaced
 #: showed only that round-off is small); kept under its old name
-GroupAxiomsScene = GroupOrNotScene
 
 
 class SlideRuleScene(Scene):
@@ -179,6 +177,14 @@ class LeftRightActionScene(Scene):
         (self.h_in_g_corner,) = ax_r.plot([], [], color=PALETTE["orange"], ls=":", lw=1.0)
         self.l_text = PathText(ax_l, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes")
         self.r_text = PathText(ax_r, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes")
+        # the key: each body and the frame h carry their name, following them
+        label = dict(size=9, weight="bold", ha="left", va="bottom", offset=(5.0, 5.0))
+        self.names = {"g": [PathText(ax, 0, 0, "g", color="0.35", **label) for ax in self.axes],
+                      "hg": PathText(ax_l, 0, 0, "hg", color=PALETTE["blue"], **label),
+                      "h": PathText(ax_l, 0, 0, "h", color="0.2", **label),
+                      "gh": PathText(ax_r, 0, 0, "gh", color=PALETTE["orange"], **label)}
+        for name in [*self.names["g"], self.names["hg"], self.names["h"], self.names["gh"]]:
+            name.collection.set_clip_on(True)     # a body near the edge never pushes its name outside
 
     def set(self, x=1.5, y=0.5, theta=0.5, u=-1.0, v=1.0, beta=0.9):
         g = np.array([x, y, theta])
@@ -200,6 +206,11 @@ class LeftRightActionScene(Scene):
         corner = SE2.act_on_points(g, np.array([u, 0.0]))
         self.h_in_g.set_data([x, self.gh[0]], [y, self.gh[1]])
         self.h_in_g_corner.set_data([x, corner[0], self.gh[0]], [y, corner[1], self.gh[1]])
+        for name in self.names["g"]:
+            name.set_position(g[:2])
+        self.names["hg"].set_position(self.hg[:2])
+        self.names["h"].set_position(h[:2])
+        self.names["gh"].set_position(self.gh[:2])
         self.l_text.set_text(f"hg = ({self.hg[0]:.2f}, {self.hg[1]:.2f}, {self.hg[2]:.2f})\n"
                              "rotate g about the origin by β, then shift by (u, v)")
         self.r_text.set_text(f"gh = ({self.gh[0]:.2f}, {self.gh[1]:.2f}, {self.gh[2]:.2f})\n"

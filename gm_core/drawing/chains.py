@@ -11,13 +11,16 @@ import numpy as np
 from matplotlib.patches import Polygon
 
 from .. import chains as C
-from ..chains import accessible_circle, circle_constraints, sample_accessible_manifold
+from ..arms import rp_arm_body_jacobians
 from ..groups import SE2
-from .base import FrameArtist
-from .toolkit import PALETTE, Scene, new_figure, readout, square_axes
+from ..holonomic import accessible_circle, circle_constraints, sample_accessible_manifold
+from ..three_link_chain import com_frame, three_link_chain, three_link_jacobians
+from .axes import square_axes
+from .primitives import FrameArtist
+from .toolkit import PALETTE, Scene, new_figure, readout
 
 __all__ = ["link_outline", "ChainArtist", "ArrowsArtist", "draw_chain_naive", "draw_accessible_manifold",
-           "square_axes", "ArmScene", "OffsetRPArmScene", "MobileChainScene", "BetaFrameScene",
+           "ArmScene", "OffsetRPArmScene", "MobileChainScene", "BetaFrameScene",
            "ThreeLinkVelocityScene", "JacobianMethodsScene"]
 
 
@@ -243,7 +246,7 @@ class OffsetRPArmScene(ArmScene):
         fr, v, J = super().compute(**values)
         q = np.array([values[n] for n in self.names])
         qd = np.array([values[n + "_dot"] for n in self.names])
-        Jb = C.rp_arm_body_jacobians(q[0], q[1], *self.chain.lengths, offset=self.chain.offsets[0])["h2"]
+        Jb = rp_arm_body_jacobians(q[0], q[1], *self.chain.lengths, offset=self.chain.offsets[0])["h2"]
         self.closed_form = SE2.body_to_world(fr["h"][-1], Jb @ qd)
         return fr, v, J
 
@@ -299,7 +302,7 @@ class _ThreeLinkScene(_ChainScene):
 
     def __init__(self, lengths=(1.0, 1.0, 1.0), **options):
         self.lengths = tuple(lengths)
-        self.chain = C.three_link_chain(self.lengths)
+        self.chain = three_link_chain(self.lengths)
         self.lim = 0.75 * sum(self.lengths)
         super().__init__(**options)
 
@@ -320,7 +323,7 @@ class BetaFrameScene(_ThreeLinkScene):
         a = np.array([values["alpha1"], values["alpha2"]])
         fr = self.chain.frames(a)
         if values["frame"] == "centre of mass":
-            beta, _ = C.com_frame(a, self.lengths)
+            beta, _ = com_frame(a, self.lengths)
         else:
             beta = np.array([values["beta_x"], values["beta_y"], values["beta_theta"]])
         return fr, beta
@@ -352,7 +355,7 @@ class ThreeLinkVelocityScene(_ThreeLinkScene):
         a = np.array([values["alpha1"], values["alpha2"]])
         u = np.array([values[k] for k in ("xi_x", "xi_y", "xi_theta", "alpha1_dot", "alpha2_dot")])
         fr = self.chain.frames(a)
-        xis = np.stack([J @ u for J in C.three_link_jacobians(a, self.lengths)])
+        xis = np.stack([J @ u for J in three_link_jacobians(a, self.lengths)])
         return fr, xis, SE2.body_to_world(fr["g"], xis)
 
     def set(self, **values):

@@ -11,8 +11,8 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.patches import Rectangle
 
-from .base import SingularFlag
 from .motion import SystemArtist, VelocityArtist, draw_system_naive, style_world_axes, system_extent
+from .primitives import SingularFlag
 from .toolkit import PALETTE, Scene, new_figure, readout
 
 __all__ = ["ROW_LABELS", "shape_grid", "connection_field", "ConnectionFieldArtist", "draw_singular_set",
@@ -129,8 +129,13 @@ class ConnectionFieldArtist:
         self.scale_note = ax.text(0.97, 0.03, "", ha="right", va="bottom", **note)
         self.set(system, row)
 
-    def set(self, system=None, row=None):
-        """Recompute the field for (system, row) and move the arrows in place (set_UVC)."""
+    def set(self, system=None, row=None, cap=None):
+        """Recompute the field for (system, row) and move the arrows in place (set_UVC).
+
+        ``cap``: the size of -A^row drawn as the longest arrow (0.9 grid spacings); by default
+        this field's own (``clip`` x its median, at most its largest). Giving another field's
+        ``cap`` draws both to one scale (e.g. one system seen from several body frames); the
+        enlargement note is then off, since nothing is enlarged."""
         if system is not None:
             self.system = system
         if row is not None:
@@ -149,8 +154,12 @@ class ConnectionFieldArtist:
         med = float(np.ma.median(nonzero)) if nonzero.count() else 0.0
         top = float(mag.max()) if mag.count() else 0.0
         # the longest drawn arrow is 0.9 grid spacings: the largest arrow, or clip x the median
-        cap = min(self.clip * med, top) if med > 0 else (top or 1.0)
-        cap = cap if cap > 0 else 1.0
+        own = cap is None
+        if own:
+            cap = min(self.clip * med, top) if med > 0 else (top or 1.0)
+        cap = float(cap) if cap > 0 else 1.0
+        #: the size of -A^row drawn as the longest arrow
+        self.cap = cap
         self.factor = 0.9 * spacing / cap
         shrink = np.ma.where(mag > cap, cap / np.ma.where(mag > 0, mag, 1.0), 1.0)
         self.U, self.V = U, V
@@ -160,7 +169,7 @@ class ConnectionFieldArtist:
         self.quiver.set_visible(not self.zero)
         self.zero_note.set_visible(self.zero)
         #: how much the arrows are enlarged against the largest entry of A on the grid (None: not)
-        self.enlarged = biggest / top if top > 0 and top < self.SMALL * biggest else None
+        self.enlarged = biggest / top if own and top > 0 and top < self.SMALL * biggest else None
         if self.enlarged is not None:
             self.scale_note.set_text(f"small row: arrows enlarged ×{self.enlarged:.2g}")
         self.scale_note.set_visible(self.enlarged is not None)
@@ -230,10 +239,14 @@ def _tick_label(v):
     return f"{v:g}".replace("-", "−")
 
 
-def style_shape_axes(ax, system, title=None):
-    """Shape-space axes: equal aspect, three ticks per axis (few labels keep redraws cheap)."""
-    (lo1, hi1), (lo2, hi2) = system.shape_limits
-    (x0, x1), (y0, y1) = _padded(system.shape_limits, SHAPE_PAD)
+def style_shape_axes(ax, system, title=None, limits=None, pad=SHAPE_PAD):
+    """Shape-space axes: equal aspect, three ticks per axis (few labels keep redraws cheap).
+
+    The window is ``limits`` (default: the system's ``shape_limits``) widened by ``pad`` of its
+    size on each side (``pad=0`` for an image that fills the window)."""
+    limits = limits or system.shape_limits
+    (lo1, hi1), (lo2, hi2) = limits
+    (x0, x1), (y0, y1) = _padded(limits, pad)
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
     ax.set_aspect("equal")

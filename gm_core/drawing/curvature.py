@@ -1,47 +1,42 @@
-"""Drawing for the geometry notebook: curvature maps, gaits on them, connection fields, swimmer animations.
+"""Drawing for the geometry notebook (10): curvature maps, gaits on them, the three estimates of a
+gait's displacement, the connection seen from three body frames, the swimmer animation.
 
-Built on :mod:`gm_core.drawing.base` only. Every artist is created once and moved with
-``set(...)``. Figures are at most 9 in x 100 dpi = 900 px wide, use constrained layout and fonts
-of 9 pt or more (12.5 px at 100 dpi). Singular or undefined shapes are masked (grey), never
-handed to matplotlib as NaN colours silently.
+The numbers come from :mod:`gm_core.geometry` (``estimates``: shaped gaits, the three estimates,
+row scaling, field sizes, cached frames and curvature grids); the shape-space axes, fields and
+their style are :mod:`.connection`'s. Every artist is created once and moved with ``set``;
+singular or undefined shapes are masked (grey) and flagged, never drawn as NaN silently.
 """
 from __future__ import annotations
 
+import html
+
+import matplotlib
 import numpy as np
+from matplotlib.patches import Patch
 
-from ..geometry import constraint_curvature
-from ..groups import SE2
-from .base import BodyArtist, TrailArtist, animate, new_figure
-from .connection import auto_grid, inset_limits
-from .toolkit import PALETTE
+from .._validate import SingularShapeError
+from ..geometry.estimates import (
+    Estimates,
+    curvature_grid,
+    displacement_estimates,
+    field_rms,
+    frames_of,
+    row_scaled,
+    shaped_gait,
+)
+from ..systems import LowReSwimmer
+from .connection import ConnectionFieldArtist, shape_grid, style_shape_axes
+from .motion import SystemArtist
+from .primitives import SingularFlag, TrailArtist, animate
+from .toolkit import PALETTE, Scene, freeze_layout, new_figure
 
-__all__ = ["ROWS", "shape_grid", "CurvatureMapArtist", "GaitArtist", "FieldArtist", "SwimmerArtist",
-           "curvature_maps_figure", "animate_swimmer", "FONT", "DPI"]
+__all__ = ["ROWS", "LIMITS", "CurvatureMapArtist", "GaitArtist", "curvature_maps_figure", "animate_swimmer",
+           "GaitStokesScene", "FrameFieldsScene", "estimates_table"]
 
 ROWS = ("x", "y", "θ")
-FONT = 9
-DPI = 100
+#: The shape window of notebook 10's panels (the minimum-perturbation frame is solved over it).
+LIMITS = ((-2.5, 2.5), (-2.5, 2.5))
 _CMAP = "RdBu_r"
-
-
-def shape_grid(limits, n):
-    """Grid axes a1 (n,), a2 (n,) and shapes (n, n, 2) (index [j, i] = (a1[i], a2[j]), image order)."""
-    (lo1, hi1), (lo2, hi2) = limits
-    a1, a2 = np.linspace(lo1, hi1, n), np.linspace(lo2, hi2, n)
-    A1, A2 = np.meshgrid(a1, a2)
-    return a1, a2, np.stack([A1, A2], -1)
-
-
-def _style(ax, limits, title=None):
-    (lo1, hi1), (lo2, hi2) = limits
-    ax.set_xlim(lo1, hi1)
-    ax.set_ylim(lo2, hi2)
-    ax.set_aspect("equal")
-    ax.set_xlabel("α₁", fontsize=FONT, labelpad=0)
-    ax.set_ylabel("α₂", fontsize=FONT, labelpad=0)
-    ax.tick_params(labelsize=FONT)
-    if title:
-        ax.set_title(title, fontsize=FONT)
 
 
 class CurvatureMapArtist:
@@ -49,35 +44,29 @@ class CurvatureMapArtist:
 
     Red is positive, blue negative, colour limits symmetric about zero (a high percentile of
     |F|, so a singular line does not wash out the picture, and never below 1e-6 of the largest
-    row, so a row that vanishes up to rounding shows white); singular shapes are grey.
+    row, so a row that vanishes up to rounding shows white); singular shapes are grey. The
+    values are :func:`gm_core.geometry.estimates.curvature_grid` (cached in the math layer).
     """
 
     def __init__(self, ax, system, row=0, limits=None, n=81):
         self.ax, self.n = ax, int(n)
         self.limits = tuple(tuple(map(float, lim)) for lim in (limits or system.shape_limits))
         (lo1, hi1), (lo2, hi2) = self.limits
-        import matplotlib
-
         cmap = matplotlib.colormaps[_CMAP].with_extremes(bad="0.75")
         self.image = ax.imshow(np.zeros((self.n, self.n)), origin="lower", extent=(lo1, hi1, lo2, hi2),
                                cmap=cmap, interpolation="bilinear", aspect="equal", zorder=1)
-        self._cache = {}
         self.set(system, row)
 
-    def values(self, system):
-        """Curvature (n, n, 3) of ``system`` on the grid (cached per system object)."""
-        key = id(system)
-        if key not in self._cache:
-            _, _, grid = shape_grid(self.limits, self.n)
-            self._cache[key] = (system, constraint_curvature(system, grid))
-        return self._cache[key][1]
+    def values(self, system=None):
+        """Curvature (n, n, 3) of ``system`` (default: the one shown) on the map's grid."""
+        return curvature_grid(system or self.system, self.limits, self.n)
 
     def set(self, system=None, row=None):
         if system is not None:
             self.system = system
         if row is not None:
             self.row = int(row)
-        Fall = self.values(self.system)
+        Fall = self.values()
         F = Fall[..., self.row]
         finite = np.isfinite(F)
         q = 95 if getattr(self.system, "may_be_singular", False) else 99
@@ -115,80 +104,38 @@ class GaitArtist:
             a.set_visible(visible)
 
 
-class FieldArtist:
-    """One row of -A(r) as a quiver (the body velocity per unit shape velocity), rescaled to a common length.
-
-    ``n=None`` (grid points per side) picks the grid from the axes' size (connection.auto_grid),
-    so the arrows (0.9 grid spacings at the 95th percentile length) meet the figure standard."""
-
-    def __init__(self, ax, system, row, limits=None, n=None, color="k"):
-        self.limits = tuple(tuple(map(float, lim)) for lim in (limits or system.shape_limits))
-        if n is None:  # grid from the axes' size: arrows of 0.9 spacings are >= MIN_ARROW_PX long
-            n = min(auto_grid(ax, self.limits, inset=True))
-        n = int(n)
-        # cell centres, half a cell inside the window: no arrow is sliced by the axes frame
-        _, _, self.grid = shape_grid(inset_limits(self.limits, n), n)
-        self.row = row
-        self.quiver = ax.quiver(self.grid[..., 0], self.grid[..., 1], np.zeros((n, n)), np.zeros((n, n)),
-                                color=color, angles="xy", scale_units="xy", scale=1.0, pivot="mid",
-                                width=0.006, zorder=3)
-        self.set(system)
-
-    def set(self, system, scale=None):
-        V = -system.connection(self.grid)[..., self.row, :]
-        ok = np.isfinite(V).all(-1)
-        V = np.where(ok[..., None], V, 0.0)
-        step = (self.limits[0][1] - self.limits[0][0]) / self.grid.shape[1]
-        norm = scale if scale is not None else (np.percentile(np.linalg.norm(V, axis=-1)[ok], 95) if ok.any() else 1)
-        norm = norm if norm > 0 else 1.0
-        self.quiver.set_UVC(V[..., 0] * 0.9 * step / norm, V[..., 1] * 0.9 * step / norm)
-        return norm
-
-
-class SwimmerArtist:
-    """A locomotor's rigid parts (BodyArtist each) at world pose g and shape r."""
-
-    def __init__(self, ax, system, colors=(PALETTE["blue"], PALETTE["orange"], PALETTE["green"])):
-        self.system = system
-        self.bodies = [BodyArtist(ax, p.outline, facecolor=colors[i % len(colors)], alpha=0.8, zorder=3)
-                       for i, p in enumerate(system.parts())]
-
-    def set(self, g, r):
-        poses = SE2.compose(np.asarray(g, dtype=float)[None], self.system.part_poses(r))
-        for b, pose in zip(self.bodies, poses):
-            b.set(pose)
-        return poses
+def _map_axes(ax, system, limits, title=None):
+    style_shape_axes(ax, system, title, limits=limits, pad=0.0)
 
 
 def curvature_maps_figure(cases, n=81, figsize=(9, 7.6)):
-    """Grid of curvature maps: one column per case, rows x, y, theta; ``cases`` = {title: (system, gait or None)}."""
-    fig, axes = new_figure(3, len(cases), figsize=figsize, dpi=DPI, layout="constrained", squeeze=False)
+    """Grid of curvature maps: one column per case, rows x, y, θ; ``cases`` = {title: (system, gait or None)}."""
+    fig, axes = new_figure(3, len(cases), figsize=figsize, squeeze=False)
     for j, (title, (system, gait)) in enumerate(cases.items()):
         for i in range(3):
             ax = axes[i, j]
             m = CurvatureMapArtist(ax, system, i, n=n)
-            _style(ax, m.limits, f"{title}\nD(−A), row {ROWS[i]}" if i == 0 else f"row {ROWS[i]}")
-            vals = m.values(system)[..., i]
-            flat = not np.nanmax(np.abs(vals)) > 1e-9
-            ax.text(0.02, 0.02, "≡ 0" if flat else f"±{m.vmax:.2g}", transform=ax.transAxes, fontsize=FONT, va="bottom",
+            _map_axes(ax, system, m.limits, f"{title}\nD(−A), row {ROWS[i]}" if i == 0 else f"row {ROWS[i]}")
+            flat = not np.nanmax(np.abs(m.values()[..., i])) > 1e-9
+            ax.text(0.02, 0.02, "≡ 0" if flat else f"±{m.vmax:.2g}", transform=ax.transAxes, va="bottom",
                     bbox=dict(facecolor="white", alpha=0.7, lw=0))
             if gait is not None:
                 GaitArtist(ax).set(gait)
     return fig
 
 
-def animate_swimmer(system, gait, traj, n_frames=60, row=0, limits=None, figsize=(9, 4), dpi=DPI, interval=60):
+def animate_swimmer(system, gait, traj, n_frames=60, row=0, limits=None, figsize=(9, 4), interval=60):
     """Animation (fig, FuncAnimation) of ``system`` swimming ``traj`` (a locomotion.Trajectory) beside its gait.
 
     Left: the curvature row ``row`` with the gait and a moving dot; right: the swimmer in the
     world with the trail of its body frame. Frames are shortened under the test suite.
     """
-    fig, (axs, axw) = new_figure(1, 2, figsize=figsize, dpi=dpi, layout="constrained")
+    fig, (axs, axw) = new_figure(1, 2, figsize=figsize)
     m = CurvatureMapArtist(axs, system, row, limits=limits, n=61)
-    _style(axs, m.limits, f"D(−A), row {ROWS[row]}, with the gait")
+    _map_axes(axs, system, m.limits, f"D(−A), row {ROWS[row]}, with the gait")
     GaitArtist(axs).set(gait)
     (dot,) = axs.plot([], [], "o", color="gold", mec="k", ms=8, zorder=6)
-    sw = SwimmerArtist(axw, system)
+    body = SystemArtist(axw, system)
     trail = TrailArtist(axw, color="k", lw=1.2)
     g, r = traj.g, traj.r
     reach = max(sum(getattr(system, "lengths", (1.0,))) * 0.6, 0.5)
@@ -198,17 +145,144 @@ def animate_swimmer(system, gait, traj, n_frames=60, row=0, limits=None, figsize
     axw.set_xlim(c[0] - half, c[0] + half)
     axw.set_ylim(c[1] - half, c[1] + half)
     axw.set_aspect("equal")
-    axw.tick_params(labelsize=FONT)
-    axw.set_title(system.name, fontsize=FONT)
+    axw.set_title(system.name)
     idx = np.linspace(0, len(g) - 1, n_frames).round().astype(int)
 
     def update(k):
         i = idx[k]
-        sw.set(g[i], r[i])
+        body.set(g[i], r[i])
         dot.set_data([r[i, 0]], [r[i, 1]])
         trail.set(g[: i + 1, :2])
         return []
 
     update(0)
+    freeze_layout(fig)   # lay out once: every frame is drawn with the same axes (about 40 % faster)
     return fig, animate(fig, update, len(idx), interval=interval)
+
+
+def estimates_table(est: Estimates | None, error: str | None = None) -> str:
+    """HTML table of the three estimates (rows x, y, θ of g(T)), 4 decimals; or the error in red."""
+    if est is None:
+        return f"<p style='color:darkred'>{html.escape(error or '')}</p>"
+    head = "".join(f"<th style='padding:0 8px'>{r}</th>" for r in ROWS)
+    rows = "".join(f"<tr><td>{name}</td>" + "".join(f"<td style='padding:0 8px'>{v:+.4f}</td>" for v in vals)
+                   + "</tr>" for name, vals in zip(Estimates.NAMES, est.as_array()))
+    return f"<table style='font-family:monospace;font-size:13px'><tr><th></th>{head}</tr>{rows}</table>"
+
+
+class GaitStokesScene(Scene):
+    """A gait on one row of a curvature map, and its exact g(T), Stokes estimate and ∫ξ dt as bars.
+
+    Values: ``c1, c2`` (centre), ``a, b`` (sizes), ``tilt``, ``bend`` (see
+    :func:`~gm_core.geometry.estimates.shaped_gait`), ``row`` (0, 1, 2: the map's row) and
+    ``frame`` (one of :data:`~gm_core.geometry.estimates.FRAMES`). Each ``set`` computes the three
+    estimates at the interactive resolution. The bars of each row are that row divided by its
+    largest |value| (:func:`~gm_core.geometry.estimates.row_scaled`), so the axis never rescales;
+    the numbers are ``self.table`` (HTML, for a widget under the figure) and ``self.estimates``
+    (None while the gait is singular or leaves the window, when a flag says so).
+    Options: ``system`` (default the low-Reynolds swimmer), ``limits`` (the map's window).
+    """
+
+    YLIM = (-1.1, 1.45)
+
+    def __init__(self, system=None, limits=LIMITS, **options):
+        self.system = system if system is not None else LowReSwimmer()
+        self.limits = limits
+        self.frames = frames_of(self.system, limits)
+        super().__init__(**options)
+
+    def make_figure(self):
+        fig, (self.ax, self.axb) = new_figure(1, 2, figsize=(9, 4.2), layout="compressed",
+                                              gridspec_kw=dict(width_ratios=[1.1, 1]))
+        return fig, [self.ax, self.axb]
+
+    def decorate(self):
+        _map_axes(self.ax, self.system, self.limits)
+        axb = self.axb
+        axb.set_xticks(np.arange(3), ROWS)
+        # fixed limits, legend above the bars' reach, grid below them: nothing static is ever
+        # covered by a moving bar, so blitted frames equal full redraws
+        axb.set_xlim(-0.6, 2.6)
+        axb.set_ylim(*self.YLIM)
+        axb.set_ylabel("each row ÷ its largest |value|")
+        axb.set_axisbelow(True)
+        axb.yaxis.grid(True, lw=0.6, color="0.8")
+        axb.axhline(0.0, color="0.4", lw=0.8, zorder=0.5)
+        axb.legend(handles=[Patch(color=c, label=n) for c, n in zip(self.COLORS, Estimates.NAMES)],
+                   loc="upper center", ncols=3, handlelength=1.2, columnspacing=1.0)
+        axb.set_title("numbers: in the table below", loc="left")
+
+    COLORS = ("k", PALETTE["vermillion"], PALETTE["grey"])
+
+    def create(self):
+        self.map = CurvatureMapArtist(self.ax, self.frames["middle link"], 0, limits=self.limits)
+        self._map_key = ("middle link", 0)
+        self.gait_artist = GaitArtist(self.ax)
+        self.flag = SingularFlag(self.ax)
+        x = np.arange(3)
+        self.bars = {name: self.axb.bar(x + (k - 1) * 0.27, np.zeros(3), 0.25, color=color)
+                     for k, (name, color) in enumerate(zip(Estimates.NAMES, self.COLORS))}
+        self.estimates, self.table = None, ""
+
+    def set(self, c1=0.0, c2=0.0, a=1.0, b=0.6, tilt=0.78, bend=0.0, row=0, frame="middle link"):
+        if frame not in self.frames:
+            raise ValueError(f"frame must be one of {list(self.frames)}; got {frame!r}")
+        if (frame, row) != self._map_key:  # the image is redrawn only when the map changes
+            self.map.set(self.frames[frame], row)
+            self._map_key = (frame, row)
+        gait = shaped_gait(c1, c2, a, b, tilt, bend)
+        self.gait_artist.set(gait)
+        try:
+            est = displacement_estimates(self.frames[frame], gait, interactive=True)
+        except SingularShapeError as e:
+            self.flag.show("gait leaves the map or is singular")
+            heights = np.zeros((3, 3))
+            self.estimates, self.table = None, estimates_table(None, str(e))
+        else:
+            self.flag.hide()
+            heights = row_scaled(est.as_array())
+            self.estimates, self.table = est, estimates_table(est)
+        for bars, hs in zip(self.bars.values(), heights):
+            for rect, h in zip(bars, hs):
+                rect.set_height(h)
+
+
+class FrameFieldsScene(Scene):
+    """The three rows of −A(r) as fields, in one of three body frames (they straighten and shrink).
+
+    Value: ``frame`` (one of :data:`~gm_core.geometry.estimates.FRAMES`). Arrows keep the
+    middle-link frame's scale in every frame, so a smaller field draws shorter arrows; each title
+    gives the row's root-mean-square size over the window (``self.rms``, from
+    :func:`~gm_core.geometry.estimates.field_rms`). Options: ``system``, ``limits``.
+    """
+
+    FIGSIZE = (9, 3.3)
+    NCOLS = 3
+
+    def __init__(self, system=None, limits=LIMITS, **options):
+        self.system = system if system is not None else LowReSwimmer()
+        self.limits = limits
+        self.frames = frames_of(self.system, limits)
+        super().__init__(**options)
+
+    def decorate(self):
+        for i, ax in enumerate(self.axes):
+            style_shape_axes(ax, self.system, f"row {ROWS[i]} of −A", limits=self.limits)
+
+    def create(self):
+        base = self.frames["middle link"]
+        self.fields = [ConnectionFieldArtist(ax, base, i, limits=self.limits) for i, ax in enumerate(self.axes)]
+        self.caps = [f.cap for f in self.fields]            # the middle-link scale, kept in every frame
+        a1, a2, _ = shape_grid(base, self.fields[0].n, self.fields[0].grid_limits)
+        self.grid = np.stack([a1, a2], -1)                   # the arrows' shapes
+        self.rms = None
+
+    def set(self, frame="middle link"):
+        if frame not in self.frames:
+            raise ValueError(f"frame must be one of {list(self.frames)}; got {frame!r}")
+        system = self.frames[frame]
+        self.rms = field_rms(system, self.grid)
+        for i, (f, ax, cap) in enumerate(zip(self.fields, self.axes, self.caps)):
+            f.set(system, i, cap=cap)
+            ax.title.set_text(f"row {ROWS[i]} of −A\nrms |row| = {self.rms[i]:.3f}")
 

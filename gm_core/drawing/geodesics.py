@@ -14,7 +14,8 @@ from ..fields import puck_vs_arc, rplus_geodesics, se2_helices, se2_helix
 from ..groups import SE2, RPlus
 from ..manifolds import cylinder_geodesic, cylinder_xyz, great_circle, sphere_tangent_basis, sphere_xyz, wrap_segments
 from .actions import BODY
-from .base import BodyArtist, FrameArtist, TrailArtist, animate
+from .axes import plain_3d, plane, wire
+from .primitives import BodyArtist, FrameArtist, TrailArtist, animate
 from .toolkit import (
     PALETTE,
     TWO_PI,
@@ -25,12 +26,9 @@ from .toolkit import (
     axis_label,
     margins,
     new_figure,
-    plain_3d,
-    plane,
     readout,
     set_arrows,
     title,
-    wire,
     xticks,
     yticks,
 )
@@ -248,7 +246,7 @@ class PuckArcScene(Scene):
 
 
 def puck_vs_arc_animation(w=1.0, frames=48, interval=80):
-    """FuncAnimation of fig. 1.19 (play it with ``gm_core.drawing.base.jshtml``; no kernel needed)."""
+    """FuncAnimation of fig. 1.19 (play it with ``gm_core.drawing.primitives.jshtml``; no kernel needed)."""
     scene = PuckArcScene()
     ts = np.linspace(0.0, PuckArcScene.T_MAX, frames)
 

@@ -12,9 +12,10 @@ import numpy as np
 
 from .. import chains as C
 from ..groups import SE2
+from .axes import square_axes
 from .chains import ChainArtist
-from .frames import notes_text, plane_and_notes
-from .toolkit import PALETTE, Scene, arrow, set_arrows, square_axes
+from .pinned import notes_text, plane_and_notes
+from .toolkit import PALETTE, Scene, arrow, set_arrows
 
 __all__ = ["JacobianStepScene", "COLUMN_COLORS"]
 

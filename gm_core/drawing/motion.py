@@ -12,8 +12,9 @@ from .._validate import SingularShapeError
 from ..groups import SE2
 from ..locomotion import drive
 from ..systems import Ackerman, DifferentialDrive
-from .base import BodyArtist, FrameArtist, SingularFlag, TrailArtist
-from .toolkit import PALETTE, PathText, Scene, readout, square_axes
+from .axes import square_axes
+from .primitives import BodyArtist, FrameArtist, SingularFlag, TrailArtist
+from .toolkit import PALETTE, PathText, Scene, readout
 
 __all__ = ["PART_STYLES", "SystemArtist", "system_extent", "draw_system_naive", "VelocityArtist",
            "style_world_axes", "MovingView", "CarScene", "DiffDriveScene", "AckermanScene"]

@@ -16,8 +16,9 @@ from ..systems.rolling_disk import (
     radial_loop_moves,
     radial_point_path,
 )
-from .base import BodyArtist, FrameArtist, TrailArtist
-from .toolkit import PALETTE, ArrowSet, Scene, new_figure, plane, readout
+from .axes import plane
+from .primitives import BodyArtist, FrameArtist, TrailArtist
+from .toolkit import PALETTE, ArrowSet, Scene, new_figure, readout
 
 __all__ = ["ParallelParkScene", "DISK_OUTLINE"]
 

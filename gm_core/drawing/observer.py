@@ -1,7 +1,7 @@
 """The adjoint as a change of observer (book section 1.5, (1.38)-(1.45)), and the "Frames" box:
 reference frame versus coordinate frame, and the instantaneous body frame.
 
-Mathematics in :mod:`gm_core.frames` (observed_velocity, icr, conjugation) and
+Mathematics in :mod:`gm_core.observers` (observed_velocity, icr, conjugation) and
 :mod:`gm_core.groups`; here it is drawn. A centre of rotation at infinity (no turning) is
 flagged in words, never handed to matplotlib as inf.
 """
@@ -9,10 +9,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..frames import conjugation, icr, observed_velocity, point_in_frame, relative_pose
+from ..chains import relative_pose
 from ..groups import SE2
+from ..observers import conjugation, icr, observed_velocity, point_in_frame
 from .actions import BODY
-from .base import BodyArtist, FrameArtist, TrailArtist
+from .axes import plane
+from .primitives import BodyArtist, FrameArtist, TrailArtist
 from .toolkit import (
     PALETTE,
     ArrowSet,
@@ -20,7 +22,6 @@ from .toolkit import (
     Scene,
     margins,
     new_figure,
-    plane,
     readout,
     set_arrows,
     text_panel,

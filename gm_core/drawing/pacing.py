@@ -12,7 +12,7 @@ from matplotlib.patches import ConnectionPatch
 from ..gaits import circle_gait, sine_pacing
 from ..locomotion import displacement_until, trajectory
 from ..systems.directional import RATE_MAPS, rate_map, replay
-from .base import FrameArtist
+from .primitives import FrameArtist
 from .toolkit import PALETTE, Scene, new_figure, readout
 
 __all__ = ["PacingSquareScene", "DirectionalScene"]

@@ -8,7 +8,7 @@ frames. The script finds its own elements from ``document.currentScript`` (falli
 element id, polled until JupyterLab has attached the output), so it works in JupyterLab, in a
 saved notebook reopened without a kernel and in static HTML pages.
 
-Frames are rendered by :func:`gm_core.drawing.base.jshtml` through matplotlib's public movie
+Frames are rendered by :func:`gm_core.drawing.primitives.jshtml` through matplotlib's public movie
 writer interface (``Animation.save`` with an ``AbstractMovieWriter``); this module only writes
 the page.
 """

@@ -11,7 +11,8 @@ import numpy as np
 from matplotlib.collections import LineCollection
 
 from ..manifolds import chart_speed, cylinder_xyz, polar_chart_velocity, sphere_xyz, torus_xyz, wrap_segments
-from .base import SingularFlag
+from .axes import plain_3d, wire
+from .primitives import SingularFlag
 from .toolkit import (
     PALETTE,
     TWO_PI,
@@ -23,10 +24,8 @@ from .toolkit import (
     figure,
     margins,
     new_figure,
-    plain_3d,
     set_arrows,
     title,
-    wire,
     xticks,
     yticks,
 )

@@ -11,7 +11,8 @@ import numpy as np
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
 from ..manifolds import circle_point_velocity, sphere_tangent_basis, sphere_velocity, sphere_xyz
-from .toolkit import PALETTE, TWO_PI, ArrowSet, PathText, Scene, axes_row, plain_3d, readout, set_arrows, wire
+from .axes import plain_3d, wire
+from .toolkit import PALETTE, TWO_PI, ArrowSet, PathText, Scene, axes_row, readout, set_arrows
 from .velocities import vec_text
 
 __all__ = ["TangentSpaceScene", "arrow_3d"]

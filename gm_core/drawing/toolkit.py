@@ -14,7 +14,7 @@
 * **Arrows**: :class:`ArrowSet` (a PolyCollection, cheap to redraw) and :func:`arrow` (a quiver).
 * **Ticks and titles** without matplotlib's Axis machinery: :func:`xticks`, :func:`yticks`,
   :func:`title`, :func:`axis_label`.
-* **Axes** (in :mod:`.axes`, importable here): :func:`plane`, :func:`square_axes`, :func:`plain_3d`,
+* **Axes** (in :mod:`.axes`): :func:`plane`, :func:`square_axes`, :func:`plain_3d`,
   :func:`wire`; figure layouts :func:`axes_row` (one row, 2D or 3D) and :func:`text_panel`.
 * **Scenes**: :class:`Scene`, the base of every live drawing: it owns its figure (``FIGSIZE`` /
   ``NCOLS`` / ``MARGINS`` for one row of plain axes); ``set(**values)`` moves artists;
@@ -31,13 +31,11 @@ from matplotlib.path import Path
 from matplotlib.textpath import TextPath
 from matplotlib.transforms import blended_transform_factory as _blend
 
-from .axes import plain_3d, plane, square_axes, wire  # the axes helpers live in .axes, importable here
-
 __all__ = [
     "DPI", "MAX_WIDTH_IN", "MIN_TEXT_PX", "MIN_TEXT_PT", "PALETTE", "STYLE", "apply_style",
     "new_figure", "figure", "margins", "freeze_layout", "PathText", "readout", "ArrowSet", "arrow", "set_arrows",
     "title",
-    "xticks", "yticks", "axis_label", "plane", "square_axes", "plain_3d", "wire", "axes_row", "text_panel", "Scene", "TWO_PI",
+    "xticks", "yticks", "axis_label", "axes_row", "text_panel", "Scene", "TWO_PI",
 ]
 
 TWO_PI = 2.0 * np.pi
@@ -170,10 +168,18 @@ def _glyphs(line, size, weight, family="sans"):
     """Outline of one line of text as a Path in inches, left/baseline at (0, 0), and its width.
 
     Built from cached per-character outlines and advances (no kerning), so changing a numeric
-    readout costs a few array concatenations instead of a font layout.
+    readout costs a few array concatenations instead of a font layout. A line with a pair of
+    ``$`` is laid out whole as matplotlib mathtext (``"$T_gL_h$ = identity"``), once per
+    distinct line.
     """
     key = (line, size, weight, family, "line")
     hit = _PATH_CACHE.get(key)
+    if hit is None and line.count("$") >= 2:
+        prop = FontProperties(family=_FAMILIES[family], weight=weight)
+        tp = TextPath((0, 0), line, size=size / 72.0, prop=prop)
+        width = float(tp.get_extents().x1) if len(tp.vertices) else 0.0
+        hit = (Path(tp.vertices.copy(), tp.codes.copy()), width)
+        _PATH_CACHE[key] = hit
     if hit is None:
         verts, codes, x = [], [], 0.0
         for c in line:

@@ -2,7 +2,7 @@
 body and spatial velocities, and the adjoint.
 
 The example fields are mathematics in :mod:`gm_core.fields`, rigid-body point velocities in
-:mod:`gm_core.frames`;
+:mod:`gm_core.observers`;
 integral curves come from :func:`gm_core.fields.integral_curve` (scipy's solve_ivp).
 """
 from __future__ import annotations
@@ -11,10 +11,11 @@ import numpy as np
 from matplotlib.collections import LineCollection
 
 from ..fields import FIELDS, integral_curve
-from ..frames import icr, point_velocities
 from ..groups import SE2, RPlus
+from ..observers import icr, point_velocities
 from .actions import BODY
-from .base import BodyArtist, FrameArtist
+from .axes import plane
+from .primitives import BodyArtist, FrameArtist
 from .toolkit import (
     PALETTE,
     ArrowSet,
@@ -23,7 +24,6 @@ from .toolkit import (
     arrow,
     margins,
     new_figure,
-    plane,
     set_arrows,
     text_panel,
     title,
@@ -143,13 +143,13 @@ class LiftedScalarScene(Scene):
     def decorate(self):
         ax2, ax1 = self.axes
         plane(ax2, 2.5)
-        title(ax2, "(R², +): T_gL_h = identity")
+        title(ax2, r"$(\mathbb{R}^2, +)$: $T_gL_h$ = identity")
         ax1.set_xlim(-0.2, 10.5)
         ax1.set_ylim(-1.0, 1.6)
         ax1.set_yticks([])
         ax1.plot([0, 10.5], [0, 0], color="k", lw=1)
         xticks(ax1, [0, 1, 4, 6, 8, 10], ["0", "1 = e", "4", "6", "8", "10"])
-        title(ax1, "(R⁺, ×): T_gL_h = h scales the arrow")
+        title(ax1, r"$(\mathbb{R}^+, \times)$: $T_gL_h$ = h scales the arrow")
 
     def create(self):
         ax2, ax1 = self.axes
@@ -174,7 +174,7 @@ class LiftedScalarScene(Scene):
         self.pts1.set_data([g1, hg1], [0, 0])
         set_arrows(self.arrows1, [[g1, 0.5], [hg1, 0.5]], [[self.V_RP, 0], [lifted, 0]])
         self.text1.set_text(f"g = {g1:.2f}, ġ = {self.V_RP:.2f}  →  hg = {hg1:.2f}, "
-                            f"T_gL_h ġ = {lifted:.2f};  ratio ġ/g = {self.V_RP / g1:.3f} = "
+                            f"$T_gL_h\\,\\dot g$ = {lifted:.2f};  ratio ġ/g = {self.V_RP / g1:.3f} = "
                             f"{lifted / hg1:.3f}")
 
 
@@ -229,7 +229,7 @@ class LiftedSE2Scene(Scene):
         xi = [SE2.world_to_body(p, gd) for p, gd in zip(self.poses, self.world_vels)]
         xs = [SE2.world_to_spatial(p, gd) for p, gd in zip(self.poses, self.world_vels)]
         self.body_vels, self.spatial_vels = np.array(xi), np.array(xs)
-        self.title.set_text("grey: g     blue: hg with T_gL_h ġ     orange: gh with T_gR_h ġ")
+        self.title.set_text(r"grey: g     blue: hg with $T_gL_h\,\dot g$     orange: gh with $T_gR_h\,\dot g$")
         f = vec_text
         self.text.set_text("    body ξ                spatial ξˢ\n" + "\n".join(
             f"{name:<3}{f(b)}  {f(s)}" for name, b, s in zip(("g", "hg", "gh"), xi, xs)))
@@ -303,7 +303,7 @@ class VelocityScene(Scene):
                  f"ICR ★ ({self.icr_world[0]:+.2f}, {self.icr_world[1]:+.2f})" + ("" if shown else ", off view"))
         self.texts[0].set_text(f"ġ = {f(self.g_dot)}\n{where}")
         self.texts[1].set_text(f"ξ = {f(xi)}\n(red: ξˣ, green: ξʸ)")
-        self.texts[2].set_text(f"ξ = T_gL_g⁻¹ ġ = {f(SE2.world_to_body(g, self.g_dot))}")
+        self.texts[2].set_text(r"$\xi = T_gL_{g^{-1}}\,\dot g$ = " + f(SE2.world_to_body(g, self.g_dot)))
         self.texts[3].set_text(f"ξˢ = {f(self.xi_s)} = ġ + ξᶿ × l")
 
 
@@ -323,7 +323,7 @@ class AdjointScene(Scene):
     def decorate(self):
         (ax,) = self.axes
         text_panel(ax)
-        heads = ["Ad_g, closed form (1.43)", "T_gR_g⁻¹ · T_eL_g  (1.40)", "same, finite differences"]
+        heads = [r"$\mathrm{Ad}_g$, closed form (1.43)", r"$T_gR_{g^{-1}}\,T_eL_g$  (1.40)", "same, finite differences"]
         for k, s in enumerate(heads):
             PathText(ax, 0.02 + 0.33 * k, 0.92, s, size=8, weight="bold")
 
@@ -353,7 +353,7 @@ class AdjointScene(Scene):
         f = lambda a: vec_text(a, 4)  # noqa: E731
         self.summary.set_text(
             f"largest difference between the three matrices: {self.mismatch:.1e}\n"
-            f"{f(self.xi_s)}   ξˢ = Ad_g ξ\n"
+            f"{f(self.xi_s)}   $\\xi^s = \\mathrm{{Ad}}_g\\,\\xi$\n"
             f"{f(self.xi_s_fd)}   ξˢ from d/dt (g(t) g⁻¹) by finite differences, g(t) = g exp(tξ)\n"
-            f"{f(SE2.Ad_inv(g) @ self.xi_s)}   back again: Ad_g⁻¹ ξˢ = ξ")
+            f"{f(SE2.Ad_inv(g) @ self.xi_s)}   back again: $\\mathrm{{Ad}}_g^{{-1}}\\,\\xi^s = \\xi$")
 

@@ -7,7 +7,8 @@ book's (``xi = -A(r) r_dot``, (3.10)).
 * :mod:`.curvature`: ``constraint_curvature``, ``stokes_estimate``, ``body_velocity_integral``;
 * :mod:`.coordinates`: ``reframe``, ``centre_of_mass``, ``drift_and_turn``, ``centre_of_mass_coordinates``, ``minimum_perturbation_coordinates``;
 * :mod:`.metrics`: ``dissipation_metric``, ``path_length``, ``efficiency``;
-* :mod:`.optimal`: ``fourier_gait``, ``optimize_gait``, ``sysplotter_stroke``.
+* :mod:`.optimal`: ``fourier_gait``, ``optimize_gait``, ``sysplotter_stroke``;
+* :mod:`.estimates`: ``shaped_gait``, ``displacement_estimates``, ``row_scaled``, ``field_rms`` (notebook 10's panels).
 """
 from .coordinates import (
                           MinimumPerturbationCoordinates,
@@ -20,6 +21,7 @@ from .coordinates import (
                           reframe,
 )
 from .curvature import body_velocity_integral, connection_derivative, constraint_curvature, stokes_estimate
+from .estimates import FRAMES, Estimates, displacement_estimates, field_rms, row_scaled, shaped_gait
 from .metrics import dissipation_metric, efficiency, path_length
 from .optimal import FourierGait, OptimalGait, fourier_gait, gait_objective, optimize_gait
 from .strokes import SYSPLOTTER_STROKES, sysplotter_stroke, sysplotter_swimmer
@@ -28,4 +30,5 @@ __all__ = ["constraint_curvature", "connection_derivative", "stokes_estimate", "
            "Reframed", "reframe", "centre_of_mass", "drift_and_turn", "centre_of_mass_coordinates", "minimum_perturbation_coordinates",
            "MinimumPerturbationCoordinates", "body_frames", "dissipation_metric", "path_length", "efficiency",
            "FourierGait", "OptimalGait", "fourier_gait", "gait_objective", "optimize_gait",
-           "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer"]
+           "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer",
+           "FRAMES", "Estimates", "displacement_estimates", "field_rms", "row_scaled", "shaped_gait"]

@@ -20,8 +20,9 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import SingularShapeError, as_array, positive_number
+from ..gaits import as_gait
 from ..groups import SE2, matvec
-from ..locomotion import as_gait, check_gait
+from ..locomotion import check_gait
 
 __all__ = ["constraint_curvature", "connection_derivative", "stokes_estimate",
            "body_velocity_integral", "check_system", "closed_gait"]

@@ -19,8 +19,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._validate import SingularShapeError, as_array, check_int, check_option, positive_number
+from ..gaits import Gait
 from ..groups import SE2, matvec
-from ..locomotion import Gait, check_gait, net_displacement, trajectory
+from ..locomotion import check_gait, net_displacement, trajectory
 from .curvature import check_system, connection_derivative
 from .metrics import metric_function, path_length
 

@@ -13,13 +13,13 @@ from .ackerman import Ackerman
 from .base import LocomotionSystem, Part
 from .diff_drive import DifferentialDrive
 from .floating_snake import FloatingSnake
-from .high_re import HighReSwimmer, ellipse_added_mass
+from .high_re import HighReSwimmer
 from .kinematic_snake import KinematicSnake
 from .low_re import LowReSwimmer
 from .three_link import LinkMetricSystem, ThreeLinkSystem
 
 __all__ = ["LocomotionSystem", "Part", "ThreeLinkSystem", "LinkMetricSystem", "DifferentialDrive", "Ackerman",
-           "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer", "ellipse_added_mass",
+           "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer",
            "ALL_SYSTEMS"]
 
 

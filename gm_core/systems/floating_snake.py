@@ -4,8 +4,8 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array, check_positive
-from ..chains import com_frame
 from ..connection import connection_from_pfaffian, metric_from_jacobians
+from ..three_link_chain import com_frame
 from .three_link import LinkMetricSystem
 
 __all__ = ["FloatingSnake"]

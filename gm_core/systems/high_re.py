@@ -8,7 +8,7 @@ from ..fluids import ellipse_added_mass
 from .base import Part, ellipse_outline
 from .three_link import LinkMetricSystem
 
-__all__ = ["HighReSwimmer", "ellipse_added_mass"]
+__all__ = ["HighReSwimmer"]
 
 
 class HighReSwimmer(LinkMetricSystem):

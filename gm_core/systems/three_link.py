@@ -3,8 +3,8 @@
 Chapter-2 convention (section 2.5.5, fig. 2.8): links 1, 2, 3 of lengths l1, l2, l3 joined end
 to end; alpha1 is the rotation of link 2 relative to link 1, alpha2 that of link 3 relative to
 link 2; each link's frame g_i sits at its centre, x along the link towards link 3. The link
-poses and Jacobians are :func:`gm_core.chains.three_link_poses` and
-:func:`gm_core.chains.three_link_jacobians` (one copy, in chains); here they are only moved to
+poses and Jacobians are :func:`gm_core.three_link_chain.three_link_poses` and
+:func:`gm_core.three_link_chain.three_link_jacobians` (one copy, there); here they are only moved to
 the system's body frame, which is the middle link's frame unless a system says otherwise.
 """
 from __future__ import annotations
@@ -12,15 +12,13 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array, check_positive
-from ..chains import three_link_jacobians, three_link_poses
 from ..connection import metric_from_jacobians
 from ..groups import SE2
+from ..three_link_chain import three_link_jacobians, three_link_poses
 from .base import LocomotionSystem, Part, rectangle_outline
 
-__all__ = ["ThreeLinkSystem", "LinkMetricSystem", "three_link_link_poses"]
+__all__ = ["ThreeLinkSystem", "LinkMetricSystem"]
 
-#: Kept name for :func:`gm_core.chains.three_link_poses` (link-centre poses, middle-link frame).
-three_link_link_poses = three_link_poses
 
 
 class ThreeLinkSystem(LocomotionSystem):

@@ -24,8 +24,12 @@ import pkgutil
 import time
 
 import ipywidgets as W
+import numpy as np
 
-__all__ = ["Panel", "ScenePanel", "PANELS", "register", "all_panels", "slider", "int_slider"]
+__all__ = [
+    "Panel", "ScenePanel", "PANELS", "register", "all_panels", "slider", "int_slider",
+    "se2_sliders", "xi_sliders", "show",
+]
 
 #: name -> Panel subclass, filled by @register.
 PANELS: dict[str, type] = {}
@@ -349,3 +353,28 @@ def slider(value, lo, hi, step=0.01, description="", readout_format=".2f", **kw)
     return W.FloatSlider(value=value, min=lo, max=hi, step=step, description=description,
                          readout_format=readout_format, continuous_update=True,
                          style={"description_width": "initial"}, **kw)
+
+
+def se2_sliders(x, y, theta, names=("x", "y", "theta"), lim=2.5, labels=("x", "y", "θ")):
+    """Three sliders for an SE(2) element (x, y in [-lim, lim], theta in [-pi, pi]), keyed by ``names``."""
+    return {names[0]: slider(x, -lim, lim, description=labels[0]),
+            names[1]: slider(y, -lim, lim, description=labels[1]),
+            names[2]: slider(theta, -np.pi, np.pi, description=labels[2])}
+
+
+def xi_sliders(vx, vy, w):
+    """Three sliders for an se(2) velocity (vx, vy, w), each in [-1.5, 1.5]."""
+    return {"vx": slider(vx, -1.5, 1.5, description="ξˣ"),
+            "vy": slider(vy, -1.5, 1.5, description="ξʸ"),
+            "w": slider(w, -1.5, 1.5, description="ξᶿ")}
+
+
+def show(fig):
+    """Display a static figure under any backend (the ipympl canvas, or a PNG otherwise)."""
+    from IPython.display import display
+
+    canvas = fig.canvas
+    if isinstance(canvas, W.DOMWidget):
+        display(canvas)
+    else:
+        display(fig)

@@ -3,7 +3,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..drawing.base import BodyArtist, FrameArtist, new_figure
+from ..drawing.primitives import BodyArtist, FrameArtist
+from ..drawing.toolkit import new_figure
 from .base import Panel, register, slider
 
 

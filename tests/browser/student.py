@@ -124,7 +124,7 @@ def play_animations(nbp, wait_ms: int = 900) -> tuple[list[str], int]:
     """Press ▶ on every animation; (problems, number of animations)."""
     page = nbp.page
     res = page.evaluate(_ANIMS_JS, nbp.read_status()["panelId"])
-    problems = [f"{res['other']} animation(s) not made with gm_core.drawing.base.jshtml"] if res["other"] else []
+    problems = [f"{res['other']} animation(s) not made with gm_core.drawing.primitives.jshtml"] if res["other"] else []
     for a in res["anims"]:
         root = page.locator(f'[data-gm-anim="{a["index"]}"]')
         root.scroll_into_view_if_needed()
@@ -362,7 +362,7 @@ _SELFCHECK_SETUP = r'''%matplotlib widget
 import numpy as np
 import ipywidgets as W
 import matplotlib.pyplot as plt
-from gm_core.drawing.base import animate, jshtml
+from gm_core.drawing.primitives import animate, jshtml
 from gm_core.drawing.blit import KeyFrames
 
 def ghost_panel(key_frames, description="t", figsize=(4, 3)):

@@ -15,9 +15,9 @@ from matplotlib.animation import AbstractMovieWriter, FuncAnimation
 from matplotlib.patches import Polygon
 
 from ..groups import SE2
-from .toolkit import DPI, PALETTE, new_figure
+from .toolkit import DPI, PALETTE
 
-__all__ = ["testing", "n_frames", "new_figure", "FrameArtist", "BodyArtist", "TrailArtist",
+__all__ = ["testing", "n_frames", "FrameArtist", "BodyArtist", "TrailArtist",
            "SingularFlag", "animate", "jshtml"]
 
 
@@ -172,7 +172,7 @@ def jshtml(anim, default_mode="loop"):
 
     fig = getattr(anim, "gm_figure", None)
     if fig is None:
-        raise TypeError("jshtml needs an animation made by gm_core.drawing.base.animate")
+        raise TypeError("jshtml needs an animation made by gm_core.drawing.primitives.animate")
     fig.set_dpi(DPI)          # frames at the standard's resolution: 1 inch = 100 CSS px
     writer = _FrameCollector()
     anim.save("frames-kept-in-memory", writer=writer, dpi=DPI)

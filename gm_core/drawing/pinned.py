@@ -1,8 +1,9 @@
-"""Frames of chapter 2: pinned bodies (fig. 2.1), relative poses (the notation box, (2.iii)-(2.iv)) and
+"""Pinned bodies and frames of chapter 2: pinned bodies (fig. 2.1), relative poses (the notation box, (2.iii)-(2.iv)) and
 the velocity of a generalized body frame (fig. 2.9, section 2.5.6).
 
-Each scene computes with :mod:`gm_core.chains` and moves its artists in place; the panels are in
-:mod:`gm_core.widgets.ch2`. Scenes with a table of numbers draw the plane on the left and the
+Each scene computes with :mod:`gm_core.holonomic`, :mod:`gm_core.chains` and
+:mod:`gm_core.three_link_chain` and moves its artists in place; the panels are in
+:mod:`gm_core.widgets.pinned`. Scenes with a table of numbers draw the plane on the left and the
 numbers in a text-only axes on the right (:func:`plane_and_notes`).
 """
 from __future__ import annotations
@@ -11,9 +12,12 @@ import numpy as np
 
 from .. import chains as C
 from ..groups import SE2
-from .base import BodyArtist, FrameArtist
+from ..holonomic import pin_constraints, pinned_pair
+from ..three_link_chain import beta_frame_velocity, com_frame
+from .axes import square_axes
 from .chains import ArrowsArtist, ChainArtist, _ThreeLinkScene
-from .toolkit import PALETTE, PathText, Scene, new_figure, readout, square_axes
+from .primitives import BodyArtist, FrameArtist
+from .toolkit import PALETTE, PathText, Scene, new_figure, readout
 
 __all__ = ["plane_and_notes", "notes_text", "PinnedBodiesScene", "RelativePoseScene", "BetaVelocityScene",
            "BODY_OUTLINE"]
@@ -47,9 +51,9 @@ class PinnedBodiesScene(Scene):
     """Two rigid bodies, free in SE(2) x SE(2) or pinned at their frame origins (fig. 2.1, section 2.1).
 
     Values: ``x1, y1, theta1, x2, y2, theta2`` and ``pinned`` (bool). Pinned, body 2 is placed by
-    :func:`gm_core.chains.pinned_pair` from body 1's pose and alpha = theta2 - theta1 (its own
+    :func:`gm_core.holonomic.pinned_pair` from body 1's pose and alpha = theta2 - theta1 (its own
     x2, y2 are ignored: the constraint fixes them); free, the dashed segment between the two frame
-    origins is the value of the pin constraints (2.1), :func:`gm_core.chains.pin_constraints`.
+    origins is the value of the pin constraints (2.1), :func:`gm_core.holonomic.pin_constraints`.
     """
 
     lim = 2.2
@@ -73,10 +77,10 @@ class PinnedBodiesScene(Scene):
         """Poses ``(2, 3)`` of the two bodies and the pin-constraint values ``(2,)``."""
         g1 = np.array([values["x1"], values["y1"], values["theta1"]], float)
         if values.get("pinned", False):
-            g = C.pinned_pair(g1, values["theta2"] - values["theta1"])
+            g = pinned_pair(g1, values["theta2"] - values["theta1"])
         else:
             g = np.stack([g1, np.array([values["x2"], values["y2"], values["theta2"]], float)])
-        return g, C.pin_constraints(g[0], g[1])
+        return g, pin_constraints(g[0], g[1])
 
     def set(self, **values):
         g, f = self.compute(**values)
@@ -172,7 +176,7 @@ class RelativePoseScene(Scene):
         self.coord_y.set_data(corner[1:, 0], corner[1:, 1])
         self.arrow.set(b[:2], a[:2] - b[:2])
         self.route.set(np.stack([b[:2], c[:2]]), np.stack([c[:2] - b[:2], a[:2] - c[:2]]))
-        sub = lambda x, y: f"g_{{{x},{y}}}"                                  # noqa: E731
+        sub = lambda x, y: f"$g_{{{x},{y}}}$"                                # noqa: E731 (mathtext)
         err = float(np.max(np.abs(SE2.difference(chained, rel))))
         inv_err = float(np.max(np.abs(SE2.difference(SE2.inverse(rel), swapped))))
         self.text.set_text("\n".join([
@@ -241,8 +245,8 @@ class BetaVelocityScene(_ThreeLinkScene):
         a = np.array([values["alpha1"], values["alpha2"]], float)
         ad = np.array([values["alpha1_dot"], values["alpha2_dot"]], float)
         xi = np.array([values["xi_x"], values["xi_y"], values["xi_theta"]], float)
-        beta, dbeta = C.com_frame(a, self.lengths)
-        parts = C.beta_frame_velocity(beta, dbeta, xi, ad)
+        beta, dbeta = com_frame(a, self.lengths)
+        parts = beta_frame_velocity(beta, dbeta, xi, ad)
         return a, ad, xi, beta, parts
 
     def set(self, **values):
@@ -262,7 +266,7 @@ class BetaVelocityScene(_ThreeLinkScene):
         self.world, self.parts = world, parts
         # each cause alone: the middle link moving along exp(s xi) with beta welded on; the shape moving
         carried = SE2.compose(SE2.exp(self.s * xi), beta)
-        shaped = C.com_frame(a + self.s * ad, self.lengths)[0]
+        shaped = com_frame(a + self.s * ad, self.lengths)[0]
         self.path_carried.set_data(carried[:, 0], carried[:, 1])
         self.path_shape.set_data(shaped[:, 0], shaped[:, 1])
         self.text.set_text("\n".join([

@@ -1,32 +1,37 @@
-"""Chapter 2 panels: arms, mobile chains, generalized body frames and Jacobians, moved by sliders.
+"""Chapter 2 panels: arms, mobile chains, generalized body frames and Jacobians
+(scenes of :mod:`gm_core.drawing.chains`).
 
-Each panel pairs controls with a scene of :mod:`gm_core.drawing.chains`, which owns the figure,
-computes with :mod:`gm_core.chains` and moves its artists (the one widget pattern,
-:class:`~gm_core.widgets.base.ScenePanel`). ``panel.art``, ``panel.chain``... are the scene's.
+Each panel pairs controls with its scene, which owns the figure, computes through the math
+modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 
 import ipywidgets as W
 import numpy as np
 
-from ..drawing import chains as D
-from ..drawing import frames as DF
-from ..drawing import jacobian_steps as DJ
-from .base import ScenePanel, int_slider, register, slider
+from ..drawing.chains import (
+    ArmScene,
+    BetaFrameScene,
+    JacobianMethodsScene,
+    MobileChainScene,
+    OffsetRPArmScene,
+    ThreeLinkVelocityScene,
+)
+from .base import ScenePanel, register, slider
 
-__all__ = ["SingleLinkPanel", "RRArmPanel", "RPArmPanel", "OffsetRPArmPanel", "MobileChainPanel",
-           "TwoLinkMobilePanel", "ThreeLinkMobilePanel", "BetaFramePanel", "JacobianMethodsPanel",
-           "ThreeLinkVelocityPanel", "PinnedBodiesPanel", "RelativePosePanel", "BetaVelocityPanel",
-           "JacobianStepPanel"]
+__all__ = [
+    "SingleLinkPanel", "RRArmPanel", "RPArmPanel", "OffsetRPArmPanel", "MobileChainPanel",
+    "TwoLinkMobilePanel", "ThreeLinkMobilePanel", "BetaFramePanel", "JacobianMethodsPanel",
+    "ThreeLinkVelocityPanel",
+]
 
 PI = float(np.pi)
 
 
-# ======================================================================= fixed-base arms
 class _ArmPanel(ScenePanel):
     """A fixed-base arm with one slider per joint and per joint speed; the end effector's velocity arrow."""
 
-    scene_class = D.ArmScene
+    scene_class = ArmScene
     joints = "R"
     lengths = (1.0,)
     offsets = None
@@ -89,11 +94,10 @@ class OffsetRPArmPanel(RPArmPanel):
     """The rotary-prismatic arm with link 2 offset sideways by a (fig. 2.10, exercise 2.2)."""
 
     title = "Offset rotary-prismatic arm (fig. 2.10): velocity of the end effector"
-    scene_class = D.OffsetRPArmScene
+    scene_class = OffsetRPArmScene
     offsets = (0.3, 0.0)
 
 
-# ======================================================================= mobile chains
 class MobileChainPanel(ScenePanel):
     """A free-floating chain: pose sliders place the base link's centre, joint sliders set the shape.
 
@@ -104,7 +108,7 @@ class MobileChainPanel(ScenePanel):
     """
 
     title = "Mobile articulated system (figs. 2.5, 2.6, 2.8): base link, shape and symmetry"
-    scene_class = D.MobileChainScene
+    scene_class = MobileChainScene
     default_lengths = (1.0, 1.0, 1.0)
 
     def scene_options(self):
@@ -142,13 +146,12 @@ class ThreeLinkMobilePanel(MobileChainPanel):
     title = "Three-link mobile system (figs. 2.6, 2.8): sign convention and symmetric shapes"
 
 
-# ======================================================================= generalized body frames
 @register
 class BetaFramePanel(ScenePanel):
     """A body frame g = g_2 beta placed by sliders (fig. 2.7) or at the centre of mass (fig. 2.9, ex. 2.3)."""
 
     title = "Generalized body frame beta (figs. 2.7, 2.9)"
-    scene_class = D.BetaFrameScene
+    scene_class = BetaFrameScene
 
     def controls_spec(self):
         return {
@@ -166,14 +169,13 @@ class BetaFramePanel(ScenePanel):
             self.controls[k].disabled = values["frame"] != "sliders"
 
 
-# ======================================================================= Jacobians
 @register
 class JacobianMethodsPanel(ScenePanel):
     """The end-effector velocity of a chain by the three Jacobian methods of section 2.5, live side by side."""
 
     title = "Three ways to a Jacobian: direct (2.16), world iterative (2.31), body iterative (2.37)"
-    scene_class = D.JacobianMethodsScene
-    COLORS = D.JacobianMethodsScene.COLORS
+    scene_class = JacobianMethodsScene
+    COLORS = JacobianMethodsScene.COLORS
 
     def controls_spec(self):
         c = {}
@@ -192,7 +194,7 @@ class ThreeLinkVelocityPanel(ScenePanel):
     """Body velocities of the three links from (xi, alpha_dot) through the corrected (2.57)-(2.59)."""
 
     title = "Three-link system: link body velocities from xi and the joint speeds (2.57)-(2.59)"
-    scene_class = D.ThreeLinkVelocityScene
+    scene_class = ThreeLinkVelocityScene
 
     def controls_spec(self):
         return {
@@ -204,81 +206,3 @@ class ThreeLinkVelocityPanel(ScenePanel):
             "alpha1_dot": slider(0.0, -1.0, 1.0, description="α1 rate"),
             "alpha2_dot": slider(1.0, -1.0, 1.0, description="α2 rate"),
         }
-
-
-# ======================================================================= frames (issue 13)
-@register
-class PinnedBodiesPanel(ScenePanel):
-    """Two bodies, free or pinned at their frame origins: six numbers or four (fig. 2.1, section 2.1)."""
-
-    title = "Two bodies pinned together (fig. 2.1): the pin's two constraints remove two numbers"
-    scene_class = DF.PinnedBodiesScene
-
-    def controls_spec(self):
-        return {
-            "pinned": W.Checkbox(value=True, description="pin the frame origins together"),
-            "x1": slider(-0.3, -1.5, 1.5, description="x₁"), "y1": slider(-0.2, -1.5, 1.5, description="y₁"),
-            "theta1": slider(0.3, -PI, PI, description="θ₁"),
-            "x2": slider(0.6, -1.5, 1.5, description="x₂"), "y2": slider(0.5, -1.5, 1.5, description="y₂"),
-            "theta2": slider(1.6, -PI, PI, description="θ₂"),
-        }
-
-    def after_update(self, values):
-        for k in ("x2", "y2"):
-            self.controls[k].disabled = bool(values["pinned"])
-
-
-@register
-class RelativePosePanel(ScenePanel):
-    """Pick a frame, an observer and a frame in between: g_{a,b} = b^-1 a and its cancellation rules (2.iii)-(2.iv)."""
-
-    title = "The notation box of section 2.2: the pose of one frame seen from another, g_{a,b} = b⁻¹a"
-    scene_class = DF.RelativePoseScene
-
-    def controls_spec(self):
-        names = list(DF.RelativePoseScene.NAMES)
-        return {
-            "alpha1": slider(0.5, -PI, PI, description="α₁"),
-            "alpha2": slider(0.9, -PI, PI, description="α₂"),
-            "frame": W.Dropdown(options=names, value="h2", description="frame a"),
-            "seen_from": W.Dropdown(options=names, value="g1", description="seen from b"),
-            "via": W.Dropdown(options=names, value="h1", description="via c"),
-        }
-
-
-@register
-class BetaVelocityPanel(ScenePanel):
-    """The velocity of the centre-of-mass frame: carried by the middle link plus moved by the shape, (2.60)-(2.67)."""
-
-    title = "Velocity of a generalized body frame (fig. 2.9, section 2.5.6): ξ_β = Ad⁻¹_β (ξ₂ + v_β)"
-    scene_class = DF.BetaVelocityScene
-
-    def controls_spec(self):
-        return {
-            "alpha1": slider(0.8, -2.5, 2.5, description="α₁"),
-            "alpha2": slider(0.4, -2.5, 2.5, description="α₂"),
-            "alpha1_dot": slider(1.2, -1.2, 1.2, description="α₁ rate"),
-            "alpha2_dot": slider(0.6, -1.2, 1.2, description="α₂ rate"),
-            "xi_x": slider(0.4, -0.7, 0.7, description="ξ₂ x"),
-            "xi_y": slider(0.0, -0.7, 0.7, description="ξ₂ y"),
-            "xi_theta": slider(0.4, -0.7, 0.7, description="ξ₂ θ"),
-        }
-
-
-@register
-class JacobianStepPanel(ScenePanel):
-    """Step through a chain joint by joint: each joint's velocity carried to the tip, the Jacobian column by column."""
-
-    title = "The Jacobian one column at a time: step k moves joint k alone, (2.33)-(2.37)"
-    scene_class = DJ.JacobianStepScene
-
-    def controls_spec(self):
-        joints = self.scene.chain.joints
-        c = {"step": int_slider(1, 0, len(joints), description="step k")}
-        for i, jt in enumerate(joints):
-            lo, hi = (-PI, PI) if jt.kind == "revolute" else (0.0, 1.0)
-            c[f"q{i + 1}"] = slider(0.4 * (i + 1) if jt.kind == "revolute" else 0.3, lo, hi,
-                                    description=f"q{i + 1} ({jt.letter})")
-        for i in range(len(joints)):
-            c[f"q{i + 1}_dot"] = slider([0.8, 0.6, -1.0, 0.5, 0.5][i % 5], -2.0, 2.0, description=f"q{i + 1} rate")
-        return c

@@ -7,7 +7,6 @@ point of the moving plane with zero velocity; written in any frame it is the sam
 
 name                   what it is                                                      book
 ---------------------  --------------------------------------------------------------  --------------
-relative_pose          h^-1 g: the body as seen from the observer's frame h (from kinematics) (1.10), (2.iii)
 observed_velocity      xi^s seen by the observer at h: Ad_{h^-1 g} xi                    (1.40)-(1.43)
 icr                    (-v_y / w, v_x / w) for xi = (v_x, v_y, w), flagged at w = 0      sec. 1.5
 point_in_frame         coordinates of a world point in the frame g (g^-1 p)             (1.12)
@@ -19,10 +18,10 @@ from __future__ import annotations
 import numpy as np
 
 from ._validate import as_array, batch_shape, positive_number
+from .chains import relative_pose
 from .groups import SE2, matvec
-from .kinematics import relative_pose
 
-__all__ = ["relative_pose", "observed_velocity", "icr", "point_in_frame", "conjugation",
+__all__ = ["observed_velocity", "icr", "point_in_frame", "conjugation",
            "point_velocities"]
 
 

@@ -1,0 +1,55 @@
+"""What grading one notebook costs: kernel start, cells, total, with and without the sandbox.
+
+For each solution notebook named on the command line (default: three small ones), it is run
+once in the bubblewrap sandbox and once without (``--no-sandbox`` mode), and the table gives the
+seconds from the runner's start to a live kernel, the seconds the cells took, the total the grader
+waited, and the parts credited (all of them, for a solution).
+
+    .venv/bin/python benchmarks/grade_time.py
+    .venv/bin/python benchmarks/grade_time.py solutions/ex1_4.ipynb solutions/ex3_1.ipynb
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from gm_core.checks import _grading  # noqa: E402
+from gm_core.checks._evidence import summarise  # noqa: E402
+from gm_core.checks._exercise import REGISTRY  # noqa: E402
+from gm_core.checks._isolate import Limits, run_submission, sandbox_problem  # noqa: E402
+from gm_core.checks.grade import identify  # noqa: E402
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("notebooks", nargs="*", type=Path, default=[
+        ROOT / "solutions" / n for n in ("ex1_1.ipynb", "ex1_2.ipynb", "ex3_1.ipynb")])
+    args = ap.parse_args(argv)
+    modes = [("no sandbox", False)] + ([("sandbox", True)] if sandbox_problem() is None else [])
+    print(f"{'notebook':<14} {'mode':<11} {'kernel s':>9} {'cells s':>8} {'total s':>8} {'credited':>9}")
+    for nb in args.notebooks:
+        ex_id, _, data = identify(nb)
+        ex = REGISTRY[ex_id]
+        for label, sandbox in modes:
+            t = time.monotonic()
+            run = run_submission(nb, limits=Limits(), sandbox=sandbox)
+            total = time.monotonic() - t
+            at = {r["t"]: r.get("at", 0.0) for r in run["records"]}
+            _grading.set_probe_salt(run["salt"])
+            verdicts, _, _, _ = summarise(run, ex, {})
+            _grading.set_probe_salt(None)
+            got = sum(v.passed for v, _ in verdicts.values())
+            kernel = at.get("kernel", float("nan"))
+            cells = at.get("done", float("nan")) - kernel
+            print(f"{nb.name:<14} {label:<11} {kernel:9.1f} {cells:8.1f} {total:8.1f} "
+                  f"{got:>4}/{len(verdicts):<4}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

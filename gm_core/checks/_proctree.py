@@ -1,0 +1,179 @@
+"""Process trees for the probe sandbox (:mod:`._sandbox`): keep every descendant findable, and end
+them all. Linux gives the exact tree (``/proc/<pid>/task/<tid>/children``, or a scan of
+``/proc/*/stat``, plus ``PR_SET_CHILD_SUBREAPER`` so that orphans stay in it); elsewhere the
+keeper's process group is killed. Standard library only; no gm_core imports.
+"""
+from __future__ import annotations
+
+import ctypes
+import os
+import signal
+import threading
+import time
+
+PR_SET_CHILD_SUBREAPER = 36
+try:  # loaded now, not in a freshly forked process (the loader's lock may be held there)
+    _LIBC = ctypes.CDLL(None, use_errno=True) if os.name == "posix" else None
+except Exception:  # noqa: BLE001
+    _LIBC = None
+
+
+def become_subreaper():
+    """Orphans of this process's descendants become its children, not init's (Linux >= 3.4)."""
+    try:
+        _LIBC.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0)
+    except (OSError, AttributeError):
+        pass
+
+
+def _children(pid):
+    """Direct children of ``pid`` (from /proc); None when /proc cannot tell."""
+    try:
+        tids = os.listdir(f"/proc/{pid}/task")
+    except OSError:
+        return None
+    out = []
+    for tid in tids:
+        try:
+            with open(f"/proc/{pid}/task/{tid}/children", encoding="ascii") as f:
+                out += [int(x) for x in f.read().split()]
+        except FileNotFoundError:
+            if os.path.exists(f"/proc/{pid}/task/{tid}"):
+                return _children_by_scan(pid)      # a kernel without /proc/.../children
+        except (OSError, ValueError):
+            pass
+    return out
+
+
+def _children_by_scan(pid):
+    out = []
+    for name in os.listdir("/proc"):
+        if name.isdigit():
+            try:
+                with open(f"/proc/{name}/stat", encoding="ascii", errors="replace") as f:
+                    stat = f.read()
+                if int(stat.rsplit(")", 1)[1].split()[1]) == pid:
+                    out.append(int(name))
+            except (OSError, ValueError, IndexError):
+                pass
+    return out
+
+
+def descendants(root):
+    """Every process below ``root`` (children, their children, ...), or None without /proc."""
+    first = _children(root)
+    if first is None:
+        return None
+    seen, todo = [], list(first)
+    while todo:
+        p = todo.pop()
+        if p in seen:
+            continue
+        seen.append(p)
+        todo += _children(p) or []
+    return seen
+
+
+def _signal(pid, sig):
+    try:
+        os.kill(pid, sig)
+    except OSError:
+        pass
+
+
+def _freeze_and_kill(keeper):
+    """SIGSTOP everything below the keeper until nothing new appears, then SIGKILL it all.
+    False when /proc cannot list the tree."""
+    below = descendants(keeper)
+    if below is None:
+        return False
+    for _round in range(20):               # frozen processes cannot fork while we look again
+        for p in below:
+            _signal(p, signal.SIGSTOP)
+        again = descendants(keeper) or []
+        if set(again) <= set(below):
+            break
+        below = list(dict.fromkeys(below + again))
+    for p in below:
+        _signal(p, signal.SIGKILL)
+    return True
+
+
+def _exited(pid):
+    """True once ``pid`` (our child) has exited, without reaping it (so its id stays reserved)."""
+    if hasattr(os, "waitid") and hasattr(os, "WNOWAIT"):
+        try:
+            return os.waitid(os.P_PID, pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is not None
+        except ChildProcessError:
+            return True
+    return False
+
+
+def _finish(keeper, patience=0.25, rounds=40):
+    """Wait for the keeper, which reaps the killed tree and then exits, killing any straggler
+    meanwhile; then kill what is left of its process group and reap it."""
+    for _ in range(rounds):
+        deadline = time.monotonic() + patience
+        while time.monotonic() < deadline and not _exited(keeper):
+            time.sleep(0.002)
+        if _exited(keeper):
+            break
+        _freeze_and_kill(keeper)
+    else:
+        _signal(keeper, signal.SIGKILL)
+    try:
+        os.killpg(keeper, signal.SIGKILL)  # still reserved: the keeper is not reaped yet
+    except OSError:
+        pass
+    try:
+        os.waitpid(keeper, 0)
+    except ChildProcessError:
+        pass
+
+
+def kill_tree(keeper, wait=False):
+    """End the keeper's whole tree: every process below it is frozen and killed now; the keeper
+    (which reaps them) is waited for in a background thread unless ``wait``. Without /proc the
+    keeper's process group is killed instead."""
+    if not _freeze_and_kill(keeper):
+        try:
+            os.killpg(keeper, signal.SIGKILL)
+        except OSError:
+            _signal(keeper, signal.SIGKILL)
+        try:
+            os.waitpid(keeper, 0)
+        except ChildProcessError:
+            pass
+        return
+    if wait:
+        _finish(keeper)
+    else:
+        threading.Thread(target=_finish, args=(keeper,), name="gm-checks-reaper", daemon=True).start()
+
+
+def how_it_ended(status):
+    """A friendly account of a worker's wait status."""
+    if status is None:
+        return "the process running it was stopped from outside"
+    if os.WIFSIGNALED(status):
+        sig = os.WTERMSIG(status)
+        known = {
+            signal.SIGKILL: "it was killed (SIGKILL), most likely because the computer ran out of memory",
+            signal.SIGSEGV: "a segmentation fault: a recursion deeper than the interpreter survives "
+                            "(was sys.setrecursionlimit raised?) or a bug in compiled code",
+            signal.SIGABRT: "it aborted (SIGABRT): a fatal error inside Python or a library",
+            signal.SIGALRM: "an alarm signal (SIGALRM) ended it: signal.alarm() or a timer in your code",
+            signal.SIGTERM: "it was terminated (SIGTERM)",
+            signal.SIGINT: "it was interrupted (SIGINT)",
+        }
+        if hasattr(signal, "SIGBUS"):
+            known[signal.SIGBUS] = known[signal.SIGSEGV]
+        try:
+            name = signal.Signals(sig).name
+        except ValueError:
+            name = f"signal {sig}"
+        return known.get(sig, f"it was stopped by {name}")
+    if os.WIFEXITED(status):
+        return (f"it ended the Python process itself with exit status {os.WEXITSTATUS(status)} "
+                "(os._exit() or a library that exits)")
+    return "it ended in an unusual way"

@@ -1,0 +1,89 @@
+"""Sections 3.3-3.4 panel: a gait on the connection fields and the motion it produces
+(scene of :mod:`gm_core.drawing.gaits`).
+
+Each panel pairs controls with its scene, which owns the figure, computes through the math
+modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
+"""
+from __future__ import annotations
+
+import ipywidgets as W
+import numpy as np
+
+from ..drawing.gaits import GAIT_SHAPES, GaitScene
+from ..drawing.primitives import jshtml
+from ..systems import FloatingSnake, KinematicSnake
+from .base import ScenePanel, register, slider
+
+__all__ = ["body_frames", "GaitPanel"]
+
+PI = float(np.pi)
+
+
+def body_frames(system):
+    """Body-frame choices for ``system``: {name: system}; one entry unless the frame matters.
+
+    The floating snake's connection depends on where its body frame sits: at the centre of
+    mass (the translation rows vanish) or on the middle link (section 3.4.3).
+    """
+    if isinstance(system, FloatingSnake):
+        kw = dict(lengths=system.lengths, masses=system.masses, inertias=system.inertias)
+        names = {"com": "centre of mass", "middle": "middle link"}
+        other = "middle" if system.frame == "com" else "com"
+        return {names[system.frame]: system, names[other]: FloatingSnake(frame=other, **kw)}
+    return {}
+
+
+@register
+class GaitPanel(ScenePanel):
+    """A gait drawn on the three connection fields and the motion it produces over one cycle.
+
+    Controls: the gait's shape (circle, tilted ellipse, serpenoid, figure eight, or a loop drawn
+    with the mouse: pick "drawn" and drag the orange dots), its size, centre, aspect and angle,
+    and for the floating snake the body frame. Works for every system of chapter 3 (three-link
+    systems and cars). Options: ``system``, ``family``, ``amplitude``, ``center``, ``aspect``,
+    ``angle``, ``n``, ``lim``. ``panel.animation()`` plays the current gait in the world.
+    """
+
+    title = "Gaits on the connection fields"
+    scene_class = GaitScene
+
+    def scene_options(self):
+        o = self.options
+        self.system = o.get("system") or KinematicSnake()
+        self.title = f"Gaits: {self.system.name}"
+        return dict(system=self.system, frames=body_frames(self.system), n=o.get("n"), lim=o.get("lim"))
+
+    def build(self):
+        super().build()
+        self.scene.on_edit = self.refresh     # mouse edits of a drawn loop redraw like a slider
+
+    def controls_spec(self):
+        (lo1, hi1), (lo2, hi2) = self.system.shape_limits
+        o = self.options
+        c = o.get("center", (0.0, 0.0))
+        big = 0.5 * min(hi1 - lo1, hi2 - lo2)
+        spec = {
+            "family": W.Dropdown(options=list(GAIT_SHAPES), value=o.get("family", "circle"), description="shape"),
+            "amplitude": slider(o.get("amplitude", min(1.0, big)), 0.05, big, description="size"),
+            "center1": slider(c[0], lo1 / 2, hi1 / 2, description="centre α1"),
+            "center2": slider(c[1], lo2 / 2, hi2 / 2, description="centre α2"),
+            "aspect": slider(o.get("aspect", 0.6), 0.1, 1.5, description="aspect"),
+            "angle": slider(o.get("angle", 0.0), -PI, PI, description="tilt / phase"),
+        }
+        frames = list(self.scene.frames)
+        if frames:
+            spec["frame"] = W.Dropdown(options=frames, value=frames[0], description="body frame")
+        return spec
+
+    def after_update(self, values):
+        self.system = self.scene.system       # the body frame may have changed
+        fam = values.get("family", "circle")
+        self.controls["aspect"].disabled = fam == "circle" or fam == "drawn"
+        self.controls["angle"].disabled = fam == "circle" or fam == "drawn"
+        for k in ("amplitude", "center1", "center2"):
+            self.controls[k].disabled = fam == "drawn"
+
+    def animation(self, n_frames=60, cycles=2, row=2):
+        """The current gait as a kernel-free animation (HTML): body in the world, cursor on row ``row``."""
+        anim, fig, traj = self.scene.animation(n_frames=n_frames, cycles=cycles, row=row)
+        return jshtml(anim)

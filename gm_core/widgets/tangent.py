@@ -1,0 +1,29 @@
+"""Section 1.4 panel: tangent spaces (scene of :mod:`gm_core.drawing.tangent`).
+
+Each panel pairs controls with its scene, which owns the figure, computes through the math
+modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..drawing.tangent import TangentSpaceScene
+from .base import ScenePanel, register, slider
+
+__all__ = ["TangentSpacePanel"]
+
+PI = float(np.pi)
+
+
+@register
+class TangentSpacePanel(ScenePanel):
+    """Figs 1.11-1.12: velocities are arrows in the tangent space at the moving point."""
+
+    title = "Velocities live in tangent spaces (figs 1.11-1.12)"
+    scene_class = TangentSpaceScene
+    # the 3D view turns with the point: only a full draw sorts the sphere's curve by depth
+    blit = False
+
+    def controls_spec(self):
+        return {"s": slider(0.8, 0.0, 2 * PI, description="where along the curve s"),
+                "speed": slider(1.0, -2.0, 2.0, description="speed ds/dt")}

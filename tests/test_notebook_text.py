@@ -1,0 +1,66 @@
+"""Math renders everywhere: no TeX or sub/superscript markup in notebook prose outside math and code.
+
+JupyterLab renders ``$...$`` and ``$$...$$`` with MathJax; anything else is shown as typed, so a
+formula written as ``g_{a,b}``, ``ξ^θ`` or ``\\dot g`` in plain prose reaches the student raw.
+Over every markdown cell of book/, exercises/ and solutions/, after removing fenced and inline
+code, HTML comments and math, this test fails on ``_{``, ``^`` (markdown has no superscripts)
+and backslash commands (``\\alpha``), naming notebook, cell and the offending text.
+"""
+import re
+from pathlib import Path
+
+import nbformat
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+NOTEBOOKS = sorted(p for d in ("book", "exercises", "solutions") for p in (ROOT / d).glob("*.ipynb"))
+
+_FENCED = re.compile(r"^(```|~~~).*?^\1[^\n]*$", re.S | re.M)
+_INLINE_CODE = re.compile(r"(`+)(?!`).+?(?<!`)\1(?!`)", re.S)
+_COMMENT = re.compile(r"<!--.*?-->", re.S)
+_HTML_CODE = re.compile(r"<(code|pre|kbd)\b[^>]*>.*?</\1>", re.S | re.I)
+# math: $$...$$, $...$ (not an escaped \$), \(...\), \[...\]
+_MATH = re.compile(r"\$\$.+?\$\$|(?<![\\$])\$(?!\$).+?(?<![\\$])\$|\\\(.+?\\\)|\\\[.+?\\\]", re.S)
+_BAD = re.compile(r"_\{|\^|\\[A-Za-z]+")
+
+
+def prose(text):
+    """The markdown ``text`` with code, comments and math removed (what MathJax leaves alone)."""
+    for pattern in (_FENCED, _COMMENT, _HTML_CODE, _INLINE_CODE, _MATH):
+        text = pattern.sub(" ", text)
+    return text
+
+
+def raw_markup(text):
+    """[(snippet, markup)] for every piece of TeX markup outside math and code in ``text``."""
+    out = []
+    left = prose(text)
+    for m in _BAD.finditer(left):
+        a, b = max(0, m.start() - 25), min(len(left), m.end() + 25)
+        out.append((left[a:b].replace("\n", " "), m.group()))
+    return out
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_no_raw_formula_markup_in_markdown(path):
+    nb = nbformat.read(path, as_version=4)
+    found = [f"cell {i}: {markup!r} in ...{snippet}..."
+             for i, cell in enumerate(nb.cells) if cell.cell_type == "markdown"
+             for snippet, markup in raw_markup(cell.source)]
+    assert not found, f"{path.relative_to(ROOT)}: formula markup outside $...$ (MathJax shows it raw):\n" + \
+        "\n".join(found)
+
+
+@pytest.mark.parametrize("text, bad", [
+    ("the group $g_{a,b}$ composes", []),                       # inside math
+    ("call `f_{x}` or\n```\nx^2 \\alpha\n```\n", []),           # inside code
+    ("a price of \\$5 and \\$6", []),                           # escaped dollars are not commands
+    ("$$\\dot g = g\\xi$$ and $\\xi^\\theta$", []),
+    ("the map g_{a,b} sends", ["_{"]),                          # plain text: raw
+    ("body velocity ξ^θ is", ["^"]),
+    ("so \\dot g = g ξ", ["\\dot"]),
+    ("$a$ then A_{i2} then $b$", ["_{"]),                       # between two formulas
+    ("an unclosed $ sign and x^{2}", ["^"]),                    # a lone dollar opens nothing
+])
+def test_the_scanner_itself(text, bad):
+    assert [m for _, m in raw_markup(text)] == bad
