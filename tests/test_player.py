@@ -13,8 +13,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pytest  # noqa: E402
 
-from gm_core.drawing.primitives import animate, jshtml  # noqa: E402
 from gm_core.drawing.player import MODES, player_html  # noqa: E402
+from gm_core.drawing.primitives import animate, jshtml  # noqa: E402
 
 # the refused FuncAnimation below is never rendered; matplotlib says so when it is collected
 pytestmark = pytest.mark.filterwarnings("ignore:Animation was deleted")

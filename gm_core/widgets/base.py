@@ -15,7 +15,11 @@ Changing a control calls ``update`` with the values of all controls, so a test c
 
 In a live notebook (ipympl canvas) each change is rendered by blitting
 (:class:`gm_core.drawing.blit.Blitter`): only the artists the update changed are redrawn over a
-cached background. A panel that must not be blitted sets ``blit = False``.
+cached background; after the last change of a burst a key frame
+(:class:`gm_core.drawing.blit.KeyFrames`) sends the whole picture, so the browser always ends on
+the truth. A panel that must not be blitted sets ``blit = False``. :attr:`Panel.widget` lays the
+controls out for a 1366 x 768 laptop: labels above their controls, beside the figure when both
+fit, else in rows above it.
 """
 from __future__ import annotations
 

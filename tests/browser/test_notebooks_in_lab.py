@@ -1,17 +1,18 @@
-"""Every interactive chapter notebook, opened in a real JupyterLab in headless Chromium.
+"""Every interactive chapter notebook, opened in a real JupyterLab in headless Chromium, used as a
+student uses it (issue 19): 1366 x 768 window, file browser open.
 
 For each ``book/*.ipynb`` containing ``%matplotlib widget`` (found when pytest collects, so new
-chapters are covered automatically): wait for an idle kernel, Run All, check that every code cell
-ran and that no output shows a traceback or "Error displaying widget", then move the first slider
-of the first interactive panel with the keyboard and check that the ipympl canvas pixels changed.
+chapters are covered automatically), opened and run once: Run All, every code cell ran, no output
+shows a traceback or "Error displaying widget"; then on that one page (tests/browser/labview.py,
+tests/browser/student.py): layout and panel state against a cell-by-cell run (run in a helper
+process while JupyterLab runs the notebook), slider tracks >= 150 px, nothing cut, every panel
+with its controls on one screen, ▶ plays every animation, the first slider of every panel
+dragged quickly ends on the same picture as a slow drag to the same value, and no page error,
+failed request or request off the machine.
 
-``test_detector_*`` keeps the proof that the check can fail inside the suite: a generated notebook
-has a working panel and one whose ``update`` does nothing; the same helper must say "changed" for
-the first and "did not change" for the second.
-
-The same test checks what the student sees after Run All (tests/browser/labview.py): the layout
-at a 1366 x 768 window with the file browser open and the panels' state against a cell-by-cell
-run; test_student_view.py covers the other notebooks with figures and the quiet start.
+``test_detector_*`` and ``test_student_checks_can_fail`` keep the proof that the checks can fail
+inside the suite: generated notebooks with a working and a dead panel, and with a panel that
+loses difference frames with and without key frames, a squeezed slider and a too-tall panel.
 """
 from __future__ import annotations
 
