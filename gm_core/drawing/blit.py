@@ -30,6 +30,8 @@ from contextlib import contextmanager
 from matplotlib.axis import Axis
 from matplotlib.legend import Legend
 from matplotlib.spines import Spine
+from matplotlib.text import Text
+from matplotlib.transforms import Bbox
 
 __all__ = ["Blitter", "KeyFrames", "can_blit", "sends_differences"]
 
@@ -45,6 +47,20 @@ def sends_differences(fig) -> bool:
     from matplotlib.backends.backend_webagg_core import FigureCanvasWebAggCore
 
     return isinstance(fig.canvas, FigureCanvasWebAggCore)
+
+
+def _overlap(a, b) -> bool:
+    """True if two display boxes share an area (touching edges or empty boxes do not count)."""
+    i = Bbox.intersection(a, b)
+    return i is not None and i.width > 0 and i.height > 0
+
+
+def _no_view_yet(canvas) -> bool:
+    """True while an ipympl canvas has no initialised browser view (``syncing_data_url``): a
+    picture sent then only replaces the canvas' ``_data_url`` (without its ``data:`` prefix, so
+    the browser's image breaks). Until the view asks for its first picture, only draw requests
+    (``draw_idle``, answered by the browser) are made."""
+    return bool(getattr(canvas, "syncing_data_url", False))
 
 
 def _view(ax):
@@ -118,6 +134,7 @@ class Blitter:
                 return None
 
         out, moving = [], [a for a in self.dynamic if a.figure is not None]
+        leaves = [a for a in leaves if not (isinstance(a, Text) and not a.get_text().strip())]
         boxes = {id(a): extent(a) for a in moving}
         changed = True
         while changed:
@@ -129,7 +146,7 @@ class Blitter:
                     if d.axes is not s.axes or order.get(id(s), (0, 0)) <= order.get(id(d), (0, 0)):
                         continue
                     bs, bd = extent(s), boxes.get(id(d))
-                    if bs is None or bd is None or bs.overlaps(bd):
+                    if bs is None or bd is None or _overlap(bs, bd):
                         out.append(s)
                         moving.append(s)
                         boxes[id(s)] = bs
@@ -164,8 +181,9 @@ class Blitter:
 
     def refresh(self):
         new = [a for a in _leaf_artists(self.fig) if a.stale and id(a) not in self._ids]
-        if self._background is None:
-            # No background yet (never drawn): everything is new, nothing is known to move.
+        if self._background is None or _no_view_yet(self.canvas):
+            # No background yet (never drawn): everything is new, nothing is known to move. (Or
+            # no browser view yet: only the browser's own draw request may send a picture.)
             self._full_draw()
             return
         if new or self._view_limits() != self._limits:
@@ -226,6 +244,8 @@ class KeyFrames:
     def send(self):
         """Draw the figure in full now and send it whole (not as a difference)."""
         canvas = self.canvas
+        if _no_view_yet(canvas):
+            return   # no browser shows the figure yet: it asks for its first (whole) picture itself
         self._sending = True
         try:
             # webagg's "refresh" marks the next picture as a full one; it also asks the browser

@@ -334,7 +334,7 @@ def _labelled(control, width):
     control.layout.width = f"{width}px"
     if isinstance(control, W.ToggleButtons):
         control.layout.width = "auto"
-        control.layout.max_width = f"{width + 300}px"
+        control.layout.max_width = "100%"
     if not text:
         return control
     control.description = ""
@@ -343,7 +343,9 @@ def _labelled(control, width):
                    f'padding-top: 2px">{escape(text)}</div>',
                    layout=W.Layout(width=f"{width}px", margin="2px 0 0 2px"))
     label.add_class("gm-control-label-box")
-    return W.VBox([label, control], layout=W.Layout(width=f"{width + 8}px", overflow="visible"))
+    # toggle buttons keep their row (as wide as they need); everything else fits the column
+    box_width = "auto" if isinstance(control, W.ToggleButtons) else f"{width + 8}px"
+    return W.VBox([label, control], layout=W.Layout(width=box_width, overflow="visible"))
 
 
 def int_slider(value, lo, hi, description=""):
