@@ -10,6 +10,9 @@ LAB_ARGS ?=
 # Jupyter refuses to start as root unless told; only then (containers, CI) is the flag added.
 ROOT_FLAG := $(if $(filter 0,$(shell id -u)),--ServerApp.allow_root=True,)
 PYTEST_ARGS ?=
+# make test runs on this many pytest-xdist workers (a notebook's cells and the tests reading its
+# record stay on one worker: tests/nbrun.py); TEST_WORKERS=0 runs in one process.
+TEST_WORKERS ?= 2
 
 .PHONY: setup lab lab-settings test exercises workspace bench screenshots clean help
 
@@ -45,7 +48,7 @@ lab: setup workspace lab-settings
 	$(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir="$(CURDIR)" $(ROOT_FLAG) $(LAB_ARGS) book/00-start-here.ipynb
 
 test: setup
-	$(PY) -m pytest $(PYTEST_ARGS)
+	$(PY) -m pytest -n $(TEST_WORKERS) $(PYTEST_ARGS)
 
 exercises: setup
 	$(PY) tools/make_exercises.py

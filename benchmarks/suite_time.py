@@ -1,98 +1,151 @@
-"""How long does `make test` take, phase by phase? (goal: the whole course in <= 180 s after set-up)
+"""How long does `make test` take, and where does the time go? (goal: <= 300 s after set-up)
 
-`make test` is one `pytest` run over tests/, book/, exercises/ and solutions/ (see pyproject.toml).
-This script runs the same tests as separate pytest subprocesses, one per phase, one after the
-other (never in parallel: the machine is shared), and prints the wall time and the pytest
-summary of each:
+`make test` is one pytest run over tests/, book/, exercises/ and solutions/ on pytest-xdist
+workers (Makefile: TEST_WORKERS, default 2). Every notebook is executed once, by nbval; the tests
+that look at a notebook (figure standard, exercises, quiet outputs) read the record of that
+execution (tests/nbrun.py). Each run leaves its record in build/nbrun/run-*/: seconds and tests
+per test file (by-file.json), per scheduling group (durations.json) and one line per execution
+of a notebook (executions.jsonl). This script times one `make test` (set-up first, not counted)
+and prints the table by test group from that record:
 
-    set-up      make setup (nothing to do when .venv is up to date; not counted in the total)
-    unit        pytest tests -m "not browser"
-    notebooks   pytest book exercises solutions          (nbval runs every notebook)
-    browser     pytest tests/browser -m browser          (JupyterLab + headless Chromium)
+    .venv/bin/python benchmarks/suite_time.py               # make test, then the table
+    .venv/bin/python benchmarks/suite_time.py --last        # the table of the latest run only
+    .venv/bin/python benchmarks/suite_time.py --args "-m 'not browser'"   # PYTEST_ARGS
 
-    .venv/bin/python benchmarks/suite_time.py             # all phases
-    .venv/bin/python benchmarks/suite_time.py unit browser
-    .venv/bin/python benchmarks/suite_time.py --make      # also time one real `make test`
-
-The phases' sum is close to one `make test` but not equal: each phase starts pytest and imports
-its plugins once more, while `make test` shares one collection (use --make to see both).
+"seconds" are summed over the workers (setup + call + teardown of every test in the group); with
+two workers the wall time is about half their sum when the groups balance. Figure checks run in
+nbval's kernels now, so they count in the "nbval ..." rows; the readers' rows are near zero.
 """
 from __future__ import annotations
 
 import argparse
+import json
 import os
-import re
+import resource
+import shlex
 import subprocess
 import sys
 import time
+from collections import Counter
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-PY = sys.executable
-GOAL_S = 180.0
+RUNS = ROOT / "build" / "nbrun"
+GOAL_S = 300.0
 
-PHASES = {
-    "unit": [PY, "-m", "pytest", "tests", "-m", "not browser", "-q"],
-    "notebooks": [PY, "-m", "pytest", "book", "exercises", "solutions", "-q"],
-    # tests/browser only: collecting all of tests/ again would count the unit tests' import time twice
-    "browser": [PY, "-m", "pytest", "tests/browser", "-m", "browser", "-q"],
-}
-SUMMARY = re.compile(r"^=*\s*((?:\d+ \w+(?:, )?)+) in [\d.]+s", re.M)
-COUNTS = re.compile(r"(\d+) (passed|failed|errors?|skipped|deselected|xfailed|xpassed|warnings?)")
+#: rows of the table: a name and what belongs to it (first match wins, by file category)
+GROUPS = [
+    ("notebooks: book (nbval + figure checks)", lambda c: c == "nbval book"),
+    ("notebooks: exercises (nbval + checks)", lambda c: c == "nbval exercises"),
+    ("notebooks: solutions (nbval + checks)", lambda c: c == "nbval solutions"),
+    ("readers of the record", lambda c: c in ("tests/test_figure_standard.py", "tests/test_exercises.py",
+                                              "tests/test_notebook_outputs.py")),
+    ("browser (JupyterLab + Chromium)", lambda c: c == "browser" or c.startswith("tests/browser/")),
+    ("grader (tests/test_grade.py)", lambda c: c == "tests/test_grade.py"),
+    ("fuzz", lambda c: "fuzz" in c),
+    ("blitting (tests/test_blit.py)", lambda c: c == "tests/test_blit.py"),
+    ("checkers (tests/test_checks*.py)", lambda c: c.startswith("tests/test_checks")),
+    ("widgets (tests/test_widgets*, geometry_widgets)", lambda c: "widgets" in c),
+    ("other unit tests", lambda c: True),
+]
 
 
-def run(cmd, log):
-    t0 = time.monotonic()
-    p = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                       env={**os.environ, "PYTHONDONTWRITEBYTECODE": "1"})
-    dt = time.monotonic() - t0
-    log.write(f"$ {' '.join(cmd)}\n{p.stdout}\n")
-    m = SUMMARY.findall(p.stdout)
-    summary = m[-1] if m else (p.stdout.strip().splitlines() or ["(no output)"])[-1][:60]
-    counts = {k.rstrip("s") if k.startswith(("error", "warning")) else k: int(n) for n, k in COUNTS.findall(summary)}
-    return dt, p.returncode, summary, counts
+def latest_run() -> Path | None:
+    runs = sorted(p for p in RUNS.glob("run-*") if (p / "by-file.json").exists())
+    return runs[-1] if runs else None
+
+
+def table(run: Path, wall: float | None = None, rc: int | None = None, cpu_all: float | None = None) -> str:
+    by_file = json.loads((run / "by-file.json").read_text(encoding="utf-8"))
+    rows = {name: {"tests": 0, "failed": 0, "seconds": 0.0, "files": 0} for name, _ in GROUPS}
+    for cat, v in by_file.items():
+        name = next(n for n, match in GROUPS if match(cat))
+        r = rows[name]
+        r["tests"] += v["tests"]
+        r["failed"] += v["failed"]
+        r["seconds"] += v["seconds"]
+        r["files"] += 1
+    lines = [f"`make test` by test group (run {run.name})", ""]
+    hdr = f"{'group':<48} {'tests':>6} {'failed':>6} {'seconds':>8}"
+    lines += [hdr, "-" * len(hdr)]
+    for name, _ in GROUPS:
+        r = rows[name]
+        if r["tests"] or r["seconds"]:
+            lines.append(f"{name:<48} {r['tests']:>6} {r['failed']:>6} {r['seconds']:>8.1f}")
+    total = sum(r["seconds"] for r in rows.values())
+    lines += ["-" * len(hdr), f"{'sum over all tests (all workers)':<48} {sum(r['tests'] for r in rows.values()):>6} "
+              f"{sum(r['failed'] for r in rows.values()):>6} {total:>8.1f}"]
+    if wall is not None:
+        verdict = "within" if wall <= GOAL_S else "OVER"
+        lines.append(f"{'wall time of make test (after set-up)':<48} {'':>6} {'':>6} {wall:>8.1f}  "
+                     f"(goal <= {GOAL_S:.0f} s: {verdict}; exit code {rc})")
+    cpu = {}
+    for f in run.glob("*.json"):
+        if f.name.endswith(".kernel.json") or f.name in ("by-file.json", "durations.json", "groups.json"):
+            continue
+        try:
+            rec = json.loads(f.read_text(encoding="utf-8"))
+        except ValueError:
+            continue
+        if isinstance(rec, dict) and "cpu_seconds" in rec:
+            top = rec["path"].split("/")[0]
+            cpu[top] = cpu.get(top, 0.0) + rec["cpu_seconds"]
+    if cpu:
+        lines.append("CPU seconds in nbval's kernels (cells + figure checks): "
+                     + ", ".join(f"{k} {v:.1f}" for k, v in sorted(cpu.items())))
+    if cpu_all is not None:
+        lines.append(f"CPU seconds of every process of make test: {cpu_all:.1f} "
+                     f"(on 2 quiet cores the wall time is at least {cpu_all / 2:.0f} s)")
+    ex = run / "executions.jsonl"
+    counts = Counter()
+    hosts = Counter()
+    if ex.exists():
+        for line in ex.read_text(encoding="utf-8").splitlines():
+            e = json.loads(line)
+            if "/selfcheck/" in e["path"]:
+                continue   # the generated notebooks of the self-checks
+            counts[e["path"]] += 1
+            hosts[e["host"]] += 1
+    if counts:
+        most = max(counts.values())
+        lines += ["", f"notebook executions: {sum(counts.values())} of {len(counts)} notebooks "
+                  f"({', '.join(f'{h} {n}' for h, n in sorted(hosts.items()))}); "
+                  f"most executions of one notebook: {most}"
+                  + ("" if most == 1 else " (" + ", ".join(p for p, n in counts.items() if n == most) + ")"),
+                  "(not counted: JupyterLab Run All in the browser tests, and the grader's fresh kernels)"]
+    return "\n".join(lines)
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("phases", nargs="*", metavar="phase",
-                    help=f"phases to time, any of {', '.join(PHASES)} (default: all)")
-    ap.add_argument("--make", action="store_true", help="also time one full `make test` at the end")
+    ap.add_argument("--last", action="store_true", help="print the table of the latest run, run nothing")
+    ap.add_argument("--args", default="", help="PYTEST_ARGS for make test (e.g. \"-m 'not browser'\")")
     ap.add_argument("--log", default=str(ROOT / "benchmarks" / "results" / "suite_time.log"),
-                    help="where the pytest output goes (default benchmarks/results/, git-ignored)")
+                    help="where make's output goes (default benchmarks/results/, git-ignored)")
     args = ap.parse_args(argv)
-    phases = args.phases or list(PHASES)
-    unknown = [p for p in phases if p not in PHASES]
-    if unknown:
-        ap.error(f"unknown phase(s) {unknown}; choose from {list(PHASES)}")
+    if args.last:
+        run = latest_run()
+        if run is None:
+            ap.error("no run recorded in build/nbrun/ yet")
+        print(table(run))
+        return 0
     Path(args.log).parent.mkdir(parents=True, exist_ok=True)
-    rows = []
+    env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
     with open(args.log, "w") as log:
-        dt, rc, _, _ = run(["make", "setup"], log)
-        rows.append(("set-up", "make setup", dt, rc, "(not counted)", {}))
-        for name in phases:
-            print(f"  running {name} ...", file=sys.stderr, flush=True)
-            dt, rc, summary, counts = run(PHASES[name], log)
-            rows.append((name, " ".join(c if c != PY else "python" for c in PHASES[name]), dt, rc, summary, counts))
-        if args.make:
-            print("  running make test ...", file=sys.stderr, flush=True)
-            dt, rc, summary, counts = run(["make", "test"], log)
-            rows.append(("make test", "make test (one pytest run)", dt, rc, summary, counts))
-
-    print(f"\n`make test` by phase (sequential pytest runs; output in {args.log})\n")
-    hdr = f"{'phase':<10} {'wall s':>7}  {'rc':>2}  {'summary':<44} command"
-    print(hdr)
-    print("-" * (len(hdr) + 30))
-    for name, cmd, dt, rc, summary, _ in rows:
-        print(f"{name:<10} {dt:>7.1f}  {rc:>2}  {summary[:44]:<44} {cmd}")
-    total = sum(dt for name, _, dt, _, _, _ in rows if name in PHASES)
-    print("-" * (len(hdr) + 30))
-    verdict = "within" if total <= GOAL_S else "OVER"
-    print(f"{'total':<10} {total:>7.1f}  (phases {', '.join(phases)}; goal <= {GOAL_S:.0f} s after set-up: {verdict})")
-    failed = [name for name, _, _, rc, _, _ in rows if rc not in (0, 5)]  # 5 = no tests collected
-    if failed:
-        print(f"failing phases: {', '.join(failed)}")
-    return 1 if failed else 0
+        subprocess.run(["make", "setup"], cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
+        before = latest_run()
+        print("  running make test ...", file=sys.stderr, flush=True)
+        t0, r0 = time.monotonic(), resource.getrusage(resource.RUSAGE_CHILDREN)
+        cmd = ["make", "test"] + ([f"PYTEST_ARGS={args.args}"] if args.args else [])
+        p = subprocess.run(cmd, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
+        wall, r1 = time.monotonic() - t0, resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu_all = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+    run = latest_run()
+    if run is None or run == before:
+        print(f"make test left no record in build/nbrun/ (exit code {p.returncode}); see {args.log}")
+        return 1
+    print(f"\n{table(run, wall, p.returncode, cpu_all)}\n\n(pytest output in {args.log}; command: {shlex.join(cmd)})")
+    return 0 if p.returncode == 0 else 1
 
 
 if __name__ == "__main__":

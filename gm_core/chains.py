@@ -10,6 +10,10 @@ proximal frame of a rotary link ``g``; here it is always ``f`` (see the "Frame n
 section 2.2). For a prismatic joint the proximal frame of the sliding link sits at the joint
 displacement delta from the joint, which is the book's ``g_2`` of (2.10).
 
+For revolute chains of any length, :func:`link_chain_poses` and :func:`link_chain_jacobians` give
+the link-centre poses and body Jacobians in closed form, vectorized over many shapes (the
+locomotors of :class:`gm_core.systems.LinkChain`; tests check them against :class:`MobileChain`).
+
 Jacobians are computed three independent ways (section 2.5), which agree to rounding:
 
 ``"direct"``  exact product-rule differentiation of the homogeneous-matrix product, (2.16)-(2.20);
@@ -34,7 +38,8 @@ from ._validate import as_array, check_lengths, positive_number
 from .groups import SE2, matvec
 
 __all__ = ["Joint", "Link", "Chain", "MobileChain", "METHODS", "world_to_body_jacobian",
-           "finite_difference_jacobians", "relative_pose", "transported_columns"]
+           "finite_difference_jacobians", "relative_pose", "transported_columns", "link_chain_poses",
+           "link_chain_jacobians"]
 
 METHODS = ("direct", "world", "body")
 
@@ -469,3 +474,70 @@ def __getattr__(name):
                       FutureWarning, stacklevel=2)
         return getattr(importlib.import_module(home), name)
     raise AttributeError(f"module 'gm_core.chains' has no attribute {name!r}")
+
+
+# ------------------------------------------------------------------ chains of any length
+def _chain_args(alpha, lengths):
+    if isinstance(lengths, (str, bytes)) or np.ndim(lengths) != 1 or len(lengths) < 2:
+        raise ValueError(f"lengths must be a sequence of N >= 2 positive link lengths; got {lengths!r}")
+    L = check_lengths(lengths, len(lengths))
+    alpha = as_array(alpha, "alpha", (L.size - 1,), what=f" (the {L.size - 1} joint angles of a {L.size}-link chain)")
+    return alpha, L
+
+
+def link_chain_poses(alpha, lengths):
+    """Link-centre poses ``(..., N, 3)`` of an N-link chain in link 1's centre frame and their body Jacobians.
+
+    The chain of fig. 2.8 with any number of links: link i + 1 is turned by alpha_i relative to
+    link i (chapter 2's convention), each link frame sits at its centre with x along the link
+    towards link N. Returns ``(P, B)``: ``P (..., N, 3)`` the poses relative to link 1 and
+    ``B (..., N, 3, N - 1)`` the body-velocity Jacobians of those relative poses,
+    ``P_i^-1 dP_i = B_i dalpha`` (link 1 held still). A joint j turns every link beyond it about
+    the joint: ``d p_i / d alpha_j = perp(p_i - q_j)`` for i > j, ``d theta_i / d alpha_j = 1``.
+    """
+    alpha, L = _chain_args(alpha, lengths)
+    N, n = L.size, L.size - 1
+    batch = alpha.shape[:-1]
+    th = np.concatenate([np.zeros(batch + (1,)), np.cumsum(alpha, axis=-1)], -1)       # (..., N)
+    c, s = np.cos(th), np.sin(th)
+    half = L / 2
+    # joint j (between links j and j + 1) and link centres, all in link 1's frame
+    step_x, step_y = half * c, half * s
+    qx = np.cumsum(2 * step_x, axis=-1)[..., :n] - step_x[..., :1]
+    qy = np.cumsum(2 * step_y, axis=-1)[..., :n] - step_y[..., :1]
+    px = np.concatenate([np.zeros(batch + (1,)), qx + step_x[..., 1:]], -1)
+    py = np.concatenate([np.zeros(batch + (1,)), qy + step_y[..., 1:]], -1)
+    P = np.stack([px, py, th], -1)
+    beyond = (np.arange(N)[:, None] > np.arange(n)[None, :]).astype(float)             # (N, n): i > j
+    dx = -(py[..., :, None] - qy[..., None, :]) * beyond                              # d p_x,i / d alpha_j
+    dy = (px[..., :, None] - qx[..., None, :]) * beyond
+    B = np.empty(batch + (N, 3, n))
+    B[..., 0, :] = c[..., None] * dx + s[..., None] * dy                              # R(-theta_i) dp
+    B[..., 1, :] = -s[..., None] * dx + c[..., None] * dy
+    B[..., 2, :] = beyond
+    return P, B
+
+
+def link_chain_jacobians(P, B, beta, B_beta):
+    """Link Jacobians ``(..., N, 3, 3 + n)`` mapping (xi, alpha_dot) to each link's body velocity.
+
+    ``P, B`` from :func:`link_chain_poses`; the body frame sits at ``beta (..., 3)`` relative to
+    link 1 with body-velocity Jacobian ``B_beta (..., 3, n)``. With Q_i = beta^-1 P_i (link i in
+    the body frame), ``xi_i = Ad_{Q_i^-1} xi + (B_i - Ad_{P_i^-1} Ad_beta B_beta) alpha_dot``
+    (body velocities of products and inverses, section 1.5; (2.68) for any number of links).
+    Returns ``(Q (..., N, 3), J (..., N, 3, 3 + n))``.
+    """
+    Q = SE2.compose(SE2.inverse(beta[..., None, :]), P)
+    n = B.shape[-1]
+    x, y = Q[..., 0], Q[..., 1]
+    c, sn = np.cos(Q[..., 2]), np.sin(Q[..., 2])
+    e1, e2 = sn * x - c * y, c * x + sn * y           # Ad_{Q^-1} = [[c, s, e1], [-s, c, e2], [0, 0, 1]]
+    J = np.empty(Q.shape[:-1] + (3, 3 + n))
+    J[..., 0, 0], J[..., 0, 1], J[..., 0, 2] = c, sn, e1
+    J[..., 1, 0], J[..., 1, 1], J[..., 1, 2] = -sn, c, e2
+    J[..., 2, 0], J[..., 2, 1], J[..., 2, 2] = 0.0, 0.0, 1.0
+    bx, by, bt = (B_beta[..., None, k, :] for k in range(3))  # Ad_{P_i^-1} Ad_beta = Ad_{Q_i^-1}
+    J[..., 0, 3:] = B[..., 0, :] - (c[..., None] * bx + sn[..., None] * by + e1[..., None] * bt)
+    J[..., 1, 3:] = B[..., 1, :] - (-sn[..., None] * bx + c[..., None] * by + e2[..., None] * bt)
+    J[..., 2, 3:] = B[..., 2, :] - bt
+    return Q, J

@@ -15,7 +15,7 @@ import numpy as np
 from ._validate import as_array, check_int
 
 __all__ = ["SINGULAR_TOL", "pfaffian_determinant", "connection_from_pfaffian", "metric_from_jacobians",
-           "connection_from_mass_matrix"]
+           "connection_from_mass_matrix", "shape_space_metric"]
 
 #: A Pfaffian whose body block has |det| below this fraction of its Hadamard bound is singular.
 SINGULAR_TOL = 1e-12
@@ -153,3 +153,17 @@ def connection_from_mass_matrix(M, *, n_position=3):
     if M.ndim < 2 or M.shape[-1] != M.shape[-2] or M.shape[-1] <= n_position:
         raise ValueError(f"M must be a square (..., 3 + n, 3 + n) mass matrix; got shape {M.shape}")
     return connection_from_pfaffian(M[..., :n_position, :], n_position=n_position)
+
+
+def shape_space_metric(D, A):
+    """Cost metric on shape space ``M = [-A; I]^T D [-A; I]`` (..., n, n), symmetrised.
+
+    ``D`` (..., 3 + n, 3 + n) is a drag or mass matrix on the full velocity (xi, r_dot) and ``A``
+    (..., 3, n) the connection in the same body frame; substituting xi = -A r_dot (3.10) gives the
+    power dissipated (low Re) or twice the kinetic energy (floating, high Re) as r_dot^T M r_dot
+    (the metric of Hatton and co-workers). It does not depend on the choice of body frame.
+    """
+    n = A.shape[-1]
+    P = np.concatenate([-A, np.broadcast_to(np.eye(n), A.shape[:-2] + (n, n))], axis=-2)
+    M = np.swapaxes(P, -1, -2) @ D @ P
+    return (M + np.swapaxes(M, -1, -2)) / 2

@@ -4,7 +4,9 @@ A symmetric linear-kinematic locomotor moves with body velocity ``xi = -A(r) r_d
 where ``A`` is the *local connection*. This module holds the parts shared by every system in
 :mod:`gm_core.systems` (which import it; it never imports them):
 
-* :func:`body_velocity`, :func:`connection_curl`;
+* :func:`check_system` (the one validator of systems), :func:`body_velocity`;
+* :func:`fd_connection_derivative`, :func:`curvature_form`, :func:`connection_curl`: the connection's
+  derivative (one difference routine), its curvature 2-form and curl;
 * :func:`check_gait`: does a gait meet a singular shape?
 * :func:`net_displacement`, :func:`trajectory`: reconstruction of the position trajectory by
   integrating ``g_dot = T_e L_g xi`` with a fourth-order Magnus (Lie-group) integrator built on
@@ -39,7 +41,8 @@ from .gaits import (
 from .groups import SE2, matvec
 
 __all__ = [
-    "body_velocity", "connection_curl", "check_gait", "net_displacement", "trajectory", "displacement_until",
+    "body_velocity", "connection_curl", "check_system", "fd_connection_derivative", "curvature_form",
+    "exterior_derivative", "FD_STEP", "check_gait", "net_displacement", "trajectory", "displacement_until",
     "Trajectory", "drive", "AccuracyWarning",
 ]
 
@@ -48,24 +51,31 @@ class AccuracyWarning(UserWarning):
     """A result was returned without meeting its requested tolerance; the message gives the estimate."""
 
 
-def _check_system(system):
-    """n_shape of ``system`` after checking it looks like a locomotion system (TypeError naming it)."""
+def check_system(system, name="system"):
+    """n_shape of ``system`` after checking it looks like a locomotion system (TypeError naming ``name``).
+
+    The one validator of systems: an object with an integer ``n_shape`` >= 1 and a callable
+    ``connection(r)`` (every :class:`gm_core.systems.LocomotionSystem`, or any object shaped
+    like one); one that ``may_be_singular`` must also have ``singularity(r)``.
+    """
     n = getattr(system, "n_shape", None)
     if (isinstance(system, (str, bytes, type)) or not isinstance(n, numbers.Integral) or isinstance(n, bool)
             or n < 1 or not callable(getattr(system, "connection", None))):
-        raise TypeError(f"system must be a locomotion system (e.g. gm_core.systems.KinematicSnake()) with "
+        raise TypeError(f"{name} must be a locomotion system (e.g. gm_core.systems.KinematicSnake()) with "
                         f"n_shape and connection(r); got {system!r:.80}")
     if getattr(system, "may_be_singular", False) and not callable(getattr(system, "singularity", None)):
-        raise TypeError(f"system {system!r:.60} may be singular but has no singularity(r) method")
+        raise TypeError(f"{name} {system!r:.60} may be singular but has no singularity(r) method")
     return int(n)
 
 
+
+
 # ---------------------------------------------------------------------------------------------
-# Body velocity and the connection's curl
+# Body velocity, the connection's derivative, curl and curvature
 # ---------------------------------------------------------------------------------------------
 def body_velocity(system, r, r_dot):
     """Body velocity ``xi = -A(r) r_dot`` (..., 3) of ``system`` at shape r moving at r_dot, (3.10)."""
-    n = _check_system(system)
+    n = check_system(system)
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     r_dot = as_array(r_dot, "r_dot", (n,), what=f" (a shape velocity of {system.name})")
     try:
@@ -80,22 +90,71 @@ def body_velocity(system, r, r_dot):
     return -matvec(A, r_dot)
 
 
-def connection_curl(system, r, h=1e-5):
-    """Scalar curl (..., 3) of each connection row over a 2-D shape space, by central differences.
+#: Relative central-difference step for connection derivatives (about eps**(1/3)).
+FD_STEP = 6e-6
 
-    For row i, ``d A_i2 / d alpha1 - d A_i1 / d alpha2``. It vanishes where the row is locally
-    the gradient of a function of shape (an exact one-form, box on one-forms (3.xvii)); only then
-    does a global contour plot of that row make sense.
+
+def fd_connection_derivative(system, r, step=FD_STEP):
+    """``(A (..., 3, n), dA (..., 3, n, n))`` by central differences, ``dA[..., i, j, k] = d A_ij / d r_k``.
+
+    The one difference route to the connection's derivative (systems without a closed form use
+    it through :meth:`LocomotionSystem.connection_derivative`). The step is ``step`` relative to
+    ``max(1, |r|)``; A itself is the mean of the stencil values (error O(h^2), about 1e-11), all
+    2n stencil points in one batched call.
     """
-    if _check_system(system) != 2:
+    n = check_system(system)
+    r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
+    step = positive_number(step, "h")
+    h = step * np.maximum(1.0, np.abs(r))
+    offsets = np.zeros((2 * n,) + r.shape)
+    for k in range(n):
+        offsets[2 * k, ..., k] = h[..., k]
+        offsets[2 * k + 1, ..., k] = -h[..., k]
+    vals = system.connection(r[None] + offsets)  # (2n, ..., 3, n)
+    dA = np.stack([(vals[2 * k] - vals[2 * k + 1]) / (2 * h[..., k, None, None]) for k in range(n)], -1)
+    return vals.mean(axis=0), dA
+
+
+def exterior_derivative(dA):
+    """``dA_j/dr_i - dA_i/dr_j`` (..., 3, n, n) from dA (..., 3, n, n) (index order of :func:`fd_connection_derivative`)."""
+    return np.swapaxes(dA, -1, -2) - dA
+
+
+def curvature_form(A, dA):
+    """Constraint curvature 2-form D(-A) (..., 3, n, n) from A (..., 3, n) and its derivative dA (..., 3, n, n).
+
+    ``F[..., :, i, j] = -(d_i A_j - d_j A_i) + [A_i, A_j]`` (Hatton & Choset 2015, with the book's
+    sign xi = -A r_dot), antisymmetric in (i, j): one se(2) component per pair of shape
+    directions. NaN where A or dA is not finite.
+    """
+    ext = exterior_derivative(dA)
+    ok = np.isfinite(A).all(axis=(-1, -2)) & np.isfinite(ext).all(axis=(-1, -2, -3))
+    if not ok.all():  # singular shapes: NaN out, and keep NaN away from the bracket's input check
+        A = np.where(ok[..., None, None], A, 0.0)
+        ext = np.where(ok[..., None, None, None], ext, np.nan)
+    X = np.moveaxis(A, -2, -1)                                      # (..., n, 3): the columns A_i
+    br = SE2.bracket(X[..., :, None, :], X[..., None, :, :])          # (..., n, n, 3)
+    return -ext + np.moveaxis(br, -1, -3)
+
+
+def connection_curl(system, r, h=None):
+    """Scalar curl (..., 3) of each connection row over a 2-D shape space.
+
+    For row i, ``d A_i2 / d alpha1 - d A_i1 / d alpha2``, from the system's
+    ``connection_derivative`` (closed form where there is one), or central differences with
+    relative step ``h`` if given. It vanishes where the row is locally the gradient of a
+    function of shape (an exact one-form, box on one-forms (3.xvii)); only then does a global
+    contour plot of that row make sense.
+    """
+    if check_system(system) != 2:
         raise ValueError(f"system must have a 2-D shape space for a scalar curl; {system.name} has "
                          f"{system.n_shape} shape variables")
     r = as_array(r, "r", (2,), what=" (a point of a 2-D shape space)")
-    h = positive_number(h, "h")
-    e1, e2 = np.array([h, 0.0]), np.array([0.0, h])
-    dA1 = (system.connection(r + e1) - system.connection(r - e1)) / (2 * h)
-    dA2 = (system.connection(r + e2) - system.connection(r - e2)) / (2 * h)
-    return dA1[..., :, 1] - dA2[..., :, 0]
+    if h is None and callable(getattr(system, "connection_derivative", None)):
+        dA = system.connection_derivative(r)[1]
+    else:
+        dA = fd_connection_derivative(system, r, FD_STEP if h is None else h)[1]
+    return exterior_derivative(dA)[..., 0, 1]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -112,7 +171,7 @@ _CHUNK = 8192
 
 
 def _check_shapes(system, gait):
-    n = _check_system(system)
+    n = check_system(system)
     if gait.n_shape != n:
         raise ValueError(f"gait has {gait.n_shape} shape variables but {system.name} has {n}")
 

@@ -160,11 +160,20 @@ def _draw(fig):
         by_gid[gid] = t
         t.set_gid(gid)
     renderer = _RecordingRenderer(int(round(w)), int(round(h)), fig.dpi, by_gid)
+    # A live panel blits: its moving artists are "animated", which a plain draw skips. They are
+    # measured too (as the student sees them), and the figure's own draw_event listeners (the
+    # blitter's background cache) are not told about this off-screen draw.
+    animated = fig.findobj(lambda a: a.get_animated())
+    for a in animated:
+        a.set_animated(False)
     try:
-        fig.draw(renderer)
+        with fig.canvas.callbacks.blocked(signal="draw_event"):
+            fig.draw(renderer)
     finally:
         for t, gid in saved:
             t.set_gid(gid)
+        for a in animated:
+            a.set_animated(True)
     return renderer
 
 

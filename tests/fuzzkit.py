@@ -12,8 +12,11 @@ replaces one argument at a time with a bad or unusual value and checks the outco
 Anything else (an ``IndexError``, a ``RuntimeWarning`` from an overflow, a ``ComplexWarning``, an
 error naming an internal variable, a silently accepted NaN or complex number) is a failure.
 
-Extending it to another module is a matter of adding rows to a table of ``Case`` objects and
-parametrizing a test over them with :func:`run_case` (see ``tests/test_fuzz_math.py``).
+Extending it to another module is a matter of adding rows to a table of ``Case`` objects (see
+``tests/test_fuzz_math.py``). The tests run the table in :func:`chunks` of cases, one pytest item
+per chunk: :func:`check_each` runs a check on every case of its chunk (every case runs, even after
+one fails, and the failure names each failing case); :func:`fuzz_each` gives every case its own
+hypothesis search (the same examples as one test per case).
 """
 from __future__ import annotations
 
@@ -26,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 from hypothesis import strategies as st
 
-__all__ = ["Case", "run_case", "baseline", "mutations", "outcome"]
+__all__ = ["Case", "run_case", "baseline", "mutations", "outcome", "chunks", "check_each", "fuzz_each"]
 
 
 @dataclass
@@ -288,3 +291,44 @@ def cases_table(*groups_of_cases):
     assert not dup, f"duplicate case names: {dup}"
     return out
 
+
+
+CHUNK = 20
+
+
+def chunks(cases, size: int = CHUNK):
+    """``pytest.param`` per run of ``size`` consecutive cases (id: first..last case name)."""
+    import pytest
+
+    out = []
+    for i in range(0, len(cases), size):
+        part = list(cases[i:i + size])
+        out.append(pytest.param(part, id=f"{part[0].name}..{part[-1].name}" if len(part) > 1 else part[0].name))
+    return out
+
+
+def check_each(cases, check):
+    """``check(case)`` for every case; then one failure listing every case that failed."""
+    failures = []
+    for case in cases:
+        try:
+            check(case)
+        except Exception as exc:  # noqa: BLE001 - collected, reported below
+            text = f"{type(exc).__name__}: {exc}"
+            failures.append(f"{case.name}: {text[:2000]}")
+    assert not failures, f"{len(failures)} of {len(cases)} cases failed:\n" + "\n".join(failures)
+
+
+def fuzz_each(cases, profile):
+    """A hypothesis search of ``profile``'s size over the mutations of each case, case by case."""
+    from hypothesis import given, settings
+
+    def one(case):
+        @settings(profile)
+        @given(data=st.data())
+        def bad_input(data):
+            run_case(case, data.draw(mutations(case)))
+
+        bad_input()
+
+    check_each(cases, one)

@@ -1,22 +1,19 @@
-"""Run a course notebook headlessly in this process and check every figure it makes (figstd).
+"""Run a course notebook headlessly in this process and check every figure it makes.
 
 :func:`run_notebook` executes the code cells of one notebook in a fresh IPython namespace with
 the Agg backend (the ``%matplotlib widget`` / ``%matplotlib inline`` lines are dropped: the
-figures are the same matplotlib figures, measured at their own size and dpi). After each cell,
-the figures it created are checked; at the end every figure still open is checked again in its
-final state (a later ``panel.set(...)`` may have moved a readout). Animations are caught where
-they become HTML: while the notebook runs, ``matplotlib.animation.Animation.save`` (behind both
-``to_jshtml`` and the course's ``jshtml``) first renders every frame through
-:class:`figstd.FrameChecker` (a movie writer, public API), then saves as asked. Much faster than a kernel per notebook: gm_core is imported once.
+figures are the same matplotlib figures, measured at their own size and dpi), watched by the same
+:class:`nbrecord.Recorder` that watches the nbval kernels of ``make test``: each figure after the
+cell that made it and in its final state, every frame of every animation shown through
+``to_jshtml``. This is the one in-process notebook runner; under ``make test`` the figure standard
+reads the record of nbval's execution instead (tests/nbrun.py), and a call with an ``epilogue``
+is answered from that record when the same run already holds it (no second execution).
 
-Used by tests/test_figure_standard.py and tools/screenshots.py (``visit`` callback).
+Used by tools/screenshots.py (``visit`` callback) and the browser tests' cell-by-cell reference.
 """
 from __future__ import annotations
 
-import contextlib
-import json
 import os
-import re
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -24,13 +21,12 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import figstd  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib import animation  # noqa: E402
+import nbrecord  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 COURSE_DIRS = ("book", "exercises", "solutions")
-_MAGIC = re.compile(r"^\s*%matplotlib\b.*$", re.M)
+shows_inline = nbrecord.shows_inline
 
 
 def course_notebooks(root: Path = ROOT) -> list[Path]:
@@ -48,55 +44,11 @@ class NotebookFigures:
     #: what ``epilogue`` printed (run after the last cell, see run_notebook)
     epilogue: str = ""
 
-    def add(self, messages):
-        for m in messages:
-            if m not in self.breaches:
-                self.breaches.append(m)
-
-
-def shows_inline(path: Path) -> bool:
-    """True when the notebook uses ``%matplotlib inline`` (figures shown as tight-cropped PNGs)."""
-    return any(re.search(r"^\s*%matplotlib\s+inline\b", src, re.M) for src in _sources(path))
-
-
-def _sources(path: Path):
-    nb = json.loads(path.read_text(encoding="utf-8"))
-    for cell in nb.get("cells", []):
-        if cell.get("cell_type") == "code":
-            src = cell.get("source", "")
-            yield "".join(src) if isinstance(src, list) else src
-
-
-def _code_cells(path: Path):
-    nb = json.loads(path.read_text(encoding="utf-8"))
-    k = 0
-    for cell in nb.get("cells", []):
-        if cell.get("cell_type") != "code":
-            continue
-        k += 1
-        src = cell.get("source", "")
-        src = "".join(src) if isinstance(src, list) else src
-        tags = cell.get("metadata", {}).get("tags", [])
-        yield k, _MAGIC.sub("pass", src), "raises-exception" in tags
-
-
-@contextlib.contextmanager
-def _catch_animations(on_animation):
-    """While active, every ``Animation.save`` (what ``to_jshtml`` and ``gm_core.drawing.primitives.jshtml``
-    render their frames with) first hands the animation to ``on_animation``; the checker's own
-    save (a ``figstd.FrameChecker`` writer) passes straight through."""
-    original = animation.Animation.save
-
-    def save(anim, filename, writer=None, *args, **kwargs):
-        if not isinstance(writer, figstd.FrameChecker):
-            on_animation(anim)
-        return original(anim, filename, writer, *args, **kwargs)
-
-    animation.Animation.save = save
-    try:
-        yield
-    finally:
-        animation.Animation.save = original
+    @classmethod
+    def from_record(cls, record: dict) -> NotebookFigures:
+        epi = record.get("epilogue") or {}
+        return cls(record["path"], list(record["breaches"]), list(record["errors"]), record["figures"],
+                   record["animations"], epi.get("stdout", ""))
 
 
 def _shell():
@@ -116,61 +68,30 @@ def run_notebook(path: Path, visit=None, root: Path = ROOT, epilogue: str | None
     compare the kernel state after Run All in JupyterLab with this cell-by-cell run)."""
     from IPython.utils.capture import capture_output
 
-    path = Path(path)
+    path = Path(path).resolve()
     rel = path.relative_to(root).as_posix() if path.is_relative_to(root) else path.name
-    res = NotebookFigures(rel)
-    tight = shows_inline(path)
+    if epilogue is not None and visit is None:
+        import nbrun
+
+        record = nbrun.recorded(path, epilogue=epilogue)
+        if record is not None:   # this run's nbval execution already ran the same epilogue
+            return NotebookFigures.from_record(record)
     plt.close("all")
     shell = _shell()
-    seen: dict[int, str] = {}  # figure number -> where it appeared
-    state = {"cell": 0}
-
-    def on_animation(anim):
-        res.animations += 1
-        where = f"{rel} In[{state['cell']}] animation"
-        checker = figstd.FrameChecker(where)
-        try:
-            anim.save("frames-not-written", writer=checker)
-        except Exception as e:  # noqa: BLE001 - report, never hide
-            res.errors.append(f"{where}: rendering its frames failed: {type(e).__name__}: {e}")
-            return
-        if checker.frames == 0:
-            res.breaches.append(f"{where}: the animation renders no frames")
-        res.add(checker.breaches)
-        if visit is not None:
-            visit(where, anim, "animation")
-
     cwd = os.getcwd()
     os.chdir(path.parent)
     workspace = os.environ.pop("GM_COURSE_WORKSPACE", None)  # checks keep progress in memory only
+    recorder = nbrecord.Recorder(shell, path, rel, "in-process", match_cells=False, visit=visit)
+    nbrecord.log_execution(rel, "in-process")
     try:
-        with _catch_animations(on_animation):
-            for k, src, may_raise in _code_cells(path):
-                state["cell"] = k
-                with capture_output(display=True):
-                    r = shell.run_cell(src, store_history=False, silent=False)
-                err = r.error_before_exec or r.error_in_exec
-                if err is not None and not may_raise:
-                    res.errors.append(f"{rel} In[{k}] raised {type(err).__name__}: {err}")
-                for num in plt.get_fignums():
-                    if num not in seen:
-                        seen[num] = f"{rel} In[{k}]"
-                        res.figures += 1
-                        res.add(figstd.check_figure(plt.figure(num), seen[num], tight=tight))
-        if epilogue is not None:
-            with capture_output() as cap:
-                r = shell.run_cell(epilogue, store_history=False)
-            err = r.error_before_exec or r.error_in_exec
-            if err is not None:
-                res.errors.append(f"{rel} epilogue raised {type(err).__name__}: {err}")
-            res.epilogue = cap.stdout
-        for num in plt.get_fignums():
-            fig = plt.figure(num)
-            where = seen.get(num, rel)
-            res.add(figstd.check_figure(fig, where, tight=tight))  # its final state (duplicates dropped)
-            if visit is not None:
-                visit(where, fig, "figure")
+        for k, src, _ in recorder.cells:
+            recorder.begin_cell(k)
+            with capture_output(display=True):
+                shell.run_cell(nbrecord.strip_magics(src), store_history=False, silent=False)
+        with capture_output(display=True):
+            record = recorder.finish(epilogue)
     finally:
+        recorder.uninstall()
         os.chdir(cwd)
         if workspace is not None:
             os.environ["GM_COURSE_WORKSPACE"] = workspace
@@ -179,4 +100,4 @@ def run_notebook(path: Path, visit=None, root: Path = ROOT, epilogue: str | None
         checks = sys.modules.get("gm_core.checks")
         if checks is not None and hasattr(checks, "reset_progress"):
             checks.reset_progress()  # the exercises' verdicts do not leak into later tests
-    return res
+    return NotebookFigures.from_record(record)

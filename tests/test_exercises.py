@@ -1,17 +1,16 @@
 """exercises/ is generated from solutions/ by tools/make_exercises.py and must stay in sync.
 
 Also: the generator's marker rules, its determinism, and that every untouched exercise notebook
-runs without error and leaves its exercise "unattempted" (nbval runs the notebooks too, but
-cannot look at progress())."""
-import contextlib
+runs without error and leaves its exercise "unattempted" (read from the record of nbval's one
+execution of the notebook, which includes progress() at its end: tests/nbrun.py)."""
 import importlib.util
-import io
 import re
 import subprocess
 import sys
 from pathlib import Path
 
 import nbformat
+import nbrun
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -129,35 +128,17 @@ def test_script_runs_from_the_command_line():
     assert res.returncode == 0, res.stdout + res.stderr
 
 
-def run_in_process(path):
-    """Execute a notebook's code cells in a fresh namespace (magics dropped); return the namespace."""
-    import matplotlib
-    matplotlib.use("Agg")
-    from IPython.display import display
-    ns = {"display": display, "__name__": "__main__"}
-    nb = nbformat.read(path, as_version=4)
-    with contextlib.redirect_stdout(io.StringIO()):
-        for i, cell in enumerate(nb.cells):
-            if cell.cell_type != "code":
-                continue
-            src = "\n".join(l for l in cell.source.splitlines() if not l.lstrip().startswith("%"))
-            exec(compile(src, f"{path.name}[{i}]", "exec"), ns)
-    return ns
-
-
-@pytest.mark.parametrize("path", EXERCISES, ids=lambda p: p.name)
-def test_untouched_exercise_runs_and_is_unattempted(path):
-    from gm_core.checks import progress, reset_progress
-    reset_progress()
-    try:
-        run_in_process(path)
-        status = progress()
-        assert status[ex_id(path)] == "unattempted", status
-        assert set(status.values()) == {"unattempted"}
-    finally:
-        reset_progress()
-        import matplotlib.pyplot as plt
-        plt.close("all")
+@pytest.mark.parametrize("path", nbrun.params(EXERCISES, id_of=lambda p: p.name))
+def test_untouched_exercise_runs_and_is_unattempted(path, notebook_record):
+    """From the record of nbval's one execution of the exercise notebook in this run (tests/nbrun.py):
+    every cell ran without raising, and progress() at the end calls every exercise unattempted."""
+    rec = notebook_record(path)
+    assert not rec["errors"], "the untouched exercise raised:\n  " + "\n  ".join(rec["errors"])
+    assert rec["complete"], f"{path.name}: its execution did not reach the end"
+    status = rec["progress"]
+    assert status is not None, f"{path.name} never imported gm_core.checks"
+    assert status[ex_id(path)] == "unattempted", status
+    assert set(status.values()) == {"unattempted"}
 
 
 @pytest.mark.parametrize("path", EXERCISES + SOLUTIONS, ids=lambda p: f"{p.parent.name}/{p.name}")

@@ -4,11 +4,14 @@
   figure, and passes a good one, so a green run means something.
 * ``test_panel_initial_state``: every registered Panel (gm_core.widgets.base.all_panels()) as it
   first appears.
-* ``test_notebook_figures``: every notebook of book/, exercises/ and solutions/ executed headlessly
-  (tests/nbfigures.py): each figure after the cell that made it and in its final state, and every
-  frame of every animation shown through ``to_jshtml``. One test per notebook, so a failure names
-  the notebook; each message names the cell (``In[k]``, as numbered by Run All), the figure
-  and the text. The notebooks run once per session (a session-scoped cache).
+* ``test_notebook_figures``: every notebook of book/, exercises/ and solutions/, from the record of
+  its one execution by nbval in this run (tests/nbrun.py, tests/nbrecord.py): each figure after the
+  cell that made it and in its final state, and every frame of every animation shown through
+  ``to_jshtml``, measured in nbval's kernel. One test per notebook, so a failure names the
+  notebook; each message names the cell (``In[k]``, as numbered by Run All), the figure and the
+  text. Run alone, this file has the notebooks executed by nbval first (one subprocess).
+* ``test_notebook_runner_catches_animation_frames`` / ``test_kernel_recorder_*``: the in-process
+  runner and nbval's kernel both see every frame of an animation, on a generated notebook.
 
 ``python tests/test_figure_standard.py`` writes the current list of breaches (build/breaches.txt, git-ignored).
 """
@@ -28,6 +31,7 @@ from matplotlib.animation import FuncAnimation  # noqa: E402
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import figstd  # noqa: E402
 import nbfigures  # noqa: E402
+import nbrun  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = nbfigures.course_notebooks()
@@ -221,30 +225,42 @@ def test_notebook_runner_catches_animation_frames(tmp_path):
         "t = ax.set_title('tiny', fontsize=5)\n"
         "anim = FuncAnimation(fig, lambda k: None, frames=3)\n"
         "html = anim.to_jshtml()\n"
-        "plt.close(fig)\n")]
+        "plt.close(fig)\n"),
+        # any other movie writer (the course's player keeps PNG frames through one) is seen too
+        nbformat.v4.new_code_cell(
+        "from matplotlib.animation import AbstractMovieWriter\n"
+        "class Keep(AbstractMovieWriter):\n"
+        "    def setup(self, fig, outfile, dpi=None):\n"
+        "        super().setup(fig, outfile, dpi=dpi)\n"
+        "    def grab_frame(self, **kw):\n"
+        "        pass\n"
+        "    def finish(self):\n"
+        "        pass\n"
+        "fig2, ax2 = plt.subplots(figsize=(4, 3))\n"
+        "ax2.set_xlabel('small', fontsize=6)\n"
+        "FuncAnimation(fig2, lambda k: None, frames=2).save('kept', writer=Keep(fps=5))\n"
+        "plt.close(fig2)\n")]
     path = tmp_path / "anim.ipynb"
     nbformat.write(nb, path)
     res = nbfigures.run_notebook(path, root=tmp_path)
-    assert res.errors == [] and res.animations == 1 and res.figures == 0
+    assert res.errors == [] and res.animations == 2 and res.figures == 0
     text = _kinds(res.breaches)
+    assert "anim.ipynb In[1] animation frame 0: figure 'tiny': 1000 px wide" in text
+    assert "title 'tiny' is 6.9 px" in text
+    assert "anim.ipynb In[2] animation frame 0: " in text and "x-axis label 'small' is 8.3 px" in text
+
+
+def test_kernel_recorder_catches_animation_frames(selfcheck_records):
+    """The same notebook executed by nbval: the recorder in its kernel sees every frame too."""
+    res = selfcheck_records["anim.ipynb"]
+    assert res["host"] == "kernel" and res["complete"] and res["errors"] == []
+    assert res["animations"] == 1 and res["figures"] == 0
+    text = _kinds(res["breaches"])
     assert "anim.ipynb In[1] animation frame 0: figure 'tiny': 1000 px wide" in text
     assert "title 'tiny' is 6.9 px" in text
 
 
 # -- the course -------------------------------------------------------------------------------
-
-@pytest.fixture(scope="session")
-def notebook_results():
-    """Notebook path -> NotebookFigures, each notebook run once per session (on first use)."""
-    cache: dict[Path, nbfigures.NotebookFigures] = {}
-
-    def get(path: Path):
-        if path not in cache:
-            cache[path] = nbfigures.run_notebook(path)
-        return cache[path]
-
-    return get
-
 
 def _panels():
     from gm_core.widgets.base import all_panels
@@ -263,10 +279,11 @@ def test_panel_initial_state(name, cls):
     assert not msgs, f"{len(msgs)} breaches of the figure standard:\n  " + "\n  ".join(msgs)
 
 
-@pytest.mark.parametrize("notebook", NOTEBOOKS, ids=[p.relative_to(ROOT).as_posix() for p in NOTEBOOKS])
-def test_notebook_figures(notebook, notebook_results):
-    res = notebook_results(notebook)
+@pytest.mark.parametrize("path", nbrun.params(NOTEBOOKS))
+def test_notebook_figures(path, notebook_record):
+    res = nbfigures.NotebookFigures.from_record(notebook_record(path))
     assert not res.errors, "cells failed, so not every figure was drawn:\n  " + "\n  ".join(res.errors)
+    assert notebook_record(path)["complete"], f"{res.path}: its execution did not reach the end"
     assert not res.breaches, (f"{len(res.breaches)} breaches of the figure standard in {res.path} "
                               f"({res.figures} figures, {res.animations} animations):\n  "
                               + "\n  ".join(res.breaches))

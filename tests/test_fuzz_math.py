@@ -9,9 +9,8 @@ TypeError naming that argument. Other modules extend the table (``CASES += [...]
 """
 import numpy as np
 import pytest
-from fuzzkit import Case, baseline, cases_table, mutations, run_case
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
+from fuzzkit import Case, baseline, cases_table, check_each, chunks, fuzz_each
+from hypothesis import HealthCheck, settings
 
 from gm_core import ALL_GROUPS, S1, SE2, Rn, matvec, wrap_angle
 from gm_core import calculus as C
@@ -153,13 +152,11 @@ FIELD_CASES = [
 CASES = cases_table(GROUP_CASES, MODULE_CASES, CALCULUS_CASES, FIELD_CASES)
 
 
-@pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
-def test_valid_examples(case):
-    baseline(case)
+@pytest.mark.parametrize("cases", chunks(CASES))
+def test_valid_examples(cases):
+    check_each(cases, baseline)
 
 
-@pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
-@settings(settings.get_profile("fuzz"))
-@given(data=st.data())
-def test_bad_input(case, data):
-    run_case(case, data.draw(mutations(case)))
+@pytest.mark.parametrize("cases", chunks(CASES))
+def test_bad_input(cases):
+    fuzz_each(cases, settings.get_profile("fuzz"))

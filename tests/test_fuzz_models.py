@@ -11,9 +11,8 @@ import os
 
 import numpy as np
 import pytest
-from fuzzkit import Case, baseline, cases_table, mutations, run_case
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
+from fuzzkit import Case, baseline, cases_table, check_each, chunks, fuzz_each
+from hypothesis import HealthCheck, settings
 
 from gm_core import SE2, RPlus
 from gm_core import axioms as AX
@@ -194,7 +193,7 @@ LOCOMOTION_CASES = [
     Case("body_velocity", LO.body_velocity, {"system": CAR, "r": R, "r_dot": RD}, objects={"system"},
          batch=("r", "r_dot"), out_tail=(3,)),
     Case("connection_curl", LO.connection_curl, {"system": SNAKE, "r": np.array([1.0, -0.5]), "h": 1e-5},
-         objects={"system"}),
+         objects={"system"}, also_valid={"h": (None,)}),
 ]
 SLOW_CASES = [
     Case("check_gait", LO.check_gait, {"system": SNAKE, "gait": GAIT, "samples": 256}, kwonly={"samples"},
@@ -237,6 +236,11 @@ GEOMETRY_CASES = [
          {"a": np.array([[0.5], [0.0]]), "b": np.array([[0.0], [0.5]]), "center": np.array([0.1, 0.0])},
          also_valid={"b": (None,), "center": (None,)}, out_tail=(2,)),
     Case("sysplotter_stroke", GE.sysplotter_stroke, {"which": "displacement"}, options={"which"}),
+    Case("shaped_gait", lambda c1, c2, a, b, tilt, bend: GE.shaped_gait(c1, c2, a, b, tilt, bend)(0.3),
+         {"c1": 0.1, "c2": -0.2, "a": 0.8, "b": 0.5, "tilt": 0.4, "bend": 0.2}, out_tail=(2,)),
+    Case("row_scaled", GE.row_scaled, {"values": np.array([[0.2, 1e-15, -0.1], [0.19, 0.0, -0.1]]), "floor": 0.05}),
+    Case("field_rms", GE.field_rms, {"system": SWIMMER, "grid": np.array([[0.4, -0.9], [0.1, 0.2]])},
+         objects={"system"}, out_tail=(3,)),
 ]
 SLOW_CASES += [
     Case("stokes_estimate", GE.stokes_estimate, {"system": SWIMMER, "gait": GAIT, "rtol": 1e-6},
@@ -244,6 +248,9 @@ SLOW_CASES += [
     Case("body_velocity_integral", GE.body_velocity_integral, {"system": SWIMMER, "gait": GAIT, "rtol": 1e-8},
          kwonly={"rtol"}, objects={"system", "gait"}, out_tail=(3,)),
     Case("drift_and_turn", GE.drift_and_turn, {"system": SWIMMER, "gait": GAIT}, objects={"system", "gait"}),
+    Case("displacement_estimates", lambda system, gait, interactive: GE.displacement_estimates(
+        system, gait, interactive=interactive).as_array(), {"system": SWIMMER, "gait": GAIT, "interactive": True},
+         objects={"system", "gait"}, flags={"interactive"}, out_tail=(3, 3)),
     Case("path_length", GE.path_length, {"system": SWIMMER, "gait": GAIT}, objects={"system", "gait"}),
     Case("efficiency", GE.efficiency, {"system": SWIMMER, "gait": GAIT}, objects={"system", "gait"}),
     Case("gait_objective", GE.gait_objective,
@@ -300,20 +307,16 @@ CASES = cases_table(CHAIN_CASES, CONNECTION_CASES, GAIT_CASES, SYSTEM_CASES, LOC
 SLOW_CASES = cases_table(SLOW_CASES)
 
 
-@pytest.mark.parametrize("case", CASES + SLOW_CASES, ids=[c.name for c in CASES + SLOW_CASES])
-def test_valid_examples(case):
-    baseline(case)
+@pytest.mark.parametrize("cases", chunks(CASES + SLOW_CASES))
+def test_valid_examples(cases):
+    check_each(cases, baseline)
 
 
-@pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
-@FAST
-@given(data=st.data())
-def test_bad_input(case, data):
-    run_case(case, data.draw(mutations(case)))
+@pytest.mark.parametrize("cases", chunks(CASES))
+def test_bad_input(cases):
+    fuzz_each(cases, FAST)
 
 
-@pytest.mark.parametrize("case", SLOW_CASES, ids=[c.name for c in SLOW_CASES])
-@SLOW
-@given(data=st.data())
-def test_bad_input_integrating(case, data):
-    run_case(case, data.draw(mutations(case)))
+@pytest.mark.parametrize("cases", chunks(SLOW_CASES))
+def test_bad_input_integrating(cases):
+    fuzz_each(cases, SLOW)

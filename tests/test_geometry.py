@@ -171,8 +171,14 @@ def test_bad_input():
         def connection(self, r):
             return np.zeros(np.shape(r)[:-1] + (3, 3))
 
-    with pytest.raises(ValueError, match="2-D shape space"):
-        constraint_curvature(ThreeShapes(), np.zeros(3))
+    # three shape variables: the curvature is a 2-form, one component per pair; Stokes needs a slice
+    F = constraint_curvature(ThreeShapes(), np.zeros((4, 3)))
+    assert F.shape == (4, 3, 3, 3) and np.all(F == 0)
+    assert constraint_curvature(ThreeShapes(), np.zeros(3), pair=(0, 2)).shape == (3,)
+    with pytest.raises(ValueError, match="2-D shape space.*shape_slice"):
+        stokes_estimate(ThreeShapes(), Gait(lambda t: np.stack([np.cos(t), np.sin(t), t * 0], -1), 2 * np.pi))
+    with pytest.raises(ValueError, match="pair"):
+        constraint_curvature(ThreeShapes(), np.zeros(3), pair=(0, 3))
 
 
 def test_gait_through_a_singular_shape_is_refused():

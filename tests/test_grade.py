@@ -100,9 +100,9 @@ def forger_cells():
             "import signal\nsignal.signal(signal.SIGINT, signal.SIG_IGN)\nwhile True:\n    pass"]
 
 
-def tamper_cells(out, honest):
+def tamper_cells(out, honest, neighbour):
     return [f"import numpy as np, os, sys, subprocess, site, glob\nfrom gm_core.checks import ex1_2\n"
-            f"OUT, HONEST = {str(out)!r}, {str(honest)!r}\n"
+            f"OUT, HONEST, NEIGHBOUR = {str(out)!r}, {str(honest)!r}, {str(neighbour)!r}\n"
             "def attempt(f):\n    try:\n        f()\n    except Exception:\n        pass\n"
             "import gm_core.checks._grading as g\n"
             f"attempt(lambda: open(g.__file__, 'a').write('\\n# {TOKEN}\\n'))\n"
@@ -116,7 +116,9 @@ def tamper_cells(out, honest):
             "          '    open(os.path.join(%r, f), \"w\").write(\"forged\")\\n' % OUT)\n"
             f"subprocess.Popen([sys.executable, '-c', daemon, {TOKEN!r}], start_new_session=True)",
             "try:\n    big = bytearray(3 << 30)        # over the 2 GiB memory limit\n"
-            "except MemoryError:\n    ex1_2.a.check(lambda h, g: h * g)",
+            "except MemoryError:\n"
+            "    if not os.path.exists(HONEST) and not os.path.exists(NEIGHBOUR):   # out of sight\n"
+            "        ex1_2.a.check(lambda h, g: h * g)",
             "os.kill(os.getppid(), 9)",
             "ex1_2.b.check(lambda h, g: np.diag(h))"]
 
@@ -138,7 +140,10 @@ def batch(tmp_path_factory):
     out = tmp / "out"
     honest = write_nb(tmp / "honest" / "ex1_2.ipynb", honest_cells())
     write_nb(tmp / "forger" / "ex1_2.ipynb", forger_cells())
-    write_nb(tmp / "tamper" / "ex1_2.ipynb", tamper_cells(out, honest))
+    neighbour = tmp / "not-in-this-batch" / "ex1_2.ipynb"          # another upload, not graded now
+    neighbour.parent.mkdir()
+    neighbour.write_text("{}")
+    write_nb(tmp / "tamper" / "ex1_2.ipynb", tamper_cells(out, honest, neighbour))
     for kind in ("solutions", "exercises"):
         (tmp / kind).mkdir()
         (tmp / kind / "ex1_1.ipynb").write_bytes((ROOT / kind / "ex1_1.ipynb").read_bytes())
@@ -182,7 +187,8 @@ def test_forged_evidence_never_passes(batch):
 
 @needs_sandbox
 def test_tampering_reaches_nothing_and_no_process_survives(batch):
-    assert scores(batch, "tamper") == {"a": 2.0, "b": 0.0, "c": 0.0}   # a: the memory limit held
+    # a is checked only if the memory limit held and neither classmate's file was in sight
+    assert scores(batch, "tamper") == {"a": 2.0, "b": 0.0, "c": 0.0}
     msg = rows_of(batch, "tamper")["b"]["message"]
     assert "not checked before the notebook ended its own grading in cell 3 (`os.kill" in msg, msg
     time.sleep(3.0)                                      # the daemon would have written by now
@@ -386,3 +392,40 @@ def test_every_way_a_run_ends_gives_every_part_a_row_and_a_reason():
         for name in "bc":
             v = verdicts[name][0]
             assert not v.passed and (phrase in v.message if phrase else "no check" in v.message), (what, v)
+
+
+@needs_sandbox
+def test_the_notebook_limit_ends_the_sandbox_and_everything_in_it(tmp_path):
+    from gm_core.checks._isolate import Limits, run_submission
+    nb = write_nb(tmp_path / "ex1_1.ipynb", ["import time\ntime.sleep(10**6)"])
+    t = time.monotonic()
+    run = run_submission(nb, limits=Limits(notebook_timeout=2.0), hide=[tmp_path])
+    assert run["killed"] == "time" and time.monotonic() - t < 30
+    verdicts, problem, _, _ = _evidence.summarise(run, REGISTRY["1.1"], {})
+    assert "longer than the time allowed" in problem and not any(v.passed for v, _ in verdicts.values())
+    assert alive_with(str(tmp_path)) == []          # bwrap (its command line names tmp_path) is gone
+
+
+@needs_sandbox
+def test_hiding_outside_tmp_and_around_the_course(tmp_path):
+    """Submissions outside /tmp are hidden by tmpfs mounts; a folder holding the course is not
+    hidden (the kernel needs it), only its notebooks and result files are."""
+    import shutil
+    import tempfile
+
+    from gm_core.checks._isolate import _hide_args
+    base = Path(tempfile.mkdtemp(prefix="gm-hide-", dir="/var/tmp"))
+    try:
+        (base / "bob").mkdir()
+        (base / "bob" / "ex1_1.ipynb").write_text("secret")
+        args = _hide_args([base / "bob" / "ex1_1.ipynb", base])
+        assert args == ["--tmpfs", str(base)]
+        res = subprocess.run(["bwrap", "--ro-bind", "/", "/", "--dev", "/dev", "--proc", "/proc",
+                              *args, "--unshare-all", "--cap-drop", "ALL", "cat",
+                              str(base / "bob" / "ex1_1.ipynb")], capture_output=True, text=True)
+        assert res.returncode != 0 and "secret" not in res.stdout
+    finally:
+        shutil.rmtree(base)
+    args = _hide_args([ROOT, ROOT / "solutions" / "ex1_1.ipynb"])
+    mounts = [args[i + 1] for i, a in enumerate(args) if a == "--tmpfs"]
+    assert mounts == [str(ROOT / "solutions")]                  # never the course's own folder

@@ -3,8 +3,9 @@
 JupyterLab renders ``$...$`` and ``$$...$$`` with MathJax; anything else is shown as typed, so a
 formula written as ``g_{a,b}``, ``ξ^θ`` or ``\\dot g`` in plain prose reaches the student raw.
 Over every markdown cell of book/, exercises/ and solutions/, after removing fenced and inline
-code, HTML comments and math, this test fails on ``_{``, ``^`` (markdown has no superscripts)
-and backslash commands (``\\alpha``), naming notebook, cell and the offending text.
+code, HTML comments and math, this test fails on ``_{``, ``^`` (markdown has no superscripts),
+backslash commands (``\\alpha``) and one-letter names with a subscript (``ω_ξ``), naming
+notebook, cell and the offending text.
 """
 import re
 from pathlib import Path
@@ -21,7 +22,8 @@ _COMMENT = re.compile(r"<!--.*?-->", re.S)
 _HTML_CODE = re.compile(r"<(code|pre|kbd)\b[^>]*>.*?</\1>", re.S | re.I)
 # math: $$...$$, $...$ (not an escaped \$), \(...\), \[...\]
 _MATH = re.compile(r"\$\$.+?\$\$|(?<![\\$])\$(?!\$).+?(?<![\\$])\$|\\\(.+?\\\)|\\\[.+?\\\]", re.S)
-_BAD = re.compile(r"_\{|\^|\\[A-Za-z]+")
+# ``_{``, any ``^``, a backslash command, or a one-letter name with a subscript (``ω_ξ``, ``T_e``)
+_BAD = re.compile(r"_\{|\^|\\[A-Za-z]+|(?<![\w/.-])[A-Za-zα-ωΑ-Ω]_[A-Za-z0-9α-ωΑ-Ω]")
 
 
 def prose(text):
@@ -61,6 +63,8 @@ def test_no_raw_formula_markup_in_markdown(path):
     ("so \\dot g = g ξ", ["\\dot"]),
     ("$a$ then A_{i2} then $b$", ["_{"]),                       # between two formulas
     ("an unclosed $ sign and x^{2}", ["^"]),                    # a lone dollar opens nothing
+    ("where det ω_ξ = 0", ["ω_ξ"]),                             # a one-letter name with a subscript
+    ("the `drag_ratio` and ex4_1.ipynb, snake_case words", []),  # code, file names, words: not formulas
 ])
 def test_the_scanner_itself(text, bad):
     assert [m for _, m in raw_markup(text)] == bad

@@ -222,8 +222,8 @@ class Block(importlib.abc.MetaPathFinder):
             raise ModuleNotFoundError('blocked: ' + name, name=name)
 sys.meta_path.insert(0, Block())
 import gm_core, gm_core.drawing, gm_core.checks
-for m in ('calculus', 'fields', 'groups', 'chains', 'kinematics', 'locomotion', 'systems', 'geometry',
-          'connection', 'gaits', 'frames', 'manifolds', 'axioms', 'fluids'):
+for m in ('calculus', 'fields', 'groups', 'chains', 'arms', 'three_link_chain', 'holonomic', 'locomotion', 'systems', 'geometry',
+          'connection', 'gaits', 'observers', 'manifolds', 'axioms', 'fluids'):
     importlib.import_module('gm_core.' + m)
 import numpy as np
 from gm_core import SE2

@@ -121,16 +121,23 @@ def test_progress_widget_and_start_page_list_pending_updates_once(workspace, cap
 
 
 def test_old_notebook_calling_a_renamed_or_removed_part_gets_a_friendly_message(capsys):
-    checks.ex1_4.d_speed.check(lambda: 1)
-    checks.ex1_4.d_speed.hint()
-    out = capsys.readouterr().out
-    assert "no part 'd_speed'" in out and "course was updated" in out
     ex = REGISTRY["1.4"]
-    ex.renamed["old_a"] = "a"
+    ex.renamed.update(d_speed=None, old_a="a")       # a removed part and a renamed one
     try:
+        checks.ex1_4.d_speed.check(lambda: 1)
+        checks.ex1_4.d_speed.hint()
+        out = capsys.readouterr().out
+        assert "no part 'd_speed'" in out and "course was updated" in out
         assert ex.old_a is ex.a
     finally:
-        del ex.renamed["old_a"]
+        del ex.renamed["d_speed"], ex.renamed["old_a"]
+    assert not hasattr(ex, "d_speed") and not hasattr(ex, "no_such_thing")
+
+
+def test_a_typo_is_an_attribute_error_naming_the_parts():
+    with pytest.raises(AttributeError, match=r"no part or attribute 'e'; its parts are a, b, c, d"):
+        checks.ex1_4.e.check(lambda xi: xi)
+    assert hasattr(checks.ex1_4, "a") and hasattr(checks.ex1_5, "slide_rule")
 
 
 def test_a_new_exercise_module_only_needs_to_register():
@@ -350,12 +357,24 @@ def test_a_read_only_mounted_workspace_in_a_real_kernel(workspace, tmp_path):
     assert json.loads((workspace / ".progress.json").read_text()) == GOOD   # untouched
 
 
-def test_a_folder_where_the_record_should_be_costs_no_verdict(workspace, capsys):
-    (workspace / ".progress.json").mkdir()
+@pytest.mark.parametrize("what", ["a folder", "a symlink loop"])
+def test_an_unreadable_record_is_moved_aside_and_progress_saved_again(workspace, capsys, what):
+    record = workspace / ".progress.json"
+    if what == "a folder":
+        record.mkdir()
+        (record / "inside.txt").write_text("kept")
+    else:
+        record.symlink_to(record.name)               # reading it fails: too many levels of links
     assert checks.ex3_1.a.check(checks.ex3_1.a.reference, quiet=True).passed
-    assert progress()["3.1"] == IN_PROGRESS
+    assert json.loads(record.read_text())["3.1/a"]["status"] == PASSED
+    [aside] = workspace.glob(".progress.json.damaged-*")
+    if what == "a folder":
+        assert (aside / "inside.txt").read_text() == "kept"
+    else:
+        assert aside.is_symlink()
     out = capsys.readouterr().out
-    assert "is a folder" in out and "Traceback" not in out
+    assert "was damaged" in out and aside.name in out and "Traceback" not in out
+    assert progress()["3.1"] == IN_PROGRESS
 
 
 def test_a_kernel_holding_the_lock_forever_costs_no_verdict(workspace, monkeypatch, capsys):
@@ -377,3 +396,16 @@ def test_a_kernel_holding_the_lock_forever_costs_no_verdict(workspace, monkeypat
         holder.kill()
         holder.wait()
     assert FileLock(str(workspace / ".progress.json.lock"), timeout=5).acquire()
+
+
+def test_a_bookkeeping_error_never_costs_the_verdict(workspace, monkeypatch, capsys):
+    """Whatever goes wrong while saving (here: a bug that raises), the check still gives its
+    verdict and progress() still shows it."""
+    from gm_core.checks import _progress
+
+    def broken(*a, **k):
+        raise RuntimeError("a bug while saving")
+    monkeypatch.setattr(_progress, "write_json_atomic", broken)
+    assert checks.ex3_1.a.check(checks.ex3_1.a.reference, quiet=True).passed
+    assert progress()["3.1"] == IN_PROGRESS
+    assert "Traceback" not in capsys.readouterr().out

@@ -3,6 +3,7 @@ import importlib.util
 import json
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -336,3 +337,31 @@ def test_a_link_to_the_course_file_and_a_dangling_link_are_kept(tmp_path):
     (src / "ex1_3.ipynb").write_text('{"v": "new exercise, corrected"}')
     run_cli(src, dst)
     assert (dst / "ex1_3.ipynb").is_symlink() and not (dst / "ex1_3.course-update.ipynb").exists()
+
+
+def test_a_kernel_marking_notices_as_shown_while_sync_runs_loses_neither(tmp_path):
+    """The notices file has two writers: the sync adds notices, a kernel (start page, progress
+    widget) marks them shown. A kernel holding the lock mid-update: the sync waits, then adds its
+    notice to what the kernel wrote, so neither the new notice nor the "shown" mark is lost."""
+    from filelock import FileLock
+    src = make_course(tmp_path)
+    (src / "ex1_2.ipynb").write_text('{"v": "1.2 course 1"}')
+    dst = tmp_path / "workspace"
+    run(src, dst)
+    (dst / "ex1_1.ipynb").write_text("mine")
+    (dst / "ex1_2.ipynb").write_text("mine too")
+    (src / "ex1_1.ipynb").write_text("course 2")
+    run(src, dst)                                     # notice for 1.1, not yet shown
+    notices = dst / ".course-notices.json"
+    [n11] = json.loads(notices.read_text())
+    (src / "ex1_2.ipynb").write_text("1.2 course 2")
+    with FileLock(str(notices) + ".lock", timeout=5):          # the kernel, mid-update
+        proc = subprocess.Popen([sys.executable, str(SCRIPT), "--exercises", str(src), "--workspace", str(dst)],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        time.sleep(2.0)                               # the sync waits for the kernel
+        assert proc.poll() is None and not (dst / "ex1_2.course-update.ipynb").exists()
+        notices.write_text(json.dumps([dict(n11, seen=True)]))  # the kernel's write
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 0 and not err
+    saved = {n["new_version"]: n["seen"] for n in json.loads(notices.read_text())}
+    assert saved == {"ex1_1.course-update.ipynb": True, "ex1_2.course-update.ipynb": False}

@@ -31,6 +31,7 @@ goes beside it.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import errno
 import hashlib
 import json
@@ -69,6 +70,17 @@ def _atomic_write(path: Path, data: bytes):
         except OSError:
             pass
         raise
+
+
+def _lock(path: Path, timeout: float = 15.0):
+    """The lock the course's kernels take on ``path`` (gm_core.checks._progress: filelock on
+    ``<path>.lock``). filelock comes with the [lab] extra that `make lab` installs; without it the
+    write is still atomic, only not serialised with a kernel marking notices as shown."""
+    try:
+        from filelock import FileLock
+    except ImportError:
+        return contextlib.nullcontext()
+    return FileLock(f"{path}.lock", timeout=timeout)
 
 
 def _write_json(path: Path, data):
@@ -189,18 +201,26 @@ def sync(src: Path, dst: Path, readme: Path | None = README_TEMPLATE):
         problems.append((dst, f"the workspace folder could not be made ({_why(exc)}); "
                               f"{_what_to_do(exc)}."))
         return report
+    with contextlib.ExitStack() as held:
+        try:     # kernels marking notices as shown wait until this run has added its own
+            held.enter_context(_lock(dst / NOTICES))
+        except OSError:
+            pass  # a read-only workspace: each write below reports its own problem
+        return _sync(src, dst, readme, report)
+
+
+def _sync(src: Path, dst: Path, readme: Path | None, report: dict):
+    problems = report["problems"]
     files, beside, _ok = read_manifest(dst, problems)
-    notices = read_notices(dst)
+    fresh = []                     # this run's new notices, added to the file at the end
 
     def beside_copy(rel, target, data, new, announce=True):
-        nonlocal notices
         where = _beside_path(dst, rel, new, beside)
         if where is not None:
             _atomic_write(where, data)
             key = where.relative_to(dst).as_posix()
             beside[key] = new
-            notices = [n for n in notices if n.get("new_version") != key]
-            notices.append({"file": rel, "new_version": key, "seen": False})
+            fresh.append({"file": rel, "new_version": key, "seen": False})
             if announce:
                 report["kept"].append((target, where))
         return where
@@ -266,17 +286,21 @@ def sync(src: Path, dst: Path, readme: Path | None = README_TEMPLATE):
         except (OSError, RuntimeError) as exc:
             problems.append((target, f"could not be brought up to date ({_why(exc)}); your file is "
                                      f"unchanged. To fix it, {_what_to_do(exc)}."))
-    for name, data, what in (
-            (NOTICES, notices, "the list of course updates to show you (the start page still "
-                               "finds the *.course-update* files)"),
-            (MANIFEST, {"version": 2, "files": files, "beside": beside},
+    def add_notices(path):
+        keys = {n["new_version"] for n in fresh}
+        _write_json(path, [n for n in read_notices(dst) if n["new_version"] not in keys] + fresh)
+
+    for name, write, what in (
+            (NOTICES, add_notices, "the list of course updates to show you (the start page "
+                                   "still finds the *.course-update* files)"),
+            (MANIFEST, lambda path: _write_json(path, {"version": 2, "files": files, "beside": beside}),
              "the record of which course versions you have (next time, files that differ from "
              "the course are treated as yours: kept, the new version beside)")):
         path = dst / name
         try:
             if path.is_dir() and not path.is_symlink():
                 raise IsADirectoryError(errno.EISDIR, "a folder stands where the file should be")
-            _write_json(path, data)
+            write(path)
         except OSError as exc:
             todo = ("move that folder away and run `make workspace` again"
                     if isinstance(exc, IsADirectoryError) else _what_to_do(exc))

@@ -131,10 +131,39 @@ def _finish(keeper, patience=0.25, rounds=40):
         pass
 
 
+def _killed_early(pid):
+    """True when ``pid`` (our child, not reaped) was killed by a signal before we ended it."""
+    if not (hasattr(os, "waitid") and hasattr(os, "WNOWAIT") and hasattr(os, "CLD_EXITED")):
+        return False
+    try:
+        res = os.waitid(os.P_PID, pid, os.WEXITED | os.WNOHANG | os.WNOWAIT)
+    except ChildProcessError:
+        return False
+    return res is not None and res.si_code != os.CLD_EXITED
+
+
+def _kill_session(keeper):
+    """Kill every process still in the keeper's session or process group (its orphans, once
+    something killed the keeper itself: they are no longer below it)."""
+    for name in os.listdir("/proc"):
+        if not name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{name}/stat", encoding="ascii", errors="replace") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+            pgrp, session = int(fields[2]), int(fields[3])
+        except (OSError, ValueError, IndexError):
+            continue
+        if keeper in (pgrp, session) and int(name) != keeper:
+            _signal(int(name), signal.SIGKILL)
+
+
 def kill_tree(keeper, wait=False):
     """End the keeper's whole tree: every process below it is frozen and killed now; the keeper
     (which reaps them) is waited for in a background thread unless ``wait``. Without /proc the
     keeper's process group is killed instead."""
+    if _killed_early(keeper) and os.path.isdir("/proc"):
+        _kill_session(keeper)
     if not _freeze_and_kill(keeper):
         try:
             os.killpg(keeper, signal.SIGKILL)

@@ -58,12 +58,12 @@ _TOLD: set = set()
 def find_workspace(start=None):
     """The student workspace this kernel runs in, or None (then progress stays in memory)."""
     env = os.environ.get("GM_COURSE_WORKSPACE")
-    if env:
-        p = Path(env)
-        return p if p.is_dir() else None
     try:
+        if env:
+            p = Path(env)
+            return p if p.is_dir() else None
         here = Path(start or os.getcwd()).resolve()
-    except OSError:
+    except (OSError, ValueError):
         return None
     for d in (here, *here.parents):
         try:
@@ -239,23 +239,20 @@ def _aside_name(path):
 
 
 def _read_file(ws, fix):
-    """The workspace's record. A damaged file is moved aside (kept) when ``fix`` (under the lock)
-    and the student told; returns (entries, damaged: bool)."""
+    """The workspace's record; returns (entries, damaged: bool). A damaged or unreadable file (or
+    a folder in its place) is moved aside, kept, when ``fix`` (under the lock): the entries that
+    could be read go into a new file, and the student is told."""
     path = ws / PROGRESS_FILE
     try:
         raw = path.read_bytes()
     except FileNotFoundError:
         return {}, False
     except IsADirectoryError:
-        _tell(f"dir:{path}", f"{path} is a folder, not a file, so your progress cannot be saved "
-                             "there. Move that folder away; until then your progress is kept in "
-                             "this kernel's memory.")
-        return {}, False
+        entries, problem = {}, "it is a folder, not a file"
     except OSError as exc:
-        _tell(f"read:{path}", f"{path} cannot be read ({type(exc).__name__}); your progress is kept "
-                              "in this kernel's memory until it can be.")
-        return {}, False
-    entries, problem = parse_record(raw)
+        entries, problem = {}, f"it cannot be read: {type(exc).__name__}, {exc.strerror or exc}"
+    else:
+        entries, problem = parse_record(raw)
     if problem is None:
         return entries, False
     if fix:
@@ -298,8 +295,8 @@ class _Flock:
             os.close(self.fd)            # closing the file releases the lock
 
 
-def _lock(ws):
-    path = str(ws / (PROGRESS_FILE + LOCK_SUFFIX))
+def _lock(ws, name=PROGRESS_FILE):
+    path = str(ws / (name + LOCK_SUFFIX))
     try:
         from filelock import FileLock
     except ImportError:
@@ -353,6 +350,15 @@ def _new_record(old, changes):
 
 def _update(key, **changes):
     """Change one part's record. Never raises (a verdict is never lost to a bookkeeping error)."""
+    try:
+        _save(key, changes)
+    except Exception:  # noqa: BLE001 - last resort: this kernel's memory still has it
+        ws = find_workspace()
+        kept = _MEMORY if ws is None else _UNSAVED.setdefault(str(ws), {})
+        kept[key] = _new_record(kept.get(key), changes)
+
+
+def _save(key, changes):
     ws = find_workspace()
     if ws is None:
         _MEMORY[key] = _new_record(_MEMORY.get(key), changes)
@@ -440,9 +446,34 @@ def pending_updates(mark_seen=False):
     Files named ``*.course-update*.ipynb`` on disk are always listed while unseen, even if the
     notice file was lost.
     """
+    try:
+        return _pending_updates(mark_seen)
+    except Exception:  # noqa: BLE001 - a listing problem must not break the start page
+        return []
+
+
+def _pending_updates(mark_seen):
     ws = course_workspace()
     if ws is None:
         return []
+    if not mark_seen:
+        return _listed(ws)[1]
+    try:     # read, mark and write under the lock tools/sync_workspace.py takes to add notices
+        with _lock(ws, NOTICES):
+            notices, pending = _listed(ws)
+            if pending:
+                shown = {p["new_version"] for p in pending}
+                for n in notices:
+                    if n["new_version"] in shown:
+                        n["seen"] = True
+                write_json_atomic(ws / NOTICES, notices)
+            return pending
+    except OSError:       # a read-only workspace: they are shown again next time
+        return _listed(ws)[1]
+
+
+def _listed(ws):
+    """(every notice, the unseen ones whose new version is still there)."""
     notices = _read_json(ws / NOTICES, [])
     notices = [n for n in notices if isinstance(n, dict) and isinstance(n.get("new_version"), str)]
     known = {n["new_version"] for n in notices}
@@ -453,12 +484,4 @@ def pending_updates(mark_seen=False):
             notices.append({"file": (beside.parent.relative_to(ws) / (stem + ".ipynb")).as_posix(),
                             "new_version": rel, "seen": False})
     pending = [dict(n) for n in notices if not n.get("seen") and (ws / n["new_version"]).exists()]
-    if mark_seen and pending:
-        for n in notices:
-            if n["new_version"] in {p["new_version"] for p in pending}:
-                n["seen"] = True
-        try:
-            write_json_atomic(ws / NOTICES, notices)
-        except OSError:
-            pass
-    return pending
+    return notices, pending

@@ -152,10 +152,11 @@ def _client_class():
                 return None
             if mtype == "error":
                 self.last_error = str(content.get("ename", "Exception"))[:80]
-            try:
-                self.output_bytes += sum(len(str(v)) for v in content.values())
-            except Exception:  # noqa: BLE001
-                pass
+            for v in content.values():   # sizes only: no copy of a huge output is made
+                if isinstance(v, str):
+                    self.output_bytes += len(v)
+                elif isinstance(v, dict):
+                    self.output_bytes += sum(len(x) for x in v.values() if isinstance(x, str))
             return None
 
     return QuietClient

@@ -193,7 +193,10 @@ def grade(paths, out_dir, weights=None, *, limits=None, sandbox=True, assignment
         if problem:
             raise SandboxUnavailable(problem)
     subs = _submissions(paths)
+    # hidden from every sandbox: the output, the batch, and the folders around each submission
+    # (where other students' uploads usually sit, graded in this run or not)
     hide = [str(Path(out_dir).resolve())] + [str(Path(p).resolve()) for p in paths]
+    hide += [str(Path(p).resolve().parent) for p in paths]
     hide += [str(q.resolve()) for _, found, _ in subs for q, _ in found]
     salt, plan, lines = secrets.randbits(62), [], []
     expected = assignment.get("exercises")

@@ -22,11 +22,16 @@
 """
 from __future__ import annotations
 
+from typing import Any
+
 import matplotlib as mpl
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.collections import LineCollection, PathCollection, PolyCollection
+from matplotlib.figure import Figure
 from matplotlib.font_manager import FontProperties, findfont, get_font
+from matplotlib.layout_engine import ConstrainedLayoutEngine
 from matplotlib.path import Path
 from matplotlib.textpath import TextPath
 from matplotlib.transforms import blended_transform_factory as _blend
@@ -70,7 +75,7 @@ STYLE = {
     "ytick.labelsize": 8.0,
     "legend.fontsize": 8.0,
     "figure.titlesize": 10.0,
-    "axes.prop_cycle": mpl.cycler(color=[PALETTE[k] for k in (
+    "axes.prop_cycle": mpl.cycler(color=[PALETTE[k] for k in (  # type: ignore[attr-defined]
         "blue", "orange", "green", "vermillion", "purple", "sky", "yellow", "black")]),
     "image.cmap": "cividis",
     "figure.constrained_layout.h_pad": 0.06,
@@ -93,6 +98,18 @@ def _fit(figsize):
     return (w, h)
 
 
+class CourseFigure(Figure):
+    """The figures :func:`new_figure` makes: a matplotlib ``Figure`` whose ``tight_layout()`` may
+    also be called on a figure made with the toolkit's constrained layout. It then lays the figure
+    out tightly, once, exactly as matplotlib does; the constrained engine is released first, so
+    that asking for the tight layout is not reported as an unexpected change of layout."""
+
+    def tight_layout(self, *, pad=1.08, h_pad=None, w_pad=None, rect=None):
+        if isinstance(self.get_layout_engine(), ConstrainedLayoutEngine):
+            self.set_layout_engine("none")   # a placeholder: positions kept until the tight layout runs
+        super().tight_layout(pad=pad, h_pad=h_pad, w_pad=w_pad, rect=rect)
+
+
 def new_figure(nrows=1, ncols=1, *, figsize=(6, 4), subplot_kw=None, layout="constrained", dpi=DPI, **kw):
     """``(fig, axes)`` made to the figure standard, not auto-displayed (a panel places the canvas).
 
@@ -102,7 +119,7 @@ def new_figure(nrows=1, ncols=1, *, figsize=(6, 4), subplot_kw=None, layout="con
     """
     with plt.ioff():
         fig, ax = plt.subplots(nrows, ncols, figsize=_fit(figsize), subplot_kw=subplot_kw, dpi=dpi,
-                               layout=layout, **kw)
+                               layout=layout, FigureClass=kw.pop("FigureClass", CourseFigure), **kw)
     canvas = fig.canvas
     if hasattr(canvas, "header_visible"):
         canvas.header_visible = False
@@ -442,17 +459,20 @@ class Scene:
     (a single axes is also ``self.ax``).
     """
 
-    FIGSIZE = None
-    NCOLS = 1
-    MARGINS = None
+    FIGSIZE: tuple[float, float] | None = None
+    NCOLS: int = 1
+    MARGINS: dict[str, float] | None = None
+    ax: Axes
 
-    def __init__(self, **options):
-        self.options = options
+    def __init__(self, **options: Any) -> None:
+        self.options: dict[str, Any] = options
+        self.fig: Figure
+        self.axes: list[Axes]
         self.fig, self.axes = self.make_figure()
         self.decorate()
         self.create()
 
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         if self.FIGSIZE is None:
             raise NotImplementedError(f"{type(self).__name__} must set FIGSIZE or implement make_figure")
         fig, axes = new_figure(1, self.NCOLS, figsize=self.FIGSIZE)
@@ -463,16 +483,16 @@ class Scene:
         self.ax = axes
         return fig, [axes]
 
-    def decorate(self):
+    def decorate(self) -> None:
         pass
 
-    def create(self):
+    def create(self) -> None:
         raise NotImplementedError
 
-    def set(self, **values):
+    def set(self, **values: Any) -> None:
         raise NotImplementedError
 
-    def replot(self, **values):
+    def replot(self, **values: Any) -> None:
         """The naive baseline: clear every axes, draw everything again, then set the values."""
         for ax in self.axes:
             ax.clear()

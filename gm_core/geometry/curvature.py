@@ -11,90 +11,79 @@ second from the second-order Magnus term of ``g_dot = g xi``. ``[.,.]`` is the g
 ``SE2.bracket``. The theta row is exact (SE(2)'s rotation part is abelian); the (x, y) rows
 have an error of third order in the size of the gait.
 
-Derivatives of A: exact for the systems whose connection has a closed form (their
-``connection_derivative`` method), otherwise second-order central differences with a step near the
-optimum eps**(1/3) (tested against exact derivatives in tests/test_geometry.py).
+Derivatives of A: the system's ``connection_derivative`` method (exact for the systems whose
+connection has a closed form, otherwise second-order central differences with a step near the
+optimum eps**(1/3), tested against exact derivatives in tests/test_geometry.py). For more than
+two shape variables the curvature is a 2-form with a component per pair of shape directions;
+Stokes estimates are for gaits in a 2-D slice (:func:`gm_core.systems.shape_slice`).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .._validate import SingularShapeError, as_array, positive_number
+from .._validate import SingularShapeError, as_array, check_int, positive_number
 from ..gaits import as_gait
-from ..groups import SE2, matvec
-from ..locomotion import check_gait
+from ..groups import matvec
+from ..locomotion import check_gait, check_system, curvature_form, fd_connection_derivative
+from ..systems.base import LocomotionSystem
 
 __all__ = ["constraint_curvature", "connection_derivative", "stokes_estimate",
-           "body_velocity_integral", "check_system", "closed_gait"]
-
-#: Relative central-difference step for connection derivatives (about eps**(1/3)).
-FD_STEP = 6e-6
+           "body_velocity_integral", "closed_gait", "require_planar"]
 
 
-def check_system(system, name="system"):
-    """Raise TypeError unless ``system`` looks like a locomotion system with a 2-D shape space."""
-    n = getattr(system, "n_shape", None)
-    if n is None or not callable(getattr(system, "connection", None)):
-        raise TypeError(f"{name} must be a locomotion system with connection(r) and n_shape "
-                        f"(e.g. gm_core.systems.LowReSwimmer()); got {type(system).__name__} {system!r:.60}")
+def require_planar(system, what="curvature maps and Stokes estimates"):
+    """``system`` after checking it has a 2-D shape space (ValueError pointing to :func:`shape_slice` if not)."""
+    n = check_system(system)
     if n != 2:
-        raise ValueError(f"{name} must have a 2-D shape space for curvature and Stokes estimates; "
-                         f"{getattr(system, 'name', system)} has n_shape = {n}")
+        raise ValueError(f"system must have a 2-D shape space for {what}; {getattr(system, 'name', system)} has "
+                         f"n_shape = {n}: take a 2-D slice with gm_core.systems.shape_slice(system, through, axes)")
     return system
 
 
 def connection_derivative(system, r, *, method="auto"):
     """Connection and its shape derivative: ``(A (..., 3, n), dA (..., 3, n, n))``, ``dA[..., i, j, k] = d A_ij / d r_k``.
 
-    ``method="auto"`` uses the system's own closed-form ``connection_derivative(r)`` if it has
-    one (differential drive, Ackerman car, kinematic snake), else central differences; ``"fd"`` forces
-    central differences (step ``FD_STEP`` relative to ``max(1, |r|)``). In the difference route A
-    itself is the mean of the stencil values (error O(h^2), about 1e-11).
+    ``method="auto"`` asks the system (its ``connection_derivative``: a closed form for the
+    differential drive, Ackerman car and kinematic snake, else central differences);
+    ``"fd"`` forces central differences (:func:`gm_core.locomotion.fd_connection_derivative`).
     """
-    check_system(system)
-    r = as_array(r, "r", (system.n_shape,), what=f" (a shape of {system.name})")
+    n = check_system(system)
+    r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     if method not in ("auto", "fd"):
         raise ValueError(f"method must be 'auto' or 'fd'; got {method!r}")
-    if method == "auto":
-        own = getattr(system, "connection_derivative", None)
-        if callable(own):
-            return own(r)
-    n = system.n_shape
-    h = FD_STEP * np.maximum(1.0, np.abs(r))
-    offsets = np.zeros((2 * n,) + r.shape)
-    for k in range(n):
-        offsets[2 * k, ..., k] = h[..., k]
-        offsets[2 * k + 1, ..., k] = -h[..., k]
-    vals = system.connection(r[None] + offsets)  # one batched call: (2n, ..., 3, n)
-    dA = np.stack([(vals[2 * k] - vals[2 * k + 1]) / (2 * h[..., k, None, None]) for k in range(n)], -1)
-    A = vals.mean(axis=0)
-    return A, dA
+    if method == "auto" and isinstance(system, LocomotionSystem):
+        return system.connection_derivative(r)
+    return fd_connection_derivative(system, r)
 
 
-def constraint_curvature(system, r, *, method="auto"):
-    """Constraint curvature D(-A) (..., 3) at shapes r (..., 2): ``-(d1 A_2 - d2 A_1) + [A_1, A_2]``.
+def constraint_curvature(system, r, *, method="auto", pair=None):
+    """Constraint curvature D(-A) at shapes r: ``F_ij = -(d_i A_j - d_j A_i) + [A_i, A_j]``.
 
-    Its integral over the area enclosed by a counter-clockwise gait is the leading-order net
-    displacement (Hatton & Choset 2015); rows are (x, y, theta) in the body frame. NaN at
-    singular shapes. ``system`` may be any object with ``connection(r)`` and ``n_shape == 2``
-    (a system, or one seen from other coordinates, see :mod:`gm_core.geometry.coordinates`).
+    For a 2-D shape space the one component F_12, (..., 3); for n shape variables the 2-form
+    (..., 3, n, n) (antisymmetric: one se(2) component per pair of shape directions), or with
+    ``pair=(i, j)`` (0-based) that component alone, (..., 3). Its integral over the area a
+    counter-clockwise gait encloses in a 2-D slice is the leading-order net displacement
+    (Hatton & Choset 2015); rows are (x, y, theta) in the body frame. NaN at singular shapes.
+    ``method="auto"`` asks the system (a frame change acts by Ad_{beta^-1}, gauge covariance);
+    ``"fd"`` differentiates the connection by central differences.
     """
-    check_system(system)
-    base = getattr(system, "base_system", None)
-    if method == "auto" and base is not None and callable(getattr(system, "beta", None)):
-        # A frame change beta(r) acts on the curvature by Ad_{beta^-1} (gauge covariance); this
-        # avoids differentiating beta twice. tests/test_geometry_coordinates.py checks it against "fd".
-        r = as_array(r, "r", (system.n_shape,), what=f" (a shape of {system.name})")
-        F = matvec(SE2.Ad_inv(system.beta(r)), constraint_curvature(base, r))
-        valid = getattr(system, "_inside", None)
-        return F if valid is None else np.where(valid(r)[..., None], F, np.nan)
-    A, dA = connection_derivative(system, r, method=method)
-    exterior = dA[..., :, 1, 0] - dA[..., :, 0, 1]
-    ok = np.isfinite(A).all(axis=(-1, -2)) & np.isfinite(exterior).all(axis=-1)
-    if not ok.all():  # singular shapes: NaN out, and keep NaN away from the bracket's input check
-        A = np.where(ok[..., None, None], A, 0.0)
-        exterior = np.where(ok[..., None], exterior, np.nan)
-    return -exterior + SE2.bracket(A[..., :, 0], A[..., :, 1])
+    n = check_system(system)
+    r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
+    if method not in ("auto", "fd"):
+        raise ValueError(f"method must be 'auto' or 'fd'; got {method!r}")
+    if pair is not None:
+        if np.ndim(pair) != 1 or len(pair) != 2:
+            raise ValueError(f"pair must be two shape indices (i, j); got {pair!r}")
+        i, j = (check_int(k, "pair", minimum=0, maximum=n - 1, what=f" (shape indices 0..{n - 1})") for k in pair)
+    if method == "auto" and isinstance(system, LocomotionSystem):
+        F = system.constraint_curvature(r)
+        if n == 2:
+            F = F[..., None, None] * np.array([[0.0, 1.0], [-1.0, 0.0]])
+    else:
+        F = curvature_form(*fd_connection_derivative(system, r))
+    if pair is not None:
+        return F[..., i, j]
+    return F[..., 0, 1] if n == 2 else F
 
 
 # ---------------------------------------------------------------------------------------------
@@ -153,7 +142,7 @@ def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True, samp
     refining (for interactive use: ``(64, 12)`` costs a few ms and, for gaits with a few Fourier
     harmonics, agrees with the refined value to 1e-7 or better; tests/test_geometry.py checks it).
     """
-    check_system(system)
+    require_planar(system)
     gait = closed_gait(gait, system)
     rtol = _check_rtol(rtol)
     if check:

@@ -21,7 +21,7 @@ from types import MappingProxyType
 import numpy as np
 
 from .._validate import SingularShapeError, as_array, check_int, positive_number, real_number
-from ..locomotion import net_displacement
+from ..locomotion import check_system, net_displacement
 from .coordinates import body_frames
 from .curvature import body_velocity_integral, constraint_curvature, stokes_estimate
 from .optimal import fourier_gait
@@ -81,6 +81,8 @@ def displacement_estimates(system, gait, *, interactive=False):
     singular shape, or leaves the window where a reframed system is defined, raises
     :class:`~gm_core.SingularShapeError` (the gait is checked once, by the Stokes estimate).
     """
+    if not isinstance(interactive, (bool, np.bool_)):
+        raise TypeError(f"interactive must be True or False; got {interactive!r:.40}")
     if interactive:
         stokes = stokes_estimate(system, gait, samples=INTERACTIVE["stokes_samples"])  # checks the gait
         exact = net_displacement(system, gait, steps=INTERACTIVE["exact_steps"], check=False)
@@ -102,8 +104,8 @@ def row_scaled(values, floor=0.05):
     zero rather than growing to full height. Every entry lies in [-1, 1].
     """
     vals = as_array(values, "values")
-    if vals.ndim != 2:
-        raise ValueError(f"values must have shape (methods, rows); got shape {vals.shape}")
+    if vals.ndim != 2 or 0 in vals.shape:
+        raise ValueError(f"values must have shape (methods, rows), both at least 1; got shape {vals.shape}")
     floor = real_number(floor, "floor")
     if not 0 <= floor <= 1:
         raise ValueError(f"floor must lie in [0, 1]; got {floor!r}")
@@ -118,6 +120,10 @@ def field_rms(system, grid):
     Row i contributes sqrt(mean over the grid of |A_i(r)|^2), |.| the Euclidean norm of the row
     (both columns); shapes where A is undefined are left out.
     """
+    check_system(system)
+    grid = as_array(grid, "grid", (system.n_shape,), what=f" (shapes of {system.name})")
+    if grid.size == 0:
+        raise ValueError("grid must hold at least one shape")
     A = np.asarray(system.connection(grid), dtype=float)
     sq = np.sum(A ** 2, axis=-1).reshape(-1, A.shape[-2])
     ok = np.isfinite(sq).all(axis=1)

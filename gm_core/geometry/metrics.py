@@ -15,49 +15,34 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array
-from ..locomotion import check_gait, net_displacement
-from .curvature import check_system, closed_gait
+from ..locomotion import check_gait, check_system, net_displacement
+from ..systems.base import LocomotionSystem
+from .curvature import closed_gait
 
-__all__ = ["dissipation_metric", "full_cost_matrix", "path_length", "efficiency", "metric_function"]
-
-
-def full_cost_matrix(system, r):
-    """The (..., 3 + n, 3 + n) drag or mass matrix of ``system`` at r, or TypeError if it has none."""
-    for attr in ("drag_matrix", "mass_matrix"):
-        f = getattr(system, attr, None)
-        if callable(f):
-            return f(r)
-    base = getattr(system, "cost_matrix", None)
-    if callable(base):
-        return base(r)
-    raise TypeError(f"system {getattr(system, 'name', system)!r} has no physical cost metric (no "
-                    "drag_matrix or mass_matrix); pass metric='euclidean' or a callable r -> M(r)")
+__all__ = ["dissipation_metric", "path_length", "efficiency", "metric_function"]
 
 
 def dissipation_metric(system, r):
     """Shape-space cost metric M(r) (..., n, n) = [-A; I]^T D [-A; I] (power or kinetic energy).
 
     ``D`` is the system's drag matrix (low Re: the power is ``r_dot^T M r_dot``) or its mass
-    matrix (floating snake, high Re: twice the kinetic energy). The metric does not depend on
-    the choice of body frame, so a system seen in other coordinates delegates to its base.
+    matrix (floating snake, high Re: twice the kinetic energy): the system's ``shape_metric``
+    (:func:`gm_core.connection.shape_space_metric`). It does not depend on the choice of body
+    frame, so a system seen from other coordinates gives its base's. TypeError for a system
+    with no physical cost.
     """
-    check_system(system)
-    base = getattr(system, "base_system", None)
-    if base is not None:
-        return dissipation_metric(base, r)
-    r = as_array(r, "r", (system.n_shape,), what=f" (a shape of {system.name})")
-    D = full_cost_matrix(system, r)
-    A = system.connection(r)
-    n = system.n_shape
-    P = np.concatenate([-A, np.broadcast_to(np.eye(n), A.shape[:-2] + (n, n))], axis=-2)
-    M = np.swapaxes(P, -1, -2) @ D @ P
-    return (M + np.swapaxes(M, -1, -2)) / 2
+    n = check_system(system)
+    r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
+    if not isinstance(system, LocomotionSystem):
+        raise TypeError(f"system {getattr(system, 'name', system)!r} has no physical cost metric; pass "
+                        "metric='euclidean' or a callable r -> M(r)")
+    return system.shape_metric(r)
 
 
 def metric_function(system, metric=None):
     """A callable r -> M(r) (..., n, n): the system's own metric (None), the identity ('euclidean'), or ``metric``."""
     if metric is None:
-        full_cost_matrix(getattr(system, "base_system", None) or system, np.zeros(system.n_shape))
+        dissipation_metric(system, np.zeros(system.n_shape))      # fails early if there is none
         return lambda r: dissipation_metric(system, r)
     if isinstance(metric, str):
         if metric != "euclidean":

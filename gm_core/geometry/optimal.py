@@ -21,11 +21,13 @@ import numpy as np
 from .._validate import SingularShapeError, as_array, check_int, check_option, positive_number
 from ..gaits import Gait
 from ..groups import SE2, matvec
-from ..locomotion import check_gait, net_displacement, trajectory
-from .curvature import check_system, connection_derivative
+from ..locomotion import check_gait, check_system, net_displacement, trajectory
+from ..systems.minimum_perturbation import MinimumPerturbationFrame
+from ..systems.reframed import Reframed
+from .curvature import connection_derivative
 from .metrics import metric_function, path_length
 
-__all__ = ["FourierGait", "fourier_gait", "optimize_gait", "OptimalGait", "gait_objective"]
+__all__ = ["FourierGait", "fourier_gait", "travelling_wave", "optimize_gait", "OptimalGait", "gait_objective"]
 
 #: Cost returned for trial gaits that reach a singular shape (a finite wall the line search backs off from).
 _REJECT = 1e3
@@ -89,6 +91,20 @@ def fourier_gait(a, b=None, center=None, *, period=2 * np.pi, name="Fourier gait
         raise ValueError(f"center must have shape ({a.shape[0]},); got shape {center.shape}")
     T = positive_number(period, "period")
     return FourierGait(a.copy(), b.copy(), center.copy(), T, name)
+
+
+def travelling_wave(n_joints, amplitude=0.8, lag=np.pi / 2, *, period=2 * np.pi):
+    """The travelling wave ``alpha_j(t) = A sin(w t - (j - 1) lag)`` in joints j = 1..n (a Fourier gait of order 1).
+
+    Each joint lags its neighbour towards the head by ``lag``: the wave runs from link 1
+    towards link N. ``amplitude`` A > 0 (rad), w = 2 pi / ``period``.
+    """
+    n = check_int(n_joints, "n_joints", minimum=1, maximum=200, what=" (the number of joints)")
+    A = positive_number(amplitude, "amplitude")
+    lag = float(as_array(lag, "lag", what=" (the phase lag between joints, rad)"))
+    j = np.arange(n)
+    return fourier_gait((-A * np.sin(j * lag))[:, None], (A * np.cos(j * lag))[:, None], period=period,
+                        name=f"travelling wave: amplitude {A:.2f}, lag {lag:.2f} rad")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -250,7 +266,8 @@ def optimize_gait(system, objective="displacement", order=3, start=None, *, coor
     check_system(system)
     if coordinates not in ("minimum perturbation", "given"):
         raise ValueError(f"coordinates must be 'minimum perturbation' or 'given'; got {coordinates!r}")
-    if coordinates == "minimum perturbation" and not hasattr(system, "discrete_divergence"):
+    already = isinstance(system, Reframed) and isinstance(system.frame, MinimumPerturbationFrame)
+    if coordinates == "minimum perturbation" and not already:
         system = minimum_perturbation_coordinates(system, bounds)
     if objective not in ("displacement", "efficiency"):
         raise ValueError(f"objective must be 'displacement' or 'efficiency'; got {objective!r}")

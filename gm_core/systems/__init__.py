@@ -15,11 +15,18 @@ from .diff_drive import DifferentialDrive
 from .floating_snake import FloatingSnake
 from .high_re import HighReSwimmer
 from .kinematic_snake import KinematicSnake
+from .link_chain import LinkChain
 from .low_re import LowReSwimmer
+from .minimum_perturbation import MinimumPerturbationFrame
+from .reframed import BodyFrame, CentreOfMassFrame, PoseFrame, Reframed
+from .restricted import AffineRestriction, shape_slice
+from .slender_body import SlenderBody, chain_approximation, serpenoid_modes
 from .three_link import LinkMetricSystem, ThreeLinkSystem
 
 __all__ = ["LocomotionSystem", "Part", "ThreeLinkSystem", "LinkMetricSystem", "DifferentialDrive", "Ackerman",
            "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer",
+           "LinkChain", "BodyFrame", "PoseFrame", "CentreOfMassFrame", "Reframed", "MinimumPerturbationFrame",
+           "AffineRestriction", "shape_slice", "SlenderBody", "chain_approximation", "serpenoid_modes",
            "ALL_SYSTEMS"]
 
 

@@ -97,6 +97,27 @@ class FloatingSnake(LinkMetricSystem):
             A[..., 1, :] += c[..., 0, None] * A[..., 2, :]
         return A
 
+    def link_weights(self):
+        """Normalised link weights for the centre of mass: the masses."""
+        w = np.array(self.masses)
+        return w / w.sum()
+
+    def body_frames(self, bounds=None, *, n=None, centre_of_mass=True, minimum_perturbation=True):
+        """{name: system}: this frame and the other one of section 3.4.3 (centre of mass oriented
+        with the middle link, or the middle link): the frames its physics defines, always listed;
+        ``centre_of_mass`` adds nothing (its centre-of-mass frame is one of them); and, if asked,
+        minimum perturbation over ``bounds``."""
+        from .minimum_perturbation import MinimumPerturbationFrame
+        from .reframed import Reframed
+
+        names = {"com": "centre of mass", "middle": "middle link"}
+        other = "middle" if self.frame == "com" else "com"
+        out = {names[self.frame]: self, names[other]: FloatingSnake(self.lengths, self.masses, self.inertias, other)}
+        if minimum_perturbation:
+            out["minimum perturbation"] = Reframed(self, MinimumPerturbationFrame.fit(self, bounds, n),
+                                                   name=f"{self.name} (minimum perturbation)")
+        return out
+
     def __repr__(self):
         return (f"FloatingSnake(lengths={self.lengths}, masses={self.masses}, "
                 f"inertias={self.inertias}, frame={self.frame!r})")

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import as_array, check_positive
-from ..connection import metric_from_jacobians
+from ..connection import metric_from_jacobians, shape_space_metric
 from ..groups import SE2
 from ..three_link_chain import three_link_jacobians, three_link_poses
 from .base import LocomotionSystem, Part, rectangle_outline
@@ -65,6 +65,27 @@ class ThreeLinkSystem(LocomotionSystem):
     def part_poses(self, r):
         return self.link_poses(r)
 
+    def link_weights(self):
+        """Normalised link weights for the centre of mass: the lengths (uniform slender links)."""
+        w = np.array(self.lengths)
+        return w / w.sum()
+
+    def body_frames(self, bounds=None, *, n=None, centre_of_mass=True, minimum_perturbation=True):
+        """{name: system}: this frame and, if asked, the centre of mass (mean orientation) and
+        minimum perturbation over ``bounds`` (default ``shape_limits``, ``n`` nodes per axis)."""
+        from .minimum_perturbation import MinimumPerturbationFrame
+        from .reframed import CentreOfMassFrame, Reframed
+
+        own = {"middle": "middle link", "com": "centre of mass"}.get(self.frame, self.frame)
+        out = {own: self}
+        if centre_of_mass and self.frame != "com":
+            out["centre of mass"] = Reframed(self, CentreOfMassFrame(self),
+                                             name=f"{self.name} (centre of mass, mean orientation)")
+        if minimum_perturbation:
+            out["minimum perturbation"] = Reframed(self, MinimumPerturbationFrame.fit(self, bounds, n),
+                                                   name=f"{self.name} (minimum perturbation)")
+        return out
+
     def _link_width(self):
         return 0.08 * sum(self.lengths) / 3
 
@@ -95,3 +116,7 @@ class LinkMetricSystem(ThreeLinkSystem):
     def pfaffian(self, r):
         """Pfaffian (..., 3, 5): the top three rows of :meth:`metric` (total momentum or wrench = 0)."""
         return metric_from_jacobians(self.link_jacobians(r), self.link_matrices(), rows=3)
+
+    def shape_metric(self, r):
+        """Cost metric on shape space M(r) = [-A; I]^T D [-A; I] (..., 2, 2) (power or twice kinetic energy)."""
+        return shape_space_metric(self.metric(r), self.connection(r))

@@ -1,8 +1,5 @@
 """Sections 3.3-3.4 panel: a gait on the connection fields and the motion it produces
 (scene of :mod:`gm_core.drawing.gaits`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 
@@ -11,26 +8,12 @@ import numpy as np
 
 from ..drawing.gaits import GAIT_SHAPES, GaitScene
 from ..drawing.primitives import jshtml
-from ..systems import FloatingSnake, KinematicSnake
+from ..systems import KinematicSnake
 from .base import ScenePanel, register, slider
 
-__all__ = ["body_frames", "GaitPanel"]
+__all__ = ["GaitPanel"]
 
 PI = float(np.pi)
-
-
-def body_frames(system):
-    """Body-frame choices for ``system``: {name: system}; one entry unless the frame matters.
-
-    The floating snake's connection depends on where its body frame sits: at the centre of
-    mass (the translation rows vanish) or on the middle link (section 3.4.3).
-    """
-    if isinstance(system, FloatingSnake):
-        kw = dict(lengths=system.lengths, masses=system.masses, inertias=system.inertias)
-        names = {"com": "centre of mass", "middle": "middle link"}
-        other = "middle" if system.frame == "com" else "com"
-        return {names[system.frame]: system, names[other]: FloatingSnake(frame=other, **kw)}
-    return {}
 
 
 @register
@@ -51,7 +34,9 @@ class GaitPanel(ScenePanel):
         o = self.options
         self.system = o.get("system") or KinematicSnake()
         self.title = f"Gaits: {self.system.name}"
-        return dict(system=self.system, frames=body_frames(self.system), n=o.get("n"), lim=o.get("lim"))
+        # the frames the system's own physics defines (the floating snake's two, section 3.4.3)
+        frames = self.system.body_frames(centre_of_mass=False, minimum_perturbation=False)
+        return dict(system=self.system, frames=frames if len(frames) > 1 else {}, n=o.get("n"), lim=o.get("lim"))
 
     def build(self):
         super().build()

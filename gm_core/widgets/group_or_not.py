@@ -1,8 +1,5 @@
 """Section 1.2 panel: group or not? the four axioms tried
 (scene of :mod:`gm_core.drawing.group_or_not`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 

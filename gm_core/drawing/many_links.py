@@ -1,0 +1,273 @@
+"""Drawing for notebook 11 (beyond the draft): chains of any number of links and continuous bodies.
+
+* :class:`ChainSliceScene`: a chain you design (links, physics), one connection row on a 2-D
+  slice of its shape space and the constraint curvature of that row on the same slice;
+* :class:`WaveGaitScene`: a travelling-wave gait (amplitude, phase lag between joints) and the
+  motion it makes over one cycle, with the net displacement and the efficiency;
+* :func:`animate_chain_gait`: a gait of any number of joints as an animation that plays without a
+  kernel (joint angles against time, and the body moving in the plane);
+* :func:`links_comparison_figure`, :func:`continuum_figure`: the notebook's two comparisons.
+
+The scenes compute by calling the math (:mod:`gm_core.systems`, :mod:`gm_core.locomotion`,
+:mod:`gm_core.geometry`); artists are made once and moved in ``set``.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .._validate import check_int, check_option
+from ..geometry import efficiency, travelling_wave
+from ..groups import SE2
+from ..locomotion import trajectory
+from ..systems import LinkChain, shape_slice
+from .connection import ROW_LABELS, ConnectionFieldArtist, style_shape_axes
+from .curvature import CurvatureMapArtist
+from .motion import SystemArtist, style_world_axes
+from .primitives import TrailArtist, animate
+from .toolkit import PALETTE, Scene, new_figure, readout
+
+__all__ = ["ChainSliceScene", "WaveGaitScene", "animate_chain_gait", "links_comparison_figure", "continuum_figure",
+           "design_chain", "PHYSICS_LABELS"]
+
+#: Dropdown labels of the physics of :class:`~gm_core.systems.LinkChain`.
+PHYSICS_LABELS = {"low Re (drag)": "low_re", "high Re (added mass)": "high_re", "floating (momentum)": "floating"}
+JOINT_COLOURS = [PALETTE[k] for k in ("blue", "orange", "green", "vermillion", "purple", "sky", "yellow")]
+
+
+def design_chain(links, physics="low_re", total_length=3.0, taper=0.0, frame="com"):
+    """The chain a student designs (a :meth:`LinkChain.tapered`; ``physics`` may be a dropdown label)."""
+    return LinkChain.tapered(links, PHYSICS_LABELS.get(physics, physics), total_length=total_length, taper=taper,
+                             frame=frame)
+
+
+class PartsArtist:
+    """Every rigid part of a system as one PolyCollection: ``set(system, g, r)`` moves it in place,
+    whatever the number of parts (the chain may gain or lose links between two calls)."""
+
+    def __init__(self, ax, facecolor=PALETTE["orange"], alpha=0.6, edgecolor="k", zorder=3):
+        from matplotlib.collections import PolyCollection
+
+        self.coll = PolyCollection([], facecolors=facecolor, edgecolors=edgecolor, alpha=alpha, linewidths=0.8,
+                                   zorder=zorder)
+        ax.add_collection(self.coll)
+
+    def set(self, system, g, r):
+        poses = SE2.compose(np.asarray(g, dtype=float), system.part_poses(np.asarray(r, dtype=float)))
+        self.coll.set_verts([SE2.act_on_points(pose, p.outline) for p, pose in zip(system.parts(), poses)])
+
+
+def _chain_axes_title(system):
+    return f"{system.n_links} links, {system.physics.replace('_', ' ')}"
+
+
+class ChainSliceScene(Scene):
+    """A chain, one row of its connection on a 2-D slice of shape space, and that row's curvature there.
+
+    Values: ``links`` (2-7), ``physics`` (a key of :data:`PHYSICS_LABELS` or a physics name),
+    ``row`` (0, 1, 2 = x, y, theta), ``axis1``, ``axis2`` (the two joints spanning the slice,
+    1-based; the other joints stay straight). Options: ``total_length`` (3), ``taper`` (0),
+    ``limits`` of the slice (+-2), ``n_map`` (curvature pixels per side).
+    """
+
+    FIGSIZE = (9.0, 3.3)
+    NCOLS = 3
+
+    def __init__(self, total_length=3.0, taper=0.0, limits=((-2.0, 2.0), (-2.0, 2.0)), n_map=41, **options):
+        self.total_length, self.taper, self.limits, self.n_map = total_length, taper, limits, n_map
+        super().__init__(**options)
+
+    def _build(self, links, physics, axis1, axis2):
+        self.system = design_chain(links, physics, self.total_length, self.taper)
+        n = self.system.n_shape
+        i, j = min(axis1, n) - 1, min(axis2, n) - 1
+        if i == j:
+            j = (i + 1) % n if n > 1 else i
+        self.pair = (i, j)
+        if n == 1:                       # two links: the shape space is a line; show it as a trivial slice
+            self.slice = None
+            return
+        self.slice = shape_slice(self.system, None, (i, j), limits=self.limits)
+
+    def decorate(self):
+        ax0, ax1, ax2 = self.axes
+        style_world_axes(ax0, 0.62 * self.total_length)
+        ax0.set_title("the chain: slice joints bent (dots)", fontsize=9)
+
+    def create(self):
+        self._build(4, "low_re", 1, 2)
+        ax0, ax1, ax2 = self.axes
+        self.body = PartsArtist(ax0)
+        (self.joint_dots,) = ax0.plot([], [], "o", ms=7, color=PALETTE["vermillion"], zorder=6)
+        style_shape_axes(ax1, self.slice)
+        style_shape_axes(ax2, self.slice)
+        self.field = ConnectionFieldArtist(ax1, self.slice, 0, color="0.3")
+        self.map = CurvatureMapArtist(ax2, self.slice, 0, limits=self.limits, n=self.n_map)
+        self.text = readout(ax0, 0.02, 0.02)
+        self._key = None
+
+    def set(self, links=4, physics="low_re", row=2, axis1=1, axis2=2):
+        links = check_int(links, "links", minimum=3, maximum=7, what=" (a slice needs two joints)")
+        physics = check_option(PHYSICS_LABELS.get(physics, physics), "physics", tuple(PHYSICS_LABELS.values()))
+        row = check_int(row, "row", minimum=0, maximum=2)
+        key = (links, physics, axis1, axis2)
+        if key != self._key:
+            self._key = key
+            self._build(links, physics, axis1, axis2)
+            self.body.set(self.system, np.zeros(3), self._drawn_shape())
+            q = self._joint_positions()
+            self.joint_dots.set_data(q[list(self.pair), 0], q[list(self.pair), 1])
+            names = self.slice.shape_names
+            for ax in self.axes[1:]:
+                ax.set_xlabel(names[0].replace("alpha", "α"), fontsize=9, labelpad=0)
+                ax.set_ylabel(names[1].replace("alpha", "α"), fontsize=9, labelpad=0)
+        self.field.set(self.slice, row)
+        self.map.set(self.slice, row)
+        self.axes[1].set_title(f"−A, row {ROW_LABELS[row]}, on the slice", fontsize=9)
+        self.axes[2].set_title(f"curvature D(−A), row {ROW_LABELS[row]}", fontsize=9)
+        self.text.set_text(f"{_chain_axes_title(self.system)}; slice (α{self.pair[0] + 1}, α{self.pair[1] + 1})")
+        self.row = row
+
+    def _drawn_shape(self):
+        """The chain is drawn with the slice's two joints bent by 0.6 rad, the others straight."""
+        r = np.zeros(self.system.n_shape)
+        r[list(self.pair)] = 0.6
+        return r
+
+    def _joint_positions(self):
+        P = self.system.link_poses(self._drawn_shape())
+        L = np.array(self.system.lengths)
+        return P[:-1, :2] + 0.5 * L[:-1, None] * np.stack([np.cos(P[:-1, 2]), np.sin(P[:-1, 2])], -1)
+
+
+class WaveGaitScene(Scene):
+    """A travelling-wave gait of a chain and the motion of one cycle: trail, body at start and end, numbers.
+
+    Values: ``links`` (2-7), ``physics``, ``amplitude`` (rad), ``lag`` (phase lag between
+    neighbouring joints, rad). The readout gives the net displacement per cycle (in the
+    centre-of-mass frame) and the efficiency (translation per unit path length in the
+    physics' cost metric).
+    """
+
+    FIGSIZE = (8.0, 3.6)
+    NCOLS = 2
+
+    def __init__(self, total_length=3.0, taper=0.0, **options):
+        self.total_length, self.taper = total_length, taper
+        super().__init__(**options)
+
+    def decorate(self):
+        ax0, ax1 = self.axes
+        ax0.set_xlim(0, 2 * np.pi)
+        ax0.set_ylim(-2.2, 2.2)
+        ax0.set_xlabel("t", fontsize=9, labelpad=0)
+        ax0.set_ylabel("joint angles (rad)", fontsize=9, labelpad=0)
+        ax0.set_title("the gait: one wave along the body", fontsize=9)
+        style_world_axes(ax1, 0.7 * self.total_length, (-0.15 * self.total_length, 0.0))
+        ax1.set_title("one cycle: start (faint) and end", fontsize=9)
+
+    def create(self):
+        ax0, ax1 = self.axes
+        self.lines = [ax0.plot([], [], color=c, lw=1.8)[0] for c in JOINT_COLOURS[:6]]
+        self.start = PartsArtist(ax1, facecolor=PALETTE["orange"], alpha=0.2, edgecolor="0.5")
+        self.end = PartsArtist(ax1)
+        self.trail = TrailArtist(ax1, color=PALETTE["green"])
+        self.text = readout(ax1, 0.02, 0.02)
+
+    def compute(self, links, physics, amplitude, lag):
+        self.system = design_chain(links, physics, self.total_length, self.taper)
+        self.gait = travelling_wave(self.system.n_shape, amplitude, lag)
+        self.traj = trajectory(self.system, self.gait, n_frames=61, substeps=8)
+        self.g = self.traj.g[-1]
+        try:
+            self.efficiency = efficiency(self.system, self.gait, check=False)
+        except TypeError:
+            self.efficiency = None
+
+    def set(self, links=4, physics="low_re", amplitude=0.8, lag=1.2):
+        links = check_int(links, "links", minimum=2, maximum=7)
+        physics = check_option(PHYSICS_LABELS.get(physics, physics), "physics", tuple(PHYSICS_LABELS.values()))
+        self.compute(links, physics, float(amplitude), float(lag))
+        t = self.traj.t
+        for k, line in enumerate(self.lines):
+            if k < self.system.n_shape:
+                line.set_data(t, self.traj.r[:, k])
+            else:
+                line.set_data([], [])
+        self.start.set(self.system, self.traj.g[0], self.traj.r[0])
+        self.end.set(self.system, self.g, self.traj.r[-1])
+        self.trail.set(self.traj.g[:, :2])
+        eff = "" if self.efficiency is None else f"\nefficiency {self.efficiency:.4f}"
+        self.text.set_text(f"g(T) = ({self.g[0]:+.3f}, {self.g[1]:+.3f}, {self.g[2]:+.3f}){eff}")
+
+
+def animate_chain_gait(system, gait, n_frames=60, cycles=2, interval=60, world_lim=None):
+    """The gait as a kernel-free animation: joint angles against time (with a cursor) and the body moving.
+
+    Works for any number of joints. Returns (anim, fig, traj); play it with
+    :func:`gm_core.drawing.primitives.jshtml`.
+    """
+    traj = trajectory(system, gait, n_frames, cycles=cycles)
+    fig, (ax0, ax1) = new_figure(1, 2, figsize=(8.4, 3.6))
+    T = gait.period * cycles
+    t = np.linspace(0, T, 400)
+    r = gait(t)
+    for k in range(system.n_shape):
+        ax0.plot(t, r[:, k], color=JOINT_COLOURS[k % len(JOINT_COLOURS)], lw=1.8, label=f"α{k + 1}")
+    ax0.set_xlim(0, T)
+    ax0.set_xlabel("t", fontsize=9, labelpad=0)
+    ax0.set_ylabel("joint angles (rad)", fontsize=9, labelpad=0)
+    ax0.legend(fontsize=8, ncol=min(system.n_shape, 3), loc="upper right", frameon=False)
+    lo, hi = float(r.min()), float(r.max())
+    ax0.set_ylim(lo - 0.15 * (hi - lo) - 0.1, hi + 0.45 * (hi - lo) + 0.1)
+    cursor = ax0.axvline(0.0, color="0.3", lw=1)
+    body = SystemArtist(ax1, system, traj.g[0], traj.r[0])
+    trail = TrailArtist(ax1, color=PALETTE["green"])
+    size = 0.55 * sum(getattr(system, "lengths", (getattr(system, "length", 1.0),)))
+    lo2, hi2 = traj.g[:, :2].min(0) - 1.1 * size, traj.g[:, :2].max(0) + 1.1 * size
+    c, half = (lo2 + hi2) / 2, max(hi2 - lo2) / 2 if world_lim is None else world_lim
+    style_world_axes(ax1, half, c)
+    ax1.set_title(system.name, fontsize=9)
+
+    def update(k):
+        k = int(k)
+        body.set(traj.g[k], traj.r[k])
+        trail.set(traj.g[: k + 1, :2])
+        cursor.set_xdata([traj.t[k], traj.t[k]])
+        return []
+
+    return animate(fig, update, range(n_frames), interval=interval), fig, traj
+
+
+def links_comparison_figure(rows):
+    """Bars of efficiency and displacement per cycle for chains of different lengths.
+
+    ``rows``: list of (label, efficiency, displacement). Returns the figure.
+    """
+    fig, (ax0, ax1) = new_figure(1, 2, figsize=(7.5, 2.9))
+    labels = [r[0] for r in rows]
+    x = np.arange(len(rows))
+    for ax, k, title in ((ax0, 1, "efficiency (translation / path length)"), (ax1, 2, "translation per cycle")):
+        vals = [r[k] for r in rows]
+        ax.bar(x, vals, color=PALETTE["blue"], width=0.6)
+        for xi, v in zip(x, vals):
+            ax.text(xi, v, f"{v:.3f}", ha="center", va="bottom", fontsize=9)
+        ax.set_xticks(x, labels, fontsize=9)
+        ax.set_ylim(0, 1.2 * max(vals))
+        ax.set_title(title, fontsize=9)
+        ax.tick_params(labelsize=8)
+    return fig
+
+
+def continuum_figure(n_links, errors, label="max |A_chain − A_body|"):
+    """Log-log plot of the chain's error against the number of links, with the 1/N² slope for reference."""
+    fig, ax = new_figure(1, 1, figsize=(4.6, 3.2))
+    n_links, errors = np.asarray(n_links, float), np.asarray(errors, float)
+    ax.loglog(n_links, errors, "o-", color=PALETTE["blue"], lw=1.8, label=label)
+    ref = errors[0] * (n_links[0] / n_links) ** 2
+    ax.loglog(n_links, ref, "--", color="0.4", lw=1.2, label="slope −2 (error ∝ 1/N²)")
+    ax.set_xlabel("links N", fontsize=9, labelpad=0)
+    ax.set_ylabel("error", fontsize=9, labelpad=0)
+    ax.legend(fontsize=8, frameon=False)
+    ax.tick_params(labelsize=8)
+    ax.set_title("a chain sampling the curvature → the continuous body", fontsize=9)
+    return fig

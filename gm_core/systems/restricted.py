@@ -1,0 +1,129 @@
+"""A system restricted to an affine subspace of its shapes: slices of shape space and shape maps (numpy only).
+
+If the shape is driven only along ``r = r0 + S q`` (S an (n, m) matrix), the restricted system
+has shape q and, by the chain rule, connection ``A_q(q) = A(r0 + S q) S``, Pfaffian
+``[omega_xi, omega_r S]``, cost metric ``S^T M S`` and curvature the pull-back of the 2-form,
+``F_q,ab = sum_ij S_ia S_jb F_ij`` (curvature commutes with pull-back). Two uses:
+
+* :func:`shape_slice`: a two-dimensional slice through a shape ``r0`` along two shape
+  directions of a many-link chain, on which every two-dimensional tool of the course works
+  (connection fields, curvature maps, Stokes estimates of gaits lying in the slice);
+* a chain whose joint angles sample a continuous curvature (``S`` maps mode amplitudes to joint
+  angles), compared with the continuous body in :mod:`gm_core.systems.slender_body`.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .._validate import as_array, check_int
+from ..locomotion import check_system
+from .base import LocomotionSystem
+
+__all__ = ["AffineRestriction", "shape_slice"]
+
+
+class AffineRestriction(LocomotionSystem):
+    """``base`` with its shape confined to ``r = offset + matrix @ q``; shape q (m,)."""
+
+    def __init__(self, base, matrix, offset=None, *, shape_names=None, shape_limits=None, name=None):
+        n = check_system(base, "base")
+        S = as_array(matrix, "matrix", what=f" (an (n, m) map from the new shapes to the {n} shapes of {base.name})")
+        if S.ndim != 2 or S.shape[0] != n or S.shape[1] < 1:
+            raise ValueError(f"matrix must have shape ({n}, m) with m >= 1; got shape {S.shape}")
+        r0 = np.zeros(n) if offset is None else as_array(offset, "offset", (n,), what=f" (a shape of {base.name})")
+        if r0.ndim != 1:
+            raise ValueError(f"offset must be one shape ({n},); got shape {r0.shape}")
+        self.base_system, self.matrix, self.offset = base, S.copy(), r0.copy()
+        self.n_shape = S.shape[1]
+        self.shape_names = tuple(shape_names) if shape_names is not None else tuple(f"q{k + 1}" for k in range(self.n_shape))
+        self.shape_limits = tuple(shape_limits) if shape_limits is not None else ((-np.pi, np.pi),) * self.n_shape
+        self.may_be_singular = base.may_be_singular
+        self.singular_description = base.singular_description
+        self.name = name or f"{base.name} (restricted)"
+
+    def full_shape(self, q):
+        """The base system's shape (..., n) at restricted shapes q (..., m)."""
+        q = self._shape(q, "q")
+        return self.offset + q @ self.matrix.T
+
+    def connection(self, r):
+        return self.base_system.connection(self.full_shape(r)) @ self.matrix
+
+    def connection_derivative(self, r):
+        A, dA = self.base_system.connection_derivative(self.full_shape(r))
+        S = self.matrix
+        return A @ S, np.einsum("...ijk,ja,kb->...iab", dA, S, S)
+
+    def constraint_curvature(self, r):
+        F = self.base_system.constraint_curvature(self.full_shape(r))
+        S = self.matrix
+        if self.base_system.n_shape == 2:        # F is the (1, 2) component: F_ij = F eps_ij
+            F = F[..., None, None] * np.array([[0.0, 1.0], [-1.0, 0.0]])
+        F = np.einsum("...kij,ia,jb->...kab", F, S, S)
+        return F[..., 0, 1] if self.n_shape == 2 else F
+
+    def pfaffian(self, r):
+        om = self.base_system.pfaffian(self.full_shape(r))
+        return np.concatenate([om[..., :3], om[..., 3:] @ self.matrix], -1)
+
+    def shape_metric(self, r):
+        M = self.base_system.shape_metric(self.full_shape(r))
+        return self.matrix.T @ M @ self.matrix
+
+    def singularity(self, r):
+        return self.base_system.singularity(self.full_shape(r))
+
+    def is_singular(self, r):
+        return self.base_system.is_singular(self.full_shape(r))
+
+    def parts(self):
+        return self.base_system.parts()
+
+    def part_poses(self, r):
+        return self.base_system.part_poses(self.full_shape(r))
+
+    def link_poses(self, r):
+        return self.base_system.link_poses(self.full_shape(r))
+
+    def link_weights(self):
+        return self.base_system.link_weights()
+
+    def __repr__(self):
+        return f"AffineRestriction({self.base_system!r}, matrix shape {self.matrix.shape})"
+
+
+def shape_slice(system, through=None, axes=(0, 1), *, limits=None):
+    """The two-dimensional slice of ``system``'s shape space through ``through`` along ``axes``.
+
+    ``axes``: a pair of shape indices (i, j) (0-based): then the slice's shapes are (r_i, r_j)
+    themselves and the other shape variables stay at their values in ``through`` (default the
+    straight shape, zeros); or an (n, 2) matrix of two directions u, v: then r = through + a u + b v.
+    The result is a system with two shape variables (an :class:`AffineRestriction`); a gait
+    drawn in it is a gait of the full system lying in the slice.
+    """
+    n = check_system(system)
+    r0 = np.zeros(n) if through is None else as_array(through, "through", (n,), what=f" (a shape of {system.name})")
+    if r0.ndim != 1:
+        raise ValueError(f"through must be one shape ({n},); got shape {r0.shape}")
+    if np.ndim(axes) == 1 and len(axes) == 2 and all(isinstance(a, (int, np.integer)) and not isinstance(a, bool)
+                                                    for a in axes):
+        i, j = (check_int(a, "axes", minimum=0, maximum=n - 1, what=f" (shape indices 0..{n - 1})") for a in axes)
+        if i == j:
+            raise ValueError(f"axes must name two different shape variables; got {axes!r}")
+        S = np.zeros((n, 2))
+        S[i, 0] = S[j, 1] = 1.0
+        r0 = r0.copy()
+        r0[[i, j]] = 0.0
+        names = (system.shape_names[i], system.shape_names[j])
+        lim = limits or (system.shape_limits[i], system.shape_limits[j])
+        fixed = ", ".join(f"{system.shape_names[k]}={r0[k]:.2g}" for k in range(n) if k not in (i, j))
+        label = f"{system.name}: slice ({names[0]}, {names[1]})" + (f" at {fixed}" if fixed else "")
+    else:
+        S = as_array(axes, "axes", (2,), what=" (two shape indices, or an (n, 2) matrix of two directions)")
+        if S.shape != (n, 2):
+            raise ValueError(f"axes must be two shape indices or an ({n}, 2) matrix of directions; got {axes!r:.60}")
+        if abs(np.linalg.det(S.T @ S)) < 1e-12:
+            raise ValueError("axes: the two directions must be linearly independent")
+        names, lim = ("a", "b"), limits or ((-np.pi, np.pi),) * 2
+        label = f"{system.name}: slice through the plane of two directions"
+    return AffineRestriction(system, S, r0, shape_names=names, shape_limits=lim, name=label)

@@ -1,0 +1,207 @@
+"""Chains of any number of links (gm_core.systems.LinkChain): every formula against an independent route.
+
+Routes: today's three-link systems (N = 3), the chapter-2 frame graph (kinematics.MobileChain),
+finite differences of the forward kinematics, the resistive-force law integrated by quadrature
+(fluids.drag_wrench) and momentum summed link by link along integrated gaits, the group's own
+inverse and a mirror reflection.
+"""
+import numpy as np
+import pytest
+
+from gm_core import SE2
+from gm_core.chains import MobileChain
+from gm_core.fluids import drag_wrench
+from gm_core.gaits import circle_gait
+from gm_core.geometry import centre_of_mass_coordinates, fourier_gait
+from gm_core.locomotion import net_displacement, trajectory
+from gm_core.systems import FloatingSnake, HighReSwimmer, LinkChain, LowReSwimmer
+
+RNG = np.random.default_rng(22)
+LENGTHS3 = (1.0, 1.3, 0.7)
+BATCHES = [(), (1,), (4,), (3, 1, 2)]
+
+
+def _shapes(n, batch, scale=2.0):
+    return RNG.uniform(-scale, scale, batch + (n,))
+
+
+# ------------------------------------------------------------------ N = 3 is today's three-link systems
+@pytest.mark.parametrize("old, new", [
+    (LowReSwimmer(LENGTHS3, drag_ratio=3.0), LinkChain(LENGTHS3, "low_re", drag_ratio=3.0)),
+    (HighReSwimmer(LENGTHS3, aspect_ratio=6.0, body_density=0.3), LinkChain(LENGTHS3, "high_re", aspect_ratio=6.0,
+                                                                            body_density=0.3)),
+    (FloatingSnake(LENGTHS3, masses=(1, 2, 3), frame="middle"), LinkChain(LENGTHS3, "floating", masses=(1, 2, 3))),
+    (LowReSwimmer(), LinkChain((1, 1, 1))),
+], ids=["low_re", "high_re", "floating", "defaults"])
+def test_three_links_equal_todays_systems(old, new):
+    r = _shapes(2, (40,))
+    np.testing.assert_allclose(new.connection(r), old.connection(r), atol=1e-14)
+    np.testing.assert_allclose(new.metric(r), old.metric(r), atol=1e-13)
+    np.testing.assert_allclose(new.pfaffian(r), old.pfaffian(r), atol=1e-13)
+    np.testing.assert_allclose(new.link_poses(r), old.link_poses(r), atol=1e-15)
+    np.testing.assert_allclose(new.shape_metric(r), old.shape_metric(r), atol=1e-13)
+    for a, b in zip(new.parts(), old.parts()):
+        np.testing.assert_allclose(a.outline, b.outline)
+    g = circle_gait(0.8, (0.3, -0.2))
+    np.testing.assert_allclose(net_displacement(new, g), net_displacement(old, g), atol=1e-12)
+
+
+def test_centre_of_mass_frame_is_the_reframed_three_link_system():
+    """frame='com' (lengths as weights, mean orientation) = centre_of_mass_coordinates of today's swimmer;
+    for the floating chain the centre of mass does not move (zero momentum), as for FloatingSnake."""
+    r = _shapes(2, (30,))
+    np.testing.assert_allclose(LinkChain(LENGTHS3, frame="com").connection(r),
+                               centre_of_mass_coordinates(LowReSwimmer(LENGTHS3)).connection(r), atol=1e-8)
+    fl = LinkChain(LENGTHS3, "floating", masses=(1, 2, 1.5), frame="com")
+    A = fl.connection(r)
+    assert np.abs(A[..., :2, :]).max() < 1e-13
+    np.testing.assert_allclose(A[..., 2, :], FloatingSnake(LENGTHS3, (1, 2, 1.5), frame="com").connection(r)[..., 2, :]
+                               - [-1 / 4.5, 1.5 / 4.5], atol=1e-13)
+
+
+# ------------------------------------------------------------------ kinematics for N = 4, 5, 6
+@pytest.mark.parametrize("N", [2, 4, 5, 6])
+def test_poses_and_jacobians_against_the_frame_graph(N):
+    """Odd N: the middle link is MobileChain's base link; the poses and (xi, alpha_dot) Jacobians agree."""
+    lengths = RNG.uniform(0.5, 1.5, N)
+    chain = LinkChain(lengths)
+    r = _shapes(N - 1, (7,))
+    if N % 2:
+        mc = MobileChain(lengths)
+        np.testing.assert_allclose(chain.link_poses(r), mc.frames(r)["g"], atol=1e-13)
+        np.testing.assert_allclose(chain.link_jacobians(r), mc.body_jacobians(r), atol=1e-13)
+    else:   # the body frame is the middle joint: halfway between its links' orientations, at the joint
+        P = chain.link_poses(r)
+        m = N // 2
+        np.testing.assert_allclose(P[..., m - 1, 2], -P[..., m, 2], atol=1e-13)
+        ends = [SE2.compose(P[..., m - 1, :], [lengths[m - 1] / 2, 0, 0]), SE2.compose(P[..., m, :], [-lengths[m] / 2, 0, 0])]
+        np.testing.assert_allclose(ends[0][..., :2], 0.0, atol=1e-13)
+        np.testing.assert_allclose(ends[1][..., :2], 0.0, atol=1e-13)
+
+
+@pytest.mark.parametrize("N, frame", [(4, "middle"), (5, "middle"), (6, "middle"), (5, "com"), (4, "com")])
+def test_pfaffian_from_finite_differences_of_forward_kinematics(N, frame):
+    """Link body velocities by differencing world link poses g exp(t xi) Q_i(r + t r_dot); then the
+    Pfaffian's rows are sum_i J_i^T M_i xi_i for every (xi, r_dot), here from those differences."""
+    lengths = RNG.uniform(0.5, 1.5, N)
+    for physics in ("low_re", "floating", "high_re"):
+        chain = LinkChain(lengths, physics, frame=frame, masses=RNG.uniform(0.5, 2, N))
+        r = _shapes(N - 1, (), 1.5)
+        M = chain.link_matrices()
+        h = 1e-6
+        cols = []
+        for q in np.eye(3 + N - 1):
+            xi, rd = q[:3], q[3:]
+
+            def world(t):
+                return SE2.compose(SE2.exp(t * xi)[None], chain.link_poses(r + t * rd))
+
+            g0 = world(0.0)
+            V = (SE2.log(SE2.compose(SE2.inverse(g0), world(h))) - SE2.log(SE2.compose(SE2.inverse(g0), world(-h)))) / (2 * h)
+            cols.append(V)
+        V = np.stack(cols, -1)                                          # (N, 3, 3 + n): link velocities per column
+        np.testing.assert_allclose(chain.link_jacobians(r), V, atol=1e-8)
+        pf = sum(V[i][:, :3].T @ M[i] @ V[i] for i in range(N))
+        np.testing.assert_allclose(chain.pfaffian(r), pf, atol=1e-8)
+        np.testing.assert_allclose(chain.metric(r), sum(V[i].T @ M[i] @ V[i] for i in range(N)), atol=1e-8)
+
+
+@pytest.mark.parametrize("batch", BATCHES, ids=str)
+def test_batch_shapes(batch):
+    chain = LinkChain((1.0, 0.8, 1.2, 0.9), "high_re")
+    r = _shapes(3, batch)
+    A = chain.connection(r)
+    assert A.shape == batch + (3, 3)
+    flat = chain.connection(r.reshape(-1, 3))
+    np.testing.assert_allclose(A.reshape(-1, 3, 3), flat, atol=1e-15)
+    assert chain.link_poses(r).shape == batch + (4, 3)
+    assert chain.metric(r).shape == batch + (6, 6)
+    assert chain.shape_metric(r).shape == batch + (3, 3)
+    assert chain.part_poses(r).shape == batch + (4, 3)
+
+
+# ------------------------------------------------------------------ physics along integrated gaits
+def _wave(n, amp=0.7, order=1, phase=None):
+    a, b = np.zeros((n, order)), np.zeros((n, order))
+    ph = np.linspace(0, np.pi, n) if phase is None else phase
+    a[:, 0], b[:, 0] = amp * np.cos(ph), amp * np.sin(ph)
+    return fourier_gait(a, b, period=2 * np.pi)
+
+
+def _world_links(chain, tr):
+    return SE2.compose(tr.g[:, None, :], chain.link_poses(tr.r))
+
+
+@pytest.mark.parametrize("N, frame", [(4, "middle"), (5, "com"), (6, "middle")])
+def test_zero_net_drag_wrench_along_integrated_gaits(N, frame):
+    """Low Re: the world motion of every link, differenced from the integrated trajectory, meets zero
+    total drag force and moment, with the drag integrated along the links by quadrature (fluids)."""
+    chain = LinkChain(RNG.uniform(0.6, 1.4, N), drag_ratio=2.5, frame=frame)
+    tr = trajectory(chain, _wave(N - 1), n_frames=801)
+    G = _world_links(chain, tr)
+    dt = tr.t[1] - tr.t[0]
+    V = (G[2:] - G[:-2]) / (2 * dt)
+    F = drag_wrench(G[1:-1], V, np.array(chain.lengths), 2.5)
+    scale = np.abs(drag_wrench(G[1:-1], np.abs(V), np.array(chain.lengths), 2.5)).max()
+    assert np.abs(F).max() < 2e-4 * scale
+    assert scale > 0.1
+
+
+@pytest.mark.parametrize("N", [4, 5])
+def test_zero_momentum_of_the_floating_chain_along_integrated_gaits(N):
+    chain = LinkChain(RNG.uniform(0.6, 1.4, N), "floating", masses=RNG.uniform(0.5, 2, N))
+    tr = trajectory(chain, _wave(N - 1, 0.9), n_frames=801)
+    G = _world_links(chain, tr)
+    dt = tr.t[1] - tr.t[0]
+    V = (G[2:] - G[:-2]) / (2 * dt)
+    m, I = np.array(chain.masses), np.array(chain.inertias)
+    P = (m[:, None] * V[..., :2]).sum(1)
+    p = G[1:-1, :, :2]
+    L = (I * V[..., 2] + m * (p[..., 0] * V[..., 1] - p[..., 1] * V[..., 0])).sum(1)
+    scale = (m * np.abs(V[..., :2]).sum(-1)).sum(1).max()
+    assert np.abs(P).max() < 1e-4 * scale and np.abs(L).max() < 1e-4 * scale
+
+
+# ------------------------------------------------------------------ symmetries
+@pytest.mark.parametrize("N", [4, 5])
+def test_reversed_gait_reverses_the_motion(N):
+    chain = LinkChain(RNG.uniform(0.6, 1.4, N))
+    g = _wave(N - 1, 0.8)
+    back = fourier_gait(g.a, -g.b, g.center, period=g.period)     # r(-t): the same loop backwards
+    np.testing.assert_allclose(net_displacement(chain, back), SE2.inverse(net_displacement(chain, g)), atol=1e-10)
+
+
+@pytest.mark.parametrize("N", [4, 5, 6])
+def test_mirrored_shapes_give_the_mirrored_motion(N):
+    """Reflecting every joint angle reflects the chain in its body x axis: (x, y, theta) -> (x, -y, -theta)."""
+    chain = LinkChain(RNG.uniform(0.6, 1.4, N), "high_re")
+    g = _wave(N - 1, 0.6)
+    mirror = fourier_gait(-g.a, -g.b, -g.center, period=g.period)
+    d, dm = net_displacement(chain, g), net_displacement(chain, mirror)
+    np.testing.assert_allclose(dm, d * [1, -1, -1], atol=1e-10)
+    assert abs(d[0]) > 1e-3
+
+
+# ------------------------------------------------------------------ bad input
+def test_bad_input_is_named():
+    for bad, match in [((1.0,), "lengths"), ("abc", "lengths"), ((1, 0, 1), "lengths"), ((1,) * 201, "lengths"),
+                       ((1, np.nan, 1), "lengths")]:
+        with pytest.raises((ValueError, TypeError), match=match):
+            LinkChain(bad)
+    with pytest.raises(ValueError, match="physics"):
+        LinkChain((1, 1, 1), "viscous")
+    with pytest.raises(ValueError, match="frame"):
+        LinkChain((1, 1, 1), frame="tail")
+    with pytest.raises(ValueError, match="drag_ratio"):
+        LinkChain((1, 1, 1), drag_ratio=-1)
+    with pytest.raises(ValueError, match="masses"):
+        LinkChain((1, 1, 1), "floating", masses=(1, 1))
+    with pytest.raises(ValueError, match="aspect_ratio"):
+        LinkChain((1, 1, 1), "high_re", aspect_ratio=0.5)
+    with pytest.raises(ValueError, match="bounds and nodes"):
+        LinkChain((1, 1, 1), bounds=((-1, 1), (-1, 1)))
+    chain = LinkChain((1, 1, 1, 1))
+    with pytest.raises(ValueError, match=r"r must have shape \(\.\.\., 3\)"):
+        chain.connection(np.zeros(2))
+    with pytest.raises(TypeError, match="r"):
+        chain.connection("0 0 0")

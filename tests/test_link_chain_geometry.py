@@ -1,0 +1,215 @@
+"""The geometric analysis in any shape dimension: slices, the curvature 2-form, Stokes estimates,
+minimum perturbation on a 3-D box, the continuous slender body and gait optimisation of a
+five-link swimmer. Independent routes: net rotations (theta is abelian), finite differences,
+the full system integrated along an embedded gait, chains of many links, and circles."""
+import numpy as np
+import pytest
+
+from gm_core import SE2, SingularShapeError
+from gm_core.gaits import Gait, circle_gait
+from gm_core.geometry import (
+    body_velocity_integral,
+    constraint_curvature,
+    fourier_gait,
+    gait_objective,
+    minimum_perturbation_coordinates,
+    optimize_gait,
+    stokes_estimate,
+)
+from gm_core.locomotion import net_displacement
+from gm_core.systems import (
+    LinkChain,
+    LowReSwimmer,
+    SlenderBody,
+    chain_approximation,
+    shape_slice,
+)
+
+RNG = np.random.default_rng(2022)
+
+
+def _embedded(sl, gait2):
+    """The 2-D gait of a slice as a gait of the full system."""
+    return Gait(lambda t: sl.full_shape(gait2(t)), gait2.period, lambda t: gait2.velocity(t) @ sl.matrix.T)
+
+
+# ------------------------------------------------------------------ curvature as a 2-form
+@pytest.mark.parametrize("batch", [(), (1,), (3, 1, 2)], ids=str)
+def test_curvature_two_form_against_differences_and_slices(batch):
+    chain = LinkChain((1.0, 0.8, 1.2, 0.9, 1.1), "low_re")
+    r = RNG.uniform(-1, 1, batch + (4,))
+    F = constraint_curvature(chain, r)
+    assert F.shape == batch + (3, 4, 4)
+    np.testing.assert_allclose(F, -np.swapaxes(F, -1, -2), atol=1e-15)
+    np.testing.assert_allclose(constraint_curvature(chain, r, pair=(1, 3)), F[..., 1, 3])
+    for i, j in [(0, 1), (1, 3), (2, 3)]:       # the slice's curvature is the component of the 2-form
+        for k in np.ndindex(batch):
+            sl = shape_slice(chain, r[k], (i, j))
+            np.testing.assert_allclose(constraint_curvature(sl, r[k][[i, j]]), F[k][:, i, j], atol=1e-7)
+    # the three-link case keeps its (..., 3)
+    assert constraint_curvature(LowReSwimmer(), np.zeros(batch + (2,))).shape == batch + (3,)
+
+
+@pytest.mark.parametrize("axes", [(0, 1), (1, 3), (0, 3), "oblique"])
+def test_theta_row_of_the_stokes_estimate_is_exact_in_every_slice(axes):
+    chain = LinkChain((1.0, 0.9, 1.1, 1.0, 0.8), "low_re")
+    through = np.array([0.3, -0.2, 0.4, 0.1])
+    if axes == "oblique":
+        axes = np.array([[1.0, 0.5], [0.0, 1.0], [-0.5, 0.2], [0.3, -1.0]])
+    sl = shape_slice(chain, through, axes)
+    gait = circle_gait(0.7, (0.2, -0.1))
+    est = stokes_estimate(sl, gait, samples=(128, 16))
+    full = net_displacement(chain, _embedded(sl, gait), steps=512)
+    np.testing.assert_allclose(net_displacement(sl, gait, steps=512), full, atol=1e-13)   # the slice is the same system
+    assert abs(est[2] - full[2]) < 1e-9 and abs(full[2]) > 1e-3                 # exact theta row
+    np.testing.assert_allclose(body_velocity_integral(sl, gait, samples=256)[2], full[2], atol=1e-9)
+    # x, y: leading order only, the error of third order in the size of the gait
+    err = [np.abs(stokes_estimate(sl, circle_gait(R, (0.2, -0.1)), samples=(64, 12))[:2]
+                  - net_displacement(sl, circle_gait(R, (0.2, -0.1)), steps=256)[:2]).max() for R in (0.4, 0.2)]
+    assert err[1] < err[0] / 6
+
+
+def test_body_velocity_integral_in_any_dimension():
+    chain = LinkChain((1.0,) * 5)
+    a = 0.5 * np.array([[1.0], [0.3], [-0.8], [0.1]])
+    b = 0.5 * np.array([[0.0], [1.0], [0.4], [-1.0]])
+    gait = fourier_gait(a, b)
+    bvi = body_velocity_integral(chain, gait)
+    assert bvi.shape == (3,)
+    assert abs(bvi[2] - net_displacement(chain, gait)[2]) < 1e-9     # theta is abelian
+    with pytest.raises(ValueError, match="shape_slice"):
+        stokes_estimate(chain, gait)
+
+
+# ------------------------------------------------------------------ minimum perturbation in 3-D
+@pytest.fixture(scope="module")
+def mp3():
+    chain = LinkChain((1.0, 1.0, 1.0, 1.0))
+    return chain, minimum_perturbation_coordinates(chain, ((-1.2, 1.2),) * 3, 9)
+
+
+def test_minimum_perturbation_on_a_three_dimensional_box(mp3):
+    chain, mp = mp3
+    div, div0 = mp.frame.discrete_divergence(), mp.frame.discrete_divergence(of="base")
+    assert np.abs(div0).max() > 1e-3 and np.abs(div).max() < 1e-12 * np.abs(div0).max()
+    r = RNG.uniform(-1, 1, (10, 3))
+    # covariance against differences of the new connection, and conjugated net displacements
+    np.testing.assert_allclose(constraint_curvature(mp, r), constraint_curvature(mp, r, method="fd"), atol=1e-5)
+    g = fourier_gait(0.6 * np.eye(3)[:, :1], 0.6 * np.array([[0.0], [1.0], [0.5]]))
+    b = mp.beta(g(0.0))
+    np.testing.assert_allclose(net_displacement(mp, g), SE2.compose(SE2.compose(SE2.inverse(b), net_displacement(chain, g)), b),
+                               atol=1e-9)
+    # the new connection is smaller in the mean square over the box
+    q = RNG.uniform(-1.2, 1.2, (400, 3))
+    assert np.sum(mp.connection(q) ** 2) < 0.7 * np.sum(chain.connection(q) ** 2)
+    with pytest.raises(SingularShapeError, match="outside"):
+        net_displacement(mp, fourier_gait(1.5 * np.eye(3)[:, :1], 1.5 * np.eye(3)[:, 1:2]))
+
+
+def test_minimum_perturbation_built_into_the_chain(mp3):
+    chain, mp = mp3
+    own = LinkChain((1.0, 1.0, 1.0, 1.0), frame="minimum perturbation", bounds=((-1.2, 1.2),) * 3, nodes=9)
+    r = RNG.uniform(-1, 1, (10, 3))
+    np.testing.assert_allclose(own.connection(r), mp.connection(r), atol=1e-12)
+    assert np.all(np.isnan(own.connection(np.array([1.5, 0.0, 0.0]))))
+
+
+def test_too_large_boxes_are_refused_with_the_reason():
+    with pytest.raises(ValueError, match="at most 3 shape variables"):
+        minimum_perturbation_coordinates(LinkChain((1.0,) * 5))
+    with pytest.raises(ValueError, match="nodes"):
+        minimum_perturbation_coordinates(LinkChain((1.0,) * 4), n=40)
+    with pytest.raises(ValueError, match=r"bounds must have shape \(3, 2\)"):
+        minimum_perturbation_coordinates(LinkChain((1.0,) * 4), ((-1, 1), (-1, 1)))
+    assert "minimum perturbation" not in LinkChain((1.0,) * 5).body_frames()
+
+
+# ------------------------------------------------------------------ the continuous body
+def test_straight_body_has_the_drag_of_one_link():
+    body = SlenderBody(2.0, drag_ratio=3.0)
+    np.testing.assert_allclose(body.metric(np.zeros(2))[:3, :3], np.diag([2.0, 6.0, 3.0 * 8 / 12]), atol=1e-13)
+
+
+def test_body_quadrature_converges():
+    r = np.array([[3.0, 1.0], [-2.0, 4.0]])
+    fine = SlenderBody(panels=32, order=12).connection(r)
+    errs = [np.abs(SlenderBody(panels=p, order=o).connection(r) - fine).max() for p, o in ((2, 4), (4, 6), (8, 8))]
+    assert errs[0] > errs[1] > errs[2] and errs[2] < 1e-8
+
+
+@pytest.mark.parametrize("frame", ["middle", "com"])
+def test_chains_sampling_the_curvature_converge_to_the_body_at_rate_two(frame):
+    body = SlenderBody(frame=frame, panels=16, order=12)
+    r = np.array([[3.0, 1.0], [-2.0, 4.0], [1.0, -5.0]])
+    A = body.connection(r)
+    errs = np.array([np.abs(chain_approximation(body, N).connection(r) - A).max() for N in (8, 16, 32, 64)])
+    assert errs[-1] < 2e-4
+    rates = np.log2(errs[:-1] / errs[1:])
+    assert np.all(np.abs(rates - 2) < 0.1), rates
+    g = circle_gait(2.5)
+    d, d64 = net_displacement(body, g, steps=256), net_displacement(chain_approximation(body, 64), g, steps=256)
+    assert np.abs(d - d64).max() < 2e-3 * np.abs(d).max()
+
+
+def test_any_modes_as_functions():
+    """The serpenoid pair given as plain functions (integrated numerically) is the built-in pair."""
+    w = 2 * np.pi
+    own = SlenderBody(1.0, (lambda s: np.cos(w * s), lambda s: np.sin(w * s)))
+    r = RNG.uniform(-4, 4, (5, 2))
+    np.testing.assert_allclose(own.connection(r), SlenderBody().connection(r), atol=1e-11)
+    three = SlenderBody(1.0, (lambda s: np.cos(w * s), lambda s: np.sin(w * s), lambda s: np.cos(2 * w * s)))
+    assert three.connection(RNG.uniform(-2, 2, (4, 3))).shape == (4, 3, 3)
+    with pytest.raises(TypeError, match="modes"):
+        SlenderBody(1.0, "sinusoid" and 3)
+    with pytest.raises(ValueError, match="modes"):
+        SlenderBody(1.0, "sinusoid")
+    with pytest.raises(ValueError, match="modes\\[0\\]"):
+        SlenderBody(1.0, (lambda s: np.nan * s,))
+
+
+# ------------------------------------------------------------------ optimisation in any dimension
+def test_gradient_of_a_four_joint_gait_against_differences():
+    chain = LinkChain((1.0,) * 5, frame="com")
+    a = RNG.uniform(-0.5, 0.5, (4, 2))
+    b = RNG.uniform(-0.5, 0.5, (4, 2))
+    g = fourier_gait(a, b, RNG.uniform(-0.2, 0.2, 4))
+    for objective in ("displacement", "efficiency"):
+        val, grad, _ = gait_objective(chain, g, objective, intervals=256)
+        p = g.parameters
+        h = 1e-6
+        fd = []
+        for k in range(p.size):
+            e = np.zeros_like(p)
+            e[k] = h
+            up = gait_objective(chain, type(g).from_parameters(p + e, 4, 2, g.period), objective, intervals=256,
+                                gradient=False)[0]
+            dn = gait_objective(chain, type(g).from_parameters(p - e, 4, 2, g.period), objective, intervals=256,
+                                gradient=False)[0]
+            fd.append((up - dn) / (2 * h))
+        np.testing.assert_allclose(grad, fd, rtol=1e-4, atol=1e-7)
+
+
+@pytest.fixture(scope="module")
+def five_link_optimum():
+    chain = LinkChain((1.0,) * 5, "low_re", frame="com")
+    return chain, optimize_gait(chain, "efficiency", order=2, coordinates="given", maxiter=200, intervals=256)
+
+
+def test_order_two_optimum_of_a_five_link_swimmer(five_link_optimum):
+    """Near-stationary (the exact gradient vanishes there), better than the best circle in any pair
+    of joints, and a travelling wave: equal-ish amplitudes, phase growing steadily along the body."""
+    from gm_core.geometry import efficiency
+
+    chain, res = five_link_optimum
+    val, grad, _ = gait_objective(chain, res.gait, "efficiency", intervals=256)
+    start = gait_objective(chain, fourier_gait(np.eye(4, 2), np.eye(4, 2)[:, ::-1]), "efficiency", intervals=256)
+    assert np.abs(grad).max() < 1e-4 * np.abs(start[1]).max()
+    assert val == pytest.approx(res.efficiency, rel=1e-3)
+    circles = [efficiency(chain, fourier_gait(R * np.eye(4)[:, i:i + 1], R * np.eye(4)[:, j:j + 1]), check=False)
+               for i in range(4) for j in range(i + 1, 4) for R in np.linspace(0.2, 2.0, 10)]
+    assert res.efficiency > 1.5 * max(circles)
+    g = res.gait
+    amp = np.hypot(g.a[:, 0], g.b[:, 0])
+    lag = np.diff(np.unwrap(np.arctan2(g.b[:, 0], g.a[:, 0])))
+    assert amp.min() > 0.6 * amp.max()
+    assert np.all(np.abs(lag - lag.mean()) < 0.25 * abs(lag.mean())) and abs(lag.mean()) > 0.5
