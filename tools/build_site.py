@@ -236,38 +236,45 @@ def prune_widgets(nb):
             del nb.metadata["widgets"]
 
 
+_PLAYER_FRAMES = re.compile(r"frames = (\[.*?\]), interval = (\d+)", re.S)
+
+
 def _frames(html):
-    return list(re.finditer(r'frames\[(\d+)\] = "data:image/(\w+);base64,(.*?)";?\n', html, flags=re.S))
+    """The frames (data URLs) of a course player (gm_core.drawing.player), or []."""
+    m = _PLAYER_FRAMES.search(html)
+    return json.loads(m.group(1)) if m else []
 
 
 def compress_animation(html, keep_every=1):
-    """Re-encode a to_jshtml player's frames as WebP; keep every ``keep_every``-th frame."""
+    """Re-encode a course player's frames as WebP; keep every ``keep_every``-th frame (and make
+    each shown ``keep_every`` times as long, so the motion keeps its speed)."""
     from PIL import Image
 
-    frames = _frames(html)
-    if not frames:
+    m = _PLAYER_FRAMES.search(html)
+    if not m:
         return html
-    kept = frames[::keep_every]
+    frames = json.loads(m.group(1))[::keep_every]
     encoded = []
-    for m in kept:
-        raw = base64.b64decode(m.group(3).replace("\\\n", ""))
+    for url in frames:
+        head, _, data = url.partition(",")
+        if "webp" in head:
+            encoded.append(url)
+            continue
         buf = io.BytesIO()
-        Image.open(io.BytesIO(raw)).save(buf, "WEBP", quality=82, method=4)
-        encoded.append(base64.b64encode(buf.getvalue()).decode("ascii"))
-    start, end = frames[0].start(), frames[-1].end()
-    body = "".join(f'  frames[{i}] = "data:image/webp;base64,{e}";\n' for i, e in enumerate(encoded))
-    html = html[:start] + body + html[end:]
-    html = re.sub(r"new Array\(\d+\)", f"new Array({len(encoded)})", html, count=1)
-    html = re.sub(r'(<img id="_anim_img\w+" src=")data:image/\w+;base64,[^"]*"',
-                  lambda k: k.group(1) + f'data:image/webp;base64,{encoded[0]}"', html, count=1)
-    if keep_every > 1:
-        html = re.sub(r"(new Animation\(frames, img_id, slider_id, )(\d+(?:\.\d+)?)",
-                      lambda k: k.group(1) + f"{float(k.group(2)) * keep_every:g}", html, count=1)
+        Image.open(io.BytesIO(base64.b64decode(data))).save(buf, "WEBP", quality=82, method=4)
+        encoded.append("data:image/webp;base64," + base64.b64encode(buf.getvalue()).decode("ascii"))
+    interval = int(m.group(2)) * keep_every
+    n = len(encoded)
+    html = html[:m.start()] + f"frames = {json.dumps(encoded)}, interval = {interval}" + html[m.end():]
+    html = re.sub(r'data-frames="\d+"', f'data-frames="{n}"', html, count=1)
+    html = re.sub(r'(<img id="_anim_img\w+" src=")[^"]*"', lambda k: k.group(1) + encoded[0] + '"', html, count=1)
+    html = re.sub(r'(class="gm-anim-slider" min="0" max=")\d+"', lambda k: k.group(1) + f'{n - 1}"', html, count=1)
+    html = re.sub(r'(<span class="gm-anim-counter">1 / )\d+', lambda k: k.group(1) + str(n), html, count=1)
     return html
 
 
 def _is_animation(out):
-    return "text/html" in out.get("data", {}) and "new Animation(frames" in "".join(out["data"]["text/html"])
+    return "text/html" in out.get("data", {}) and 'class="gm-anim"' in "".join(out["data"]["text/html"])
 
 
 def _page_bytes(nb):
@@ -292,8 +299,7 @@ def prepare(nb, rel, page_set):
                 src = "".join(out["data"]["text/html"])
                 n = len(_frames(src))
                 alt = f"Animation ({n} frames) for “{_heading_before(nb, i)}”; the player's buttons step through it"
-                src = re.sub(r'<img id="(_anim_img\w+)"', lambda k: f'<img id="{k.group(1)}" alt="{alt}"', src, count=1)
-                src = src.replace('class="anim-slider"', 'class="anim-slider" aria-label="Animation frame"', 1)
+                src = re.sub(r'(<img id="_anim_img\w+" [^>]*?)alt="[^"]*"', lambda k: f'{k.group(1)}alt="{alt}"', src, count=1)
                 out["data"]["text/html"] = src
                 anims.append([out, src, 1])
             data = out.get("data", {})

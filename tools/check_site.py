@@ -99,21 +99,21 @@ def check_page(page, base, path):
     math = page.evaluate(_RAW_MATH)
     out["math_rendered"], out["raw_math"], out["math_errors"] = math["rendered"], math["bad"], math["errors"]
     out["animations"], out["still_animations"] = 0, []
-    for player in page.query_selector_all(".animation"):
+    for player in page.query_selector_all(".gm-anim"):
         img = player.query_selector("img")
         if img is None:
             continue
         out["animations"] += 1
         before = img.get_attribute("src")[-200:]
         player.scroll_into_view_if_needed()
-        player.query_selector("button[title='Play']").click()
+        player.query_selector("button[data-act='play']").click()
         try:                                  # the next frame shows within a few intervals
             page.wait_for_function("([el, b]) => el.getAttribute('src').slice(-200) !== b", arg=[img, before],
                                    timeout=8000)
             moved = True
         except Exception:  # noqa: BLE001 - playwright's TimeoutError
             moved = False
-        player.query_selector("button[title='Pause']").click()
+        player.query_selector("button[data-act='play']").click()      # pause again
         if not moved or img.bounding_box()["width"] == 0:
             out["still_animations"].append(img.get_attribute("id"))
     page.add_script_tag(path=str(AXE))
