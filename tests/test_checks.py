@@ -15,7 +15,7 @@ from gm_core.checks import (
     UNATTEMPTED,
     progress,
 )
-from gm_core.checks._core import REGISTRY
+from gm_core.checks._exercise import REGISTRY
 
 PARTS = [(ex_id, name) for ex_id in EXERCISE_IDS for name in REGISTRY[ex_id].parts]
 

@@ -18,7 +18,8 @@ from gm_core.checks import (
     progress,
     reset_progress,
 )
-from gm_core.checks._core import REGISTRY, Exercise, FunctionPart
+from gm_core.checks._core import FunctionPart
+from gm_core.checks._exercise import REGISTRY, Exercise
 
 ROOT = Path(__file__).resolve().parent.parent
 pytestmark = pytest.mark.usefixtures("clean")
@@ -208,14 +209,14 @@ def test_concurrent_kernels_marking_parts_lose_no_update(workspace, locks):
 
 def test_two_kernels_checking_at_the_same_moment_lose_no_pass(workspace):
     """Two real check() calls at once, part after part: every pass of both kernels is kept."""
-    code = ("from gm_core.checks._core import REGISTRY\n"
+    code = ("from gm_core.checks._exercise import REGISTRY\n"
             "from gm_core.checks import exercise_ids\n"
             "parts = [(e, p) for e in exercise_ids() for p in REGISTRY[e].parts.values()]\n"
             "for k, (e, p) in enumerate(parts):\n"
             "    if k % 2 == WORKER:\n"
             "        assert p.check(p.reference, quiet=True).passed, (e, p.name)\n")
     _start_together(workspace / "sub", code, 2)
-    from gm_core.checks._core import REGISTRY
+    from gm_core.checks._exercise import REGISTRY
     expected = {f"{e}/{p}" for e in exercise_ids() for p in REGISTRY[e].parts}
     saved = json.loads((workspace / ".progress.json").read_text())
     assert {k for k, r in saved.items() if r["status"] == PASSED} == expected
