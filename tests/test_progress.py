@@ -191,11 +191,12 @@ def _start_together(cwd, code, n, timeout=240):
     return outs
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("locks", ["filelock", "filelock and bare flock"])
 def test_concurrent_kernels_marking_parts_lose_no_update(workspace, locks):
     """The reproducer: processes marking parts in a loop lost 121-185 of 400 updates. Kernels
     without filelock (a bare `pip install .`) take the same lock."""
-    n, per = 3, 150
+    n, per = 3, 100
     block = "if WORKER == 1: sys.modules['filelock'] = None\n" if "bare" in locks else ""
     code = (block + "from gm_core.checks import _progress\n"
             f"for i in range({per}):\n"
@@ -207,6 +208,7 @@ def test_concurrent_kernels_marking_parts_lose_no_update(workspace, locks):
     assert not [p for p in workspace.iterdir() if p.name.endswith(".tmp")]
 
 
+@pytest.mark.slow
 def test_two_kernels_checking_at_the_same_moment_lose_no_pass(workspace):
     """Two real check() calls at once, part after part: every pass of both kernels is kept."""
     code = ("from gm_core.checks._exercise import REGISTRY\n"

@@ -15,7 +15,11 @@ Changing a control calls ``update`` with the values of all controls, so a test c
 
 In a live notebook (ipympl canvas) each change is rendered by blitting
 (:class:`gm_core.drawing.blit.Blitter`): only the artists the update changed are redrawn over a
-cached background. A panel that must not be blitted sets ``blit = False``.
+cached background; after the last change of a burst a key frame
+(:class:`gm_core.drawing.blit.KeyFrames`) sends the whole picture, so the browser always ends on
+the truth. A panel that must not be blitted sets ``blit = False``. :attr:`Panel.widget` lays the
+controls out for a 1366 x 768 laptop: labels above their controls, beside the figure when both
+fit, else in rows above it.
 """
 from __future__ import annotations
 
@@ -65,6 +69,9 @@ class Panel:
     title: str = ""
     #: Render slider changes by blitting where the canvas allows it (see gm_core.drawing.blit).
     blit = True
+    #: Send a whole picture after the last change of a burst on live canvases (KeyFrames): the
+    #: picture a student is left with is always complete, however fast the slider moved.
+    key_frames = True
     #: Blit on non-widget canvases too (Agg); the latency benchmark and blit tests turn it on.
     blit_everywhere = False
     blitter: Any = None
@@ -88,12 +95,16 @@ class Panel:
 
             freeze_layout(self.fig)   # constrained layout once, then fixed (blitting needs still axes)
         self.blitter = None
-        if self.blit and self.fig is not None:
-            from ..drawing.blit import Blitter, can_blit
+        self.keyframes = None
+        if self.fig is not None:
+            from ..drawing.blit import Blitter, KeyFrames, can_blit, sends_differences
 
             live = isinstance(self.fig.canvas, W.DOMWidget)
-            if (live or self.blit_everywhere) and can_blit(self.fig):
+            if self.blit and (live or self.blit_everywhere) and can_blit(self.fig):
                 self.blitter = Blitter(self.fig)
+            if self.key_frames and live and sends_differences(self.fig):
+                # the browser gets differences during a drag, and one whole picture after it
+                self.keyframes = KeyFrames(self.fig)
 
     # -- to implement -------------------------------------------------------------
     def build(self) -> None:
@@ -185,9 +196,11 @@ class Panel:
         values = {**self.values(), **values}
         if self.blitter is None:
             self.update(**values)
-            return
-        with self.blitter.frame():
-            self.update(**values)
+        else:
+            with self.blitter.frame():
+                self.update(**values)
+        if self.keyframes is not None:
+            self.keyframes.touch()
 
     def sample_values(self, rng: np.random.Generator) -> dict[str, Any]:
         out = {}
@@ -204,9 +217,17 @@ class Panel:
         if self.fig is not None:
             self.fig.canvas.draw_idle()
 
+    #: Width of the controls column in CSS px: a slider's track gets this minus its readout
+    #: (>= 150 px); long labels stand above their control, whole.
+    CONTROL_WIDTH = 260
+    #: Width of a notebook's output area at 1366 x 768 with the file browser open (CSS px): a
+    #: figure narrower than this minus the controls column gets its controls beside it.
+    OUTPUT_WIDTH = 920
+
     @property
     def widget(self) -> W.Widget:
-        """The ipywidgets box: controls on the left, the figure on the right."""
+        """The ipywidgets box: the controls beside the figure (on its left) when both fit the
+        laptop's output area, else in rows above it; every label whole, above its control."""
         if getattr(self, "_widget", None) is None:
             if self.fig is None:
                 raise RuntimeError(f"{type(self).__name__}.build() made no figure")
@@ -218,10 +239,17 @@ class Panel:
                 with view:
                     from IPython.display import display
                     display(self.fig)
-            controls = W.VBox(list(self.controls.values()),
-                              layout=W.Layout(min_width="260px", justify_content="flex-start"))
-            children = [controls, view]
-            box = W.HBox(children, layout=W.Layout(align_items="flex-start", flex_flow="row wrap"))
+            items = [_labelled(c, self.CONTROL_WIDTH) for c in self.controls.values()]
+            fig_width = self.fig.get_figwidth() * self.fig.dpi
+            if fig_width + self.CONTROL_WIDTH + 24 <= self.OUTPUT_WIDTH:
+                controls = W.VBox(items, layout=W.Layout(width=f"{self.CONTROL_WIDTH + 8}px",
+                                                         min_width=f"{self.CONTROL_WIDTH + 8}px",
+                                                         margin="0 12px 0 0"))
+                box = W.HBox([controls, view], layout=W.Layout(align_items="flex-start"))
+            else:
+                controls = W.HBox(items, layout=W.Layout(flex_flow="row wrap", align_items="flex-end",
+                                                         grid_gap="0 16px", max_width=f"{self.OUTPUT_WIDTH}px"))
+                box = W.VBox([controls, view], layout=W.Layout(align_items="flex-start"))
             if self.title:
                 box = W.VBox([W.HTML(f"<b>{self.title}</b>"), box])
             self._widget = box
@@ -294,6 +322,45 @@ def _same(control, a, b, exact=False):
     step = float(getattr(control, "step", 0) or 0)
     tol = 1e-9 * max(1.0, abs(a), abs(b)) if exact or not step else 0.5 * step
     return abs(a - b) <= tol
+
+
+_LABEL_ABOVE = (W.FloatSlider, W.IntSlider, W.FloatLogSlider, W.SelectionSlider, W.FloatRangeSlider,
+                W.IntRangeSlider, W.Dropdown, W.ToggleButtons, W.FloatProgress, W.IntProgress,
+                W.BoundedFloatText, W.BoundedIntText, W.FloatText, W.IntText, W.Text, W.RadioButtons)
+
+
+def _labelled(control: W.Widget, width: int) -> W.Widget:
+    """``control`` laid out for the controls column: a description that would squeeze a slider's
+    track moves above the control (wrapping if it must, never cut); checkboxes and buttons get
+    the width their label needs."""
+    from html import escape
+
+    if isinstance(control, W.Checkbox):
+        control.indent = False
+        control.layout.width = "auto"
+        control.layout.max_width = f"{width}px"
+        return control
+    if isinstance(control, W.Button):
+        control.layout.width = "auto"
+        return control
+    if not isinstance(control, _LABEL_ABOVE):
+        return control
+    text = control.description
+    control.layout.width = f"{width}px"
+    if isinstance(control, W.ToggleButtons):
+        control.layout.width = "auto"
+        control.layout.max_width = "100%"
+    if not text:
+        return control
+    control.description = ""
+    control.tooltip = text
+    label = W.HTML(f'<div class="gm-control-label" style="white-space: normal; line-height: 1.25; '
+                   f'padding-top: 2px">{escape(text)}</div>',
+                   layout=W.Layout(width=f"{width}px", margin="2px 0 0 2px"))
+    label.add_class("gm-control-label-box")
+    # toggle buttons keep their row (as wide as they need); everything else fits the column
+    box_width = "auto" if isinstance(control, W.ToggleButtons) else f"{width + 8}px"
+    return W.VBox([label, control], layout=W.Layout(width=box_width, overflow="visible"))
 
 
 def int_slider(value: int, lo: int, hi: int, description: str = "") -> W.IntSlider:
