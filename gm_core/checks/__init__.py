@@ -42,7 +42,7 @@ from ._progress import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED, pending_updates
 from ._sandbox import set_time_limit
 
 #: The modules that declare exercises (each ``Exercise(...)`` registers itself on import).
-EXERCISE_MODULES = ("ch1", "ch2", "ch3", "curvature")
+EXERCISE_MODULES = ("ch1", "ch2", "ch3", "curvature", "many_links")
 
 for _name in EXERCISE_MODULES:
     importlib.import_module(f".{_name}", __name__)
