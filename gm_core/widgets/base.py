@@ -261,7 +261,8 @@ class Panel:
         what = self.title or (doc[0].rstrip(".") if doc else type(self).__name__)
         labels = [t for ax in (self.fig.axes if self.fig is not None else [])
                   for t in (ax.get_title(), ax.get_xlabel(), ax.get_ylabel()) if t]
-        values = ", ".join(f"{getattr(c, 'description', '') or k} = {self._fmt(c.value)}"
+        # (a label laid out above its control keeps its text as the control's tooltip)
+        values = ", ".join(f"{getattr(c, 'description', '') or getattr(c, 'tooltip', '') or k} = {self._fmt(c.value)}"
                            for k, c in self.controls.items())
         out = f"Interactive figure: {what}."
         if labels:
