@@ -10,11 +10,18 @@ numpy or, worse, a silently wrong number. Counts (steps, sizes, dimensions) go t
 from __future__ import annotations
 
 import numbers
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["as_array", "check_positive", "check_lengths", "real_number", "positive_number", "check_int", "check_shape", "batch_shape",
-           "check_option", "SingularShapeError", "MAX_ELEMENTS"]
+__all__ = ["as_array", "check_positive", "check_lengths", "real_number", "positive_number", "check_int",
+           "check_shape", "batch_shape", "check_option", "SingularShapeError", "MAX_ELEMENTS", "FloatArray",
+           "BoolArray"]
+
+#: The arrays gm_core's numeric functions return: floats (..., k) and boolean masks (...,).
+FloatArray = NDArray[np.float64]
+BoolArray = NDArray[np.bool_]
 
 #: Largest number of entries a size or batch-shape argument may ask for (about 0.8 GB of floats).
 MAX_ELEMENTS = 10**8
@@ -40,7 +47,8 @@ def _refuse(name, tail, what, value, why):
     ) from None
 
 
-def as_array(value, name, tail=(), *, what="", allow_nan=False):
+def as_array(value: Any, name: str, tail: tuple[int, ...] = (), *, what: str = "",
+             allow_nan: bool = False) -> FloatArray:
     """Return ``value`` as a float64 array whose trailing axes are ``tail``.
 
     Raises ``TypeError`` for non-numeric input (strings, None, objects, booleans, complex numbers)
@@ -85,7 +93,7 @@ def as_array(value, name, tail=(), *, what="", allow_nan=False):
     return arr
 
 
-def check_positive(value, name, *, allow_zero=False):
+def check_positive(value: Any, name: str, *, allow_zero: bool = False) -> FloatArray:
     """Return ``value`` as a float array after checking that every entry is a positive number."""
     if isinstance(value, bool) or value is None or isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must be a positive number; got {value!r}")
@@ -97,7 +105,7 @@ def check_positive(value, name, *, allow_zero=False):
     return arr
 
 
-def check_lengths(lengths, n, name="lengths"):
+def check_lengths(lengths: ArrayLike, n: int, name: str = "lengths") -> FloatArray:
     """Return ``lengths`` as a float array of exactly ``n`` positive numbers (link lengths, weights)."""
     arr = check_positive(lengths, name)
     if arr.ndim != 1 or arr.shape[0] != n:
@@ -105,7 +113,7 @@ def check_lengths(lengths, n, name="lengths"):
     return arr
 
 
-def real_number(value, name, what=""):
+def real_number(value: Any, name: str, what: str = "") -> float:
     """Return ``value`` as a Python float after checking it is one finite real number (not an array)."""
     arr = as_array(value, name, what=what)
     if arr.ndim != 0:
@@ -113,7 +121,8 @@ def real_number(value, name, what=""):
     return float(arr)
 
 
-def positive_number(value, name, *, allow_zero=False, what="", maximum=None):
+def positive_number(value: Any, name: str, *, allow_zero: bool = False, what: str = "",
+                    maximum: float | None = None) -> float:
     """Return ``value`` as a Python float after checking it is one positive (or, with
     ``allow_zero``, non-negative) finite number, at most ``maximum`` if given (a physical size
     whose powers must not overflow)."""
@@ -125,7 +134,7 @@ def positive_number(value, name, *, allow_zero=False, what="", maximum=None):
     return float(arr)
 
 
-def check_int(value, name, minimum=1, maximum=None, what=""):
+def check_int(value: Any, name: str, minimum: int = 1, maximum: float | None = None, what: str = "") -> int:
     """Return ``value`` as a Python int in ``[minimum, maximum]``.
 
     Integral floats (``3.0``) are accepted; booleans, other floats, strings and None raise
@@ -145,7 +154,7 @@ def check_int(value, name, minimum=1, maximum=None, what=""):
     return value
 
 
-def check_shape(value, name, max_elements=MAX_ELEMENTS):
+def check_shape(value: Any, name: str, max_elements: int = MAX_ELEMENTS) -> tuple[int, ...]:
     """Return ``value`` (an int or a sequence of ints >= 0) as a shape tuple.
 
     The total number of entries is capped at ``max_elements`` so a typo cannot exhaust memory.
@@ -165,7 +174,7 @@ def check_shape(value, name, max_elements=MAX_ELEMENTS):
     return out
 
 
-def batch_shape(*named, tails=None):
+def batch_shape(*named: tuple[str, Any, int], tails: Any = None) -> tuple[int, ...]:
     """Broadcast batch shape of named arrays, naming them if they do not broadcast.
 
     ``named`` is a sequence of ``(name, array, n_tail)``: the last ``n_tail`` axes of each array
@@ -182,7 +191,7 @@ def batch_shape(*named, tails=None):
                          f"batch shapes that numpy can broadcast") from None
 
 
-def check_option(value, name, options):
+def check_option(value: Any, name: str, options: Any) -> str:
     """Return ``value`` after checking it is one of the strings ``options`` (ValueError otherwise)."""
     if not isinstance(value, str) or value not in options:
         listed = ", ".join(repr(o) for o in options)

@@ -75,11 +75,13 @@ class Structure:
     ``x o a = b``, or None when there is none or not a unique one; ``equal(a, b)`` compares
     elements; ``fmt(x)`` writes one; ``element(s, k)`` turns a slider value ``s`` into the
     ``k``-th element tried by the user (the value itself for numbers). ``symbol`` is the
-    operation's sign in formulas and ``set_name`` the set's name.
+    operation's sign in formulas and ``set_name`` the set's name. ``integer`` says that every
+    member is an integer (a control offering elements should offer whole numbers only).
     """
 
     def __init__(self, name, set_name, symbol, op, member, pool, solve_right, solve_left,
-                 equal=None, fmt=None, element=None):
+                 equal=None, fmt=None, element=None, integer=False):
+        self.integer = bool(integer)
         self.name, self.set_name, self.symbol = name, set_name, symbol
         self.op, self.member, self.pool = op, member, list(pool)
         self.solve_right, self.solve_left = solve_right, solve_left
@@ -125,8 +127,8 @@ def _div(b, a):
     return None if a == 0 else b / a
 
 
-def _number_structure(name, set_name, symbol, op, member, pool, solve_right, solve_left):
-    return Structure(name, set_name, symbol, op, member, pool, solve_right, solve_left)
+def _number_structure(name, set_name, symbol, op, member, pool, solve_right, solve_left, integer=False):
+    return Structure(name, set_name, symbol, op, member, pool, solve_right, solve_left, integer=integer)
 
 
 def group_structure(G, name=None, set_name=None, seed=0, n=4):
@@ -160,11 +162,11 @@ def _structures():
 
     S = {
         "(ℤ, +)": _number_structure("(ℤ, +)", "ℤ", "+", np.add, _is_integer, [2, 3, -1, 0, 5],
-                                    lambda a, b: b - a, lambda a, b: b - a),
+                                    lambda a, b: b - a, lambda a, b: b - a, integer=True),
         "(ℝ⁺, ×)": _number_structure("(ℝ⁺, ×)", "ℝ⁺", "×", np.multiply, lambda x: np.isfinite(x) and x > 0,
                                      [2.0, 0.5, 3.0, 1.0], lambda a, b: _div(b, a), lambda a, b: _div(b, a)),
         "(ℤ, ×)": _number_structure("(ℤ, ×)", "ℤ", "×", np.multiply, _is_integer, [1, 2, 3, -1, 0],
-                                    lambda a, b: _div(b, a), lambda a, b: _div(b, a)),
+                                    lambda a, b: _div(b, a), lambda a, b: _div(b, a), integer=True),
         "(ℝ⁺, +)": _number_structure("(ℝ⁺, +)", "ℝ⁺", "+", np.add, lambda x: np.isfinite(x) and x > 0,
                                      [2.0, 0.5, 3.0], lambda a, b: b - a, lambda a, b: b - a),
         "(ℝ, −)": _number_structure("(ℝ, −)", "ℝ", "−", sub, lambda x: bool(np.isfinite(x)), [3.0, 2.0, 1.0, 0.5],
@@ -173,7 +175,7 @@ def _structures():
                                     [2.0, -1.0, 0.0, 0.5], lambda a, b: _div(b, a), lambda a, b: _div(b, a)),
         "(odd ℤ, +)": _number_structure("(odd ℤ, +)", "odd ℤ", "+", np.add,
                                         lambda x: _is_integer(x) and int(x) % 2 == 1, [1, 3, -1],
-                                        lambda a, b: b - a, lambda a, b: b - a),
+                                        lambda a, b: b - a, lambda a, b: b - a, integer=True),
         "SE(2)": group_structure(SE2, "SE(2)"),
     }
     return S

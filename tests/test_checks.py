@@ -27,9 +27,18 @@ def part(ex_id, name):
 pytestmark = pytest.mark.usefixtures("clean")
 
 
-def test_all_thirteen_exercises_are_registered():
-    assert tuple(REGISTRY) == EXERCISE_IDS
-    assert all(hasattr(checks, "ex" + i.replace(".", "_")) for i in EXERCISE_IDS)
+def test_all_fifteen_exercises_are_registered():
+    """The book's 13 (1.1-1.5, 2.1-2.4, 3.1-3.4) and the curvature notebook's 4.1, 4.2, in course
+    order; the same ids as the worked-solution notebooks on disk."""
+    from pathlib import Path
+
+    book = [f"{c}.{k}" for c, n in ((1, 5), (2, 4), (3, 4)) for k in range(1, n + 1)]
+    expected = tuple(book) + ("4.1", "4.2")
+    assert len(book) == 13 and len(expected) == 15
+    assert tuple(REGISTRY) == expected and EXERCISE_IDS == expected
+    solutions = Path(__file__).resolve().parents[1] / "solutions"
+    assert sorted(p.stem[2:].replace("_", ".") for p in solutions.glob("ex*_*.ipynb")) == sorted(expected)
+    assert all(getattr(checks, "ex" + i.replace(".", "_")) is REGISTRY[i] for i in expected)
 
 
 @pytest.mark.parametrize("ex_id,name", PARTS)
@@ -104,7 +113,7 @@ def test_sympy_answer_with_foreign_symbol_names_it():
 
 def test_exception_message_names_the_error_and_input():
     v = checks.ex1_4.a.check(raises, quiet=True)
-    assert "ZeroDivisionError" in v.message and "xi" in v.message.lower() or "called with" in v.message
+    assert "ZeroDivisionError" in v.message and ("xi" in v.message.lower() or "called with" in v.message)
 
 
 def test_nan_at_zero_rotation_is_reported():
@@ -177,15 +186,20 @@ def test_widgets_headless():
 
 
 def test_slide_rule_reads_products():
-    from gm_core.checks._widgets import slide_rule_svg
-    for a, b in [(1.0, 1.0), (2.0, 3.0), (9.9, 9.9), (3.7, 2.4)]:
-        svg, product, x = slide_rule_svg(a, b)
-        assert np.isclose(product, a * b) and svg.startswith("<svg")
+    """ex1_5.slide_rule is the course's one slide rule drawing (SlideRuleScene), re-rendered."""
+    from gm_core.drawing.actions import SlideRuleScene
+
     box = checks.ex1_5.slide_rule(2.0, 3.0)
+    assert isinstance(box.scene, SlideRuleScene) and "slide_rule" in type(checks.ex1_5).__dict__
     sa, sb = box.sliders
     assert "D reads <b>6</b>" in box.readout.value        # not 5.998 (issue 12: log-slider rounding)
-    sa.value, sb.value = 4.0, 2.5
-    assert "D reads <b>10</b>" in box.readout.value
+    first = box.view.value
+    assert first[:8] == b"\x89PNG\r\n\x1a\n"
+    for a, b in [(1.0, 1.0), (9.9, 9.9), (3.7, 2.4), (4.0, 2.5)]:
+        sa.value, sb.value = a, b
+        assert np.isclose(box.scene.reading, a * b)
+        assert np.isclose(box.scene.cursor.get_xdata()[0], np.log10(a * b))
+    assert "D reads <b>10</b>" in box.readout.value and box.view.value != first
 
 
 def test_import_stays_light():

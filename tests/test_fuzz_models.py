@@ -171,6 +171,24 @@ SYSTEM_CASES = [
     Case("HighReSwimmer", SY.HighReSwimmer, {"lengths": np.array(LENGTHS), "aspect_ratio": 8.0,
                                              "fluid_density": 1.0, "body_density": 0.5}),
     Case("ellipse_added_mass", FL.ellipse_added_mass, {"a": 0.5, "b": 0.1, "fluid_density": 1.0}),
+    # lengths of any N >= 2 are valid (their bad values are tested in tests/test_link_chain.py)
+    Case("LinkChain", lambda physics, drag_ratio, frame: SY.LinkChain(
+        (1.0, 0.8, 1.2, 0.9), physics, drag_ratio=drag_ratio, frame=frame).connection(np.array([0.3, -0.2, 0.5])),
+        {"physics": "low_re", "drag_ratio": 2.0, "frame": "com"}, options={"physics", "frame"}, out_tail=(3, 3)),
+    Case("LinkChain.tapered", lambda links, taper: SY.LinkChain.tapered(links, taper=taper).lengths,
+         {"links": 5, "taper": 0.4}, ints={"links"}),
+    Case("SlenderBody", lambda length, drag_ratio, panels, order: SY.SlenderBody(
+        length, drag_ratio=drag_ratio, panels=panels, order=order).connection(np.array([1.0, -2.0])),
+        {"length": 3.0, "drag_ratio": 2.0, "panels": 4, "order": 6}, ints={"panels", "order"}, out_tail=(3, 2)),
+]
+CHAIN5 = SY.LinkChain((1.0,) * 5)
+SYSTEM_CASES += [
+    Case("LinkChain.connection", CHAIN5.connection, {"r": np.array([0.3, -0.2, 0.5, 0.1])}, out_tail=(3, 4)),
+    Case("LinkChain.link_poses", CHAIN5.link_poses, {"r": np.array([0.3, -0.2, 0.5, 0.1])}, out_tail=(5, 3)),
+    Case("LinkChain.metric", CHAIN5.metric, {"r": np.array([0.3, -0.2, 0.5, 0.1])}, out_tail=(7, 7)),
+    Case("shape_slice", lambda through, axes: SY.shape_slice(CHAIN5, through, axes).connection(np.array([0.2, 0.1])),
+         {"through": np.array([0.3, -0.2, 0.5, 0.1]), "axes": (1, 3)}, objects={"axes"}, out_tail=(3, 2),
+         also_valid={"through": (None,)}),
 ]
 R = np.array([0.4, -0.9])
 RD = np.array([0.5, 0.2])
@@ -236,6 +254,8 @@ GEOMETRY_CASES = [
          {"a": np.array([[0.5], [0.0]]), "b": np.array([[0.0], [0.5]]), "center": np.array([0.1, 0.0])},
          also_valid={"b": (None,), "center": (None,)}, out_tail=(2,)),
     Case("sysplotter_stroke", GE.sysplotter_stroke, {"which": "displacement"}, options={"which"}),
+    Case("travelling_wave", lambda n_joints, amplitude, lag: GE.travelling_wave(n_joints, amplitude, lag)(0.3),
+         {"n_joints": 4, "amplitude": 0.8, "lag": 1.2}, ints={"n_joints"}, out_tail=(4,)),
     Case("shaped_gait", lambda c1, c2, a, b, tilt, bend: GE.shaped_gait(c1, c2, a, b, tilt, bend)(0.3),
          {"c1": 0.1, "c2": -0.2, "a": 0.8, "b": 0.5, "tilt": 0.4, "bend": 0.2}, out_tail=(2,)),
     Case("row_scaled", GE.row_scaled, {"values": np.array([[0.2, 1e-15, -0.1], [0.19, 0.0, -0.1]]), "floor": 0.05}),

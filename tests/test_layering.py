@@ -47,12 +47,25 @@ def _resolve_relative(importer, is_package, level, module):
     return ".".join(base + ([module] if module else []))
 
 
+def _type_checking_only(tree):
+    """The nodes inside ``if TYPE_CHECKING:`` blocks: imports for the type checker, never run."""
+    skip = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and isinstance(node.test, ast.Name) and node.test.id == "TYPE_CHECKING":
+            skip |= {id(n) for stmt in node.body for n in ast.walk(stmt)}
+    return skip
+
+
 def imports_of(name):
-    """Every ``(imported module, line)`` in module ``name``, at any depth of the syntax tree."""
+    """Every ``(imported module, line)`` that module ``name`` runs, at any depth of the syntax tree
+    (imports under ``if TYPE_CHECKING:`` are only read by the type checker and do not count)."""
     path, is_package = MODULES[name]
     tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+    skip = _type_checking_only(tree)
     found = []
     for node in ast.walk(tree):
+        if id(node) in skip:
+            continue
         if isinstance(node, ast.Import):
             found += [(alias.name, node.lineno) for alias in node.names]
         elif isinstance(node, ast.ImportFrom):
@@ -153,6 +166,10 @@ def test_the_analysis_sees_function_level_and_relative_imports():
     assert _resolve_relative("gm_core.systems", True, 1, "base") == "gm_core.systems.base"
     assert strongly_connected({"a": {"b"}, "b": {"a"}, "c": {"a"}}) == [frozenset({"a", "b"})]
     assert a_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}, {"a", "b", "c"}) == ["a", "b", "c", "a"]
+    typed = ast.parse("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from . import a\nfrom . import b\n")
+    skip = _type_checking_only(typed)
+    assert [n.names[0].name for n in ast.walk(typed) if isinstance(n, ast.ImportFrom) and id(n) not in skip] == \
+        ["TYPE_CHECKING", "b"]
 
 
 MATH_MODULES = [m for m in MODULES if not _within(m, NOT_MATH)]

@@ -191,7 +191,9 @@ def test_gradient_of_a_four_joint_gait_against_differences():
 
 @pytest.fixture(scope="module")
 def five_link_optimum():
-    chain = LinkChain((1.0,) * 5, "low_re", frame="com")
+    from gm_core.geometry import chain_swimmer
+
+    chain = chain_swimmer(5)            # from the default start, a circle in the first two joints
     return chain, optimize_gait(chain, "efficiency", order=2, coordinates="given", maxiter=200, intervals=256)
 
 
@@ -205,6 +207,9 @@ def test_order_two_optimum_of_a_five_link_swimmer(five_link_optimum):
     start = gait_objective(chain, fourier_gait(np.eye(4, 2), np.eye(4, 2)[:, ::-1]), "efficiency", intervals=256)
     assert np.abs(grad).max() < 1e-4 * np.abs(start[1]).max()
     assert val == pytest.approx(res.efficiency, rel=1e-3)
+    from gm_core.geometry import CHAIN_STROKES
+
+    assert res.efficiency == pytest.approx(CHAIN_STROKES[5]["efficiency"], rel=1e-4)   # the stored stroke
     circles = [efficiency(chain, fourier_gait(R * np.eye(4)[:, i:i + 1], R * np.eye(4)[:, j:j + 1]), check=False)
                for i in range(4) for j in range(i + 1, 4) for R in np.linspace(0.2, 2.0, 10)]
     assert res.efficiency > 1.5 * max(circles)
@@ -213,3 +218,43 @@ def test_order_two_optimum_of_a_five_link_swimmer(five_link_optimum):
     lag = np.diff(np.unwrap(np.arctan2(g.b[:, 0], g.a[:, 0])))
     assert amp.min() > 0.6 * amp.max()
     assert np.all(np.abs(lag - lag.mean()) < 0.25 * abs(lag.mean())) and abs(lag.mean()) > 0.5
+
+
+@pytest.mark.parametrize("N", [3, 4, 5])
+def test_stored_chain_strokes_are_local_optima(N):
+    """The stored strokes of notebook 11: their values, a vanishing exact gradient, and every small
+    random change of the coefficients makes them less efficient (a maximum, not a saddle)."""
+    from gm_core.geometry import CHAIN_STROKES, chain_stroke, chain_swimmer
+
+    s, g = chain_swimmer(N), chain_stroke(N)
+    val, grad, info = gait_objective(s, g, "efficiency", intervals=256)
+    assert val == pytest.approx(CHAIN_STROKES[N]["efficiency"], rel=2e-5)
+    assert np.hypot(*info["g"][:2]) == pytest.approx(CHAIN_STROKES[N]["displacement"], rel=2e-5)
+    assert np.abs(grad).max() < 1e-5
+    p = g.parameters
+    rng = np.random.default_rng(N)
+    for _ in range(6):
+        v = rng.normal(size=p.size)
+        for eps in (0.02, -0.02):
+            q = type(g).from_parameters(p + eps * v / np.linalg.norm(v), N - 1, 2, g.period)
+            assert gait_objective(s, q, "efficiency", intervals=256, gradient=False)[0] < val
+    if N > 3:   # more links swim more efficiently at the same total length
+        assert CHAIN_STROKES[N]["efficiency"] > 1.1 * CHAIN_STROKES[N - 1]["efficiency"]
+
+
+def test_slices_bad_input_is_named():
+    chain = LinkChain((1.0,) * 5)
+    with pytest.raises(ValueError, match="axes"):
+        shape_slice(chain, None, (0, 0))
+    with pytest.raises(ValueError, match="axes"):
+        shape_slice(chain, None, (0, 4))
+    with pytest.raises(ValueError, match="axes"):
+        shape_slice(chain, None, np.ones((4, 2)))
+    with pytest.raises(ValueError, match="through"):
+        shape_slice(chain, np.zeros(3), (0, 1))
+    with pytest.raises(TypeError, match="system"):
+        shape_slice("chain", None, (0, 1))
+    with pytest.raises(ValueError, match="n_links"):
+        chain_approximation(SlenderBody(), 1)
+    with pytest.raises(TypeError, match="body"):
+        chain_approximation(chain, 8)

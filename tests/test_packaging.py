@@ -222,7 +222,7 @@ class Block(importlib.abc.MetaPathFinder):
             raise ModuleNotFoundError('blocked: ' + name, name=name)
 sys.meta_path.insert(0, Block())
 import gm_core, gm_core.drawing, gm_core.checks
-for m in ('calculus', 'fields', 'groups', 'chains', 'three_link_chain', 'locomotion', 'systems', 'geometry',
+for m in ('calculus', 'fields', 'groups', 'chains', 'arms', 'three_link_chain', 'holonomic', 'locomotion', 'systems', 'geometry',
           'connection', 'gaits', 'observers', 'manifolds', 'axioms', 'fluids'):
     importlib.import_module('gm_core.' + m)
 import numpy as np

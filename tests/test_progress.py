@@ -121,16 +121,23 @@ def test_progress_widget_and_start_page_list_pending_updates_once(workspace, cap
 
 
 def test_old_notebook_calling_a_renamed_or_removed_part_gets_a_friendly_message(capsys):
-    checks.ex1_4.d_speed.check(lambda: 1)
-    checks.ex1_4.d_speed.hint()
-    out = capsys.readouterr().out
-    assert "no part 'd_speed'" in out and "course was updated" in out
     ex = REGISTRY["1.4"]
-    ex.renamed["old_a"] = "a"
+    ex.renamed.update(d_speed=None, old_a="a")       # a removed part and a renamed one
     try:
+        checks.ex1_4.d_speed.check(lambda: 1)
+        checks.ex1_4.d_speed.hint()
+        out = capsys.readouterr().out
+        assert "no part 'd_speed'" in out and "course was updated" in out
         assert ex.old_a is ex.a
     finally:
-        del ex.renamed["old_a"]
+        del ex.renamed["d_speed"], ex.renamed["old_a"]
+    assert not hasattr(ex, "d_speed") and not hasattr(ex, "no_such_thing")
+
+
+def test_a_typo_is_an_attribute_error_naming_the_parts():
+    with pytest.raises(AttributeError, match=r"no part or attribute 'e'; its parts are a, b, c, d"):
+        checks.ex1_4.e.check(lambda xi: xi)
+    assert hasattr(checks.ex1_4, "a") and hasattr(checks.ex1_5, "slide_rule")
 
 
 def test_a_new_exercise_module_only_needs_to_register():
@@ -183,11 +190,12 @@ def _start_together(cwd, code, n, timeout=240):
     return outs
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("locks", ["filelock", "filelock and bare flock"])
 def test_concurrent_kernels_marking_parts_lose_no_update(workspace, locks):
     """The reproducer: processes marking parts in a loop lost 121-185 of 400 updates. Kernels
     without filelock (a bare `pip install .`) take the same lock."""
-    n, per = 3, 150
+    n, per = 3, 100
     block = "if WORKER == 1: sys.modules['filelock'] = None\n" if "bare" in locks else ""
     code = (block + "from gm_core.checks import _progress\n"
             f"for i in range({per}):\n"
@@ -199,6 +207,7 @@ def test_concurrent_kernels_marking_parts_lose_no_update(workspace, locks):
     assert not [p for p in workspace.iterdir() if p.name.endswith(".tmp")]
 
 
+@pytest.mark.slow
 def test_two_kernels_checking_at_the_same_moment_lose_no_pass(workspace):
     """Two real check() calls at once, part after part: every pass of both kernels is kept."""
     code = ("from gm_core.checks._core import REGISTRY\n"

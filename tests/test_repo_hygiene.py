@@ -71,3 +71,75 @@ def test_ruff_is_clean():
         pytest.skip("ruff is not installed (it is in the test extra: pip install -e '.[test]')")
     out = subprocess.run([ruff, "check", "--no-cache", "--quiet", "."], cwd=ROOT, capture_output=True, text=True)
     assert out.returncode == 0, "ruff check found problems:\n" + out.stdout[-4000:] + out.stderr[-2000:]
+
+
+# ------------------------------------------------------------------ type hints on the interfaces
+def _mypy(*args, cwd=ROOT):
+    import sys
+
+    try:
+        import mypy  # noqa: F401
+    except ImportError:
+        pytest.skip("mypy is not installed (it is in the test extra: pip install -e '.[test]')")
+    return subprocess.run([sys.executable, "-m", "mypy", *args], cwd=cwd, capture_output=True, text=True)
+
+
+def _typed_files():
+    import tomllib
+
+    files = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["mypy"]["files"]
+    out = []
+    for f in files:
+        p = ROOT / f
+        out += sorted(p.rglob("*.py")) if p.is_dir() else [p]
+    return out
+
+
+#: The interfaces that must be fully annotated: (file, classes or None for the whole module).
+INTERFACES = {
+    "gm_core/_validate.py": None, "gm_core/groups/base.py": None, "gm_core/groups/se2.py": None,
+    "gm_core/groups/additive.py": None, "gm_core/groups/rplus.py": None,
+    "gm_core/systems/base.py": None, "gm_core/drawing/toolkit.py": ("Scene",),
+    "gm_core/widgets/base.py": None, "gm_core/checks/_core.py": ("Verdict", "Part", "FunctionPart",
+                                                                "TuplePart", "CustomPart"),
+    "gm_core/checks/_exercise.py": ("Exercise",), "gm_core/checks/_choice.py": ("ChoicePart",),
+}
+
+
+def _unannotated(path, classes):
+    import ast
+
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    scopes = [n for n in tree.body if isinstance(n, ast.ClassDef) and (classes is None or n.name in classes)]
+    funcs = [(f"{c.name}.", f) for c in scopes for f in c.body if isinstance(f, ast.FunctionDef)]
+    if classes is None:
+        funcs += [("", f) for f in tree.body if isinstance(f, ast.FunctionDef)]
+    bad = []
+    for prefix, f in funcs:
+        if f.name.startswith("_") and f.name not in ("__init__", "__getattr__"):
+            continue
+        params = [a for a in f.args.posonlyargs + f.args.args + f.args.kwonlyargs if a.arg not in ("self", "cls")]
+        params += [a for a in (f.args.vararg, f.args.kwarg) if a is not None]
+        if f.returns is None or any(a.annotation is None for a in params):
+            bad.append(f"{path.relative_to(ROOT)}: {prefix}{f.name}")
+    return bad
+
+
+def test_the_interfaces_are_annotated():
+    assert {str(p.relative_to(ROOT)) for p in _typed_files()} >= set(INTERFACES)
+    bad = [b for f, classes in INTERFACES.items() for b in _unannotated(ROOT / f, classes)]
+    assert not bad, "public functions without type hints on an interface:\n" + "\n".join(bad)
+
+
+def test_mypy_passes_on_the_typed_interfaces():
+    out = _mypy()
+    assert out.returncode == 0, "mypy found problems:\n" + out.stdout[-4000:] + out.stderr[-2000:]
+
+
+def test_mypy_catches_a_misused_interface(tmp_path):
+    """The check can fail: wrong argument types against the annotated interfaces are reported."""
+    bad = tmp_path / "misuse.py"
+    bad.write_text("from gm_core import SE2\nfrom gm_core.checks._exercise import Exercise\n"
+                   "n: int = SE2.exp([0.0, 0.0, 1.0])\nExercise(1.5, 'title', parts=3)\n")
+    out = _mypy("--config-file", str(ROOT / "pyproject.toml"), str(bad), cwd=ROOT)
+    assert out.returncode == 1 and "misuse.py:3" in out.stdout and "misuse.py:4" in out.stdout, out.stdout

@@ -44,7 +44,7 @@ def running(pids):
     return left
 
 
-def gone(pids, within=5.0):
+def gone(pids, within=10.0):
     """Wait until none of the recorded processes exists; return those still there."""
     deadline = time.monotonic() + within
     while running(pids) and time.monotonic() < deadline:
@@ -186,8 +186,8 @@ time.sleep(30)
         t = time.monotonic()
         proc.send_signal(signal.SIGINT)
         assert proc.stdout.readline().strip() == "INTERRUPTED"
-        assert time.monotonic() - t < 5
-        deadline = time.monotonic() + 5
+        assert time.monotonic() - t < 15                 # not the 60 s limit
+        deadline = time.monotonic() + 10
         while time.monotonic() < deadline and any(Path(f"/proc/{f.stem}").exists()
                                                   for f in tmp_path.glob("*.pid")):
             time.sleep(0.05)

@@ -441,7 +441,8 @@ def test_jshtml_page_has_a_sized_first_frame_and_waits_for_its_elements():
     png = base64.b64decode(img.group(1))
     w, h = struct.unpack(">II", png[16:24])
     assert int(img.group(2)) == w <= 900 and h > 0
-    assert "document.getElementById(img_id) === null" in html
+    # the player finds its own elements (document.currentScript, else its id once attached)
+    assert "document.currentScript" in html and "isConnected" in html
 
 
 # ----------------------------------------------------------- observers, frames (section 1.5)

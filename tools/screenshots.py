@@ -11,7 +11,9 @@ Writes ``build/screenshots/`` (git-ignored) with ``index.html``:
   course, a 1366 x 768 window with the file browser open (what a student on a laptop sees); for
   every notebook that draws, Run All, then one PNG per output holding a figure (ipympl canvas,
   inline image or animation), cut exactly as the output area shows it, plus a window shot; the
-  layout problems of tests/browser/labview.py are listed beside the pictures.
+  layout problems of tests/browser/labview.py are listed beside the pictures; then the first
+  slider of every panel is dragged slowly and quickly (tests/browser/student.py) and both final
+  canvases are shown (after a quick drag the picture must be the slow drag's, with no ghost).
 * **headless** (always available): every figure of every notebook and every panel's initial state
   drawn with Agg at its own size and dpi (animations: their last rendered frame), with the
   breaches of the figure standard (tests/figstd.py) listed beside each picture.
@@ -123,6 +125,7 @@ def _window_shot(nbp, rel: str, d: Path) -> dict | None:
 def browser(out: Path, only: str | None) -> list[dict]:
     import browserlab
     import labview
+    import student
     from playwright.sync_api import sync_playwright
 
     notebooks = [p for p in labview.figure_notebooks() if not only or only in p.relative_to(ROOT).as_posix()]
@@ -167,6 +170,21 @@ def browser(out: Path, only: str | None) -> list[dict]:
                     nbp.page.set_viewport_size(dict(zip(("width", "height"), labview.STUDENT_WINDOW)))
                     if len(shots) == 1:  # a window shot but no figure
                         shots.clear()
+                    # what a hurried student is left with: every panel's canvas after a quick
+                    # drag of its first slider (beside the slow drag's, which it must equal)
+                    drag_dir = d / f"{_slug(rel)}-drag"
+                    drag_dir.mkdir(exist_ok=True)
+                    drag_problems, drags = student.drag_check(nbp, shots_dir=drag_dir)
+                    notes += drag_problems
+                    for row in drags["panels"]:
+                        for tag in ("quick", "slow"):
+                            png = f"browser/{drag_dir.name}/panel{row['panel']:02d}-{tag}.png"
+                            shots.append({"png": png, "caption": f"{rel} panel #{row['panel']} (cell {row['cell']}) "
+                                          f"after a {tag} drag to {row['value']!r}"
+                                          + (f"; differs from the slow drag in {row['differing']:.2%} of pixels"
+                                             if tag == "quick" else ""),
+                                          "problems": [p for p in drag_problems if p.startswith(f"panel #{row['panel']} ")]
+                                          if tag == "quick" else []})
             except AssertionError as e:  # a notebook that fails is reported, the others still shot
                 notes.append(f"FAILED: {e}"[:2000])
             print(f"browser {rel}: {len(shots)} pictures, {len(notes)} problems "

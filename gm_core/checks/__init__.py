@@ -50,7 +50,7 @@ from ._progress import pending_updates
 from ._sandbox import set_time_limit
 
 #: The modules that declare exercises (each ``Exercise(...)`` registers itself on import).
-EXERCISE_MODULES = ("ch1", "ch2", "ch3", "curvature")
+EXERCISE_MODULES = ("ch1", "ch2", "ch3", "curvature", "many_links")
 
 for _name in EXERCISE_MODULES:
     importlib.import_module(f".{_name}", __name__)

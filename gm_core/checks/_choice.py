@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import re
+from collections.abc import Callable, Iterable
+from typing import Any
 
 import numpy as np
 
@@ -24,15 +26,16 @@ class ChoicePart(Part):
     kind = "choice"
     weight = 1.0
 
-    def __init__(self, name, prompt, options, correct, feedback=None, **kw):
+    def __init__(self, name: str, prompt: str, options: dict[str, str], correct: str | Iterable[str],
+                 feedback: dict[str, str] | None = None, **kw: Any) -> None:
         super().__init__(name, prompt, **kw)
         self.options = dict(options)  # letter -> text
         self.correct = set(correct) if not isinstance(correct, str) else {correct}
         self.feedback = dict(feedback or {})
         if self.reference is None:
             self.reference = sorted(self.correct)[0]
-        if not self.wrong:
-            self.wrong = [k for k in self.options if k not in self.correct][:1]
+        if not self.wrong:  # default: every other option
+            self.wrong = [k for k in self.options if k not in self.correct]
 
     @staticmethod
     def _read(answer):
@@ -47,10 +50,10 @@ class ChoicePart(Part):
             return str(answer)[:500]
         raise Wrong(f"your answer is {describe(answer)}; give one of the option letters.")
 
-    def probes(self):
+    def probes(self) -> list[Callable[[Any], Any]]:
         return [self._read]
 
-    def letter(self, value):
+    def letter(self, value: int | str) -> str | None:
         """The option letter a plain answer names, None if it names none (or several)."""
         letters = list(self.options)
         if isinstance(value, int):
@@ -66,7 +69,7 @@ class ChoicePart(Part):
                 return hits[0]
         return None
 
-    def judge(self, outcomes):
+    def judge(self, outcomes: list[dict[str, Any]]) -> str:
         o = outcomes[0] if outcomes else {"k": "crash", "m": ""}
         if o["k"] != "ok":
             outcome_error(o, "your answer", "no arguments")
@@ -86,12 +89,12 @@ class ChoicePart(Part):
             return self.feedback.get(k, "Correct.")
         raise Wrong(self.feedback.get(k, "Not this one: reread the section the prompt cites."))
 
-    def markdown_table(self):
+    def markdown_table(self) -> str:
         """The options as the markdown table the exercise notebook shows."""
         rows = [f"| {k} | {text} |" for k, text in self.options.items()]
         return "| letter | statement |\n|---|---|\n" + "\n".join(rows)
 
-    def widget(self):
+    def widget(self) -> Any:
         """Radio buttons, a Check button and feedback (ipywidgets)."""
         from ._widgets import choice_widget
         return choice_widget(self)

@@ -18,6 +18,8 @@ numpy only at import time; sympy is imported only when an answer is a sympy obje
 from __future__ import annotations
 
 import copy
+from collections.abc import Callable, Iterable, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -49,28 +51,28 @@ from ._sandbox import Unattempted, Wrong, collect, decode_outcome, safe_text
 class Verdict:
     """The result of a check: ``status`` (passed / failed / unattempted) and a message."""
 
-    def __init__(self, status, message, part="", output=""):
+    def __init__(self, status: str, message: str, part: str = "", output: str = "") -> None:
         self.status, self.message, self.part, self.output = status, message, part, output
         self._shown = False
 
-    def __bool__(self):
+    def __bool__(self) -> bool:
         return self.status == PASSED
 
     @property
-    def passed(self):
+    def passed(self) -> bool:
         return self.status == PASSED
 
-    def show(self):
+    def show(self) -> Verdict:
         show(self.status, self.part, self.message, self.output)
         self._shown = True
         return self
 
-    def _ipython_display_(self):
+    def _ipython_display_(self) -> None:
         # check() has already displayed the message; ending a cell with it shows nothing more.
         if not self._shown:
             self.show()
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"Verdict({self.part}: {self.status} - {self.message})"
 
 
@@ -100,13 +102,17 @@ class Part:
 
     Attributes used by the tests: ``reference`` (a correct answer), ``wrong`` (plausible wrong
     answers), ``starter`` (what the exercise notebook starts with), ``weight`` (grading points).
+    Subclasses default ``reference`` and ``wrong`` from what the part already declares (the
+    reference function, the registered mistakes, the correct option), so a declaration names
+    only what is new.
     """
 
     kind = "numeric"
     weight = 2.0
 
-    def __init__(self, name, prompt, hints=(), solution_text="", reference=None, wrong=(),
-                 starter=None, weight=None):
+    def __init__(self, name: str, prompt: str, hints: Sequence[str] = (), solution_text: str = "",
+                 reference: Any = None, wrong: Sequence[Any] = (), starter: Any = None,
+                 weight: float | None = None) -> None:
         self.name = name
         self.prompt = prompt
         self.hints = list(hints)
@@ -116,30 +122,30 @@ class Part:
         self.starter = starter
         if weight is not None:
             self.weight = float(weight)
-        self.exercise = None  # set by Exercise
+        self.exercise: Exercise | None = None  # set by Exercise
 
     @property
-    def id(self):
+    def id(self) -> str:
         ex = self.exercise.id if self.exercise is not None else "?"
         return f"{ex}{self.name}" if len(self.name) <= 1 else f"{ex} {self.name}"
 
     @property
-    def title(self):
+    def title(self) -> str:
         return f"exercise {self.id}"
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"<check for exercise {self.id}: {self.prompt}>"
 
     # -- the two halves
-    def probes(self):
+    def probes(self) -> list[Callable[[Any], Any]]:
         """Functions probe(answer) -> plain data; the only code that touches the answer."""
         raise NotImplementedError
 
-    def judge(self, outcomes):
+    def judge(self, outcomes: list[dict[str, Any]]) -> str:
         """Return the success message, or raise Wrong / Unattempted, from the probes' outcomes."""
         raise NotImplementedError
 
-    def verdict(self, outcomes, output=""):
+    def verdict(self, outcomes: list[dict[str, Any]], output: str = "") -> Verdict:
         """A Verdict from plain outcomes (used by check() and by the grader). Never raises."""
         try:
             if not isinstance(outcomes, list) or len(outcomes) != len(self.probes()):
@@ -159,7 +165,8 @@ class Part:
         return Verdict(status, message or "Well done.", self.title, output)
 
     # -- the three verbs
-    def check(self, answer=None, *, quiet=False, strict=False, time_limit=None):
+    def check(self, answer: Any = None, *, quiet: bool = False, strict: bool = False,
+              time_limit: float | None = None) -> Verdict | None:
         """Check ``answer``; display and return a :class:`Verdict`. Never raises, unless
         ``strict=True`` (nbgrader / otter-grader test cells): then a passed check returns None
         (a doctest-style cell expects nothing) and a failed one raises AssertionError with the
@@ -191,7 +198,7 @@ class Part:
             return None
         return verdict
 
-    def hint_text(self, n=1):
+    def hint_text(self, n: int = 1) -> str:
         if not self.hints:
             return "There is no hint for this part; see the section of the book the prompt cites."
         try:
@@ -203,21 +210,21 @@ class Part:
         more += f"; ask .hint({k + 1}) for more)" if k < len(self.hints) else ")"
         return self.hints[k - 1] + more
 
-    def hint(self, n=1):
+    def hint(self, n: int = 1) -> None:
         """Show hint number ``n`` (1 = gentlest). Shows it once; returns None."""
         show("hint", self.title, self.hint_text(n))
 
-    def solution_path(self):
+    def solution_path(self) -> str:
         """Where the worked solution is, relative to the notebook's folder (workspace/, exercises/)."""
         ex = self.exercise
         name = f"ex{ex.id.replace('.', '_')}.ipynb" if ex is not None else ""
         return f"../solutions/{name}"
 
-    def solution_text_full(self):
+    def solution_text_full(self) -> str:
         return (self.solution_text or "See the worked solution.") + \
             f"\nFull derivation: {self.solution_path()} (the solutions/ folder of the course)"
 
-    def solution(self):
+    def solution(self) -> None:
         """Show the key result and where the worked notebook is (recorded in your progress)."""
         if self.exercise is not None:
             _progress.record_solution_view(self.exercise.id, self.name)
@@ -238,13 +245,22 @@ class FunctionPart(Part):
     ``mistakes``: ``(wrong_function, message)`` pairs; a message is given only when the answer
     equals that wrong function on every input checked. ``angles``: output entries compared
     modulo 2 pi. ``postprocess(out, args)`` normalises a student's output (runs with the probes).
+    ``reference`` defaults to ``ref``; ``wrong`` is every mistake's function plus any further
+    plausible wrong answers given as ``wrong=``.
     """
 
     kind = "function"
 
-    def __init__(self, name, prompt, ref, inputs, *, arg_names, shape, rtol=1e-6, atol=1e-8,
-                 mistakes=(), postprocess=None, sympy_names=None, sympy_args=None, sympy_ok=None,
-                 angles=(), what="your function", **kw):
+    def __init__(self, name: str, prompt: str, ref: Callable[..., Any], inputs: Callable[[], Iterable[tuple]],
+                 *, arg_names: Sequence[str], shape: tuple[int, ...], rtol: float = 1e-6, atol: float = 1e-8,
+                 mistakes: Sequence[tuple[Callable[..., Any], str]] = (),
+                 postprocess: Callable[[Any, tuple], Any] | None = None, sympy_names: Sequence[str] | None = None,
+                 sympy_args: Callable[..., tuple] | None = None, sympy_ok: Callable[..., bool] | None = None,
+                 angles: Sequence[int] = (), what: str = "your function", **kw: Any) -> None:
+        known = [fn for fn, _ in mistakes]
+        if kw.get("reference") is None:
+            kw["reference"] = ref
+        kw["wrong"] = known + [w for w in kw.get("wrong", ()) if all(w is not k for k in known)]
         super().__init__(name, prompt, **kw)
         self.ref = ref
         self.inputs = inputs
@@ -260,7 +276,7 @@ class FunctionPart(Part):
         self.what = what
 
     # -- student side (runs in the sandbox)
-    def as_function(self, answer):
+    def as_function(self, answer: Any) -> tuple[Callable[..., Any], str, str]:
         """(callable, kind, description) for an answer: a function, sympy object or constant."""
         if is_starter(answer):
             raise Unattempted()
@@ -279,11 +295,11 @@ class FunctionPart(Part):
         raise Wrong(f"your answer is {describe(answer)}; {self.prompt_type} was expected.")
 
     @property
-    def prompt_type(self):
+    def prompt_type(self) -> str:
         return (f"a function of ({', '.join(self.arg_names)})" if self.arg_names
                 else "a number or array")
 
-    def student_value(self, answer, args):
+    def student_value(self, answer: Any, args: tuple) -> Any:
         f, kind, what = self.as_function(answer)
         if kind == "sympy" and self.sympy_ok is not None and not self.sympy_ok(*args):
             return "skip"
@@ -295,11 +311,13 @@ class FunctionPart(Part):
         got = to_numbers(out, f"the value {what} returned for {self._label(args)}")
         return match_shape(got, self.shape, f"the value {what} returned")
 
-    def probes(self):
-        return [lambda ans, a=args: self.student_value(ans, a) for args in self.inputs()]
+    def probes(self) -> list[Callable[[Any], Any]]:
+        def probe(args: tuple) -> Callable[[Any], Any]:
+            return lambda ans: self.student_value(ans, args)
+        return [probe(args) for args in self.inputs()]
 
     # -- judge side
-    def close(self, got, expected):
+    def close(self, got: Any, expected: Any) -> bool:
         got = np.asarray(got, dtype=float)
         expected = np.asarray(expected, dtype=float)
         if got.shape != expected.shape:
@@ -311,10 +329,10 @@ class FunctionPart(Part):
         with np.errstate(all="ignore"):
             return bool(np.all(np.abs(diff) <= self.atol + self.rtol * np.abs(expected)))
 
-    def judge(self, outcomes):
+    def judge(self, outcomes: list[dict[str, Any]]) -> str:
         all_args = list(self.inputs())
         what = self.what
-        got_all = []
+        got_all: list[Any] = []
         nones = [o["k"] == "ok" and o["v"] is None for o in outcomes]
         if outcomes and all(nones):
             raise Unattempted("Your function still returns None: fill in its body.")
@@ -389,9 +407,12 @@ class TuplePart(Part):
 
     kind = "tuple"
 
-    def __init__(self, name, prompt, components, extra=None, **kw):
+    def __init__(self, name: str, prompt: str, components: Sequence[tuple[str, FunctionPart]],
+                 extra: Callable[[list[Any]], str | None] | None = None, **kw: Any) -> None:
         super().__init__(name, prompt, **kw)
         self.components = list(components)  # [(label, FunctionPart)]
+        if self.reference is None:  # default: each component's reference
+            self.reference = tuple(part.reference for _, part in self.components)
         self.extra = extra  # optional judge(values by component) for a property of the whole
 
     def _values(self, answer):
@@ -418,14 +439,15 @@ class TuplePart(Part):
                 raise Wrong(f"{label} is still None; the other components were given.")
         return values
 
-    def probes(self):
-        out = [lambda ans: (self._values(ans), "ok")[1]]
+    def probes(self) -> list[Callable[[Any], Any]]:
+        def probe(i: int, part: FunctionPart, args: tuple) -> Callable[[Any], Any]:
+            return lambda ans: part.student_value(self._values(ans)[i], args)
+        out: list[Callable[[Any], Any]] = [lambda ans: (self._values(ans), "ok")[1]]
         for i, (_, part) in enumerate(self.components):
-            for args in part.inputs():
-                out.append(lambda ans, i=i, p=part, a=args: p.student_value(self._values(ans)[i], a))
+            out += [probe(i, part, args) for args in part.inputs()]
         return out
 
-    def judge(self, outcomes):
+    def judge(self, outcomes: list[dict[str, Any]]) -> str:
         if not outcomes:
             raise Wrong("the check could not evaluate your answer.")
         first = outcomes[0]
@@ -447,27 +469,29 @@ class TuplePart(Part):
 class CustomPart(Part):
     """A part with its own probes and judge: ``make_probes() -> [probe]``, ``judge(outcomes)``."""
 
-    def __init__(self, name, prompt, make_probes, judge, kind="custom", **kw):
+    def __init__(self, name: str, prompt: str, make_probes: Callable[[], list[Callable[[Any], Any]]],
+                 judge: Callable[[list[dict[str, Any]]], str], kind: str = "custom", **kw: Any) -> None:
         super().__init__(name, prompt, **kw)
         self._make_probes, self._judge = make_probes, judge
         self.kind = kind
 
-    def probes(self):
+    def probes(self) -> list[Callable[[Any], Any]]:
         return list(self._make_probes())
 
-    def judge(self, outcomes):
+    def judge(self, outcomes: list[dict[str, Any]]) -> str:
         return self._judge(outcomes)
 
 
 # ------------------------------------------------------------------------------ input helpers
-def probe_rng(seed):
+def probe_rng(seed: int) -> np.random.Generator:
     """The random generator for a checker's inputs: ``seed``, salted by the grader when grading
     (:func:`._grading.set_probe_salt`), so a graded run's inputs cannot be known in advance."""
     salt = _grading.probe_salt()
     return np.random.default_rng(seed if salt is None else [int(seed), salt])
 
 
-def rng_inputs(seed, n, make, edges=()):
+def rng_inputs(seed: int, n: int, make: Callable[[np.random.Generator], Sequence[Any]],
+               edges: Iterable[Sequence[Any]] = ()) -> Callable[[], Iterable[tuple]]:
     """A function yielding the edge cases first, then ``n`` seeded random argument tuples."""
     def inputs():
         for e in edges:

@@ -4,12 +4,18 @@ No imports from the parts (``_core``): a part is anything with ``name`` and ``ex
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
 from . import _progress
 from ._display import show
 from ._progress import FAILED
 
+if TYPE_CHECKING:   # the parts import this module, never the other way round
+    from ._core import Part, Verdict
+
 #: Every registered exercise, by id ("1.4"), in registration order.
-REGISTRY: dict = {}
+REGISTRY: dict[str, Exercise] = {}
 
 
 class _MissingPart:
@@ -31,7 +37,7 @@ class _MissingPart:
 
     check = hint = solution = widget = _say
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"<exercise {self.exercise.id} has no part {self.name!r} (course updated)>"
 
 
@@ -40,13 +46,15 @@ class Exercise:
 
     Creating one registers it (the course's list of exercises is the registry, in creation
     order): a new chapter only needs a module ``gm_core/checks/chN.py`` that creates its
-    ``Exercise`` objects. ``renamed`` maps old part names to new ones for old notebooks.
+    ``Exercise`` objects. ``renamed`` maps old part names to new ones (or to None for a removed
+    part) for old notebooks, which then keep working or get a friendly "course updated" note.
     """
 
-    def __init__(self, id, title, parts, renamed=None):
+    def __init__(self, id: str, title: str, parts: Sequence[Part],
+                 renamed: dict[str, str | None] | None = None) -> None:
         self.id = str(id)
         self.title = title
-        self.parts = {}
+        self.parts: dict[str, Part] = {}
         self.renamed = dict(renamed or {})
         for p in parts:
             p.exercise = self
@@ -54,22 +62,28 @@ class Exercise:
             setattr(self, p.name, p)
         REGISTRY[self.id] = self
 
-    def __getattr__(self, name):
-        if name.startswith("_") or name in ("parts", "renamed", "id", "title"):
-            raise AttributeError(name)
-        new = self.__dict__.get("renamed", {}).get(name)
-        if new in self.__dict__.get("parts", {}):
+    def __getattr__(self, name: str) -> Any:
+        # Only names the course once had get the "course was updated" answer (``renamed``: old
+        # name -> new name, or None for a removed part); any other name is an AttributeError,
+        # so hasattr works and a typo is not mistaken for a course update.
+        renamed = self.__dict__.get("renamed", {})
+        if name.startswith("_") or name not in renamed:
+            parts = ", ".join(self.__dict__.get("parts", {}))
+            raise AttributeError(f"exercise {self.__dict__.get('id', '?')} has no part or attribute "
+                                 f"{name!r}; its parts are {parts}")
+        new = renamed[name]
+        if new in self.parts:
             return self.parts[new]
         return _MissingPart(self, name)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"<exercise {self.id}: {self.title}; parts {', '.join(self.parts)}>"
 
-    def status(self, data=None):
+    def status(self, data: dict[str, Any] | None = None) -> str:
         """passed / in progress / failed / unattempted, from the latest check of each part."""
         return _progress.exercise_status(self.id, list(self.parts), data)
 
-    def check(self, answers=None, **kw):
+    def check(self, answers: dict[str, Any] | None = None, **kw: Any) -> dict[str, Verdict | None]:
         """Check several parts at once from a dict {part name: answer}; returns the verdicts."""
         if not isinstance(answers, dict):
             show(FAILED, f"exercise {self.id}", "Pass a dict {part name: answer}, or check one part "
@@ -78,12 +92,12 @@ class Exercise:
         return {name: self.parts[name].check(a, **kw) for name, a in answers.items() if name in self.parts}
 
 
-def exercise_ids():
+def exercise_ids() -> tuple[str, ...]:
     """The ids of every registered exercise, in course order."""
     return tuple(sorted(REGISTRY, key=lambda s: tuple(int(x) if x.isdigit() else x for x in s.split("."))))
 
 
-def progress():
+def progress() -> dict[str, str]:
     """{exercise id: "passed" | "in progress" | "failed" | "unattempted"} for every exercise.
 
     Inside a student workspace this is the saved record (all notebooks, across restarts);
@@ -98,17 +112,17 @@ def progress():
     return {ex_id: REGISTRY[ex_id].status(data) for ex_id in exercise_ids()}
 
 
-def part_progress():
+def part_progress() -> dict[str, dict[str, str]]:
     """{exercise id: {part name: latest status}} (parts never checked are "unattempted")."""
     data = _progress.load()
     return {ex_id: {name: _progress.part_status(ex_id, name, data) for name in REGISTRY[ex_id].parts}
             for ex_id in exercise_ids()}
 
 
-def solutions_viewed():
+def solutions_viewed() -> dict[str, list[str]]:
     """{exercise id: [part names whose solution() was shown]}."""
     data = _progress.load()
-    out = {}
+    out: dict[str, list[str]] = {}
     for key, rec in data.items():
         if rec.get("solution_viewed"):
             ex_id, part = key.split("/", 1)
@@ -116,7 +130,7 @@ def solutions_viewed():
     return out
 
 
-def reset_progress():
+def reset_progress() -> None:
     """Forget every recorded check (and the workspace's saved record, when in a workspace)."""
     _progress.reset()
 

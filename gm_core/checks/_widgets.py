@@ -1,8 +1,7 @@
 """ipywidgets front ends for the checkers: multiple choice, the slide rule (1.5), progress.
 
 Imported only when a widget is asked for, so ``import gm_core.checks`` stays ipywidgets-free. The
-slide rule is drawn as SVG inside an HTML widget (no matplotlib), built by the pure function
-:func:`slide_rule_svg` that the tests can call headless.
+slide rule of exercise 1.5 is the course's drawing (:class:`gm_core.drawing.actions.SlideRuleScene`).
 """
 from __future__ import annotations
 
@@ -46,92 +45,47 @@ def choice_widget(part):
 
 
 # ------------------------------------------------------------------------------ slide rule
-_W, _PAD = 760, 20          # SVG width and left padding (pixels)
-_DECADE = 340.0              # pixels per decade: D spans two decades (1..100), C one (1..10)
-
-
-def _ticks(x0, y, up, decades):
-    parts = []
-    for d in range(decades):
-        for m in range(10, 100):
-            v = m / 10 * 10 ** d
-            x = x0 + _DECADE * np.log10(v)
-            major = m % 10 == 0
-            half = m % 5 == 0
-            h = 14 if major else (9 if half else 5)
-            y2 = y - h if up else y + h
-            parts.append(f'<line x1="{x:.1f}" y1="{y}" x2="{x:.1f}" y2="{y2}" stroke="#333" '
-                         f'stroke-width="{1.2 if major else 0.6}"/>')
-            if major:
-                ty = y - 18 if up else y + 28
-                parts.append(f'<text x="{x:.1f}" y="{ty}" font-size="12" text-anchor="middle">'
-                             f'{int(round(v))}</text>')
-    xe = x0 + _DECADE * decades
-    parts.append(f'<line x1="{xe:.1f}" y1="{y}" x2="{xe:.1f}" y2="{y - 14 if up else y + 14}" '
-                 'stroke="#333" stroke-width="1.2"/>')
-    parts.append(f'<text x="{xe:.1f}" y="{y - 18 if up else y + 28}" font-size="12" '
-                 f'text-anchor="middle">{10 ** decades}</text>')
-    return parts
-
-
-def slide_rule_svg(a, b):
-    """SVG of a slide rule set to multiply a by b (1 <= a, b <= 10) and the product it shows.
-
-    The fixed D scale (two decades, 1..100) has the number v at distance log10(v); the sliding C
-    scale (one decade) is shifted so that its 1 sits over a on D; the cursor is over b on C, so it
-    reads log10(a) + log10(b) = log10(ab) on D. Returns ``(svg_text, product, cursor_x_pixels)``.
-    """
-    a = float(np.clip(a, 1.0, 10.0))
-    b = float(np.clip(b, 1.0, 10.0))
-    shift = _DECADE * np.log10(a)
-    cursor = _PAD + shift + _DECADE * np.log10(b)
-    product = 10 ** ((cursor - _PAD) / _DECADE)
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{_W}" height="150">',
-             # the fixed body (D scale)
-             f'<rect x="{_PAD - 8}" y="76" width="{2 * _DECADE + 16}" height="60" fill="#f6efe0" '
-             'stroke="#999"/>',
-             # the slide (C scale)
-             f'<rect x="{_PAD + shift - 8:.1f}" y="20" width="{_DECADE + 16}" height="56" '
-             'fill="#fffbe8" stroke="#999"/>',
-             '<text x="4" y="64" font-size="13" font-weight="bold">C</text>',
-             '<text x="4" y="100" font-size="13" font-weight="bold">D</text>']
-    parts += _ticks(_PAD + shift, 76, True, 1)
-    parts += _ticks(_PAD, 76, False, 2)
-    parts.append(f'<line x1="{cursor:.1f}" y1="8" x2="{cursor:.1f}" y2="142" stroke="#b42318" '
-                 'stroke-width="2"/>')
-    parts.append(f'<line x1="{_PAD + shift:.1f}" y1="8" x2="{_PAD + shift:.1f}" y2="142" '
-                 'stroke="#0550ae" stroke-dasharray="4,3"/>')
-    parts.append("</svg>")
-    return "\n".join(parts), product, cursor
-
-
 def slide_rule(a=2.0, b=3.0):
-    """Two log scales sliding past each other: set a (slide) and b (cursor), read a*b on D."""
-    import ipywidgets as W
+    """Two log scales sliding past each other: set a (slide) and b (cursor), read a*b on D.
 
+    The picture is the course's one slide rule, :class:`gm_core.drawing.actions.SlideRuleScene`,
+    rendered to a PNG on every change, so it moves under any matplotlib backend (the exercise
+    notebook has no ``%matplotlib widget``). ``box.scene`` is the scene, ``box.view`` the image.
+    """
+    import io
+
+    import ipywidgets as W
+    import matplotlib.pyplot as plt
+
+    from ..drawing.actions import SlideRuleScene
+
+    scene = SlideRuleScene()
+    plt.close(scene.fig)   # rendered into the image below, never shown as a figure of its own
     # Linear sliders on 1..10 in steps of 0.01: the values a student types or drags to (2, 3, 2.5)
     # are exact, so the rule reads 2 x 3 = 6 (a log-spaced slider rounds 2 to 10**0.301 = 1.9999).
     sa = W.FloatSlider(value=a, min=1.0, max=10.0, step=0.01, description="a (slide)",
                        readout_format=".2f", continuous_update=True)
     sb = W.FloatSlider(value=b, min=1.0, max=10.0, step=0.01, description="b (cursor)",
                        readout_format=".2f", continuous_update=True)
-    view = W.HTML()
+    view = W.Image(format="png")
     text = W.HTML()
 
     def update(*_):
-        svg, product, _x = slide_rule_svg(sa.value, sb.value)
-        view.value = svg
+        scene.set(a=sa.value, b=sb.value)
+        png = io.BytesIO()
+        scene.fig.savefig(png, format="png")
+        view.value = png.getvalue()
         text.value = (f"Slide shifted by log10(a) = {np.log10(sa.value):.4f} of a decade; cursor "
                       f"at a further log10(b) = {np.log10(sb.value):.4f}. D reads "
-                      f"<b>{product:.4g}</b> (a &times; b = {sa.value * sb.value:.4g}).")
+                      f"<b>{scene.reading:.4g}</b> (a &times; b = {sa.value * sb.value:.4g}).")
 
     sa.observe(update, "value")
     sb.observe(update, "value")
     update()
-    box = W.VBox([W.HTML("<b>Slide rule</b>: the blue line is the C scale's index (its 1), the "
-                         "red line the cursor."), view, sa, sb, text])
+    box = W.VBox([W.HTML("<b>Slide rule</b>: the blue scale is C, its thick line starts at its "
+                         "index (its 1); the red line is the cursor."), view, sa, sb, text])
     box.sliders = (sa, sb)
-    box.view, box.readout = view, text
+    box.view, box.readout, box.scene = view, text, scene
     return box
 
 

@@ -38,8 +38,7 @@ ex3_1 = Exercise("3.1", "Differential drive: a holonomic constraint hidden in th
                "itself (the third row of (1.26)).",
                "theta_dot is a constant combination of the wheel speeds, so it integrates directly."],
         solution_text="theta = R (alpha2 - alpha1) / (2 w): the holonomic constraint "
-                      "theta - R (alpha2 - alpha1)/(2 w) = const.",
-        reference=_theta_dd, wrong=[lambda a1, a2, R, w: -_theta_dd(a1, a2, R, w)]),
+                      "theta - R (alpha2 - alpha1)/(2 w) = const."),
     ChoicePart(
         "b", "Which combination of the constraints (3.23)-(3.25) is integrable?",
         {"a": "All three are integrable, so the car cannot reach every pose in the plane",
@@ -154,8 +153,7 @@ def _ack_part(name, drive):
                        "for R = L = 1."
                        if drive == "rear" else
                        "A = -[[R cos(alpha2), 0], [0, 0], [R sin(alpha2) / L, 0]]: no singularity at "
-                       "alpha2 = pi/2, where the car pivots about its rear axle."),
-        reference=ref, wrong=[_neg(ref)])
+                       "alpha2 = pi/2, where the car pivots about its rear axle."))
 
 
 ex3_3 = Exercise("3.3", "Pfaffian and local connection of the Ackerman car (kinematic bicycle)", [
@@ -246,8 +244,7 @@ def _swim_part(name, regime):
                 "sum J_i^T (I_i + M_i) J_i and read A from its blocks, (3.40)."),
                "By symmetry two of the three rows vanish: which ones?"],
         solution_text="A = M_xx^-1 M_xr with M = sum_i J_i^T K_i J_i; only the lateral (y) row is "
-                      "non-zero, by the swimmer's left-right symmetry.",
-        reference=ref, wrong=[_neg(ref)])
+                      "non-zero, by the swimmer's left-right symmetry.")
 
 
 ex3_4 = Exercise("3.4", "Local connections of two-link swimmers at low and high Reynolds number", [

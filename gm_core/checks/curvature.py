@@ -121,7 +121,7 @@ ex4_1 = Exercise("4.1", "Which gait moves further? Reading a curvature map", [
         hints=["Look at the x map of the swimmer (minimum-perturbation frame) with both circles drawn on it.",
                "Net x motion ~ (the x curvature inside the loop, added up with its sign): "
                "red counts one way, blue the other."],
-        solution_text="c: the smaller circle A.", wrong=["a", "b", "d"]),
+        solution_text="c: the smaller circle A."),
     CustomPart(
         "b", "The x component of the Stokes estimate for gait A, from your own area sum (a number)",
         lambda: [_read_number], _judge_41b,
@@ -154,7 +154,7 @@ ex4_1 = Exercise("4.1", "Which gait moves further? Reading a curvature map", [
                   "c": "Look again at the map: the x curvature is far from zero beyond radius 1, "
                        "with strong red lobes on both diagonals."},
         hints=["Compare the colours at radius 1 and at radius 2 on the x map."],
-        solution_text="d: in this frame the enclosed curvature changes sign further out.", wrong=["a", "b", "c"]),
+        solution_text="d: in this frame the enclosed curvature changes sign further out."),
 ])
 
 
@@ -264,5 +264,5 @@ ex4_2 = Exercise("4.2", "A gait that turns the swimmer in place", [
                        "cancel.",
                   "d": "By the swimmer's symmetry, such loops do not turn it at all."},
         hints=["Turning comes from the theta map, moving from the x and y maps."],
-        solution_text="a.", wrong=["b", "c", "d"]),
+        solution_text="a."),
 ])

@@ -13,6 +13,15 @@ a student changes by dragging) or a missing background trigger one full draw (th
 callback then captures the background without the animated artists and paints them on top);
 every later frame is a blit. In 3D the moving artists are projected with the view of the last
 full draw, which the view check keeps current.
+
+:class:`KeyFrames` makes a live (webagg/ipympl) canvas always end on the truth. webagg sends
+each picture as a *difference* from the one sent before, and the browser drops a picture that
+arrives while the previous one is still loading (matplotlib issue 19116, PR 19762): after a
+fast drag the next differences are painted over a picture the browser never showed, and old
+arms, curves and readouts stay on the canvas. So once the changes stop for ``delay`` seconds, a
+key frame is sent: the figure is drawn in full and sent whole (webagg's own "refresh" request,
+which is what a newly connected browser asks for). A slider burst still gets the fast
+difference frames; its last picture is always complete.
 """
 from __future__ import annotations
 
@@ -21,14 +30,37 @@ from contextlib import contextmanager
 from matplotlib.axis import Axis
 from matplotlib.legend import Legend
 from matplotlib.spines import Spine
+from matplotlib.text import Text
+from matplotlib.transforms import Bbox
 
-__all__ = ["Blitter", "can_blit"]
+__all__ = ["Blitter", "KeyFrames", "can_blit", "sends_differences"]
 
 
 def can_blit(fig) -> bool:
     """True if ``fig`` can be blitted: its canvas can copy and restore regions (Agg-based)."""
     canvas = fig.canvas
     return hasattr(canvas, "copy_from_bbox") and hasattr(canvas, "restore_region")
+
+
+def sends_differences(fig) -> bool:
+    """True if ``fig``'s canvas sends pictures to a browser as differences (webagg, ipympl)."""
+    from matplotlib.backends.backend_webagg_core import FigureCanvasWebAggCore
+
+    return isinstance(fig.canvas, FigureCanvasWebAggCore)
+
+
+def _overlap(a, b) -> bool:
+    """True if two display boxes share an area (touching edges or empty boxes do not count)."""
+    i = Bbox.intersection(a, b)
+    return i is not None and i.width > 0 and i.height > 0
+
+
+def _no_view_yet(canvas) -> bool:
+    """True while an ipympl canvas has no initialised browser view (``syncing_data_url``): a
+    picture sent then only replaces the canvas' ``_data_url`` (without its ``data:`` prefix, so
+    the browser's image breaks). Until the view asks for its first picture, only draw requests
+    (``draw_idle``, answered by the browser) are made."""
+    return bool(getattr(canvas, "syncing_data_url", False))
 
 
 def _view(ax):
@@ -82,8 +114,51 @@ class Blitter:
         self._limits = self._view_limits()
         self._paint()
 
+    def _make_dynamic(self, a):
+        a.set_animated(True)
+        self.dynamic.append(a)
+        self._ids.add(id(a))
+
+    def _covering(self):
+        """Static artists drawn *above* a moving one and overlapping it (a ✓ on a badge whose
+        colour changes): pasted under the moving artist they would vanish, so they move too.
+        Found once, when the set of moving artists grows (never per frame)."""
+        leaves = list(_leaf_artists(self.fig))
+        order = {id(a): (a.get_zorder(), i) for i, a in enumerate(leaves)}
+        renderer = self.canvas.get_renderer() if hasattr(self.canvas, "get_renderer") else None
+
+        def extent(a):
+            try:
+                return a.get_window_extent(renderer)
+            except Exception:  # an artist without a usable extent: assume it covers everything
+                return None
+
+        out, moving = [], [a for a in self.dynamic if a.figure is not None]
+        leaves = [a for a in leaves if not (isinstance(a, Text) and not a.get_text().strip())]
+        boxes = {id(a): extent(a) for a in moving}
+        changed = True
+        while changed:
+            changed = False
+            for s in leaves:
+                if id(s) in self._ids or id(s) in {id(o) for o in out} or not s.get_visible():
+                    continue
+                for d in moving:
+                    if d.axes is not s.axes or order.get(id(s), (0, 0)) <= order.get(id(d), (0, 0)):
+                        continue
+                    bs, bd = extent(s), boxes.get(id(d))
+                    if bs is None or bd is None or _overlap(bs, bd):
+                        out.append(s)
+                        moving.append(s)
+                        boxes[id(s)] = bs
+                        changed = True
+                        break
+        return out
+
     def _sorted(self):
-        return sorted((a for a in self.dynamic if a.figure is not None), key=lambda a: a.get_zorder())
+        # the moving artists in the order a full draw paints them (z-order, then insertion)
+        order = {id(a): (a.get_zorder(), i) for i, a in enumerate(_leaf_artists(self.fig))}
+        return sorted((a for a in self.dynamic if a.figure is not None),
+                      key=lambda a: order.get(id(a), (a.get_zorder(), 0)))
 
     def _paint(self):
         for a in self._sorted():
@@ -106,15 +181,17 @@ class Blitter:
 
     def refresh(self):
         new = [a for a in _leaf_artists(self.fig) if a.stale and id(a) not in self._ids]
-        if self._background is None:
-            # No background yet (never drawn): everything is new, nothing is known to move.
+        if self._background is None or _no_view_yet(self.canvas):
+            # No background yet (never drawn): everything is new, nothing is known to move. (Or
+            # no browser view yet: only the browser's own draw request may send a picture.)
             self._full_draw()
             return
         if new or self._view_limits() != self._limits:
             for a in new:
-                a.set_animated(True)
-                self.dynamic.append(a)
-                self._ids.add(id(a))
+                self._make_dynamic(a)
+            if new:
+                for a in self._covering():
+                    self._make_dynamic(a)
             self._full_draw()
             return
         self.canvas.restore_region(self._background)
@@ -133,3 +210,58 @@ class Blitter:
             a.set_animated(False)
         self.dynamic.clear()
         self._ids.clear()
+
+
+class KeyFrames:
+    """Send one whole picture of ``fig`` after the last change of every burst (see module doc).
+
+    :meth:`touch` (called after every update) and every full draw restart a single-shot timer of
+    ``delay`` seconds on the canvas's own event loop; when it fires the figure is drawn in full
+    and sent as a complete image. The key frame's own draw does not restart the timer, and it
+    asks the browser for nothing, so the key frame is the last picture the browser receives.
+    """
+
+    def __init__(self, fig, delay: float = 0.25):
+        self.fig = fig
+        self.canvas = fig.canvas
+        self.delay = float(delay)
+        self.sent = 0
+        self._sending = False
+        self._timer = self.canvas.new_timer(interval=max(1, int(self.delay * 1000)))
+        self._timer.single_shot = True
+        self._timer.add_callback(self.send)
+        self._cid = self.canvas.mpl_connect("draw_event", self._on_draw)
+
+    def touch(self):
+        """A picture was just sent (or is about to be): the key frame follows ``delay`` s later."""
+        self._timer.stop()
+        self._timer.start()
+
+    def _on_draw(self, event):
+        if not self._sending and not self.canvas.is_saving():
+            self.touch()
+
+    def send(self):
+        """Draw the figure in full now and send it whole (not as a difference)."""
+        canvas = self.canvas
+        if _no_view_yet(canvas):
+            return   # no browser shows the figure yet: it asks for its first (whole) picture itself
+        self._sending = True
+        try:
+            # webagg's "refresh" marks the next picture as a full one; it also asks the browser
+            # to request a draw, which would send one more (difference) picture after the key
+            # frame: that request is left out, the figure is drawn here instead.
+            real_draw_idle = canvas.draw_idle
+            canvas.draw_idle = lambda *a, **k: None
+            try:
+                canvas.handle_event({"type": "refresh"})
+            finally:
+                canvas.draw_idle = real_draw_idle
+            canvas.draw()
+            self.sent += 1
+        finally:
+            self._sending = False
+
+    def disconnect(self):
+        self._timer.stop()
+        self.canvas.mpl_disconnect(self._cid)

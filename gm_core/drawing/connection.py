@@ -331,7 +331,7 @@ def poor_pictures_figure(system, row=2, n=6, figsize=(9, 3.4)):
     return fig, axes
 
 
-def field_grid_axes(figsize=(8, 7.5)):
+def field_grid_axes(figsize=(6.2, 5.9)):
     """A 2 x 2 figure: three shape-space axes (one per connection row) and a world axes."""
     fig, axes = new_figure(2, 2, figsize=figsize)
     return fig, [axes[0, 0], axes[0, 1], axes[1, 0]], axes[1, 1]

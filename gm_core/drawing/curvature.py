@@ -192,7 +192,7 @@ class GaitStokesScene(Scene):
         super().__init__(**options)
 
     def make_figure(self):
-        fig, (self.ax, self.axb) = new_figure(1, 2, figsize=(9, 4.2), layout="compressed",
+        fig, (self.ax, self.axb) = new_figure(1, 2, figsize=(9, 3.3), layout="compressed",
                                               gridspec_kw=dict(width_ratios=[1.1, 1]))
         return fig, [self.ax, self.axb]
 

@@ -13,7 +13,7 @@ from ..axioms import GROUP_AXIOMS, STRUCTURES, check_axioms, try_elements
 from ..axioms import structure as find_structure
 from .toolkit import PALETTE, PathText, Scene, text_panel
 
-__all__ = ["GroupOrNotScene"]
+__all__ = ["GroupOrNotScene", "integer_structure"]
 
 _LAW = {"closure": "closure (1.ii)", "associativity": "associativity (1.iii)",
         "identity": "identity (1.iv)", "inverse": "inverse (1.v)"}
@@ -81,6 +81,11 @@ class GroupOrNotScene(Scene):
             self.title.set_text(f"{S.name} is NOT a group: {', '.join(failing)} fail"
                                 + ("s" if len(failing) == 1 else ""))
             self.title.set_color(_FAILS)
+
+
+def integer_structure(name) -> bool:
+    """True if every member of the structure ``name`` is an integer (its controls take whole numbers)."""
+    return find_structure(name).integer
 
 
 #: the candidate structures, in the order the panel offers them

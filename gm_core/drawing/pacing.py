@@ -49,7 +49,7 @@ class PacingSquareScene(Scene):
         super().__init__(**options)
 
     def make_figure(self):
-        fig, axes = new_figure(2, 2, figsize=(7.6, 6.6))
+        fig, axes = new_figure(2, 2, figsize=(6.2, 5.8))
         fig.get_layout_engine().set(w_pad=0.3, h_pad=0.25, wspace=0.12, hspace=0.12)
         return fig, list(axes.ravel())
 
@@ -123,8 +123,8 @@ class PacingSquareScene(Scene):
         self.frames[0].set(self.g_top)
         self.frames[1].set(self.g_bot)
         gt, gb = self.g_top, self.g_bot
-        self.text_top.set_text(f"run ψ, at time τ(t) = {s:.3f}:\n({gt[0]:+.4f}, {gt[1]:+.4f}, {gt[2]:+.4f})")
-        self.text_bot.set_text(f"run ψ′, at time t = {ts:.3f}:\n({gb[0]:+.4f}, {gb[1]:+.4f}, {gb[2]:+.4f})")
+        self.text_top.set_text(f"ψ at τ(t) = {s:.3f}:\n({gt[0]:+.3f},{gt[1]:+.3f},{gt[2]:+.3f})")
+        self.text_bot.set_text(f"ψ′ at t = {ts:.3f}:\n({gb[0]:+.3f},{gb[1]:+.3f},{gb[2]:+.3f})")
 
 
 class DirectionalScene(Scene):

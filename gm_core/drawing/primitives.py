@@ -5,11 +5,13 @@ Every artist here is built once and then updated with ``set(...)`` (``set_data``
 """
 from __future__ import annotations
 
+import base64
+import io
 import os
 
 import matplotlib.pyplot as plt
 import numpy as np
-from matplotlib.animation import FuncAnimation
+from matplotlib.animation import AbstractMovieWriter, FuncAnimation
 from matplotlib.patches import Polygon
 
 from ..groups import SE2
@@ -132,52 +134,48 @@ def animate(fig, update, frames, interval=50, **kw):
             idx = np.linspace(0, len(frames) - 1, n_frames(len(frames))).round().astype(int)
             frames = [frames[i] for i in idx]
     anim = FuncAnimation(fig, update, frames=frames, interval=interval, blit=False, **kw)
-    anim.gm_figure = fig   # read by jshtml (FuncAnimation keeps its figure only privately)
+    anim.gm_figure = fig   # read by jshtml (FuncAnimation keeps its figure and interval privately)
+    anim.gm_interval = interval
     return anim
 
 
-def _robust_jshtml(html, width=None):
-    """Make matplotlib's to_jshtml page robust in JupyterLab (plain string edits of its output).
+class _FrameCollector(AbstractMovieWriter):
+    """A movie writer (matplotlib's public writer interface) that keeps every frame as a PNG data URL."""
 
-    * the first frame becomes the ``<img>``'s own ``src`` (with its pixel width), so the image has
-      its size and a picture even before -- or without -- the player's script running;
-    * the player starts once its elements are in the document: JupyterLab may render an output
-      before attaching it (off-screen cells), and the stock script then finds no element and
-      leaves the image empty (0 x 0).
-    """
-    import re
+    def __init__(self):
+        super().__init__(fps=20)
+        self.frames: list[str] = []
 
-    m = re.search(r'frames\[0\] = "(.*?)"\n', html, flags=re.S)
-    if m:
-        first = m.group(1).replace("\\\n", "")
-        size = f' width="{int(width)}"' if width else ""
-        html = re.sub(r'<img id="(_anim_img\w+)">', lambda k: f'<img id="{k.group(1)}" src="{first}"{size} '
-                      'style="max-width: 100%; height: auto;">', html, count=1)
-    html = re.sub(r"setTimeout\(function\(\) \{\s*(anim\w+ = new Animation\(.*?\);)\s*\}, 0\);",
-                  lambda k: ("(function start(tries) {\n"
-                             "        if (document.getElementById(img_id) === null) {\n"
-                             "            if (tries < 6000) { setTimeout(function() { start(tries + 1); }, 100); }\n"
-                             "            return;\n"
-                             "        }\n"
-                             f"        {k.group(1)}\n"
-                             "    })(0);"), html, count=1, flags=re.S)
-    return html
+    def setup(self, fig, outfile, dpi=None):
+        super().setup(fig, outfile, dpi=dpi)
+
+    def grab_frame(self, **savefig_kwargs):
+        buf = io.BytesIO()
+        self.fig.savefig(buf, format="png", dpi=self.dpi, **savefig_kwargs)
+        self.frames.append("data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii"))
+
+    def finish(self):
+        pass
 
 
 def jshtml(anim, default_mode="loop"):
-    """An IPython HTML object that plays ``anim`` in the page, with no live kernel (to_jshtml).
+    """An IPython HTML object that plays ``anim`` in the page, with no live kernel and offline.
 
-    Frames are rendered at the figure standard's resolution; the page shows its first frame at
-    full size even before the player script runs (see :func:`_robust_jshtml`).
+    Every frame is rendered at the figure standard's resolution through ``anim.save`` (a movie
+    writer that keeps PNG frames); :func:`gm_core.drawing.player.player_html` writes the player:
+    the first frame is the image's own source (a picture before, or without, any script), the
+    icons are inline SVG and the script is the course's own (no CDN, no request).
     """
     from IPython.display import HTML
 
+    from .player import player_html
+
     fig = getattr(anim, "gm_figure", None)
-    width = None
-    if fig is not None:
-        fig.set_dpi(DPI)          # frames at the standard's resolution: 1 inch = 100 CSS px
-        width = fig.get_figwidth() * DPI
-    html = _robust_jshtml(anim.to_jshtml(default_mode=default_mode), width)
-    if fig is not None:
-        plt.close(fig)
-    return HTML(html)
+    if fig is None:
+        raise TypeError("jshtml needs an animation made by gm_core.drawing.primitives.animate")
+    fig.set_dpi(DPI)          # frames at the standard's resolution: 1 inch = 100 CSS px
+    writer = _FrameCollector()
+    anim.save("frames-kept-in-memory", writer=writer, dpi=DPI)
+    plt.close(fig)
+    return HTML(player_html(writer.frames, interval=getattr(anim, "gm_interval", 50),
+                            width=fig.get_figwidth() * DPI, mode=default_mode))

@@ -22,9 +22,12 @@
 """
 from __future__ import annotations
 
+from typing import Any
+
 import matplotlib as mpl
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.collections import LineCollection, PathCollection, PolyCollection
 from matplotlib.figure import Figure
 from matplotlib.font_manager import FontProperties, findfont, get_font
@@ -72,7 +75,7 @@ STYLE = {
     "ytick.labelsize": 8.0,
     "legend.fontsize": 8.0,
     "figure.titlesize": 10.0,
-    "axes.prop_cycle": mpl.cycler(color=[PALETTE[k] for k in (
+    "axes.prop_cycle": mpl.cycler(color=[PALETTE[k] for k in (  # type: ignore[attr-defined]
         "blue", "orange", "green", "vermillion", "purple", "sky", "yellow", "black")]),
     "image.cmap": "cividis",
     "figure.constrained_layout.h_pad": 0.06,
@@ -456,17 +459,20 @@ class Scene:
     (a single axes is also ``self.ax``).
     """
 
-    FIGSIZE = None
-    NCOLS = 1
-    MARGINS = None
+    FIGSIZE: tuple[float, float] | None = None
+    NCOLS: int = 1
+    MARGINS: dict[str, float] | None = None
+    ax: Axes
 
-    def __init__(self, **options):
-        self.options = options
+    def __init__(self, **options: Any) -> None:
+        self.options: dict[str, Any] = options
+        self.fig: Figure
+        self.axes: list[Axes]
         self.fig, self.axes = self.make_figure()
         self.decorate()
         self.create()
 
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         if self.FIGSIZE is None:
             raise NotImplementedError(f"{type(self).__name__} must set FIGSIZE or implement make_figure")
         fig, axes = new_figure(1, self.NCOLS, figsize=self.FIGSIZE)
@@ -477,16 +483,16 @@ class Scene:
         self.ax = axes
         return fig, [axes]
 
-    def decorate(self):
+    def decorate(self) -> None:
         pass
 
-    def create(self):
+    def create(self) -> None:
         raise NotImplementedError
 
-    def set(self, **values):
+    def set(self, **values: Any) -> None:
         raise NotImplementedError
 
-    def replot(self, **values):
+    def replot(self, **values: Any) -> None:
         """The naive baseline: clear every axes, draw everything again, then set the values."""
         for ax in self.axes:
             ax.clear()

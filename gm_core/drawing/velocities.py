@@ -244,7 +244,7 @@ class VelocityScene(Scene):
     LIM = 3.0
 
     def make_figure(self):
-        fig, axes = new_figure(2, 2, figsize=(7.2, 7.0))
+        fig, axes = new_figure(2, 2, figsize=(6.2, 5.9))
         margins(fig, left=0.02, right=0.98, bottom=0.02, top=0.95, wspace=0.06, hspace=0.12)
         return fig, list(np.ravel(axes))
 
@@ -302,7 +302,7 @@ class VelocityScene(Scene):
         where = ("ICR at infinity: pure translation" if far else
                  f"ICR ★ ({self.icr_world[0]:+.2f}, {self.icr_world[1]:+.2f})" + ("" if shown else ", off view"))
         self.texts[0].set_text(f"ġ = {f(self.g_dot)}\n{where}")
-        self.texts[1].set_text(f"ξ = {f(xi)}  (red: ξˣ, green: ξʸ)")
+        self.texts[1].set_text(f"ξ = {f(xi)}\n(red: ξˣ, green: ξʸ)")
         self.texts[2].set_text(r"$\xi = T_gL_{g^{-1}}\,\dot g$ = " + f(SE2.world_to_body(g, self.g_dot)))
         self.texts[3].set_text(f"ξˢ = {f(self.xi_s)} = ġ + ξᶿ × l")
 

@@ -4,7 +4,8 @@ Beyond the draft, after Ramasamy & Hatton (ACC 2017; T-RO 2019): for chains of N
 total length 3, drag ratio 2, seen from the centre of mass with the mean orientation
 (``LinkChain((3 / N,) * N, "low_re", frame="com")``), the Fourier gaits of order 2 that
 maximise the efficiency (net translation per unit path length in the power metric), found by
-:func:`gm_core.geometry.optimize_gait` from a travelling-wave start (phases spread over pi).
+:func:`gm_core.geometry.optimize_gait` (the best of runs from travelling-wave starts, slightly
+perturbed so that they leave the symmetric saddle points).
 tests/test_link_chain_geometry.py checks that each is stationary (the exact gradient vanishes)
 and reproduces the stored efficiency and displacement.
 """
@@ -17,30 +18,30 @@ __all__ = ["CHAIN_STROKES", "chain_swimmer", "chain_stroke"]
 
 #: Fourier coefficients (a, b: (N - 1, 2); center: (N - 1,)) and the values they give.
 CHAIN_STROKES = {
-    3: dict(a=[[0.871746260052, 0.251905876442],
-              [-0.871746260272, -0.251905874941]],
-             b=[[0.912213522679, 0.287624276418],
-              [0.912213523578, 0.287624277304]],
-             center=[-0.218869912568, 0.218869913791],
-             efficiency=0.063856, displacement=0.247544),
-    4: dict(a=[[1.11099907307, -8.51628324813e-09],
-              [-6.57026874636e-11, -5.7708690265e-09],
-              [-1.11099907319, 4.14122905368e-09]],
-             b=[[0.087111180395, 6.27945117509e-09],
-              [1.41363323446, 2.25863444925e-08],
-              [0.0871111804649, 1.19899045041e-08]],
-             center=[6.21155169867e-09, 2.73366727466e-09, -6.82309371081e-09],
-             efficiency=0.098425, displacement=0.346029),
-    5: dict(a=[[0.869361172028, 5.21536676547e-08],
-              [0.734343412342, 6.6388882086e-08],
-              [-0.734343412563, -2.63883750107e-09],
-              [-0.869361172123, -3.42850024779e-08]],
-             b=[[-0.493418487842, -4.14708448012e-08],
-              [0.998458518453, -1.6480264944e-07],
-              [0.998458518487, -1.8953755447e-07],
-              [-0.493418487756, -6.87850930347e-08]],
-             center=[-3.64247462565e-08, -6.39617763094e-08, 5.33323624103e-08, 4.73453258423e-08],
-             efficiency=0.118359, displacement=0.395648),
+    3: dict(a=[[1.25806291516, 0.240434185368],
+              [0.139719183254, 0.328106592347]],
+             b=[[-0.0800170633457, -0.303506727275],
+              [1.25763164329, 0.193229900503]],
+             center=[-0.180986781244, 0.25686376828],
+             efficiency=0.063901, displacement=0.248430),
+    4: dict(a=[[-0.0581281264027, 0.0727534620138],
+              [-1.4435348234, 0.283605088077],
+              [-0.0581569028356, 0.0727701178119]],
+             b=[[1.01077025085, -0.236244456274],
+              [2.19543216836e-05, -9.55024475503e-06],
+              [-1.01076821416, 0.236240312658]],
+             center=[-0.0269463715167, -0.368750881827, -0.0269444034496],
+             efficiency=0.098861, displacement=0.352349),
+    5: dict(a=[[0.660365154215, -0.00502753645253],
+              [0.98440920793, 0.352977040816],
+              [-0.304945423552, 0.0297932435022],
+              [-0.961532571994, -0.280279254503]],
+             b=[[-0.703312823065, -0.265475441777],
+              [0.549824537546, 0.04720574121],
+              [1.07117848445, 0.366453029927],
+              [-0.03496892346, -0.0182396489586]],
+             center=[-0.214882421511, -0.178075159779, 0.136784197238, 0.208385628518],
+             efficiency=0.118703, displacement=0.402340),
 }
 
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import SingularShapeError, as_array, check_int, check_option, positive_number
+from .._validate import SingularShapeError, as_array, check_int, check_option, positive_number, real_number
 from ..gaits import Gait
 from ..groups import SE2, matvec
 from ..locomotion import check_gait, check_system, net_displacement, trajectory
@@ -101,7 +101,7 @@ def travelling_wave(n_joints, amplitude=0.8, lag=np.pi / 2, *, period=2 * np.pi)
     """
     n = check_int(n_joints, "n_joints", minimum=1, maximum=200, what=" (the number of joints)")
     A = positive_number(amplitude, "amplitude")
-    lag = float(as_array(lag, "lag", what=" (the phase lag between joints, rad)"))
+    lag = real_number(lag, "lag", what=" (the phase lag between joints, rad)")
     j = np.arange(n)
     return fourier_gait((-A * np.sin(j * lag))[:, None], (A * np.cos(j * lag))[:, None], period=period,
                         name=f"travelling wave: amplitude {A:.2f}, lag {lag:.2f} rad")

@@ -5,8 +5,9 @@ right coincide, (1.3); their bracket is zero.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from .._validate import as_array, check_shape
+from .._validate import FloatArray, as_array, check_shape
 from .base import (
     TWO_PI,
     LieGroup,
@@ -34,40 +35,40 @@ class _Additive(LieGroup):
     def _identity_coords(self):
         return np.zeros(self.param_dim)
 
-    def compose(self, g, h):
+    def compose(self, g: ArrayLike, h: ArrayLike) -> FloatArray:
         """g + h, coordinate-wise (angles are not wrapped), book (1.3)."""
         g = self._element(g)
         h = self._element(h, "h")
         self._batch(("g", g), ("h", h))
         return g + h
 
-    def inverse(self, g):
+    def inverse(self, g: ArrayLike) -> FloatArray:
         """-g, book (1.v)."""
         return -self._element(g)
 
-    def left_lifted_action(self, h, g):
+    def left_lifted_action(self, h: ArrayLike, g: ArrayLike) -> FloatArray:
         """The identity matrix: translations do not turn velocities, book (1.22)."""
         return _eye(self.param_dim, self._batch(("h", self._element(h, "h")), ("g", self._element(g))))
 
     right_lifted_action = left_lifted_action
 
-    def Ad(self, g):
+    def Ad(self, g: ArrayLike) -> FloatArray:
         """The identity matrix: body and spatial velocities coincide in a commutative group."""
         return _eye(self.tangent_dim, self._element(g).shape[:-1])
 
     Ad_inv = Ad
 
-    def bracket(self, xi1, xi2):
+    def bracket(self, xi1: ArrayLike, xi2: ArrayLike) -> FloatArray:
         """Zero: the group is commutative."""
         xi1 = self._algebra(xi1, "xi1")
         xi2 = self._algebra(xi2, "xi2")
         return np.zeros(self._batch(("xi1", xi1), ("xi2", xi2)) + (self.tangent_dim,))
 
-    def exp(self, xi):
+    def exp(self, xi: ArrayLike) -> FloatArray:
         """exp(xi) = xi: the coordinates are exponential coordinates."""
         return self._algebra(xi).copy()
 
-    def log(self, g):
+    def log(self, g: ArrayLike) -> FloatArray:
         """g with its periodic coordinates reduced into (-k/2, k/2]."""
         g = self._element(g).copy()
         for j, p in enumerate(self.periods):
@@ -82,7 +83,7 @@ class Rn(_Additive):
     ``n`` is an integer between 1 and :data:`MAX_RN_DIM`.
     """
 
-    def __init__(self, n=1):
+    def __init__(self, n: int = 1) -> None:
         if isinstance(n, (bool, np.bool_)) or not isinstance(n, (int, np.integer)):
             raise TypeError(f"n must be a positive integer (at most {MAX_RN_DIM}); got "
                             f"{type(n).__name__} {n!r:.40}")
@@ -97,7 +98,7 @@ class Rn(_Additive):
         self.periods = (None,) * n
         super().__init__()
 
-    def hat(self, xi):
+    def hat(self, xi: ArrayLike) -> FloatArray:
         """The translation generator [[0, xi], [0, 0]], ``(..., n+1, n+1)``."""
         xi = self._algebra(xi)
         n = self.param_dim
@@ -105,7 +106,7 @@ class Rn(_Additive):
         X[..., :n, n] = xi
         return X
 
-    def vee(self, X):
+    def vee(self, X: ArrayLike) -> FloatArray:
         X = self._square(X, "X")
         n = self.param_dim
         expected = np.zeros_like(X)
@@ -113,7 +114,7 @@ class Rn(_Additive):
         _check_entries(X, expected, "X", f"a translation generator [[0, xi], [0, 0]] of {self.name}")
         return X[..., :n, n].copy()
 
-    def matrix(self, g):
+    def matrix(self, g: ArrayLike) -> FloatArray:
         """The translation matrix [[I, g], [0, 1]], ``(..., n+1, n+1)``."""
         g = self._element(g)
         n = self.param_dim
@@ -121,7 +122,7 @@ class Rn(_Additive):
         G[..., :n, n] = g
         return G
 
-    def from_matrix(self, G):
+    def from_matrix(self, G: ArrayLike) -> FloatArray:
         G = self._square(G, "G")
         n = self.param_dim
         expected = _eye(n + 1, G.shape[:-2])
@@ -129,7 +130,7 @@ class Rn(_Additive):
         _check_entries(G, expected, "G", f"a translation matrix [[I, g], [0, 1]] of {self.name}")
         return G[..., :n, n].copy()
 
-    def nearest_element(self, M):
+    def nearest_element(self, M: ArrayLike) -> FloatArray:
         """The translation column of ``M``, as it is."""
         M = self._square(M, "M")
         return M[..., : self.param_dim, self.param_dim].copy()
@@ -145,32 +146,32 @@ class _SO2(_Additive):
     param_dim = tangent_dim = 1
     matrix_size = 2
 
-    def hat(self, xi):
+    def hat(self, xi: ArrayLike) -> FloatArray:
         """[[0, -w], [w, 0]], ``(..., 2, 2)``."""
         w = self._algebra(xi)[..., 0]
         z = np.zeros_like(w)
         return np.stack([np.stack([z, -w], -1), np.stack([w, z], -1)], -2)
 
-    def vee(self, X):
+    def vee(self, X: ArrayLike) -> FloatArray:
         X = self._square(X, "X")
         if not np.all(np.abs(X + np.swapaxes(X, -1, -2)) <= 1e-9):
             raise ValueError("X must be skew-symmetric [[0, -w], [w, 0]] to be in the algebra so(2)")
         return X[..., 1, 0:1].copy()
 
-    def log(self, g):
+    def log(self, g: ArrayLike) -> FloatArray:
         """theta reduced into (-pi, pi], exactly for every finite theta."""
         return _wrap(self._element(g)).copy()
 
-    def matrix(self, g):
+    def matrix(self, g: ArrayLike) -> FloatArray:
         """R(theta) = [[cos, -sin], [sin, cos]], book (1.1)."""
         return _rot(self._element(g)[..., 0])
 
-    def from_matrix(self, G):
+    def from_matrix(self, G: ArrayLike) -> FloatArray:
         G = self._square(G, "G")
         _check_rotation(G, "G")
         return np.arctan2(G[..., 1, 0], G[..., 0, 0])[..., None]
 
-    def nearest_element(self, M):
+    def nearest_element(self, M: ArrayLike) -> FloatArray:
         """The angle of the nearest rotation to ``M``."""
         return _angle_of_block(self._square(M, "M"))[..., None]
 
@@ -187,7 +188,7 @@ class S1(_Additive):
     param_dim = tangent_dim = 1
     matrix_size = 2
 
-    def __init__(self, period=TWO_PI):
+    def __init__(self, period: float = TWO_PI) -> None:
         if isinstance(period, (str, bytes)) or period is None:
             raise TypeError(f"period must be a positive number; got {type(period).__name__} {period!r:.40}")
         k = as_array(period, "period", what=" (a positive number)")
@@ -204,40 +205,40 @@ class S1(_Additive):
     def _in_domain(self, g):
         return np.all((g >= 0) & (g < self.period), axis=-1)
 
-    def project(self, g):
+    def project(self, g: ArrayLike) -> FloatArray:
         """The representative of ``g`` in [0, k)."""
         return _mod_period(self._element(g), self.period)
 
-    def compose(self, g, h):
+    def compose(self, g: ArrayLike, h: ArrayLike) -> FloatArray:
         """(a + b) mod k."""
         return _mod_period(super().compose(g, h), self.period)
 
-    def inverse(self, g):
+    def inverse(self, g: ArrayLike) -> FloatArray:
         """(-a) mod k."""
         return _mod_period(-self._element(g), self.period)
 
-    def hat(self, xi):
+    def hat(self, xi: ArrayLike) -> FloatArray:
         """so(2) generator of the rotation rate 2 pi xi / k, ``(..., 2, 2)``."""
         return SO2.hat(self._algebra(xi) * self._scale)
 
-    def vee(self, X):
+    def vee(self, X: ArrayLike) -> FloatArray:
         return SO2.vee(X) / self._scale
 
-    def exp(self, xi):
+    def exp(self, xi: ArrayLike) -> FloatArray:
         """xi mod k."""
         return _mod_period(self._algebra(xi), self.period)
 
-    def matrix(self, g):
+    def matrix(self, g: ArrayLike) -> FloatArray:
         """The rotation R(2 pi a / k): the isomorphism S^1 -> SO(2) of (1.xiv)-(1.xvi)."""
         return _rot(self._element(g)[..., 0] * self._scale)
 
-    def from_matrix(self, G):
+    def from_matrix(self, G: ArrayLike) -> FloatArray:
         return _mod_period(SO2.from_matrix(G) / self._scale, self.period)
 
-    def nearest_element(self, M):
+    def nearest_element(self, M: ArrayLike) -> FloatArray:
         return _mod_period(SO2.nearest_element(M) / self._scale, self.period)
 
-    def random(self, rng, size=(), scale=1.0):
+    def random(self, rng: np.random.Generator | int | None, size: int | tuple[int, ...] = (), scale: float = 1.0) -> FloatArray:
         """Uniform on [0, k) (``scale`` is accepted for the common interface and ignored: the
         circle has no size to stretch)."""
         rng = _rng(rng)
@@ -255,7 +256,7 @@ class _R2xS1(_Additive):
     param_dim = tangent_dim = 3
     matrix_size = 5
 
-    def hat(self, xi):
+    def hat(self, xi: ArrayLike) -> FloatArray:
         """Block-diagonal algebra matrix: a translation block and an so(2) block, ``(..., 5, 5)``."""
         xi = self._algebra(xi)
         X = np.zeros(xi.shape[:-1] + (5, 5))
@@ -265,13 +266,13 @@ class _R2xS1(_Additive):
         X[..., 4, 3] = xi[..., 2]
         return X
 
-    def vee(self, X):
+    def vee(self, X: ArrayLike) -> FloatArray:
         X = self._square(X, "X")
         out = np.stack([X[..., 0, 2], X[..., 1, 2], X[..., 4, 3]], -1)
         _check_entries(X, self.hat(out), "X", "a block-diagonal generator of (R^2 x S^1, +) (see hat)")
         return out
 
-    def matrix(self, g):
+    def matrix(self, g: ArrayLike) -> FloatArray:
         """Block-diagonal ``(..., 5, 5)``: translation [[I, (x, y)], [0, 1]] beside R(theta)."""
         g = self._element(g)
         G = _eye(5, g.shape[:-1])
@@ -280,7 +281,7 @@ class _R2xS1(_Additive):
         G[..., 3:5, 3:5] = _rot(g[..., 2])
         return G
 
-    def from_matrix(self, G):
+    def from_matrix(self, G: ArrayLike) -> FloatArray:
         G = self._square(G, "G")
         _check_rotation(G[..., 3:5, 3:5], "G")
         out = np.stack([G[..., 0, 2], G[..., 1, 2], np.arctan2(G[..., 4, 3], G[..., 3, 3])], -1)
@@ -291,7 +292,7 @@ class _R2xS1(_Additive):
         _check_entries(G, expected, "G", "block-diagonal [[I, (x, y)], [0, 1]] beside a rotation R(theta)")
         return out
 
-    def nearest_element(self, M):
+    def nearest_element(self, M: ArrayLike) -> FloatArray:
         M = self._square(M, "M")
         return np.stack([M[..., 0, 2], M[..., 1, 2], _angle_of_block(M[..., 3:5, 3:5])], -1)
 

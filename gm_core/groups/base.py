@@ -19,10 +19,12 @@ behaviour is a method or attribute of the group.
 from __future__ import annotations
 
 import abc
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from .._validate import as_array, batch_shape, check_option, check_shape, real_number
+from .._validate import BoolArray, FloatArray, as_array, batch_shape, check_option, check_shape, real_number
 
 __all__ = ["LieGroup", "wrap_angle", "wrap_periodic", "matvec", "check_group", "TWO_PI"]
 
@@ -46,7 +48,7 @@ def _wrap(t):
     return out
 
 
-def wrap_angle(theta):
+def wrap_angle(theta: ArrayLike) -> FloatArray:
     """Angle(s) equal to ``theta`` modulo 2 pi, in (-pi, pi], accurate to rounding for any finite angle.
 
     Inputs already in (-pi, pi] come back unchanged (exactly). The interval is that of doubles:
@@ -58,7 +60,7 @@ def wrap_angle(theta):
     return out.copy() if out is t else out
 
 
-def wrap_periodic(x, period):
+def wrap_periodic(x: ArrayLike, period: float) -> FloatArray:
     """Unchecked reduction of a float array ``x`` modulo ``period`` into (-period/2, period/2].
 
     For ``period == 2 pi`` this is :func:`wrap_angle` (exact reduction by the true 2 pi); for any
@@ -80,7 +82,7 @@ def _mod_period(x, period):
     return np.where(r >= period, 0.0, r)      # -1e-20 mod 1 rounds to 1.0, which is 0 mod 1
 
 
-def matvec(M, v):
+def matvec(M: ArrayLike, v: ArrayLike) -> FloatArray:
     """Batched matrix-vector product ``M @ v`` for ``M: (..., n, m)`` and ``v: (..., m)``."""
     M = as_array(M, "M", what=" (a batch of matrices (..., n, m))")
     v = as_array(v, "v", what=" (a batch of vectors (..., m))")
@@ -100,7 +102,7 @@ def _eye(n, batch):
     return np.broadcast_to(np.eye(n), tuple(batch) + (n, n)).copy()
 
 
-def check_group(group, name="group"):
+def check_group(group: Any, name: str = "group") -> LieGroup:
     """Return ``group`` after checking it is one of gm_core's Lie groups (TypeError otherwise)."""
     if not isinstance(group, LieGroup):
         raise TypeError(
@@ -126,7 +128,7 @@ class LieGroup(abc.ABC):
     tangent_dim: int = 0
     matrix_size: int = 0
 
-    def __init__(self):
+    def __init__(self) -> None:
         ok = (self.param_dim >= 1 and self.tangent_dim >= 1 and self.matrix_size >= 1
               and len(self.coords) == self.param_dim and len(self.periods) == self.param_dim)
         if not ok:
@@ -134,7 +136,7 @@ class LieGroup(abc.ABC):
                             f"coords (one name per coordinate) and periods")
 
     @property
-    def dim(self):
+    def dim(self) -> int:
         """Number of coordinates, equal to the tangent dimension for every group of the course."""
         if self.param_dim != self.tangent_dim:
             raise AttributeError(f"{self.name} has {self.param_dim} coordinates but a "
@@ -142,11 +144,11 @@ class LieGroup(abc.ABC):
         return self.param_dim
 
     @property
-    def angular(self):
+    def angular(self) -> tuple[bool, ...]:
         """Which coordinates are periodic (compared modulo their period), a tuple of bools."""
         return tuple(p is not None for p in self.periods)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return self.name
 
     # ------------------------------------------------------------------ checking
@@ -165,7 +167,7 @@ class LieGroup(abc.ABC):
         """Broadcast batch shape of ``(name, array)`` pairs of elements or algebra vectors."""
         return batch_shape(*((n, a, 1) for n, a in named))
 
-    def contains(self, g):
+    def contains(self, g: ArrayLike) -> BoolArray:
         """True where ``g`` (any finite array ``(..., param_dim)``) holds the coordinates of an element.
 
         Shape ``g.shape[:-1]``. Subclasses narrow it: positive numbers for (R+, x), [0, k) for
@@ -178,14 +180,14 @@ class LieGroup(abc.ABC):
     def _in_domain(self, g):
         return np.ones(g.shape[:-1], dtype=bool)
 
-    def project(self, g):
+    def project(self, g: ArrayLike) -> FloatArray:
         """The canonical coordinates of the element ``g`` (angles of S^1 reduced into [0, k)).
 
         For groups whose every coordinate vector is an element this is a validated copy.
         """
         return self._element(g).copy()
 
-    def identity(self, batch_shape=()):
+    def identity(self, batch_shape: int | tuple[int, ...] = ()) -> FloatArray:
         """The identity element e, shape ``batch_shape + (param_dim,)``; book (1.iv)."""
         shape = check_shape(batch_shape, "batch_shape")
         return np.broadcast_to(self._identity_coords(), shape + (self.param_dim,)).copy()
@@ -196,41 +198,41 @@ class LieGroup(abc.ABC):
 
     # ------------------------------------------------------------------ group structure
     @abc.abstractmethod
-    def compose(self, g, h):
+    def compose(self, g: ArrayLike, h: ArrayLike) -> FloatArray:
         """The product g o h, shape ``(..., param_dim)``; book (1.6), (1.9)."""
 
     @abc.abstractmethod
-    def inverse(self, g):
+    def inverse(self, g: ArrayLike) -> FloatArray:
         """The inverse g^-1 with g o g^-1 = e, shape ``(..., param_dim)``; book (1.v), (1.10)."""
 
     @abc.abstractmethod
-    def left_lifted_action(self, h, g):
+    def left_lifted_action(self, h: ArrayLike, g: ArrayLike) -> FloatArray:
         """T_g L_h = d(h g)/dg, shape ``(..., param_dim, param_dim)``; book (1.19)-(1.20)."""
 
     @abc.abstractmethod
-    def right_lifted_action(self, h, g):
+    def right_lifted_action(self, h: ArrayLike, g: ArrayLike) -> FloatArray:
         """T_g R_h = d(g h)/dg, shape ``(..., param_dim, param_dim)``; book (1.21)."""
 
-    def Ad(self, g):
+    def Ad(self, g: ArrayLike) -> FloatArray:
         """Adjoint Ad_g = T_g R_{g^-1} T_e L_g, body to spatial velocity, ``(..., dim, dim)``; book (1.40)."""
         g = self._element(g)
         e = self.identity()
         return self.right_lifted_action(self.inverse(g), g) @ self.left_lifted_action(g, e)
 
-    def Ad_inv(self, g):
+    def Ad_inv(self, g: ArrayLike) -> FloatArray:
         """Adjoint inverse Ad_g^-1 = Ad_{g^-1}, spatial to body velocity, ``(..., dim, dim)``; book (1.41)."""
         return self.Ad(self.inverse(self._element(g)))
 
     # ------------------------------------------------------------------ algebra and exp
     @abc.abstractmethod
-    def hat(self, xi):
+    def hat(self, xi: ArrayLike) -> FloatArray:
         """Matrix form of a Lie-algebra vector, ``(..., m, m)``; book (1.54) for SE(2)."""
 
     @abc.abstractmethod
-    def vee(self, X):
+    def vee(self, X: ArrayLike) -> FloatArray:
         """Vector form ``(..., tangent_dim)`` of a Lie-algebra matrix; inverse of :meth:`hat`."""
 
-    def bracket(self, xi1, xi2):
+    def bracket(self, xi1: ArrayLike, xi2: ArrayLike) -> FloatArray:
         """Lie bracket [xi1, xi2] ``(..., tangent_dim)``: the vee of hat(xi1) hat(xi2) - hat(xi2) hat(xi1).
 
         This matrix commutator is the definition; groups override it with a closed form, and
@@ -242,7 +244,7 @@ class LieGroup(abc.ABC):
         X1, X2 = self.hat(xi1), self.hat(xi2)
         return self.vee(X1 @ X2 - X2 @ X1)
 
-    def ad(self, xi):
+    def ad(self, xi: ArrayLike) -> FloatArray:
         """Matrix ``(..., dim, dim)`` of ad_xi = [xi, .], so that ad(xi) @ eta = bracket(xi, eta)."""
         xi = self._algebra(xi)
         basis = np.eye(self.tangent_dim)
@@ -250,23 +252,23 @@ class LieGroup(abc.ABC):
         return np.swapaxes(cols, -1, -2)
 
     @abc.abstractmethod
-    def exp(self, xi):
+    def exp(self, xi: ArrayLike) -> FloatArray:
         """Group exponential: the unit-time flow from e along the invariant field of xi; section 1.6.4."""
 
     @abc.abstractmethod
-    def log(self, g):
+    def log(self, g: ArrayLike) -> FloatArray:
         """Principal inverse of :meth:`exp`: the algebra vector whose unit flow reaches g."""
 
     @abc.abstractmethod
-    def matrix(self, g):
+    def matrix(self, g: ArrayLike) -> FloatArray:
         """Matrix representation of g, ``(..., m, m)``; book (1.1), (1.2)."""
 
     @abc.abstractmethod
-    def from_matrix(self, G):
+    def from_matrix(self, G: ArrayLike) -> FloatArray:
         """Element coordinates ``(..., param_dim)`` of a group matrix; ValueError if G is not one."""
 
     @abc.abstractmethod
-    def nearest_element(self, M):
+    def nearest_element(self, M: ArrayLike) -> FloatArray:
         """Coordinates ``(..., param_dim)`` read from a matrix that is only close to a group matrix.
 
         Truncated Taylor sums and products (I + A/n)^k have scaled rotation blocks; this reads
@@ -274,7 +276,7 @@ class LieGroup(abc.ABC):
         (the nearest rotation). Exact group matrices round-trip. Used by ``gm_core.calculus``.
         """
 
-    def coordinate_matrix(self, q):
+    def coordinate_matrix(self, q: ArrayLike) -> FloatArray:
         """The matrix formula applied to coordinates ``q`` that may lie outside the group.
 
         Equal to :meth:`matrix` for elements; (R+, x) overrides it so that an Euler state that
@@ -282,7 +284,7 @@ class LieGroup(abc.ABC):
         """
         return self.matrix(self._element(q, "q"))
 
-    def euler_step(self, g, xi, dt, side="left"):
+    def euler_step(self, g: ArrayLike, xi: ArrayLike, dt: float, side: str = "left") -> FloatArray:
         """One forward-Euler step g + dt T_e L_g xi (``side="left"``, (1.46)) or g + dt T_e R_g xi
         (``"right"``, (1.47)) of an invariant field, in coordinates, shape ``(..., param_dim)``.
 
@@ -303,38 +305,38 @@ class LieGroup(abc.ABC):
         self._batch(("g", g), (vname, v))
         return g, v
 
-    def world_to_body(self, g, g_dot):
+    def world_to_body(self, g: ArrayLike, g_dot: ArrayLike) -> FloatArray:
         """Body velocity xi = T_g L_{g^-1} g_dot, ``(..., dim)``; book (1.32), (1.26) for SE(2)."""
         g, g_dot = self._velocity_pair(g, g_dot, "g_dot")
         return _matvec(self.left_lifted_action(self.inverse(g), g), g_dot)
 
-    def body_to_world(self, g, xi):
+    def body_to_world(self, g: ArrayLike, xi: ArrayLike) -> FloatArray:
         """World velocity g_dot = T_e L_g xi, ``(..., dim)``; book (1.33), (1.28) for SE(2)."""
         g, xi = self._velocity_pair(g, xi, "xi")
         return _matvec(self.left_lifted_action(g, self.identity()), xi)
 
-    def world_to_spatial(self, g, g_dot):
+    def world_to_spatial(self, g: ArrayLike, g_dot: ArrayLike) -> FloatArray:
         """Spatial velocity xi_s = T_g R_{g^-1} g_dot, ``(..., dim)``; book (1.38)."""
         g, g_dot = self._velocity_pair(g, g_dot, "g_dot")
         return _matvec(self.right_lifted_action(self.inverse(g), g), g_dot)
 
-    def spatial_to_world(self, g, xi_s):
+    def spatial_to_world(self, g: ArrayLike, xi_s: ArrayLike) -> FloatArray:
         """World velocity g_dot = T_e R_g xi_s, ``(..., dim)``; book (1.39)."""
         g, xi_s = self._velocity_pair(g, xi_s, "xi_s")
         return _matvec(self.right_lifted_action(g, self.identity()), xi_s)
 
-    def body_to_spatial(self, g, xi):
+    def body_to_spatial(self, g: ArrayLike, xi: ArrayLike) -> FloatArray:
         """Spatial velocity xi_s = Ad_g xi, ``(..., dim)``; book (1.40), (1.43)."""
         g, xi = self._velocity_pair(g, xi, "xi")
         return _matvec(self.Ad(g), xi)
 
-    def spatial_to_body(self, g, xi_s):
+    def spatial_to_body(self, g: ArrayLike, xi_s: ArrayLike) -> FloatArray:
         """Body velocity xi = Ad_g^-1 xi_s, ``(..., dim)``; book (1.41), (1.45)."""
         g, xi_s = self._velocity_pair(g, xi_s, "xi_s")
         return _matvec(self.Ad_inv(g), xi_s)
 
     # ------------------------------------------------------------------ utilities
-    def difference(self, g, h):
+    def difference(self, g: ArrayLike, h: ArrayLike) -> FloatArray:
         """Coordinate difference g - h, periodic coordinates reduced into (-k/2, k/2].
 
         ``g`` and ``h`` are coordinate arrays ``(..., param_dim)`` (checked for shape and
@@ -350,7 +352,7 @@ class LieGroup(abc.ABC):
                     d[..., j] = wrap_periodic(d[..., j], p)
         return d
 
-    def isclose(self, g, h, atol=1e-9):
+    def isclose(self, g: ArrayLike, h: ArrayLike, atol: float = 1e-9) -> BoolArray:
         """True where elements g and h agree to within ``atol`` in every coordinate (angles modulo
         their period); shape the broadcast batch shape."""
         g = self._element(g)
@@ -360,7 +362,7 @@ class LieGroup(abc.ABC):
             raise ValueError(f"atol must be a single non-negative number; got {atol!r}")
         return np.all(np.abs(self.difference(g, h)) <= atol, axis=-1)
 
-    def random(self, rng, size=(), scale=1.0):
+    def random(self, rng: np.random.Generator | int | None, size: int | tuple[int, ...] = (), scale: float = 1.0) -> FloatArray:
         """Random elements ``size + (param_dim,)`` for tests and demos.
 
         Non-periodic coordinates are uniform in (-3 scale, 3 scale), periodic ones uniform over
@@ -395,13 +397,13 @@ class LieGroup(abc.ABC):
             cols.append(self.difference(f(g + d), f(g - d)) / (2.0 * step[..., j : j + 1]))
         return np.stack(cols, axis=-1)
 
-    def numerical_left_lifted_action(self, h, g, eps=1e-6):
+    def numerical_left_lifted_action(self, h: ArrayLike, g: ArrayLike, eps: float = 1e-6) -> FloatArray:
         """T_g L_h by central differences of the group operation, an independent route to (1.20)."""
         h = self._element(h, "h")
         self._batch(("h", h), ("g", self._element(g)))
         return self._numerical_jacobian(lambda x: self.compose(h, x), g, eps)
 
-    def numerical_right_lifted_action(self, h, g, eps=1e-6):
+    def numerical_right_lifted_action(self, h: ArrayLike, g: ArrayLike, eps: float = 1e-6) -> FloatArray:
         """T_g R_h by central differences of the group operation, an independent route to (1.21)."""
         h = self._element(h, "h")
         self._batch(("h", h), ("g", self._element(g)))

@@ -2,8 +2,9 @@
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from .._validate import as_array, check_option, check_shape, real_number
+from .._validate import FloatArray, as_array, check_option, check_shape, real_number
 from .base import LieGroup, _rng, _scale
 
 __all__ = ["RPlus"]
@@ -35,7 +36,7 @@ class _RPlus(LieGroup):
     def _identity_coords(self):
         return np.ones(1)
 
-    def compose(self, g, h):
+    def compose(self, g: ArrayLike, h: ArrayLike) -> FloatArray:
         """g h, book (1.23)."""
         g = self._element(g)
         h = self._element(h, "h")
@@ -45,7 +46,7 @@ class _RPlus(LieGroup):
         self._check_result(out, "g and h", "g h")
         return out
 
-    def inverse(self, g):
+    def inverse(self, g: ArrayLike) -> FloatArray:
         """1 / g."""
         g = self._element(g)
         with np.errstate(over="ignore"):
@@ -53,7 +54,7 @@ class _RPlus(LieGroup):
         self._check_result(out, "g", "1/g")
         return out
 
-    def left_lifted_action(self, h, g):
+    def left_lifted_action(self, h: ArrayLike, g: ArrayLike) -> FloatArray:
         """T_g L_h = h (a 1x1 matrix), book (1.24); equal to T_g R_h, (1.25)."""
         h = self._element(h, "h")
         g = self._element(g)
@@ -61,25 +62,25 @@ class _RPlus(LieGroup):
 
     right_lifted_action = left_lifted_action
 
-    def Ad(self, g):
+    def Ad(self, g: ArrayLike) -> FloatArray:
         """1: the group is commutative."""
         return np.ones(self._element(g).shape[:-1] + (1, 1))
 
     Ad_inv = Ad
 
-    def bracket(self, xi1, xi2):
+    def bracket(self, xi1: ArrayLike, xi2: ArrayLike) -> FloatArray:
         """Zero: the group is commutative."""
         xi1 = self._algebra(xi1, "xi1")
         xi2 = self._algebra(xi2, "xi2")
         return np.zeros(self._batch(("xi1", xi1), ("xi2", xi2)) + (1,))
 
-    def hat(self, xi):
+    def hat(self, xi: ArrayLike) -> FloatArray:
         return self._algebra(xi)[..., None].copy()
 
-    def vee(self, X):
+    def vee(self, X: ArrayLike) -> FloatArray:
         return self._square(X, "X")[..., 0].copy()
 
-    def exp(self, xi):
+    def exp(self, xi: ArrayLike) -> FloatArray:
         """e^xi; ValueError if it overflows or underflows to 0 (|xi| > about 708)."""
         xi = self._algebra(xi)
         with np.errstate(over="ignore", under="ignore"):
@@ -92,25 +93,25 @@ class _RPlus(LieGroup):
             raise ValueError(f"{name} is out of range: {what} is not a positive float (it overflows "
                              f"or underflows to 0), so it is no element of (R+, x)")
 
-    def log(self, g):
+    def log(self, g: ArrayLike) -> FloatArray:
         """ln g."""
         return np.log(self._element(g))
 
-    def matrix(self, g):
+    def matrix(self, g: ArrayLike) -> FloatArray:
         return self._element(g)[..., None].copy()
 
-    def from_matrix(self, G):
+    def from_matrix(self, G: ArrayLike) -> FloatArray:
         return self._element(self._square(G, "G")[..., 0], "G").copy()
 
-    def nearest_element(self, M):
+    def nearest_element(self, M: ArrayLike) -> FloatArray:
         """The single entry of ``M``, unchecked: a partial sum or an Euler product may be <= 0."""
         return self._square(M, "M")[..., 0].copy()
 
-    def coordinate_matrix(self, q):
+    def coordinate_matrix(self, q: ArrayLike) -> FloatArray:
         """[[q]] for any finite number q, including overshooting Euler states q <= 0."""
         return as_array(q, "q", (1,), what=" (coordinates of (R+, x), possibly <= 0)")[..., None].copy()
 
-    def euler_step(self, g, xi, dt, side="left"):
+    def euler_step(self, g: ArrayLike, xi: ArrayLike, dt: float, side: str = "left") -> FloatArray:
         """g (1 + dt xi): the Euler step of g_dot = g xi (both sides, (1.24)-(1.25)); g may be <= 0."""
         check_option(side, "side", ("left", "right"))
         g = as_array(g, "g", (1,), what=" (an Euler state of (R+, x), possibly <= 0)")
@@ -118,7 +119,7 @@ class _RPlus(LieGroup):
         dt = real_number(dt, "dt", " (a time step)")
         return g * (1.0 + dt * xi)
 
-    def random(self, rng, size=(), scale=1.0):
+    def random(self, rng: np.random.Generator | int | None, size: int | tuple[int, ...] = (), scale: float = 1.0) -> FloatArray:
         """e^u with u uniform in (-2 scale, 2 scale)."""
         rng = _rng(rng)
         size = check_shape(size, "size")

@@ -6,8 +6,9 @@ half-angle form V(w) = (sin h / h) R(h), h = w/2, which has no cancellation at a
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from .._validate import as_array
+from .._validate import FloatArray, as_array
 from .base import TWO_PI, LieGroup, _angle_of_block, _check_entries, _check_rotation, _wrap
 
 __all__ = ["SE2"]
@@ -29,7 +30,7 @@ class _SE2(LieGroup):
     def _identity_coords(self):
         return np.zeros(3)
 
-    def compose(self, g, h):
+    def compose(self, g: ArrayLike, h: ArrayLike) -> FloatArray:
         """g o h = (x + u cos th - v sin th, y + u sin th + v cos th, th + beta), book (1.7)-(1.9)."""
         g = self._element(g)
         h = self._element(h, "h")
@@ -43,7 +44,7 @@ class _SE2(LieGroup):
         out[..., 2] = t + b
         return out
 
-    def bracket(self, xi1, xi2):
+    def bracket(self, xi1: ArrayLike, xi2: ArrayLike) -> FloatArray:
         """[xi1, xi2] = (w2 v1y - w1 v2y, w1 v2x - w2 v1x, 0), the vee of X1 X2 - X2 X1 with (1.54)."""
         xi1 = self._algebra(xi1, "xi1")
         xi2 = self._algebra(xi2, "xi2")
@@ -54,7 +55,7 @@ class _SE2(LieGroup):
         out[..., 1] = w1 * v2x - w2 * v1x
         return out
 
-    def inverse(self, g):
+    def inverse(self, g: ArrayLike) -> FloatArray:
         """g^-1 = (-x cos th - y sin th, x sin th - y cos th, -th), so g^-1 g = e, book (1.10)."""
         g = self._element(g)
         x, y, t = g[..., 0], g[..., 1], g[..., 2]
@@ -65,7 +66,7 @@ class _SE2(LieGroup):
         out[..., 2] = -t
         return out
 
-    def left_lifted_action(self, h, g):
+    def left_lifted_action(self, h: ArrayLike, g: ArrayLike) -> FloatArray:
         """T_g L_h = [[cos b, -sin b, 0], [sin b, cos b, 0], [0, 0, 1]] for h = (u, v, b), book (1.31)."""
         h = self._element(h, "h")
         g = self._element(g)
@@ -79,7 +80,7 @@ class _SE2(LieGroup):
         M[..., 2, 2] = 1.0
         return M
 
-    def right_lifted_action(self, h, g):
+    def right_lifted_action(self, h: ArrayLike, g: ArrayLike) -> FloatArray:
         """T_g R_h = [[1, 0, -(u sin th + v cos th)], [0, 1, u cos th - v sin th], [0, 0, 1]], book (1.37)."""
         h = self._element(h, "h")
         g = self._element(g)
@@ -94,7 +95,7 @@ class _SE2(LieGroup):
         M[..., 1, 2] = u * c - v * s
         return M
 
-    def Ad(self, g):
+    def Ad(self, g: ArrayLike) -> FloatArray:
         """Ad_g = [[cos th, -sin th, y], [sin th, cos th, -x], [0, 0, 1]], book (1.43)."""
         g = self._element(g)
         M = np.empty(g.shape[:-1] + (3, 3))
@@ -108,7 +109,7 @@ class _SE2(LieGroup):
         M[..., 2, 2] = 1.0
         return M
 
-    def Ad_inv(self, g):
+    def Ad_inv(self, g: ArrayLike) -> FloatArray:
         """Ad_g^-1 = [[c, s, x s - y c], [-s, c, x c + y s], [0, 0, 1]], book (1.45)."""
         g = self._element(g)
         x, y = g[..., 0], g[..., 1]
@@ -128,7 +129,7 @@ class _SE2(LieGroup):
         M[..., 2, 2] = 1.0
         return M
 
-    def hat(self, xi):
+    def hat(self, xi: ArrayLike) -> FloatArray:
         """xi^ = [[0, -w, vx], [w, 0, vy], [0, 0, 0]] for xi = (vx, vy, w), ``(..., 3, 3)``; book (1.54)."""
         xi = self._algebra(xi)
         X = np.zeros(xi.shape[:-1] + (3, 3))
@@ -138,14 +139,14 @@ class _SE2(LieGroup):
         X[..., 1, 2] = xi[..., 1]
         return X
 
-    def vee(self, X):
+    def vee(self, X: ArrayLike) -> FloatArray:
         """(vx, vy, w) from an se(2) matrix; raises ValueError if X is not of the form (1.54)."""
         X = self._square(X, "X")
         out = np.stack([X[..., 0, 2], X[..., 1, 2], X[..., 1, 0]], -1)
         _check_entries(X, self.hat(out), "X", "an se(2) matrix [[0, -w, vx], [w, 0, vy], [0, 0, 0]] as in (1.54)")
         return out
 
-    def exp(self, xi):
+    def exp(self, xi: ArrayLike) -> FloatArray:
         """exp(xi) = (V(w) (vx, vy), w) with V(w) = (sin h / h) R(h), h = w/2; exercise 1.4a.
 
         This is the unit-time flow from e along the left-invariant field (1.46) of xi (equal to
@@ -164,7 +165,7 @@ class _SE2(LieGroup):
         out[..., 2] = w
         return out
 
-    def log(self, g):
+    def log(self, g: ArrayLike) -> FloatArray:
         """log(g) = (V(th)^-1 (x, y), th) with th wrapped to (-pi, pi], inverse of :meth:`exp`.
 
         V^-1 = (h / sin h) R(-h) with h = th/2 in (-pi/2, pi/2], so it never divides by zero.
@@ -181,7 +182,7 @@ class _SE2(LieGroup):
         out[..., 2] = t
         return out
 
-    def matrix(self, g):
+    def matrix(self, g: ArrayLike) -> FloatArray:
         """Homogeneous matrix [[cos th, -sin th, x], [sin th, cos th, y], [0, 0, 1]], book (1.2)."""
         g = self._element(g)
         t = g[..., 2]
@@ -196,7 +197,7 @@ class _SE2(LieGroup):
         G[..., 2, 2] = 1.0
         return G
 
-    def from_matrix(self, G):
+    def from_matrix(self, G: ArrayLike) -> FloatArray:
         """(x, y, th) from a homogeneous matrix; ValueError unless it is a proper rigid motion (1.2)."""
         G = self._square(G, "G")
         _check_entries(G[..., 2, :], np.array([0.0, 0.0, 1.0]), "G",
@@ -204,12 +205,12 @@ class _SE2(LieGroup):
         _check_rotation(G[..., :2, :2], "G")
         return np.stack([G[..., 0, 2], G[..., 1, 2], np.arctan2(G[..., 1, 0], G[..., 0, 0])], -1)
 
-    def nearest_element(self, M):
+    def nearest_element(self, M: ArrayLike) -> FloatArray:
         """(x, y) from the translation column and the angle of the nearest rotation to the 2x2 block."""
         M = self._square(M, "M")
         return np.stack([M[..., 0, 2], M[..., 1, 2], _angle_of_block(M[..., :2, :2])], -1)
 
-    def act_on_points(self, g, p):
+    def act_on_points(self, g: ArrayLike, p: ArrayLike) -> FloatArray:
         """World positions ``(..., 2)`` of body-frame points p ``(..., 2)`` under g, book (1.11)-(1.12)."""
         g = self._element(g)
         p = as_array(p, "p", (2,), what=" (body-frame point coordinates)")

@@ -8,10 +8,12 @@ frame) and where they sit in the system's body frame at a shape (:meth:`part_pos
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from .._validate import as_array
+from .._validate import BoolArray, FloatArray, as_array
 from ..connection import SINGULAR_TOL, connection_from_pfaffian, pfaffian_determinant
 from ..locomotion import body_velocity, curvature_form, fd_connection_derivative
 
@@ -27,13 +29,13 @@ class Part:
     kind: str = "link"
 
 
-def rectangle_outline(length, width):
+def rectangle_outline(length: float, width: float) -> FloatArray:
     """Outline (4, 2) of a length x width rectangle centred on its frame, long side along x."""
     a, b = length / 2, width / 2
     return np.array([[-a, -b], [a, -b], [a, b], [-a, b]], dtype=float)
 
 
-def ellipse_outline(a, b, n=48):
+def ellipse_outline(a: float, b: float, n: int = 48) -> FloatArray:
     """Outline (n, 2) of an ellipse with semi-axes a (along x) and b, centred on its frame."""
     s = np.linspace(0, 2 * np.pi, n, endpoint=False)
     return np.stack([a * np.cos(s), b * np.sin(s)], -1)
@@ -54,15 +56,15 @@ class LocomotionSystem:
     row_names = ("x", "y", "theta")
 
     # -- to implement -----------------------------------------------------------------------
-    def pfaffian(self, r):
+    def pfaffian(self, r: ArrayLike) -> FloatArray:
         """Pfaffian ``omega(r)`` (..., 3, 3 + n): ``omega [xi; r_dot] = 0`` on allowed motions."""
         raise NotImplementedError
 
-    def parts(self):
+    def parts(self) -> list[Part]:
         """The rigid parts to draw (list of :class:`Part`)."""
         raise NotImplementedError
 
-    def part_poses(self, r):
+    def part_poses(self, r: ArrayLike) -> FloatArray:
         """Poses (..., P, 3) of the parts relative to the system body frame at shape r."""
         raise NotImplementedError
 
@@ -71,15 +73,15 @@ class LocomotionSystem:
         names = ", ".join(self.shape_names)
         return as_array(r, name, (self.n_shape,), what=f" (the shape ({names}) of {self.name})")
 
-    def connection(self, r):
+    def connection(self, r: ArrayLike) -> FloatArray:
         """Local connection A(r) (..., 3, n) with xi = -A r_dot, (3.10), (3.17); NaN at singular shapes."""
         return connection_from_pfaffian(self.pfaffian(r))
 
-    def body_velocity(self, r, r_dot):
+    def body_velocity(self, r: ArrayLike, r_dot: ArrayLike) -> FloatArray:
         """Body velocity xi = -A(r) r_dot (..., 3), book (3.10)."""
         return body_velocity(self, r, r_dot)
 
-    def connection_derivative(self, r):
+    def connection_derivative(self, r: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """``(A (..., 3, n), dA (..., 3, n, n))``, ``dA[..., i, j, k] = d A_ij / d r_k``.
 
         Central differences (:func:`gm_core.locomotion.fd_connection_derivative`) unless a system
@@ -87,7 +89,7 @@ class LocomotionSystem:
         """
         return fd_connection_derivative(self, r)
 
-    def constraint_curvature(self, r):
+    def constraint_curvature(self, r: ArrayLike) -> FloatArray:
         """Constraint curvature D(-A): (..., 3) for a 2-D shape space, else the 2-form (..., 3, n, n).
 
         ``F_ij = -(d_i A_j - d_j A_i) + [A_i, A_j]`` (:func:`gm_core.locomotion.curvature_form`);
@@ -96,12 +98,13 @@ class LocomotionSystem:
         F = curvature_form(*self.connection_derivative(r))
         return F[..., 0, 1] if self.n_shape == 2 else F
 
-    def shape_metric(self, r):
+    def shape_metric(self, r: ArrayLike) -> FloatArray:
         """Cost metric on shape space (..., n, n); systems without a physical cost refuse (TypeError)."""
         raise TypeError(f"system {self.name!r} has no physical cost metric (no drag or mass matrix); "
                         "pass metric='euclidean' or a callable r -> M(r)")
 
-    def body_frames(self, bounds=None, *, n=None, centre_of_mass=True, minimum_perturbation=True):
+    def body_frames(self, bounds: Any = None, *, n: int | None = None, centre_of_mass: bool = True,
+                    minimum_perturbation: bool = True) -> dict[str, LocomotionSystem]:
         """The body frames this system can be seen from, {name: system}, its own first.
 
         This one alone unless a system offers more: systems made of links add, when asked, their
@@ -112,13 +115,13 @@ class LocomotionSystem:
         """
         return {"own frame": self}
 
-    def singularity(self, r):
+    def singularity(self, r: ArrayLike) -> FloatArray:
         """Scaled det(omega_xi) (...,) in [-1, 1]; zero exactly at singular shapes."""
         return pfaffian_determinant(self.pfaffian(r)[..., :3])
 
-    def is_singular(self, r):
+    def is_singular(self, r: ArrayLike) -> BoolArray:
         """Boolean (...,): True where the local connection does not exist (det omega_xi = 0)."""
         return ~(np.abs(self.singularity(r)) > SINGULAR_TOL)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"{type(self).__name__}()"

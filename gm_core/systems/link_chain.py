@@ -47,6 +47,8 @@ def _per_link(value, name, N, what):
     if v.ndim != 1:
         raise ValueError(f"{name} must have shape ({N},), one value per link; got shape {v.shape}")
     check_positive(v, name)
+    if np.any(v > 1e6):
+        raise ValueError(f"{name} must be at most 1e6 (their cubes enter the drag and inertia); got {float(v.max()):g}")
     return tuple(float(x) for x in v)
 
 
@@ -73,12 +75,12 @@ class LinkChain(LocomotionSystem):
         self.n_links, self.n_shape = N, N - 1
         self.shape_names = tuple(f"alpha{j + 1}" for j in range(N - 1))
         self.shape_limits = ((-np.pi, np.pi),) * (N - 1)
-        self.drag_ratio = positive_number(drag_ratio, "drag_ratio")
-        self.aspect_ratio = positive_number(aspect_ratio, "aspect_ratio")
+        self.drag_ratio = positive_number(drag_ratio, "drag_ratio", maximum=1e6, what=" (lateral over longitudinal drag)")
+        self.aspect_ratio = positive_number(aspect_ratio, "aspect_ratio", maximum=1e6)
         if self.aspect_ratio < 1:
             raise ValueError(f"aspect_ratio must be >= 1 (semi-major over semi-minor axis); got {aspect_ratio!r}")
-        self.fluid_density = positive_number(fluid_density, "fluid_density")
-        self.body_density = positive_number(body_density, "body_density", allow_zero=True)
+        self.fluid_density = positive_number(fluid_density, "fluid_density", maximum=1e12)
+        self.body_density = positive_number(body_density, "body_density", allow_zero=True, maximum=1e12)
         self.masses = self.lengths if masses is None else _per_link(masses, "masses", N, " (the link masses)")
         self.inertias = (tuple(m * l ** 2 / 12 for m, l in zip(self.masses, self.lengths)) if inertias is None
                          else _per_link(inertias, "inertias", N, " (the links' moments of inertia about their centres)"))
@@ -197,8 +199,6 @@ class LinkChain(LocomotionSystem):
         """System matrix (..., 3 + n, 3 + n): ``sum J_i^T M_i J_i`` over the links (drag or mass matrix)."""
         r, Q, J = self._kinematics(r)
         return self._masked(r, self._weighted(J, J))
-
-    drag_matrix = metric
 
     def pfaffian(self, r):
         """Pfaffian (..., 3, 3 + n): the top rows of :meth:`metric` (total wrench or momentum = 0)."""

@@ -48,7 +48,7 @@ class SlenderBody(LocomotionSystem):
     def __init__(self, length=1.0, modes="serpenoid", *, drag_ratio=2.0, frame="middle", panels=8, order=8,
                  segments=40):
         self.length = positive_number(length, "length", maximum=1e6)
-        self.drag_ratio = positive_number(drag_ratio, "drag_ratio")
+        self.drag_ratio = positive_number(drag_ratio, "drag_ratio", maximum=1e6, what=" (lateral over longitudinal drag)")
         self.frame = check_option(frame, "frame", ("middle", "com"))
         self.panels = check_int(panels, "panels", minimum=1, maximum=512, what=" (Gauss panels along the body)")
         self.order = check_int(order, "order", minimum=2, maximum=64, what=" (Gauss nodes per panel)")
@@ -182,8 +182,6 @@ class SlenderBody(LocomotionSystem):
         T[..., :3, 3:] = -Ad @ Bb
         T[..., 3:, 3:] = np.eye(n)
         return np.swapaxes(T, -1, -2) @ D @ T
-
-    drag_matrix = metric
 
     def pfaffian(self, r):
         """Pfaffian (..., 3, 3 + n): the net drag wrench, the top rows of :meth:`metric`."""

@@ -1,8 +1,5 @@
 """Sections 1.2-1.3 panels: the slide rule, the circle isomorphism and SE(2) acting
 (scenes of :mod:`gm_core.drawing.actions`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 

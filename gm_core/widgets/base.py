@@ -15,33 +15,46 @@ Changing a control calls ``update`` with the values of all controls, so a test c
 
 In a live notebook (ipympl canvas) each change is rendered by blitting
 (:class:`gm_core.drawing.blit.Blitter`): only the artists the update changed are redrawn over a
-cached background. A panel that must not be blitted sets ``blit = False``.
+cached background; after the last change of a burst a key frame
+(:class:`gm_core.drawing.blit.KeyFrames`) sends the whole picture, so the browser always ends on
+the truth. A panel that must not be blitted sets ``blit = False``. :attr:`Panel.widget` lays the
+controls out for a 1366 x 768 laptop: labels above their controls, beside the figure when both
+fit, else in rows above it.
 """
 from __future__ import annotations
 
 import importlib
 import pkgutil
 import time
+from contextlib import AbstractContextManager
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import ipywidgets as W
 import numpy as np
+
+if TYPE_CHECKING:   # matplotlib is imported by the drawing layer, only when a panel is built
+    from matplotlib.figure import Figure
+
+    from ..drawing.toolkit import Scene
 
 __all__ = [
     "Panel", "ScenePanel", "PANELS", "register", "all_panels", "slider", "int_slider",
     "se2_sliders", "xi_sliders", "show",
 ]
 
+P = TypeVar("P", bound="Panel")
+
 #: name -> Panel subclass, filled by @register.
-PANELS: dict[str, type] = {}
+PANELS: dict[str, type[Panel]] = {}
 
 
-def register(cls):
+def register(cls: type[P]) -> type[P]:
     """Class decorator: make a Panel visible to the latency benchmark and the panel tests."""
     PANELS[cls.__name__] = cls
     return cls
 
 
-def all_panels():
+def all_panels() -> dict[str, type[Panel]]:
     """Import every module of gm_core.widgets and return the registry of Panel classes."""
     import gm_core.widgets as pkg
 
@@ -53,19 +66,22 @@ def all_panels():
 class Panel:
     """Controls plus a live figure; display it by leaving the panel as the last line of a cell."""
 
-    title = ""
+    title: str = ""
     #: Render slider changes by blitting where the canvas allows it (see gm_core.drawing.blit).
     blit = True
+    #: Send a whole picture after the last change of a burst on live canvases (KeyFrames): the
+    #: picture a student is left with is always complete, however fast the slider moved.
+    key_frames = True
     #: Blit on non-widget canvases too (Agg); the latency benchmark and blit tests turn it on.
     blit_everywhere = False
-    blitter = None
+    blitter: Any = None
 
-    def __init__(self, **options):
+    def __init__(self, **options: Any) -> None:
         self.options = options
-        self._pinned = {}
-        self._exact = {}
+        self._pinned: dict[str, tuple[Any, Any, float]] = {}
+        self._exact: dict[str, Any] = {}
         self.controls: dict[str, W.ValueWidget] = {}
-        self.fig = None
+        self.fig: Figure | None = None
         self.build()
         # The browser shows each slider on its grid (min + k * step) and may echo that rounded
         # position when it first renders: the exact starting values are kept (see set()).
@@ -79,25 +95,29 @@ class Panel:
 
             freeze_layout(self.fig)   # constrained layout once, then fixed (blitting needs still axes)
         self.blitter = None
-        if self.blit and self.fig is not None:
-            from ..drawing.blit import Blitter, can_blit
+        self.keyframes = None
+        if self.fig is not None:
+            from ..drawing.blit import Blitter, KeyFrames, can_blit, sends_differences
 
             live = isinstance(self.fig.canvas, W.DOMWidget)
-            if (live or self.blit_everywhere) and can_blit(self.fig):
+            if self.blit and (live or self.blit_everywhere) and can_blit(self.fig):
                 self.blitter = Blitter(self.fig)
+            if self.key_frames and live and sends_differences(self.fig):
+                # the browser gets differences during a drag, and one whole picture after it
+                self.keyframes = KeyFrames(self.fig)
 
     # -- to implement -------------------------------------------------------------
-    def build(self):
+    def build(self) -> None:
         raise NotImplementedError
 
-    def update(self, **values):
+    def update(self, **values: Any) -> None:
         raise NotImplementedError
 
-    def naive_update(self, **values):
+    def naive_update(self, **values: Any) -> None:
         raise NotImplementedError
 
     # -- shared -------------------------------------------------------------------
-    def values(self):
+    def values(self) -> dict[str, Any]:
         """The controls' values (a value set by :meth:`set` is reported exactly, not as rounded
         by the browser's slider grid)."""
         out = {k: c.value for k, c in self.controls.items()}
@@ -110,7 +130,7 @@ class Panel:
     #: is treated as a stale echo from the browser (its first render) and undone.
     echo_window = 5.0
 
-    def set(self, **values):
+    def set(self, **values: Any) -> None:
         """Set several controls at once and update once (what a test, a demo or a notebook does).
 
         The sliders themselves take the values. The browser shows a slider on its grid
@@ -131,7 +151,7 @@ class Panel:
                 c.value = v
         self.refresh()
 
-    def hold(self):
+    def hold(self) -> AbstractContextManager[None]:
         panel = self
 
         class _Hold:
@@ -167,7 +187,7 @@ class Panel:
             return   # an echo of the value the kernel already has (float round-off): nothing moved
         self.refresh()
 
-    def refresh(self, **values):
+    def refresh(self, **values: Any) -> None:
         """Update to the controls' values (overridden by ``values``) and show the new frame.
 
         This is exactly what one slider change does: ``update`` moves the artists, then the
@@ -176,11 +196,13 @@ class Panel:
         values = {**self.values(), **values}
         if self.blitter is None:
             self.update(**values)
-            return
-        with self.blitter.frame():
-            self.update(**values)
+        else:
+            with self.blitter.frame():
+                self.update(**values)
+        if self.keyframes is not None:
+            self.keyframes.touch()
 
-    def sample_values(self, rng):
+    def sample_values(self, rng: np.random.Generator) -> dict[str, Any]:
         out = {}
         for k, c in self.controls.items():
             if hasattr(c, "min") and hasattr(c, "max") and isinstance(c.value, (int, float)) \
@@ -191,14 +213,24 @@ class Panel:
                 out[k] = c.value
         return out
 
-    def redraw(self):
+    def redraw(self) -> None:
         if self.fig is not None:
             self.fig.canvas.draw_idle()
 
+    #: Width of the controls column in CSS px: a slider's track gets this minus its readout
+    #: (>= 150 px); long labels stand above their control, whole.
+    CONTROL_WIDTH = 260
+    #: Width of a notebook's output area at 1366 x 768 with the file browser open (CSS px): a
+    #: figure narrower than this minus the controls column gets its controls beside it.
+    OUTPUT_WIDTH = 920
+
     @property
-    def widget(self):
-        """The ipywidgets box: controls on the left, the figure on the right."""
+    def widget(self) -> W.Widget:
+        """The ipywidgets box: the controls beside the figure (on its left) when both fit the
+        laptop's output area, else in rows above it; every label whole, above its control."""
         if getattr(self, "_widget", None) is None:
+            if self.fig is None:
+                raise RuntimeError(f"{type(self).__name__}.build() made no figure")
             canvas = self.fig.canvas
             if isinstance(canvas, W.DOMWidget):
                 view = canvas
@@ -207,16 +239,23 @@ class Panel:
                 with view:
                     from IPython.display import display
                     display(self.fig)
-            controls = W.VBox(list(self.controls.values()),
-                              layout=W.Layout(min_width="260px", justify_content="flex-start"))
-            children = [controls, view]
-            box = W.HBox(children, layout=W.Layout(align_items="flex-start", flex_flow="row wrap"))
+            items = [_labelled(c, self.CONTROL_WIDTH) for c in self.controls.values()]
+            fig_width = self.fig.get_figwidth() * self.fig.dpi
+            if fig_width + self.CONTROL_WIDTH + 24 <= self.OUTPUT_WIDTH:
+                controls = W.VBox(items, layout=W.Layout(width=f"{self.CONTROL_WIDTH + 8}px",
+                                                         min_width=f"{self.CONTROL_WIDTH + 8}px",
+                                                         margin="0 12px 0 0"))
+                box = W.HBox([controls, view], layout=W.Layout(align_items="flex-start"))
+            else:
+                controls = W.HBox(items, layout=W.Layout(flex_flow="row wrap", align_items="flex-end",
+                                                         grid_gap="0 16px", max_width=f"{self.OUTPUT_WIDTH}px"))
+                box = W.VBox([controls, view], layout=W.Layout(align_items="flex-start"))
             if self.title:
                 box = W.VBox([W.HTML(f"<b>{self.title}</b>"), box])
             self._widget = box
         return self._widget
 
-    def _ipython_display_(self):
+    def _ipython_display_(self) -> None:
         from IPython.display import display
 
         display(self.widget)
@@ -233,33 +272,37 @@ class ScenePanel(Panel):
     artists and the numbers the scene computed.
     """
 
-    scene_class = None
+    scene_class: type[Scene] | None = None
+    scene: Scene
+    fig: Figure
 
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         raise NotImplementedError
 
-    def scene_options(self):
+    def scene_options(self) -> dict[str, Any]:
         """Keyword arguments for ``scene_class`` (default: the panel's options)."""
         return dict(self.options)
 
-    def build(self):
+    def build(self) -> None:
+        if self.scene_class is None:
+            raise NotImplementedError(f"{type(self).__name__} must set scene_class")
         self.scene = self.scene_class(**self.scene_options())
         self.fig = self.scene.fig
         self.controls = self.controls_spec()
 
-    def update(self, **values):
+    def update(self, **values: Any) -> None:
         self.scene.set(**values)
         self.after_update(values)
         self.fig.canvas.draw_idle()
 
-    def after_update(self, values):
+    def after_update(self, values: dict[str, Any]) -> None:
         """Hook for control-side effects of a change (e.g. disabling sliders); nothing by default."""
 
-    def naive_update(self, **values):
+    def naive_update(self, **values: Any) -> None:
         self.scene.replot(**values)
         self.fig.canvas.draw_idle()
 
-    def __getattr__(self, name):
+    def __getattr__(self, name: str) -> Any:
         # only called for attributes the panel lacks; never recurse before the scene exists
         if name.startswith("__") or name == "scene":
             raise AttributeError(name)
@@ -281,34 +324,75 @@ def _same(control, a, b, exact=False):
     return abs(a - b) <= tol
 
 
-def int_slider(value, lo, hi, description=""):
+_LABEL_ABOVE = (W.FloatSlider, W.IntSlider, W.FloatLogSlider, W.SelectionSlider, W.FloatRangeSlider,
+                W.IntRangeSlider, W.Dropdown, W.ToggleButtons, W.FloatProgress, W.IntProgress,
+                W.BoundedFloatText, W.BoundedIntText, W.FloatText, W.IntText, W.Text, W.RadioButtons)
+
+
+def _labelled(control: W.Widget, width: int) -> W.Widget:
+    """``control`` laid out for the controls column: a description that would squeeze a slider's
+    track moves above the control (wrapping if it must, never cut); checkboxes and buttons get
+    the width their label needs."""
+    from html import escape
+
+    if isinstance(control, W.Checkbox):
+        control.indent = False
+        control.layout.width = "auto"
+        control.layout.max_width = f"{width}px"
+        return control
+    if isinstance(control, W.Button):
+        control.layout.width = "auto"
+        return control
+    if not isinstance(control, _LABEL_ABOVE):
+        return control
+    text = control.description
+    control.layout.width = f"{width}px"
+    if isinstance(control, W.ToggleButtons):
+        control.layout.width = "auto"
+        control.layout.max_width = "100%"
+    if not text:
+        return control
+    control.description = ""
+    control.tooltip = text
+    label = W.HTML(f'<div class="gm-control-label" style="white-space: normal; line-height: 1.25; '
+                   f'padding-top: 2px">{escape(text)}</div>',
+                   layout=W.Layout(width=f"{width}px", margin="2px 0 0 2px"))
+    label.add_class("gm-control-label-box")
+    # toggle buttons keep their row (as wide as they need); everything else fits the column
+    box_width = "auto" if isinstance(control, W.ToggleButtons) else f"{width + 8}px"
+    return W.VBox([label, control], layout=W.Layout(width=box_width, overflow="visible"))
+
+
+def int_slider(value: int, lo: int, hi: int, description: str = "") -> W.IntSlider:
     """An IntSlider with the course's defaults."""
     return W.IntSlider(value=value, min=lo, max=hi, step=1, description=description,
                        continuous_update=True, style={"description_width": "initial"})
 
 
-def slider(value, lo, hi, step=0.01, description="", readout_format=".2f", **kw):
+def slider(value: float, lo: float, hi: float, step: float = 0.01, description: str = "",
+           readout_format: str = ".2f", **kw: Any) -> W.FloatSlider:
     """A FloatSlider with the course's defaults (continuous updates, readable description)."""
     return W.FloatSlider(value=value, min=lo, max=hi, step=step, description=description,
                          readout_format=readout_format, continuous_update=True,
                          style={"description_width": "initial"}, **kw)
 
 
-def se2_sliders(x, y, theta, names=("x", "y", "theta"), lim=2.5, labels=("x", "y", "θ")):
+def se2_sliders(x: float, y: float, theta: float, names: tuple[str, str, str] = ("x", "y", "theta"),
+                lim: float = 2.5, labels: tuple[str, str, str] = ("x", "y", "θ")) -> dict[str, W.FloatSlider]:
     """Three sliders for an SE(2) element (x, y in [-lim, lim], theta in [-pi, pi]), keyed by ``names``."""
     return {names[0]: slider(x, -lim, lim, description=labels[0]),
             names[1]: slider(y, -lim, lim, description=labels[1]),
             names[2]: slider(theta, -np.pi, np.pi, description=labels[2])}
 
 
-def xi_sliders(vx, vy, w):
+def xi_sliders(vx: float, vy: float, w: float) -> dict[str, W.FloatSlider]:
     """Three sliders for an se(2) velocity (vx, vy, w), each in [-1.5, 1.5]."""
     return {"vx": slider(vx, -1.5, 1.5, description="ξˣ"),
             "vy": slider(vy, -1.5, 1.5, description="ξʸ"),
             "w": slider(w, -1.5, 1.5, description="ξᶿ")}
 
 
-def show(fig):
+def show(fig: Figure) -> None:
     """Display a static figure under any backend (the ipympl canvas, or a PNG otherwise)."""
     from IPython.display import display
 

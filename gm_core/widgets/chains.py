@@ -1,8 +1,5 @@
 """Chapter 2 panels: arms, mobile chains, generalized body frames and Jacobians
 (scenes of :mod:`gm_core.drawing.chains`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 

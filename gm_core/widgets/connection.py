@@ -1,8 +1,5 @@
 """Section 3.3 panel: connection vector fields with a shape cursor
 (scene of :mod:`gm_core.drawing.connection`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 

@@ -44,7 +44,7 @@ class GaitStokesPanel(ScenePanel):
                 "tilt": slider(0.78, -1.6, 1.6, description="tilt"),
                 "bend": slider(0.0, -0.6, 0.6, description="bend"),
                 "row": W.ToggleButtons(options=[(r, i) for i, r in enumerate(D.ROWS)], value=0,
-                                       description="map row"),
+                                       description="map row", style={"button_width": "3.5em"}),
                 "frame": _frame_buttons()}
 
     def after_update(self, values):

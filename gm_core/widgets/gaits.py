@@ -1,8 +1,5 @@
 """Sections 3.3-3.4 panel: a gait on the connection fields and the motion it produces
 (scene of :mod:`gm_core.drawing.gaits`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 

@@ -1,8 +1,5 @@
 """Section 1.6 panels: geodesics of surfaces and groups, the exponential map
 (scenes of :mod:`gm_core.drawing.geodesics`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 

@@ -1,14 +1,11 @@
 """Section 1.2 panel: group or not? the four axioms tried
 (scene of :mod:`gm_core.drawing.group_or_not`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 
 import ipywidgets as W
 
-from ..drawing.group_or_not import CHOICES, GroupOrNotScene
+from ..drawing.group_or_not import CHOICES, GroupOrNotScene, integer_structure
 from .base import ScenePanel, register, slider
 
 __all__ = ["GroupAxiomsPanel"]
@@ -28,3 +25,20 @@ class GroupAxiomsPanel(ScenePanel):
                 "a": slider(2.0, -4.0, 4.0, step=0.5, description="a", readout_format=".1f"),
                 "b": slider(3.0, -4.0, 4.0, step=0.5, description="b", readout_format=".1f"),
                 "c": slider(-1.0, -4.0, 4.0, step=0.5, description="c", readout_format=".1f")}
+
+    def update(self, **values):
+        # whole numbers for a set of integers: the sliders step by 1 and a value between
+        # integers moves to the nearest one (so (ℤ, ×) never offers a = -0.5)
+        integer = integer_structure(values["structure"])
+        with self.hold():
+            for k in "abc":
+                c = self.controls[k]
+                c.step, c.readout_format = (1.0, ".0f") if integer else (0.5, ".1f")
+                if integer and float(values[k]) != round(float(values[k])):
+                    values[k] = float(round(float(values[k])))
+                    c.value = values[k]
+                    self._exact[k] = values[k]          # the whole number is the value now
+                    if k in self._pinned:
+                        before, _, t = self._pinned[k]
+                        self._pinned[k] = (before, values[k], t)
+        super().update(**values)

@@ -1,8 +1,5 @@
 """Section 2.5 panel: a Jacobian assembled link by link
 (scene of :mod:`gm_core.drawing.jacobian_steps`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 

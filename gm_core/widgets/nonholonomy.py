@@ -1,8 +1,5 @@
 """Section 3.2 panel: parallel parking, a Lie-bracket motion
 (scene of :mod:`gm_core.drawing.nonholonomy`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 

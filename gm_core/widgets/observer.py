@@ -1,8 +1,5 @@
 """Section 1.5 panels: the adjoint as a change of observer, the Frames box
 (scenes of :mod:`gm_core.drawing.observer`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 

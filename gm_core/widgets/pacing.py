@@ -1,8 +1,5 @@
 """Section 3.1 panels: pacing a square and the linearity of directional systems
 (scenes of :mod:`gm_core.drawing.pacing`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 

@@ -1,8 +1,5 @@
 """Section 1.1 panels: paths on the torus, loops, the pole chart
 (scenes of :mod:`gm_core.drawing.spaces`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 

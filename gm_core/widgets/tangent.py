@@ -1,7 +1,4 @@
 """Section 1.4 panel: tangent spaces (scene of :mod:`gm_core.drawing.tangent`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 

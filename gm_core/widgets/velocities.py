@@ -1,8 +1,5 @@
 """Sections 1.4-1.5 panels: vector fields, lifted actions, velocities and the adjoint
 (scenes of :mod:`gm_core.drawing.velocities`).
-
-Each panel pairs controls with its scene, which owns the figure, computes through the math
-modules and moves its artists (the one widget pattern, :class:`~gm_core.widgets.base.ScenePanel`).
 """
 from __future__ import annotations
 

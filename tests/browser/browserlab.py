@@ -511,6 +511,15 @@ class Timings:
         return time.monotonic()
 
 
+def _short_url(url: str) -> str:
+    url = url.split("?token=")[0].split("&token=")[0]
+    return url if len(url) < 160 else url[:157] + "..."
+
+
+def _local_url(url: str, server_url: str) -> bool:
+    return url.startswith((server_url, "ws://127.0.0.1", "data:", "blob:", "about:", "chrome", "devtools"))
+
+
 class LabBrowser:
     """One browser page running the JupyterLab app, reused for one notebook after another.
 
@@ -524,6 +533,17 @@ class LabBrowser:
         self.server = server
         self.page = None
         self.console_errors: list[str] = []
+        #: uncaught JavaScript errors, and requests that failed or left the machine (any page)
+        self.page_errors: list[str] = []
+        self.request_problems: list[str] = []
+
+    def _on_request_failed(self, request):
+        url, why = request.url, request.failure or ""
+        # an image the browser stopped loading because a newer one replaced it (ipympl frames,
+        # revoked blob: URLs) is not a failure; anything else is
+        if url.startswith(("blob:", "data:")) or ("ERR_ABORTED" in why and _local_url(url, self.server.url)):
+            return
+        self.request_problems.append(f"request failed: {request.method} {_short_url(url)} ({why})")
 
     def open(self, relpath: str, timeout: float) -> tuple:
         """Show ``relpath`` in the app; returns (page, fresh_page_load)."""
@@ -536,7 +556,13 @@ class LabBrowser:
                 self.discard()
         page = self.context.new_page()
         page.on("console", lambda m: m.type == "error" and self.console_errors.append(m.text[:300]))
-        page.on("pageerror", lambda e: self.console_errors.append(f"pageerror: {e}"[:300]))
+        page.on("pageerror", lambda e: (self.console_errors.append(f"pageerror: {e}"[:300]),
+                                        self.page_errors.append(f"page error: {e}"[:500])))
+        page.on("requestfailed", self._on_request_failed)
+        page.on("response", lambda r: r.status >= 400 and self.request_problems.append(
+            f"request failed: {r.request.method} {_short_url(r.url)} -> HTTP {r.status}"))
+        page.on("request", lambda r: not _local_url(r.url, self.server.url) and self.request_problems.append(
+            f"request to the network: {r.method} {_short_url(r.url)}"))
         page.on("dialog", lambda d: d.accept())  # beforeunload etc.
         page.set_default_timeout(30_000)
         self.page = page
@@ -581,11 +607,19 @@ class NotebookPage:
         self.failed = False
         self.dialogs_dismissed: list[str] = []
         self._console_start = len(lab.console_errors)
+        self._page_errors_start = len(lab.page_errors)
+        self._requests_start = len(lab.request_problems)
         self.timings = Timings()
 
     @property
     def console_errors(self):
         return self.lab.console_errors[self._console_start:]
+
+    @property
+    def page_problems(self) -> list[str]:
+        """Uncaught page errors and failed or outside requests since this notebook was opened."""
+        return (self.lab.page_errors[self._page_errors_start:]
+                + sorted(set(self.lab.request_problems[self._requests_start:])))
 
     def __enter__(self):
         return self
@@ -702,9 +736,11 @@ class NotebookPage:
         self.timings.mark("run all", t0)
         return st
 
-    def check_no_errors(self):
+    def check_no_errors(self, page_problems: bool = True):
         st = self.read_status()
         problems = st.get("errors", []) + st.get("tracebacks", []) + st.get("widgetErrors", [])
+        if page_problems:
+            problems += self.page_problems
         if problems:
             self.fail("error output:\n  " + "\n  ".join(problems))
         return st

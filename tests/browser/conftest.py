@@ -15,6 +15,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import browserlab  # noqa: E402
 import labview  # noqa: E402
+import student  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 TIMINGS_KEY = pytest.StashKey[dict]()
@@ -25,6 +26,9 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if HERE in Path(str(item.path)).resolve().parents:
             item.add_marker(pytest.mark.browser)
+            # under pytest-xdist (--dist loadgroup) one worker runs every browser test, in order,
+            # with the one server and the one browser of the session
+            item.add_marker(pytest.mark.xdist_group("browser"))
 
 
 def pytest_configure(config):
@@ -81,7 +85,8 @@ def lab_server(chromium, tmp_path_factory, request):
     t0 = time.monotonic()
     server = browserlab.LabServer(tmp_path_factory.mktemp("lab"),
                                   extra_notebooks={browserlab.SELFCHECK_PATH: browserlab.selfcheck_notebook(),
-                                                   labview.LAYOUT_SELFCHECK_PATH: labview.layout_selfcheck_notebook()})
+                                                   labview.LAYOUT_SELFCHECK_PATH: labview.layout_selfcheck_notebook(),
+                                                   student.STUDENT_SELFCHECK_PATH: student.student_selfcheck_notebook()})
     _on_cleanup(request, server.stop)
     server.start()
     request.config.stash[TIMINGS_KEY]["(server start)"] = {"total": round(time.monotonic() - t0, 2)}
@@ -111,6 +116,18 @@ def lab(lab_server, browser_context, request):
     lab = browserlab.LabBrowser(browser_context, lab_server)
     _on_cleanup(request, lab.close)
     return lab
+
+
+@pytest.fixture(scope="session")
+def cell_by_cell(request):
+    """``cell_by_cell(notebook)`` -> a future of labview.expected_panel_state(notebook), run in
+    one helper process: the in-process reference run overlaps with JupyterLab's Run All."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    pool = ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("spawn"))
+    _on_cleanup(request, lambda: pool.shutdown(wait=False, cancel_futures=True))
+    return lambda notebook: pool.submit(labview.expected_panel_state, notebook)
 
 
 @pytest.fixture

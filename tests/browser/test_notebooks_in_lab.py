@@ -1,27 +1,29 @@
-"""Every interactive chapter notebook, opened in a real JupyterLab in headless Chromium.
+"""Every interactive chapter notebook, opened in a real JupyterLab in headless Chromium, used as a
+student uses it (issue 19): 1366 x 768 window, file browser open.
 
 For each ``book/*.ipynb`` containing ``%matplotlib widget`` (found when pytest collects, so new
-chapters are covered automatically): wait for an idle kernel, Run All, check that every code cell
-ran and that no output shows a traceback or "Error displaying widget", then move the first slider
-of the first interactive panel with the keyboard and check that the ipympl canvas pixels changed.
+chapters are covered automatically), opened and run once: Run All, every code cell ran, no output
+shows a traceback or "Error displaying widget"; then on that one page (tests/browser/labview.py,
+tests/browser/student.py): layout and panel state against a cell-by-cell run (run in a helper
+process while JupyterLab runs the notebook), slider tracks >= 150 px, nothing cut, every panel
+with its controls on one screen, ▶ plays every animation, the first slider of every panel
+dragged quickly ends on the same picture as a slow drag to the same value, and no page error,
+failed request or request off the machine.
 
-``test_detector_*`` keeps the proof that the check can fail inside the suite: a generated notebook
-has a working panel and one whose ``update`` does nothing; the same helper must say "changed" for
-the first and "did not change" for the second.
-
-The same test checks what the student sees after Run All (tests/browser/labview.py): the layout
-at a 1366 x 768 window with the file browser open and the panels' state against a cell-by-cell
-run; test_student_view.py covers the other notebooks with figures and the quiet start.
+``test_detector_*`` and ``test_student_checks_can_fail`` keep the proof that the checks can fail
+inside the suite: generated notebooks with a working and a dead panel, and with a panel that
+loses difference frames with and without key frames, a squeezed slider and a too-tall panel.
 """
 from __future__ import annotations
 
-import warnings
+import time
 
 import browserlab
 import labview
 import pytest
+import student
 
-pytestmark = pytest.mark.browser
+pytestmark = pytest.mark.browser  # (conftest.py also puts every browser test in one xdist group)
 
 NOTEBOOKS = browserlab.interactive_notebooks()
 
@@ -41,28 +43,75 @@ def test_detector_tells_a_live_panel_from_a_dead_one(lab, record_timing, prestar
     assert not dead.changed, f"a panel whose update does nothing was reported as changing: {dead}"
 
 
+def test_student_checks_can_fail(lab, record_timing, prestart_next):
+    """The student's checks on a generated notebook (student.student_selfcheck_notebook): a
+    panel whose dropped difference frames are repaired by a key frame passes the drag check, the
+    same panel without key frames fails it, a long label's short track and a too-tall panel are
+    named, and ▶ plays an animation."""
+    with browserlab.NotebookPage(lab, student.STUDENT_SELFCHECK_PATH) as nbp:
+        nbp.open()
+        prestart_next()
+        nbp.run_all()
+        nbp.check_no_errors()
+        student.wait_for_pictures(nbp)
+        nbp.page.wait_for_timeout(1000)
+        controls = student.control_problems(nbp)
+        anims, n_anims = student.play_animations(nbp)
+        drags, info = student.drag_check(nbp)
+        nbp.check_no_errors()
+    record_timing("(student self-check notebook)", nbp.timings.phases)
+    rows = {r["panel"]: r for r in info["panels"]}
+    assert len(rows) == 3 and all(r["moved"] and r["changed"] for r in rows.values()), info
+    assert rows[0]["differing"] <= student.PIXEL_TOLERANCE, f"key frames did not repair the picture: {info}"
+    assert rows[2]["differing"] <= student.PIXEL_TOLERANCE, info
+    assert rows[1]["differing"] > student.PIXEL_TOLERANCE, f"the dropped frames' ghost was not seen: {info}"
+    assert [p for p in drags if p.startswith("panel #1 ")] and not [p for p in drags if not p.startswith("panel #1 ")], drags
+    assert n_anims == 1 and anims == [], anims
+    assert any("In[4]" in p and "track" in p and "a label long enough" in p for p in controls), controls
+    assert any("In[4]" in p and "px tall" in p for p in controls), controls
+    assert not [p for p in controls if "In[4]" not in p], controls
+
+
 @pytest.mark.parametrize("notebook", NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])
-def test_interactive_notebook_runs_and_responds(notebook, lab, record_timing, prestart_next):
-    """... and, right after Run All (1366 x 768 window, file browser open): nothing overflows its
-    output area, every animation shows a picture, and every named panel holds what a cell-by-cell
-    run gives (labview)."""
+def test_interactive_notebook_as_a_student_uses_it(notebook, lab, record_timing, prestart_next, cell_by_cell):
+    """Run All, then what a student sees and does (1366 x 768 window, file browser open):
+
+    * nothing overflows its output area, every animation shows a picture, every named panel holds
+      what a cell-by-cell run gives (labview);
+    * every slider track is >= 150 px, no label, checkbox, button or readout is cut, and no panel
+      with its controls is taller than one laptop screen (student.control_problems);
+    * ▶ plays every animation (student.play_animations);
+    * the first slider of every panel, dragged quickly, leaves the same picture as a slow drag to
+      the same value, and the picture follows the slider (student.drag_check);
+    * no cell or widget error, no page error, no failed request and no request off the machine.
+    """
     relpath = notebook.relative_to(browserlab.ROOT).as_posix()
-    seen = {}
-
-    def student_view(nbp):
-        nbp.page.wait_for_timeout(1500)  # let the widgets' first messages from the browser arrive
-        seen["layout"], seen["counts"] = labview.layout_problems(nbp)
-        seen["state"] = labview.compare_panel_states(labview.kernel_panel_state(nbp),
-                                                     labview.expected_panel_state(notebook))
-        if seen["layout"] or seen["state"]:
-            seen["screenshot"] = nbp.screenshot()
-
-    result, phases = browserlab.check_interactive_notebook(lab, relpath, on_open=prestart_next,
-                                                           after_run=student_view)
-    record_timing(relpath, phases)
-    assert result.changed and result.slider_moved, result
-    problems = seen["layout"] + [f"Run All differs from cell by cell: {d}" for d in seen["state"]]
-    assert not problems, (f"{relpath} as the student sees it ({seen['counts']}; screenshot "
-                          f"{seen.get('screenshot')}):\n  " + "\n  ".join(problems))
-    if not result.detail.startswith("panel #0, slider #0"):
-        warnings.warn(f"{relpath}: the first slider of the first panel could not be judged; used {result.detail}", stacklevel=2)
+    problems, info = [], {}
+    expected = cell_by_cell(notebook)   # the reference run, beside the browser's
+    with browserlab.NotebookPage(lab, relpath) as nbp:
+        nbp.open()
+        prestart_next()
+        nbp.run_all()
+        nbp.check_no_errors()
+        t0 = time.monotonic()
+        student.wait_for_pictures(nbp)
+        nbp.page.wait_for_timeout(1000)  # let the widgets' first messages from the browser arrive
+        layout, info["counts"] = labview.layout_problems(nbp)
+        problems += layout
+        problems += [f"Run All differs from cell by cell: {d}" for d in
+                     labview.compare_panel_states(labview.kernel_panel_state(nbp), expected.result())]
+        problems += student.control_problems(nbp)
+        t0 = nbp.timings.mark("look", t0)
+        anim_problems, info["animations"] = student.play_animations(nbp)
+        problems += anim_problems
+        t0 = nbp.timings.mark("play", t0)
+        drag_problems, drags = student.drag_check(nbp)
+        problems += drag_problems
+        info["panels dragged"] = len(drags["panels"])
+        nbp.timings.mark("drag", t0)
+        problems += nbp.page_problems
+        nbp.check_no_errors(page_problems=False)
+        if problems:
+            info["screenshot"] = nbp.screenshot()
+    record_timing(relpath, nbp.timings.phases)
+    assert not problems, f"{relpath} as the student uses it ({info}):\n  " + "\n  ".join(problems)

@@ -1,0 +1,143 @@
+"""Checkers of exercise 5.1 (book/11, many links; beyond the draft): design a four-link swimmer's gait.
+
+The swimmer is :func:`gm_core.geometry.chain_swimmer` (4): four equal links of total length 3,
+drag ratio 2, body frame at the centre of mass with the mean orientation. As in every chapter,
+the probe only turns the student's answer into plain data (the gait sampled at equal time
+steps); the reference (gm_core.locomotion.net_displacement) and the judging run in the checking
+process. Independent routes are in tests/test_checks_many_links.py.
+"""
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from ._answers import describe, fmt_value, is_starter, to_numbers
+from ._choice import ChoicePart
+from ._core import CustomPart, Exercise, outcome_error
+from ._sandbox import Unattempted, Wrong
+
+__all__ = ["ex5_1", "swimmer_5_1", "DISTANCE_MIN", "ANGLE_MAX"]
+
+#: Net translation per cycle asked for, and the largest joint angle allowed (the links must not cross).
+DISTANCE_MIN, ANGLE_MAX = 0.3, 1.2
+_N_SAMPLES = 256
+_JOINTS = 3
+
+
+@functools.lru_cache(maxsize=1)
+def swimmer_5_1():
+    """The four-link swimmer of exercise 5.1: chain_swimmer(4)."""
+    from ..geometry import chain_swimmer
+
+    return chain_swimmer(4)
+
+
+def _sample_gait(answer):
+    """Student side of 5.1(a): the gait at _N_SAMPLES + 1 equal time steps over one period."""
+    from ..gaits import Gait, as_gait
+
+    if is_starter(answer):
+        raise Unattempted()
+    if isinstance(answer, (str, bytes, bool, np.bool_, dict)) or np.isscalar(answer) or not (
+            isinstance(answer, (Gait, list, tuple, np.ndarray)) or callable(answer)):
+        raise Wrong(f"your answer is {describe(answer)}; hand in a Gait (e.g. travelling_wave(3, ...)), a "
+                    "callable t -> r(t) of period 1 or an array of shapes (K, 3).")
+    if not callable(answer):
+        pts = to_numbers(answer, "your array of shapes")
+        if pts.ndim == 2 and pts.shape[0] == _JOINTS and pts.shape[1] > _JOINTS:
+            raise Wrong(f"your array has shape {pts.shape}: one row per shape, (K, 3), was expected "
+                        "(transpose it).")
+        if pts.ndim != 2 or pts.shape[0] < 3:
+            raise Wrong(f"your array has shape {pts.shape}; an array of K >= 3 shapes, (K, 3), was expected.")
+        if not np.all(np.isfinite(pts)):
+            raise Wrong("your array of shapes contains NaN or infinite entries.")
+        answer = pts
+    gait = as_gait(answer)  # a callable of one time at a time works too (Gait handles it)
+    t = np.linspace(0.0, float(gait.period), _N_SAMPLES + 1)
+    return to_numbers(gait(t), "the shapes your gait returned")
+
+
+def _judge_51a(outcomes):
+    from ..gaits import Gait
+    from ..locomotion import net_displacement
+
+    o = outcomes[0] if outcomes else {"k": "crash", "m": ""}
+    if o["k"] != "ok":
+        outcome_error(o, "your gait", "the times of one period")
+    r = o["v"]
+    if not isinstance(r, np.ndarray) or r.ndim != 2 or r.shape[0] != _N_SAMPLES + 1:
+        shape = r.shape if isinstance(r, np.ndarray) else describe(r)
+        raise Wrong(f"your gait returned shapes of shape {shape} for {_N_SAMPLES + 1} times; "
+                    f"({_N_SAMPLES + 1}, 3) was expected (three joint angles at each time).")
+    if r.shape[1] != _JOINTS:
+        raise Wrong(f"your gait has {r.shape[1]} joint angles per time; the four-link swimmer has three "
+                    "joints (alpha1, alpha2, alpha3).")
+    if not np.all(np.isfinite(r)):
+        raise Wrong("your gait returned NaN or infinite joint angles at some times.")
+    if np.linalg.norm(r[-1] - r[0]) > 1e-6 * max(1.0, float(np.max(np.abs(r)))):
+        raise Wrong(f"your gait does not close: r(0) = {fmt_value(r[0])} but r(T) = "
+                    f"{fmt_value(r[-1])}. A gait must come back to its first shape after one period.")
+    big = float(np.max(np.abs(r)))
+    if big > ANGLE_MAX + 1e-9:
+        raise Wrong(f"your gait bends a joint by {big:.3f} rad; at most {ANGLE_MAX} rad is allowed (more "
+                    "and the links of a real swimmer would collide). Make the wave smaller.")
+    g = net_displacement(swimmer_5_1(), Gait.from_samples(r[:-1]), steps=512, check=False)
+    d = float(np.hypot(g[0], g[1]))
+    if d < 1e-3:
+        raise Wrong(f"your gait hardly moves the swimmer ({d:.4f} per cycle): all joints in phase (a "
+                    "standing wave) or a gait that retraces its path gives no net motion. Let each "
+                    "joint lag behind its neighbour.")
+    if d < DISTANCE_MIN:
+        raise Wrong(f"it moves the swimmer {d:.3f} per cycle; at least {DISTANCE_MIN} is asked for. "
+                    "Use larger joint angles (up to the limit) or a different lag between joints.")
+    return f"Correct: it moves the swimmer {d:.3f} per cycle (turning {g[2]:+.3f} rad)."
+
+
+class _Wave:
+    """travelling_wave(3, amplitude, lag), built only when called (keeps this module's import light)."""
+
+    def __init__(self, amplitude, lag):
+        self.amplitude, self.lag = amplitude, lag
+
+    def __call__(self, t):
+        from ..geometry import travelling_wave
+
+        g = travelling_wave(_JOINTS, self.amplitude, self.lag, period=1.0)
+        return g(t)
+
+    def __repr__(self):
+        return f"travelling_wave(3, {self.amplitude}, {self.lag}, period=1)"
+
+
+ex5_1 = Exercise("5.1", "Design a four-link swimmer's gait", [
+    CustomPart(
+        "a", f"A gait of the four-link low-Re swimmer that moves it at least {DISTANCE_MIN} per cycle, "
+             f"every joint within +-{ANGLE_MAX} rad",
+        lambda: [_sample_gait], _judge_51a,
+        hints=["Three joints, one wave: try travelling_wave(3, amplitude, lag) from gm_core.geometry.",
+               "A lag of 0 is a standing wave and goes nowhere; a lag near pi neither. Scan lags "
+               "between 0.3 and 2 rad.",
+               "The distance grows with the amplitude: use the largest allowed, 1.2 rad, and pick "
+               "the lag that moves furthest (about 1 rad)."],
+        solution_text="For example travelling_wave(3, 1.2, 1.0): about 0.38 per cycle.",
+        reference=_Wave(1.2, 1.0),
+        wrong=[_Wave(1.2, 0.0), _Wave(0.6, 1.0), _Wave(1.5, 1.0), _Wave(1.2, 2.8),
+               lambda t: np.stack([np.sin(2 * np.pi * t)] * 2, -1)],
+        kind="gait"),
+    ChoicePart(
+        "b", "Why does a wave that travels along the body move the swimmer, when a standing wave does not?",
+        {"a": "a standing wave retraces the same line in shape space, which encloses no area",
+         "b": "a standing wave is too slow: its joints never move fast enough",
+         "c": "the travelling wave uses more joints",
+         "d": "drag is larger on a travelling wave, so it pushes harder"},
+        "a",
+        feedback={"a": "Correct: a standing wave moves all joints in proportion, a line through shape "
+                       "space traced back and forth; only a loop that encloses curvature moves the body.",
+                  "b": "Net displacement does not depend on the pace of a gait (the reparametrization "
+                       "argument of section 3.1).",
+                  "c": "The standing wave uses the same joints.",
+                  "d": "Drag is what the swimmer pushes against in both cases; what differs is the loop."},
+        hints=["Draw both gaits in shape space: what does each trace?"],
+        solution_text="a.", wrong=["b", "c", "d"]),
+])

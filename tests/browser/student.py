@@ -1,0 +1,423 @@
+"""What a student does in an open notebook, after Run All (issue 19), on top of browserlab.py.
+
+* :func:`control_problems`: every slider track narrower than :data:`MIN_TRACK` px, every label,
+  checkbox, button or progress text cut by its box, and every panel (its controls and figure
+  together) taller than :data:`MAX_PANEL_HEIGHT` px, as laid out at 1366 x 768 with the file
+  browser open.
+* :func:`play_animations`: press ▶ on every animation of the notebook and require the picture
+  on screen to change (the frame shown, and the pixels of the image), then pause it again.
+* :func:`drag_check`: for every interactive panel, drag the first enabled slider of each panel
+  to the same place twice: once slowly (one mouse move, then wait until the kernel and the
+  canvas are still) and once quickly (:data:`QUICK_STEPS` mouse moves :data:`QUICK_PAUSE_MS` ms
+  apart, as a hurried hand does); the canvases must then be the same, pixel for pixel up to
+  :data:`PIXEL_TOLERANCE` of them. Ghosts (a previous arm still drawn, a readout overprinted)
+  are exactly such differences. Every panel is dragged first, then all are waited for
+  together, so a notebook with many panels costs a few seconds, not a few per panel.
+"""
+from __future__ import annotations
+
+import time
+
+MIN_TRACK = 150            # px, a slider's track at 1366 x 768
+MAX_PANEL_HEIGHT = 660     # px, a panel's controls and figure together (issue 19: "about 650")
+QUICK_STEPS = 10
+QUICK_PAUSE_MS = 40
+DRAG_PX = 60
+PIXEL_TOLERANCE = 2e-3     # fraction of a canvas' pixels allowed to differ (antialiasing slivers)
+
+_CONTROLS_JS = r"""
+(id) => {
+  const root = document.getElementById(id);
+  const out = [];
+  if (!root) return ['notebook panel not in the DOM'];
+  const cells = [...root.querySelectorAll('.jp-Cell')];
+  let n = 0; const inNum = new Map();
+  for (const c of cells) if (c.classList.contains('jp-CodeCell')) inNum.set(c, ++n);
+  const where = (el) => { const c = el.closest('.jp-Cell'); return `In[${inNum.get(c) || '?'}]`; };
+  const visible = (el) => { const r = el.getBoundingClientRect(); return r.width > 0 && r.height > 0; };
+  const text = (el) => (el.innerText || el.textContent || '').trim().replace(/\s+/g, ' ');
+  for (const area of root.querySelectorAll('.jp-OutputArea-output')) {
+    for (const s of area.querySelectorAll('.widget-slider')) {
+      if (!visible(s)) continue;
+      const t = s.querySelector('.noUi-target, .slider-container');
+      const w = t ? t.getBoundingClientRect().width : 0;
+      const lab = s.closest('.widget-vbox');
+      const name = text(s.querySelector('.widget-label')) ||
+                   (lab && lab.querySelector('.gm-control-label') ? text(lab.querySelector('.gm-control-label')) : '?');
+      if (w < %(MIN_TRACK)d) out.push(`${where(s)}: slider '${name}' has a ${Math.round(w)} px track (< %(MIN_TRACK)d px)`);
+    }
+    const cut = '.widget-label, .widget-checkbox label, .widget-checkbox .widget-label-basic, button.jupyter-button, ' +
+                '.widget-readout, .widget-html-content, .widget-label-basic, .widget-dropdown select, .widget-progress .widget-label';
+    for (const el of area.querySelectorAll(cut)) {
+      if (!visible(el) || !text(el)) continue;
+      if (el.scrollWidth > el.clientWidth + 1 && getComputedStyle(el).overflowX !== 'visible')
+        out.push(`${where(el)}: '${text(el).slice(0, 60)}' is cut (${el.scrollWidth} px of text in ${el.clientWidth} px)`);
+    }
+    const canvas = area.querySelector('.jupyter-matplotlib canvas');
+    const slider = area.querySelector('.widget-slider, .widget-dropdown, .widget-toggle-buttons, .widget-checkbox');
+    if (canvas && slider) {
+      const box = area.querySelector('.jupyter-widgets.widget-container, .jupyter-widgets') || area;
+      const h = box.getBoundingClientRect().height;
+      if (h > %(MAX_PANEL_HEIGHT)d) out.push(`${where(area)}: the panel and its controls are ${Math.round(h)} px tall (> %(MAX_PANEL_HEIGHT)d px: not on one laptop screen)`);
+    }
+  }
+  return [...new Set(out)];
+}
+""" % {"MIN_TRACK": MIN_TRACK, "MAX_PANEL_HEIGHT": MAX_PANEL_HEIGHT}
+
+
+_BLANK_CANVASES_JS = r"""
+(id) => {
+  const root = document.getElementById(id);
+  let blank = 0, n = 0;
+  for (const fig of root.querySelectorAll('.jupyter-matplotlib')) {
+    const c = fig.querySelector('canvas');   // the picture (the second canvas is the rubber band)
+    if (!c) continue;
+    n++;
+    if (!c.width || !c.height) { blank++; continue; }
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let drawn = false;
+    for (let i = 3; i < d.length; i += 4 * 97) if (d[i] !== 0) { drawn = true; break; }
+    if (!drawn) blank++;
+  }
+  return {n, blank};
+}
+"""
+
+
+def wait_for_pictures(nbp, timeout: float = 90.0) -> dict:
+    """Wait until every ipympl canvas of the notebook shows a picture (fail after ``timeout`` s)."""
+    deadline = time.monotonic() + timeout
+    while True:
+        res = nbp.page.evaluate(_BLANK_CANVASES_JS, nbp.read_status()["panelId"])
+        if not res["blank"]:
+            return res
+        if time.monotonic() > deadline:
+            nbp.fail(f"{res['blank']} of {res['n']} interactive figures still blank {timeout:.0f} s after Run All")
+        nbp.page.wait_for_timeout(200)
+
+
+def control_problems(nbp) -> list[str]:
+    return nbp.page.evaluate(_CONTROLS_JS, nbp.read_status()["panelId"])
+
+
+# -- animations -----------------------------------------------------------------------------
+
+_ANIMS_JS = r"""
+(id) => {
+  const root = document.getElementById(id);
+  const out = [];
+  root.querySelectorAll('.gm-anim').forEach((a, k) => {
+    a.setAttribute('data-gm-anim', String(k));
+    const img = a.querySelector('img');
+    out.push({index: k, ready: a.getAttribute('data-gm-ready') === '1', frame: img ? img.getAttribute('data-frame') : null,
+              frames: Number(a.getAttribute('data-frames') || 0)});
+  });
+  // animations that are not the course's player (e.g. a bare to_jshtml) are counted too
+  const other = root.querySelectorAll('.animation img[id^="_anim_img"]').length;
+  return {anims: out, other};
+}
+"""
+
+
+def play_animations(nbp, wait_ms: int = 900) -> tuple[list[str], int]:
+    """Press ▶ on every animation; (problems, number of animations)."""
+    page = nbp.page
+    res = page.evaluate(_ANIMS_JS, nbp.read_status()["panelId"])
+    problems = [f"{res['other']} animation(s) not made with gm_core.drawing.primitives.jshtml"] if res["other"] else []
+    for a in res["anims"]:
+        root = page.locator(f'[data-gm-anim="{a["index"]}"]')
+        root.scroll_into_view_if_needed()
+        img = root.locator("img").first
+        deadline = time.monotonic() + 10
+        while root.get_attribute("data-gm-ready") != "1" and time.monotonic() < deadline:
+            page.wait_for_timeout(100)
+        if root.get_attribute("data-gm-ready") != "1":
+            problems.append(f"animation #{a['index']}: its player never started (no script ran)")
+            continue
+        before_frame, before_px = img.get_attribute("data-frame"), img.screenshot()
+        root.locator("button.gm-anim-play").click()
+        # the picture on screen must change: poll (a busy page may show the next frame late)
+        deadline = time.monotonic() + max(wait_ms / 1000, 5.0)
+        while True:
+            page.wait_for_timeout(wait_ms // 3)
+            after_frame, after_px = img.get_attribute("data-frame"), img.screenshot()
+            playing = root.get_attribute("data-playing")
+            if (after_frame != before_frame and after_px != before_px) or time.monotonic() > deadline:
+                break
+        root.locator("button.gm-anim-play").click()  # pause again
+        if a["frames"] < 2:
+            problems.append(f"animation #{a['index']} has {a['frames']} frame(s)")
+        elif after_frame == before_frame or after_px == before_px or playing != "1":
+            problems.append(f"animation #{a['index']}: ▶ pressed, but the picture did not change "
+                            f"(frame {before_frame} -> {after_frame}, playing={playing})")
+    return problems, len(res["anims"])
+
+
+# -- quick drag against slow drag ---------------------------------------------------------------
+
+_PANELS_JS = r"""
+(id) => {
+  const root = document.getElementById(id);
+  for (const el of root.querySelectorAll('[data-gm-drag]')) el.removeAttribute('data-gm-drag');
+  const out = [];
+  let k = 0;
+  for (const area of root.querySelectorAll('.jp-Cell .jp-OutputArea-output')) {
+    const c = area.querySelector('.jupyter-matplotlib canvas');
+    const sliders = [...area.querySelectorAll('.widget-slider')].filter(s =>
+      !s.querySelector('.noUi-target[disabled], .noUi-target.noUi-state-disabled') && s.querySelector('.noUi-handle') &&
+      !s.querySelector('.noUi-handle').closest('[disabled]'));
+    if (!c || !sliders.length) continue;
+    area.setAttribute('data-gm-drag', String(k));
+    sliders[0].setAttribute('data-gm-drag-slider', String(k));
+    const cell = area.closest('.jp-Cell');
+    const cells = [...root.querySelectorAll('.jp-Cell')];
+    out.push({index: k, cell: cells.indexOf(cell)});
+    k++;
+  }
+  return out;
+}
+"""
+
+# a cheap fingerprint of every canvas (FNV-1a over all pixels) and the first slider's value
+_STATE_JS = r"""
+(k) => {
+  const area = document.querySelector(`[data-gm-drag="${k}"]`);
+  if (!area) return null;
+  const c = area.querySelector('.jupyter-matplotlib canvas');
+  let h = 2166136261 >>> 0;
+  if (c && c.width && c.height) {
+    const d = new Uint32Array(c.getContext('2d').getImageData(0, 0, c.width, c.height).data.buffer);
+    for (let i = 0; i < d.length; i++) { h ^= d[i]; h = Math.imul(h, 16777619) >>> 0; }
+  }
+  const s = area.querySelector(`[data-gm-drag-slider="${k}"] .noUi-target`);
+  const v = s && s.noUiSlider ? Number(s.noUiSlider.get()) : null;
+  return {hash: h, value: v, w: c ? c.width : 0, h: c ? c.height : 0};
+}
+"""
+
+_PIXELS_JS = r"""
+(k) => {
+  const c = document.querySelector(`[data-gm-drag="${k}"] .jupyter-matplotlib canvas`);
+  return c.toDataURL('image/png');
+}
+"""
+
+
+_GEOMETRY_JS = r"""
+(k) => {
+  const s = document.querySelector(`[data-gm-drag-slider="${k}"] .noUi-target`);
+  const r = s.getBoundingClientRect(), h = s.querySelector('.noUi-handle').getBoundingClientRect();
+  const range = s.noUiSlider.options.range;
+  const lo = Number(Array.isArray(range.min) ? range.min[0] : range.min);
+  const hi = Number(Array.isArray(range.max) ? range.max[0] : range.max);
+  const cx = h.x + h.width / 2, cy = h.y + h.height / 2;
+  const at = document.elementFromPoint(cx, cy);
+  return {x: r.x, width: r.width, y: cy, lo, hi, value: Number(s.noUiSlider.get()),
+          step: Number(s.noUiSlider.options.step) || 0,
+          onHandle: !!(at && s.contains(at))};
+}
+"""
+
+
+def _geometry(page, k):
+    """The slider's track (x, width), the handle's centre line y, its range and value; the
+    handle's centre is at x + width * (value - lo) / (hi - lo) (noUiSlider's own mapping)."""
+    handle = page.locator(f'[data-gm-drag-slider="{k}"] .noUi-handle').first
+    handle.scroll_into_view_if_needed()
+    last = None
+    for _ in range(40):  # JupyterLab may still move things after the scroll: wait until still
+        g = page.evaluate(_GEOMETRY_JS, k)
+        if g["onHandle"] and last is not None and (g["x"], g["y"]) == (last["x"], last["y"]):
+            break
+        if not g["onHandle"]:
+            handle.scroll_into_view_if_needed()
+        last = g
+        page.wait_for_timeout(50)
+    g["px"] = lambda v, g=g: g["x"] + g["width"] * (v - g["lo"]) / (g["hi"] - g["lo"])
+    return g
+
+
+def _drag(page, x0, y, x1, steps, pause_ms):
+    page.mouse.move(x0, y)
+    page.mouse.down()
+    for i in range(1, steps + 1):
+        page.mouse.move(x0 + (x1 - x0) * i / steps, y)
+        if pause_ms and i < steps:
+            page.wait_for_timeout(pause_ms)
+    page.mouse.up()
+
+
+def _settle(nbp, keys, still: float = 0.8, timeout: float = 30.0):
+    """Wait until every listed canvas has been unchanged for ``still`` s and the kernel is idle
+    (``still`` is longer than the panels' key-frame delay)."""
+    page = nbp.page
+    last = {k: page.evaluate(_STATE_JS, k) for k in keys}
+    since = time.monotonic()
+    deadline = since + timeout
+    while time.monotonic() < deadline:
+        page.wait_for_timeout(100)
+        now = {k: page.evaluate(_STATE_JS, k) for k in keys}
+        if now != last:
+            last, since = now, time.monotonic()
+        elif time.monotonic() - since >= still and nbp.read_status().get("kernel") == "idle":
+            return last
+    nbp.fail(f"the panels' canvases did not settle within {timeout:.0f} s after the drags")
+
+
+def _differing(a_url: str, b_url: str, page) -> float:
+    """Fraction of differing pixels of two PNG data URLs (decoded in the page)."""
+    return page.evaluate(r"""
+    async ([a, b]) => {
+      const load = (u) => new Promise((ok, no) => { const i = new Image(); i.onload = () => ok(i); i.onerror = no; i.src = u; });
+      const [ia, ib] = await Promise.all([load(a), load(b)]);
+      if (ia.width !== ib.width || ia.height !== ib.height) return 1;
+      const px = (img) => { const c = document.createElement('canvas'); c.width = img.width; c.height = img.height;
+        const x = c.getContext('2d'); x.drawImage(img, 0, 0); return new Uint32Array(x.getImageData(0, 0, c.width, c.height).data.buffer); };
+      const pa = px(ia), pb = px(ib);
+      let n = 0; for (let i = 0; i < pa.length; i++) if (pa[i] !== pb[i]) n++;
+      return n / pa.length;
+    }""", [a_url, b_url])
+
+
+def drag_check(nbp, shots_dir=None) -> tuple[list[str], dict]:
+    """Slow drag, back, quick drag to the same place, on the first slider of every panel.
+
+    Returns (problems, info); ``info['panels']`` lists per panel the value reached, whether the
+    picture changed with the drag, and the fraction of pixels that differ between the quick and
+    the slow drag's final pictures. ``shots_dir``: PNGs of the canvas after each drag are saved
+    there (tools/screenshots.py)."""
+    page = nbp.page
+    panels = page.evaluate(_PANELS_JS, nbp.read_status()["panelId"])
+    keys = [p["index"] for p in panels]
+    problems, rows = [], []
+    if not keys:
+        return problems, {"panels": rows}
+    start = _settle(nbp, keys)
+    start_px = {k: page.evaluate(_PIXELS_JS, k) for k in keys}
+    direction, distance = {}, {}
+
+    def whole_steps(g):
+        """A displacement near DRAG_PX px that is (nearly) a whole number of slider steps, so a
+        drag there and back returns to the same value."""
+        if not g["step"] or not g["width"]:
+            return DRAG_PX
+        per_px = (g["hi"] - g["lo"]) / g["width"] / g["step"]
+        return min(range(DRAG_PX - 15, DRAG_PX + 16), key=lambda d: abs(d * per_px - round(d * per_px)))
+
+    def drag(k, sign, steps, pause_ms):
+        # Whole pixels (the browser rounds mouse positions) from the handle's centre: noUiSlider
+        # moves a handle by the mouse's displacement, so equal values and equal displacements
+        # give equal results.
+        g = _geometry(page, k)
+        x = round(g["px"](g["value"]))
+        _drag(page, x, round(g["y"]), x + sign * direction[k] * distance[k], steps, pause_ms)
+
+    for k in keys:
+        g = _geometry(page, k)
+        direction[k] = 1 if g["value"] <= (g["lo"] + g["hi"]) / 2 else -1
+        distance[k] = whole_steps(g)
+        # to the slider's grid first (a value set from code may lie between its steps): there,
+        # back, and there again; the last move is the slow drag (one mouse move)
+        drag(k, +1, 1, 0)
+        drag(k, -1, 1, 0)
+        drag(k, +1, 1, 0)
+    slow = _settle(nbp, keys)
+    slow_px = {k: page.evaluate(_PIXELS_JS, k) for k in keys}
+    for k in keys:  # back (one move), then the hurried drag over the same displacement
+        drag(k, -1, 1, 0)
+        drag(k, +1, QUICK_STEPS, QUICK_PAUSE_MS)
+    quick = _settle(nbp, keys)
+    quick_px = {k: page.evaluate(_PIXELS_JS, k) for k in keys}
+    for p in panels:
+        k = p["index"]
+        moved = slow[k]["value"] != start[k]["value"]
+        changed = slow_px[k] != start_px[k]
+        same_value = quick[k]["value"] == slow[k]["value"]
+        diff = 0.0 if quick_px[k] == slow_px[k] else _differing(quick_px[k], slow_px[k], page)
+        rows.append({"panel": k, "cell": p["cell"], "start": start[k]["value"], "value": slow[k]["value"],
+                     "quick_value": quick[k]["value"], "moved": moved, "changed": changed, "differing": diff})
+        where = f"panel #{k} (cell {p['cell']})"
+        if not moved:
+            problems.append(f"{where}: dragging its first slider {DRAG_PX} px did not move it")
+        elif not same_value:
+            problems.append(f"{where}: the quick drag ended on {quick[k]['value']}, the slow one on {slow[k]['value']}")
+        elif diff > PIXEL_TOLERANCE:
+            problems.append(f"{where}: after a quick drag {diff:.2%} of the canvas differs from the slow drag "
+                            "to the same value (a ghost of an earlier frame?)")
+        if shots_dir is not None:
+            import base64
+            for tag, url in (("slow", slow_px[k]), ("quick", quick_px[k])):
+                (shots_dir / f"panel{k:02d}-{tag}.png").write_bytes(base64.b64decode(url.split(",", 1)[1]))
+    if rows and not any(r["changed"] for r in rows):
+        problems.append("no panel's picture changed when its first slider was dragged")
+    return problems, {"panels": rows}
+
+
+# -- the self-check: the checks above can fail ------------------------------------------------
+
+STUDENT_SELFCHECK_PATH = "_browser_selfcheck/student.ipynb"
+
+_SELFCHECK_SETUP = r'''%matplotlib widget
+import numpy as np
+import ipywidgets as W
+import matplotlib.pyplot as plt
+from gm_core.drawing.primitives import animate, jshtml
+from gm_core.drawing.blit import KeyFrames
+
+def ghost_panel(key_frames, description="t", figsize=(4, 3)):
+    """A blitted line whose update sends two difference images back to back, as a kernel that
+    has fallen behind a fast drag does: the browser drops the first (matplotlib #19116)."""
+    with plt.ioff():
+        fig, ax = plt.subplots(figsize=figsize, dpi=100)
+    fig.canvas.header_visible = fig.canvas.footer_visible = fig.canvas.toolbar_visible = False
+    ax.set(xlim=(-1.2, 1.2), ylim=(-1.2, 1.2))
+    (line,) = ax.plot([0, np.cos(0.3)], [0, np.sin(0.3)], lw=6, animated=True)
+    state = {"bg": None}
+    def on_draw(event):
+        state["bg"] = fig.canvas.copy_from_bbox(fig.bbox)
+        ax.draw_artist(line)
+    fig.canvas.mpl_connect("draw_event", on_draw)
+    keys = KeyFrames(fig) if key_frames else None
+    def show(t):
+        if state["bg"] is None:
+            return
+        fig.canvas.restore_region(state["bg"])
+        line.set_data([0, np.cos(t)], [0, np.sin(t)])
+        ax.draw_artist(line)
+        fig.canvas.blit(fig.bbox)
+    slider = W.FloatSlider(value=0.3, min=-3.0, max=3.0, step=0.01, description=description,
+                           continuous_update=True, layout=W.Layout(width="420px"),
+                           style={"description_width": "initial"})
+    def update(change):
+        show(change["new"] + 1.5)   # sent ...
+        show(change["new"])         # ... and replaced at once
+        if keys is not None:
+            keys.touch()
+    slider.observe(update, names="value")
+    return W.HBox([W.VBox([slider]), fig.canvas])
+'''
+
+
+def student_selfcheck_notebook() -> dict:
+    """In[2] a blitting panel with key frames (must pass the drag check), In[3] the same without
+    (must fail it), In[4] a slider whose long label leaves a short track and whose figure is too
+    tall, In[5] an animation made by gm_core (▶ must change its picture)."""
+    def code(i, src):
+        return {"cell_type": "code", "execution_count": None, "id": f"student-{i}", "metadata": {},
+                "outputs": [], "source": src}
+    cells = [
+        code(1, _SELFCHECK_SETUP),
+        code(2, "ghost_panel(key_frames=True)"),
+        code(3, "ghost_panel(key_frames=False)"),
+        code(4, "ghost_panel(True, description='a label long enough to squeeze the slider track away',\n"
+                "            figsize=(4, 7))"),
+        code(5, "with plt.ioff():\n"
+                "    fig, ax = plt.subplots(figsize=(3, 2), dpi=100)\n"
+                "ax.set(xlim=(0, 5), ylim=(0, 1))\n"
+                "(dot,) = ax.plot([0], [0.5], 'o', ms=20)\n"
+                "jshtml(animate(fig, lambda k: dot.set_data([k], [0.5]), frames=range(6), interval=60))"),
+    ]
+    return {"cells": cells, "metadata": {"kernelspec": {"display_name": "Python 3", "language": "python",
+                                                        "name": "python3"}},
+            "nbformat": 4, "nbformat_minor": 5}

@@ -1,0 +1,70 @@
+"""The animation player (gm_core.drawing.player, gm_core.drawing.primitives.jshtml) is self-contained.
+
+The browser tests press its ▶ button in JupyterLab; here, without a browser: every frame of the
+animation is in the page, the first one is the image's own source, nothing refers to the network,
+and bad arguments are refused with a clear message.
+"""
+import base64
+import re
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import pytest  # noqa: E402
+
+from gm_core.drawing.player import MODES, player_html  # noqa: E402
+from gm_core.drawing.primitives import animate, jshtml  # noqa: E402
+
+# the refused FuncAnimation below is never rendered; matplotlib says so when it is collected
+pytestmark = pytest.mark.filterwarnings("ignore:Animation was deleted")
+
+
+def _anim(n=4):
+    fig, ax = plt.subplots(figsize=(3, 2), dpi=72)
+    ax.set(xlim=(0, n), ylim=(0, 1))
+    (dot,) = ax.plot([0], [0.5], "o")
+    return fig, animate(fig, lambda k: dot.set_data([k], [0.5]), frames=range(n), interval=80)
+
+
+def test_every_frame_is_embedded_and_distinct(monkeypatch):
+    monkeypatch.delenv("GM_COURSE_TESTING", raising=False)
+    fig, anim = _anim(5)
+    page = jshtml(anim).data
+    frames = re.findall(r'"(data:image/png;base64,[A-Za-z0-9+/=]+)"', page)
+    assert len(set(frames)) == 5, "each of the 5 frames once, all different"
+    png = base64.b64decode(frames[0].split(",", 1)[1])
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    # frames at the figure standard's 100 px per inch, whatever the figure's own dpi was
+    width = int.from_bytes(png[16:20], "big")
+    assert width == 300 and 'width="300"' in page
+    # the first frame is the image's own source: a picture before (or without) the script
+    img = re.search(r'<img id="_anim_img\w+" src="([^"]+)" width="300" class="gm-anim-frame"', page)
+    assert img and img.group(1) == frames[0]
+    assert "interval = 80" in page and 'class="gm-anim-play"' in page
+    assert not plt.fignum_exists(fig.number), "the figure is closed once its frames are kept"
+
+
+def test_nothing_is_fetched_from_the_network():
+    _, anim = _anim(3)
+    page = jshtml(anim).data
+    assert not re.search(r"https?://|//cdn|<link|@import|font-awesome|fa-", page, re.I), \
+        "the player must need nothing from the network"
+
+
+@pytest.mark.parametrize("mode", MODES)
+def test_modes_are_accepted(mode):
+    page = player_html(["data:image/png;base64,AAAA"], interval=40, width=120, mode=mode)
+    assert f"mode0 = \"{mode}\"" in page
+
+
+def test_bad_arguments():
+    with pytest.raises(ValueError, match="mode"):
+        player_html(["data:,"], mode="bounce")
+    with pytest.raises(ValueError, match="frames"):
+        player_html([])
+    with pytest.raises(TypeError, match="animate"):
+        from matplotlib.animation import FuncAnimation
+        fig, ax = plt.subplots()
+        jshtml(FuncAnimation(fig, lambda k: None, frames=2))
+    plt.close("all")
