@@ -147,8 +147,13 @@ def main(argv=None):
         p = subprocess.run(cmd, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
         wall, r1 = time.monotonic() - t0, resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu_all = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
-    run = latest_run()
-    if run is None or run == before:
+    # the run this command made: the fullest run folder begun after it started (other pytest runs
+    # in the same tree may have left smaller ones meanwhile)
+    begun = [r for r in RUNS.glob("run-*") if (r / "by-file.json").exists() and r != before
+             and r.stat().st_mtime >= time.time() - wall - 5]
+    run = max(begun, key=lambda r: sum(v["tests"] for v in json.loads((r / "by-file.json").read_text()).values()),
+              default=None)
+    if run is None:
         print(f"make test left no record in build/nbrun/ (exit code {p.returncode}); see {args.log}")
         return 1
     print(f"\n{table(run, wall, p.returncode, cpu_all)}\n\n(pytest output in {args.log}; command: {shlex.join(cmd)})")
