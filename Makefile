@@ -14,7 +14,7 @@ PYTEST_ARGS ?=
 # record stay on one worker: tests/nbrun.py); TEST_WORKERS=0 runs in one process.
 TEST_WORKERS ?= 2
 
-.PHONY: setup lab lab-settings test exercises workspace bench screenshots clean help
+.PHONY: setup lab lab-settings test exercises workspace bench screenshots gradescope kits site clean help
 
 help:
 	@echo "make lab        set up and open JupyterLab on the course (book/00-start-here.ipynb)"
@@ -22,6 +22,9 @@ help:
 	@echo "make exercises  regenerate exercises/ from solutions/"
 	@echo "make bench      print the benchmark tables"
 	@echo "make screenshots  a PNG of every figure of the course + index.html in build/screenshots/"
+	@echo "make gradescope  the Gradescope autograder zip in build/gradescope/ (EXERCISES=\"1.4 2.1\" for some)"
+	@echo "make kits       otter-grader master notebooks and nbgrader source notebooks in build/kits/"
+	@echo "make site       the course website, offline, in build/site/_build/html/ (checked in headless Chromium)"
 
 $(PY):
 	$(PYTHON) -m venv $(VENV)
@@ -63,5 +66,22 @@ bench: setup
 screenshots: setup
 	$(PY) tools/screenshots.py
 
+# Gradescope autograder zip (setup.sh + run_autograder installing the course from the zip itself).
+EXERCISES ?=
+gradescope: setup
+	$(PY) tools/gradescope_kit.py $(if $(EXERCISES),--exercises $(EXERCISES),)
+
+# otter-grader / nbgrader versions of the exercises (their tools live in .venv-kits, made from PyPI).
+kits: setup
+	$(PY) tools/export_kits.py $(if $(EXERCISES),--exercises $(EXERCISES),)
+	$(PYTHON) tools/venvs.py kits
+
+# The website: Jupyter Book 1 in its own .venv-site (PyPI), front-end files from npm (site/), every
+# page executed, built, then opened in headless Chromium with the network blocked (axe-core too).
+site:
+	$(PYTHON) tools/venvs.py site
+	PYTHONPATH="$(CURDIR)" nice .venv-site/bin/python tools/build_site.py $(if $(PAGES),--only $(PAGES),)
+	PYTHONPATH="$(CURDIR)" .venv-site/bin/python tools/check_site.py
+
 clean:
-	rm -rf $(VENV) .hypothesis
+	rm -rf $(VENV) .hypothesis .venv-site .venv-kits site/node_modules build

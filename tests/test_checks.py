@@ -15,7 +15,7 @@ from gm_core.checks import (
     UNATTEMPTED,
     progress,
 )
-from gm_core.checks._core import REGISTRY
+from gm_core.checks._exercise import REGISTRY
 
 PARTS = [(ex_id, name) for ex_id in EXERCISE_IDS for name in REGISTRY[ex_id].parts]
 
@@ -27,14 +27,14 @@ def part(ex_id, name):
 pytestmark = pytest.mark.usefixtures("clean")
 
 
-def test_all_fifteen_exercises_are_registered():
-    """The book's 13 (1.1-1.5, 2.1-2.4, 3.1-3.4) and the curvature notebook's 4.1, 4.2, in course
-    order; the same ids as the worked-solution notebooks on disk."""
+def test_all_sixteen_exercises_are_registered():
+    """The book's 13 (1.1-1.5, 2.1-2.4, 3.1-3.4), the curvature notebook's 4.1, 4.2 and the
+    many-link notebook's 5.1, in course order; the same ids as the worked solutions on disk."""
     from pathlib import Path
 
     book = [f"{c}.{k}" for c, n in ((1, 5), (2, 4), (3, 4)) for k in range(1, n + 1)]
-    expected = tuple(book) + ("4.1", "4.2")
-    assert len(book) == 13 and len(expected) == 15
+    expected = tuple(book) + ("4.1", "4.2", "5.1")
+    assert len(book) == 13 and len(expected) == 16
     assert tuple(REGISTRY) == expected and EXERCISE_IDS == expected
     solutions = Path(__file__).resolve().parents[1] / "solutions"
     assert sorted(p.stem[2:].replace("_", ".") for p in solutions.glob("ex*_*.ipynb")) == sorted(expected)

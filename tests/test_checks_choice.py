@@ -7,7 +7,7 @@ import pytest
 
 from gm_core import checks
 from gm_core.checks import exercise_ids
-from gm_core.checks._core import REGISTRY
+from gm_core.checks._exercise import REGISTRY
 
 ROOT = Path(__file__).resolve().parent.parent
 CHOICES = [(ex_id, name, p) for ex_id in exercise_ids() for name, p in REGISTRY[ex_id].parts.items()

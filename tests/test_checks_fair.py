@@ -9,7 +9,8 @@ import sympy as sp
 from gm_core import SE2, checks
 from gm_core.checks import FAILED, PASSED, UNATTEMPTED, exercise_ids
 from gm_core.checks._ch1_exp import EXP_METHODS, _euler, _taylor
-from gm_core.checks._core import REGISTRY, FunctionPart
+from gm_core.checks._core import FunctionPart
+from gm_core.checks._exercise import REGISTRY
 
 pytestmark = pytest.mark.usefixtures("clean")
 

@@ -207,7 +207,6 @@ def test_the_cycle_finder_sees_a_real_cycle_in_gm_core_shaped_input():
 # ------------------------------------------------------------------ one home for every public name
 #: Modules whose ``__all__`` still lists names they import, with the reason (empty this list).
 REEXPORTS_KEPT = {
-    "gm_core.checks._core": "the checking engine's internals; its helpers are re-homed in issue 18 item 5",
 }
 
 

@@ -168,7 +168,8 @@ def _imports(paths):
 
 
 def _third_party(names):
-    local = {p.stem for p in ROOT.rglob("*.py") if ".venv" not in p.parts} | {"gm_core"}
+    local = {p.stem for d in ("gm_core", "tests", "tools", "benchmarks") for p in (ROOT / d).rglob("*.py")}
+    local |= {"gm_core", "conftest"}
     stdlib = set(sys.stdlib_module_names)
     return {n for n in names if n not in stdlib and n not in local and not n.startswith("_")}
 
@@ -221,10 +222,12 @@ class Block(importlib.abc.MetaPathFinder):
         if name.split('.')[0] in {blocked!r}:
             raise ModuleNotFoundError('blocked: ' + name, name=name)
 sys.meta_path.insert(0, Block())
-import gm_core, gm_core.drawing, gm_core.checks
-for m in ('calculus', 'fields', 'groups', 'chains', 'arms', 'three_link_chain', 'holonomic', 'locomotion', 'systems', 'geometry',
-          'connection', 'gaits', 'observers', 'manifolds', 'axioms', 'fluids'):
-    importlib.import_module('gm_core.' + m)
+import pkgutil, gm_core
+names = [m.name for m in pkgutil.walk_packages(gm_core.__path__, 'gm_core.')
+         if not m.name.startswith('gm_core.widgets')]     # the widgets are the [lab] part
+assert 'gm_core.drawing' in names and 'gm_core.checks' in names and len(names) > 40, names
+for m in names:
+    importlib.import_module(m)
 import numpy as np
 from gm_core import SE2
 assert np.allclose(SE2.compose([1, 1, np.pi / 2], [1, 1, np.pi / 2]), [0, 2, np.pi])

@@ -18,7 +18,8 @@ from gm_core.checks import (
     progress,
     reset_progress,
 )
-from gm_core.checks._core import REGISTRY, Exercise, FunctionPart
+from gm_core.checks._core import FunctionPart
+from gm_core.checks._exercise import REGISTRY, Exercise
 
 ROOT = Path(__file__).resolve().parent.parent
 pytestmark = pytest.mark.usefixtures("clean")
@@ -159,11 +160,11 @@ def test_every_exercise_comes_from_a_declared_module():
 
     from gm_core.checks import EXERCISE_MODULES
 
-    assert EXERCISE_MODULES == ("ch1", "ch2", "ch3", "curvature")
+    assert EXERCISE_MODULES == ("ch1", "ch2", "ch3", "curvature", "many_links")
     declared = [sys.modules[f"gm_core.checks.{m}"] for m in EXERCISE_MODULES]
     where = {eid: [m.__name__ for m in declared if any(v is ex for v in vars(m).values())]
              for eid, ex in REGISTRY.items()}
-    assert len(where) >= 15 and all(len(w) == 1 for w in where.values()), where
+    assert len(where) >= 16 and all(len(w) == 1 for w in where.values()), where
 
 
 # ------------------------------------------------------------------------------ never lost (issue 20, point 6)
@@ -210,14 +211,14 @@ def test_concurrent_kernels_marking_parts_lose_no_update(workspace, locks):
 @pytest.mark.slow
 def test_two_kernels_checking_at_the_same_moment_lose_no_pass(workspace):
     """Two real check() calls at once, part after part: every pass of both kernels is kept."""
-    code = ("from gm_core.checks._core import REGISTRY\n"
+    code = ("from gm_core.checks._exercise import REGISTRY\n"
             "from gm_core.checks import exercise_ids\n"
             "parts = [(e, p) for e in exercise_ids() for p in REGISTRY[e].parts.values()]\n"
             "for k, (e, p) in enumerate(parts):\n"
             "    if k % 2 == WORKER:\n"
             "        assert p.check(p.reference, quiet=True).passed, (e, p.name)\n")
     _start_together(workspace / "sub", code, 2)
-    from gm_core.checks._core import REGISTRY
+    from gm_core.checks._exercise import REGISTRY
     expected = {f"{e}/{p}" for e in exercise_ids() for p in REGISTRY[e].parts}
     saved = json.loads((workspace / ".progress.json").read_text())
     assert {k for k, r in saved.items() if r["status"] == PASSED} == expected

@@ -28,25 +28,17 @@ import importlib
 import re
 
 from ._choice import ChoicePart
-from ._core import (
-    FAILED,
-    IN_PROGRESS,
-    PASSED,
+from ._core import CustomPart, FunctionPart, Part, TuplePart, Verdict
+from ._exercise import (
     REGISTRY,
-    UNATTEMPTED,
-    CustomPart,
     Exercise,
-    FunctionPart,
-    Part,
-    TuplePart,
-    Verdict,
     exercise_ids,
     part_progress,
     progress,
     reset_progress,
     solutions_viewed,
 )
-from ._progress import pending_updates
+from ._progress import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED, pending_updates
 from ._sandbox import set_time_limit
 
 #: The modules that declare exercises (each ``Exercise(...)`` registers itself on import).

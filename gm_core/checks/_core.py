@@ -24,27 +24,18 @@ from typing import Any
 import numpy as np
 
 from . import _grading, _progress
-from ._answers import (  # noqa: F401
+from ._answers import (
     describe,
     fmt_args,
     is_starter,
     is_sympy,
     match_shape,
     sympy_function,
-    to_array,
     to_numbers,
 )
 from ._display import show
-from ._exercise import (  # noqa: E402,F401
-    REGISTRY,
-    Exercise,
-    exercise_ids,
-    part_progress,
-    progress,
-    reset_progress,
-    solutions_viewed,
-)
-from ._progress import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED
+from ._exercise import Exercise
+from ._progress import FAILED, PASSED, UNATTEMPTED
 from ._sandbox import Unattempted, Wrong, collect, decode_outcome, safe_text
 
 
@@ -502,7 +493,5 @@ def rng_inputs(seed: int, n: int, make: Callable[[np.random.Generator], Sequence
     return inputs
 
 
-__all__ = ["PASSED", "FAILED", "UNATTEMPTED", "IN_PROGRESS", "REGISTRY", "Verdict", "Part",
-           "FunctionPart", "TuplePart", "CustomPart", "Exercise", "Wrong", "Unattempted",
-           "progress", "part_progress", "reset_progress", "exercise_ids", "rng_inputs", "probe_rng",
-           "to_array", "to_numbers", "describe", "fmt_args", "is_starter", "is_sympy"]
+__all__ = ["Verdict", "Part", "FunctionPart", "TuplePart", "CustomPart", "outcome_error", "rng_inputs",
+           "probe_rng"]

@@ -11,8 +11,8 @@ import io
 
 import numpy as np
 
-from ._core import exercise_ids, part_progress, progress, solutions_viewed
 from ._display import COLORS
+from ._exercise import exercise_ids, part_progress, progress, solutions_viewed
 from ._progress import (
     FAILED,
     IN_PROGRESS,

@@ -14,15 +14,8 @@ from ._ch1_exp import (
     _helix_ref,
 )
 from ._choice import ChoicePart
-from ._core import (
-    CustomPart,
-    Exercise,
-    FunctionPart,
-    TuplePart,
-    outcome_error,
-    probe_rng,
-    rng_inputs,
-)
+from ._core import CustomPart, FunctionPart, TuplePart, outcome_error, probe_rng, rng_inputs
+from ._exercise import Exercise
 from ._sandbox import Unattempted, Wrong
 
 # ============================================================================ 1.1

@@ -20,7 +20,8 @@ from ._answers import (
     to_numbers,
 )
 from ._choice import ChoicePart  # noqa: F401 - kept for chapter modules that add choices
-from ._core import CustomPart, Exercise, FunctionPart, outcome_error, rng_inputs
+from ._core import CustomPart, FunctionPart, outcome_error, rng_inputs
+from ._exercise import Exercise
 from ._sandbox import Unattempted, Wrong
 
 # ============================================================================ 2.1

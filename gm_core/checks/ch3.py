@@ -10,7 +10,8 @@ import numpy as np
 
 from ..groups import SE2
 from ._choice import ChoicePart
-from ._core import Exercise, FunctionPart, rng_inputs
+from ._core import FunctionPart, rng_inputs
+from ._exercise import Exercise
 
 
 # ============================================================================ 3.1

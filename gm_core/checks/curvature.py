@@ -13,7 +13,8 @@ import numpy as np
 
 from ._answers import describe, fmt_value, is_starter, to_numbers
 from ._choice import ChoicePart
-from ._core import CustomPart, Exercise, outcome_error
+from ._core import CustomPart, outcome_error
+from ._exercise import Exercise
 from ._sandbox import Unattempted, Wrong
 
 __all__ = ["ex4_1", "ex4_2", "swimmer", "swimmer_4_1", "SQUARE_4_1", "GAITS_4_1"]

@@ -14,7 +14,8 @@ import numpy as np
 
 from ._answers import describe, fmt_value, is_starter, to_numbers
 from ._choice import ChoicePart
-from ._core import CustomPart, Exercise, outcome_error
+from ._core import CustomPart, outcome_error
+from ._exercise import Exercise
 from ._sandbox import Unattempted, Wrong
 
 __all__ = ["ex5_1", "swimmer_5_1", "DISTANCE_MIN", "ANGLE_MAX"]
@@ -139,5 +140,5 @@ ex5_1 = Exercise("5.1", "Design a four-link swimmer's gait", [
                   "c": "The standing wave uses the same joints.",
                   "d": "Drag is what the swimmer pushes against in both cases; what differs is the loop."},
         hints=["Draw both gaits in shape space: what does each trace?"],
-        solution_text="a.", wrong=["b", "c", "d"]),
+        solution_text="a."),
 ])

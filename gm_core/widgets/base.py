@@ -255,10 +255,37 @@ class Panel:
             self._widget = box
         return self._widget
 
-    def _ipython_display_(self) -> None:
-        from IPython.display import display
+    def alt_text(self) -> str:
+        """What the panel's picture shows (the alt text of its static rendering)."""
+        doc = (type(self).__doc__ or "").strip().splitlines()
+        what = self.title or (doc[0].rstrip(".") if doc else type(self).__name__)
+        labels = [t for ax in (self.fig.axes if self.fig is not None else [])
+                  for t in (ax.get_title(), ax.get_xlabel(), ax.get_ylabel()) if t]
+        # (a label laid out above its control keeps its text as the control's tooltip)
+        values = ", ".join(f"{getattr(c, 'description', '') or getattr(c, 'tooltip', '') or k} = {self._fmt(c.value)}"
+                           for k, c in self.controls.items())
+        out = f"Interactive figure: {what}."
+        if labels:
+            out += " Axes: " + "; ".join(dict.fromkeys(labels)) + "."
+        return out + (f" Shown at {values}." if values else "")
 
-        display(self.widget)
+    @staticmethod
+    def _fmt(v):
+        return f"{v:.3g}" if isinstance(v, float) else str(v)
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        """The live view (JupyterLab shows it) plus a PNG of the figure as it is now, with alt
+        text, which static pages (Jupyter Book, nbconvert) show in its place."""
+        bundle = dict(self.widget._repr_mimebundle_(include=include, exclude=exclude) or {})
+        if self.fig is None:
+            return bundle
+        import base64
+        import io
+
+        buf = io.BytesIO()
+        self.fig.savefig(buf, format="png", dpi="figure")
+        bundle["image/png"] = base64.b64encode(buf.getvalue()).decode("ascii")
+        return bundle, {"image/png": {"alt": self.alt_text()}}
 
 
 class ScenePanel(Panel):

@@ -421,3 +421,49 @@ def student_selfcheck_notebook() -> dict:
     return {"cells": cells, "metadata": {"kernelspec": {"display_name": "Python 3", "language": "python",
                                                         "name": "python3"}},
             "nbformat": 4, "nbformat_minor": 5}
+
+
+# -- the saved notebook, reopened without a kernel ----------------------------------------------
+
+_SAVE_AND_CLOSE_JS = r"""
+async (path) => {
+  const app = window.jupyterapp;
+  for (const w of [...app.shell.widgets('main')]) {
+    if (w.context && w.context.path === path) { await w.context.save(); w.dispose(); }
+  }
+  return true;
+}
+"""
+
+_REOPEN_WITHOUT_KERNEL_JS = r"""
+async (path) => {
+  const app = window.jupyterapp;
+  const w = await app.commands.execute('docmanager:open', {path, kernel: {name: null}});
+  await w.context.ready;
+  try { await w.sessionContext.ready; } catch (e) {}
+  if (w.sessionContext.session) await w.sessionContext.shutdown();
+  return w.id;
+}
+"""
+
+
+def replay_saved(nbp, timeout: float = 60.0) -> tuple[list[str], int]:
+    """Save the executed notebook, close it, shut its kernel down and open it again with no
+    kernel: every animation must still play (the player is plain HTML and JavaScript).
+    Returns (problems, number of animations found)."""
+    page = nbp.page
+    page.evaluate(_SAVE_AND_CLOSE_JS, nbp.relpath)
+    nbp.server.delete_sessions(nbp.relpath)
+    page.evaluate(_REOPEN_WITHOUT_KERNEL_JS, nbp.relpath)
+    deadline = time.monotonic() + timeout
+    while True:
+        st = nbp.read_status()
+        n = page.evaluate("(id) => document.getElementById(id) ? document.getElementById(id)"
+                          ".querySelectorAll('.gm-anim').length : 0", st.get("panelId")) if st.get("panelId") else 0
+        if n or time.monotonic() > deadline:
+            break
+        page.wait_for_timeout(200)
+    if not n:
+        return ["the saved notebook, reopened, shows no animation"], 0
+    problems, count = play_animations(nbp)
+    return [f"reopened without a kernel: {p}" for p in problems], count

@@ -83,7 +83,8 @@ def test_interactive_notebook_as_a_student_uses_it(notebook, lab, record_timing,
     * ▶ plays every animation (student.play_animations);
     * the first slider of every panel, dragged quickly, leaves the same picture as a slow drag to
       the same value, and the picture follows the slider (student.drag_check);
-    * no cell or widget error, no page error, no failed request and no request off the machine.
+    * no cell or widget error, no page error, no failed request and no request off the machine;
+    * saved, closed and reopened without a kernel, its animations still play (student.replay_saved).
     """
     relpath = notebook.relative_to(browserlab.ROOT).as_posix()
     problems, info = [], {}
@@ -111,6 +112,11 @@ def test_interactive_notebook_as_a_student_uses_it(notebook, lab, record_timing,
         nbp.timings.mark("drag", t0)
         problems += nbp.page_problems
         nbp.check_no_errors(page_problems=False)
+        if info["animations"]:  # saved, closed, reopened with no kernel: the animations still play
+            t0 = time.monotonic()
+            replay, _ = student.replay_saved(nbp)
+            problems += replay + [p for p in nbp.page_problems if p not in problems]
+            nbp.timings.mark("reopen", t0)
         if problems:
             info["screenshot"] = nbp.screenshot()
     record_timing(relpath, nbp.timings.phases)
