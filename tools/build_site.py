@@ -374,10 +374,11 @@ def write_book(src_dir, rels):
     book = [r for r in rels if r.startswith("book/")]
     ex = [r for r in rels if r.startswith("exercises/")]
     root = (book or ex)[0]
-    toc = ["format: jb-book", f"root: {root.removesuffix('.ipynb')}", "parts:"]
+    toc = ["format: jb-book", f"root: {root.removesuffix('.ipynb')}"]
     chapters = [r for r in book if r != root]
     for caption, items in (("Chapters", chapters), ("Exercises", [r for r in ex if r != root])):
         if items:
+            toc += ["parts:"] if "parts:" not in toc else []
             toc += [f"  - caption: {caption}", "    chapters:"]
             toc += [f"      - file: {r.removesuffix('.ipynb')}" for r in items]
     (src_dir / "_toc.yml").write_text("\n".join(toc) + "\n")
