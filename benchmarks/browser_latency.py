@@ -73,7 +73,11 @@ def measure(lab, relpath, moves=20, per_move_timeout=15.0):
         sel = nbp.find_panel(0)
         handle = nbp.page.locator(f"{sel} .widget-slider .noUi-handle").first
         label = nbp.page.locator(f"{sel} .widget-slider .widget-label").first
-        name = label.inner_text().strip() if label.count() else "?"
+        name = label.inner_text().strip() if label.count() else ""
+        above = nbp.page.locator(f"{sel} .gm-control-label").first   # a label laid out above its slider
+        if not name and above.count():
+            name = above.inner_text().strip()
+        name = name or "?"
         handle.scroll_into_view_if_needed()
         info = nbp.slider_value(sel, 0)
         lo, hi, v = info["min"], info["max"], info["value"]

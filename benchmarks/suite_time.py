@@ -11,6 +11,7 @@ and prints the table by test group from that record:
     .venv/bin/python benchmarks/suite_time.py               # make test, then the table
     .venv/bin/python benchmarks/suite_time.py --last        # the table of the latest run only
     .venv/bin/python benchmarks/suite_time.py --args "-m 'not browser'"   # PYTEST_ARGS
+    .venv/bin/python benchmarks/suite_time.py --direct   # pytest -n 2 without make (shared venv)
 
 "seconds" are summed over the workers (setup + call + teardown of every test in the group); with
 two workers the wall time is about half their sum when the groups balance. Figure checks run in
@@ -120,6 +121,9 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--last", action="store_true", help="print the table of the latest run, run nothing")
     ap.add_argument("--args", default="", help="PYTEST_ARGS for make test (e.g. \"-m 'not browser'\")")
+    ap.add_argument("--direct", action="store_true",
+                    help="run `python -m pytest -n 2` with this interpreter instead of `make setup` + `make test` "
+                         "(for a shared venv that make must not re-install)")
     ap.add_argument("--log", default=str(ROOT / "benchmarks" / "results" / "suite_time.log"),
                     help="where make's output goes (default benchmarks/results/, git-ignored)")
     args = ap.parse_args(argv)
@@ -132,16 +136,24 @@ def main(argv=None):
     Path(args.log).parent.mkdir(parents=True, exist_ok=True)
     env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
     with open(args.log, "w") as log:
-        subprocess.run(["make", "setup"], cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
+        if args.direct:
+            cmd = [sys.executable, "-m", "pytest", "-n", "2", *shlex.split(args.args)]
+        else:
+            subprocess.run(["make", "setup"], cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
+            cmd = ["make", "test"] + ([f"PYTEST_ARGS={args.args}"] if args.args else [])
         before = latest_run()
-        print("  running make test ...", file=sys.stderr, flush=True)
+        print(f"  running {shlex.join(cmd)} ...", file=sys.stderr, flush=True)
         t0, r0 = time.monotonic(), resource.getrusage(resource.RUSAGE_CHILDREN)
-        cmd = ["make", "test"] + ([f"PYTEST_ARGS={args.args}"] if args.args else [])
         p = subprocess.run(cmd, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
         wall, r1 = time.monotonic() - t0, resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu_all = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
-    run = latest_run()
-    if run is None or run == before:
+    # the run this command made: the fullest run folder begun after it started (other pytest runs
+    # in the same tree may have left smaller ones meanwhile)
+    begun = [r for r in RUNS.glob("run-*") if (r / "by-file.json").exists() and r != before
+             and r.stat().st_mtime >= time.time() - wall - 5]
+    run = max(begun, key=lambda r: sum(v["tests"] for v in json.loads((r / "by-file.json").read_text()).values()),
+              default=None)
+    if run is None:
         print(f"make test left no record in build/nbrun/ (exit code {p.returncode}); see {args.log}")
         return 1
     print(f"\n{table(run, wall, p.returncode, cpu_all)}\n\n(pytest output in {args.log}; command: {shlex.join(cmd)})")

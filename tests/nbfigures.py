@@ -7,7 +7,8 @@ figures are the same matplotlib figures, measured at their own size and dpi), wa
 cell that made it and in its final state, every frame of every animation shown through
 ``to_jshtml``. This is the one in-process notebook runner; under ``make test`` the figure standard
 reads the record of nbval's execution instead (tests/nbrun.py), and a call with an ``epilogue``
-is answered from that record when the same run already holds it (no second execution).
+is answered from that record when the same run holds it, or will within minutes because nbval is
+executing that notebook on another worker (no second execution).
 
 Used by tools/screenshots.py (``visit`` callback) and the browser tests' cell-by-cell reference.
 """
@@ -73,7 +74,7 @@ def run_notebook(path: Path, visit=None, root: Path = ROOT, epilogue: str | None
     if epilogue is not None and visit is None:
         import nbrun
 
-        record = nbrun.recorded(path, epilogue=epilogue)
+        record = nbrun.wait_for_record(path, epilogue=epilogue)
         if record is not None:   # this run's nbval execution already ran the same epilogue
             return NotebookFigures.from_record(record)
     plt.close("all")

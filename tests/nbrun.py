@@ -169,17 +169,15 @@ def modify_items(config, items):
     before = _previous_durations()
     first = list(groups)
 
-    known_nb = sorted(v for k, v in before.items() if k.startswith("nb:"))
-    typical_nb = known_nb[len(known_nb) // 2] if known_nb else 10.0
-
     def rank(g):
-        if g in before:
-            est = before[g]
-        elif g == "browser":
-            est = 1e6            # one long group: start it first
-        else:
-            est = typical_nb if g.startswith("nb:") else 1.0   # a notebook unknown so far
-        return (-est, first.index(g))
+        # the browser tests first (the longest group); then the notebooks in the order the browser
+        # tests visit them (so their cell-by-cell references are usually recorded in time, see
+        # wait_for_record); then everything else, longest first
+        if g == "browser":
+            return (0, 0.0, first.index(g))
+        if g.startswith("nb:"):
+            return (1, 0.0, first.index(g))
+        return (2, -before.get(g, 1.0), first.index(g))
 
     order = sorted(groups, key=rank)
     items[:] = [it for g in order for it in groups[g]]
@@ -327,6 +325,31 @@ def recorded(path, epilogue: str | None = None) -> dict | None:
     if epilogue is not None and (rec.get("epilogue") or {}).get("code") != epilogue:
         return None
     return rec
+
+
+def _started(rel: str) -> bool:
+    """Whether nbval's execution of ``rel`` has begun in this run (on any worker)."""
+    d = run_dir()
+    try:
+        lines = (d / "executions.jsonl").read_text(encoding="utf-8").splitlines()
+    except (OSError, TypeError):
+        return False
+    return any(json.loads(line).get("path") == rel and json.loads(line).get("host") == "kernel" for line in lines)
+
+
+def wait_for_record(path, epilogue: str | None = None, timeout: float = 240.0) -> dict | None:
+    """:func:`recorded`, waiting while nbval's execution of ``path`` is under way on another worker
+    (at most ``timeout`` s); None at once when it has not begun (the caller then executes it)."""
+    rel = rel_of(path)
+    d = run_dir()
+    deadline = time.monotonic() + timeout
+    while True:
+        rec = recorded(path, epilogue=epilogue)
+        if rec is not None:
+            return rec
+        if d is None or (d / f"{slug(rel)}.json").exists() or not _started(rel) or time.monotonic() > deadline:
+            return None   # finished without a usable record, not begun, or too long
+        time.sleep(0.5)
 
 
 def any_record(path) -> dict | None:

@@ -1,0 +1,46 @@
+"""The plumbing that shares nbval's one execution of each notebook (tests/nbrun.py): reading a
+record that another worker is still writing, and never waiting for one nobody is making."""
+import json
+import threading
+import time
+
+import nbrun
+
+
+def _record(rel, complete=True, epilogue=None):
+    return {"path": rel, "complete": complete, "epilogue": epilogue, "breaches": [], "errors": []}
+
+
+def test_a_notebook_nobody_executes_is_not_waited_for(tmp_path, monkeypatch):
+    monkeypatch.setenv(nbrun.ENV, str(tmp_path))
+    t = time.monotonic()
+    assert nbrun.wait_for_record(tmp_path / "never.ipynb", timeout=30) is None
+    assert time.monotonic() - t < 2
+
+
+def test_a_record_being_written_elsewhere_is_waited_for(tmp_path, monkeypatch):
+    monkeypatch.setenv(nbrun.ENV, str(tmp_path))
+    path = tmp_path / "nb.ipynb"
+    rel = nbrun.rel_of(path)
+    (tmp_path / "executions.jsonl").write_text(json.dumps({"path": rel, "host": "kernel"}) + "\n")
+
+    def finish_later():
+        time.sleep(1.0)
+        (tmp_path / f"{nbrun.slug(rel)}.json").write_text(json.dumps(_record(rel, epilogue={"code": "E"})))
+
+    threading.Thread(target=finish_later).start()
+    rec = nbrun.wait_for_record(path, epilogue="E", timeout=30)
+    assert rec is not None and rec["complete"] and rec["epilogue"]["code"] == "E"
+    # finished, but with another epilogue or incomplete: no waiting, no record
+    assert nbrun.wait_for_record(path, epilogue="other", timeout=30) is None
+    (tmp_path / f"{nbrun.slug(rel)}.json").write_text(json.dumps(_record(rel, complete=False)))
+    assert nbrun.wait_for_record(path, timeout=30) is None
+
+
+def test_waiting_is_bounded(tmp_path, monkeypatch):
+    monkeypatch.setenv(nbrun.ENV, str(tmp_path))
+    path = tmp_path / "slow.ipynb"
+    (tmp_path / "executions.jsonl").write_text(json.dumps({"path": nbrun.rel_of(path), "host": "kernel"}) + "\n")
+    t = time.monotonic()
+    assert nbrun.wait_for_record(path, timeout=1.0) is None
+    assert 0.9 < time.monotonic() - t < 5
