@@ -38,8 +38,9 @@ import json
 import os
 import shutil
 import sys
-import tempfile
 from pathlib import Path
+
+from gm_core._files import atomic_write
 
 ROOT = Path(__file__).resolve().parent.parent
 MANIFEST = ".course-manifest.json"
@@ -59,17 +60,7 @@ def _digest(path: Path) -> str:
 
 def _atomic_write(path: Path, data: bytes):
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
+    atomic_write(path, data)
 
 
 def _lock(path: Path, timeout: float = 15.0):

@@ -31,9 +31,10 @@ import json
 import math
 import os
 import re
-import tempfile
 import time
 from pathlib import Path
+
+from .._files import atomic_write
 
 PASSED, FAILED, UNATTEMPTED, IN_PROGRESS = "passed", "failed", "unattempted", "in progress"
 STATES = (PASSED, IN_PROGRESS, FAILED, UNATTEMPTED)
@@ -92,22 +93,8 @@ def _read_json(path, default):
 
 
 def write_json_atomic(path, data):
-    """Write JSON to ``path``: a temporary file in the same folder, flushed to disk, then renamed."""
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            json.dump(data, f, indent=1, sort_keys=True)
-            f.write("\n")
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
+    """Write JSON to ``path`` atomically (gm_core._files.atomic_write)."""
+    atomic_write(path, json.dumps(data, indent=1, sort_keys=True) + "\n")
 
 
 def _tell(key, text):

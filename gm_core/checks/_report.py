@@ -9,9 +9,9 @@ from __future__ import annotations
 import csv
 import io
 import json
-import os
-import tempfile
 from pathlib import Path
+
+from .._files import atomic_write
 
 VISIBILITIES = ("visible", "hidden", "after_due_date", "after_published")
 FIELDS = ["notebook", "exercise", "part", "status", "score", "max_score", "message"]
@@ -21,22 +21,6 @@ def check_visibility(v, what="visibility"):
     if v not in VISIBILITIES:
         raise ValueError(f"{what} must be one of {', '.join(VISIBILITIES)}; got {v!r}")
     return v
-
-
-def _atomic_write(path: Path, text: str):
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
 
 
 def results(rows, *, message="", elapsed=0.0, visibility="visible", max_score=None):
@@ -69,6 +53,6 @@ def write(rows, out_dir, **kw):
     w = csv.DictWriter(buf, fieldnames=FIELDS, extrasaction="ignore")
     w.writeheader()
     w.writerows(rows)
-    _atomic_write(out_dir / "grades.csv", buf.getvalue())
-    _atomic_write(out_dir / "results.json", json.dumps(res, indent=1) + "\n")
+    atomic_write(out_dir / "grades.csv", buf.getvalue())
+    atomic_write(out_dir / "results.json", json.dumps(res, indent=1) + "\n")
     return res
