@@ -429,3 +429,23 @@ def test_hiding_outside_tmp_and_around_the_course(tmp_path):
     args = _hide_args([ROOT, ROOT / "solutions" / "ex1_1.ipynb"])
     mounts = [args[i + 1] for i, a in enumerate(args) if a == "--tmpfs"]
     assert mounts == [str(ROOT / "solutions")]                  # never the course's own folder
+
+
+def test_a_course_cloned_under_tmp_stays_visible_and_its_notebooks_hidden(monkeypatch, tmp_path):
+    """The sandbox's empty /tmp must not hide a course (or venv) that lives under /tmp, as a CI
+    clone may; what is hidden inside it stays hidden."""
+    from gm_core.checks import _isolate
+    course = (tmp_path / "course").resolve()
+    (course / "solutions").mkdir(parents=True)
+    (course / "solutions" / "ex1_1.ipynb").write_text("secret")
+    (course / "gm_core").mkdir()
+    monkeypatch.setattr(_isolate, "PKG_PARENT", course)
+    keep = _isolate._keep_args()
+    assert str(course) in keep
+    hide = _isolate._hide_args([course / "solutions" / "ex1_1.ipynb"])
+    assert hide == ["--ro-bind", "/dev/null", str(course / "solutions" / "ex1_1.ipynb")]
+    res = subprocess.run(["bwrap", "--ro-bind", "/", "/", "--dev", "/dev", "--proc", "/proc", "--tmpfs", "/tmp",
+                          *keep, *hide, "--unshare-all", "--cap-drop", "ALL", "sh", "-c",
+                          f"ls {course}; cat {course}/solutions/ex1_1.ipynb"], capture_output=True, text=True)
+    assert "gm_core" in res.stdout and "solutions" in res.stdout
+    assert "secret" not in res.stdout

@@ -162,16 +162,46 @@ class _Cgroups:
 
 
 # ------------------------------------------------------------------------------ one run
+_TMP = Path("/tmp")
+
+
+def _kept():
+    """What the kernel must see: the course's code and the Python it runs on."""
+    return [PKG_PARENT, Path(sys.prefix).resolve(), Path(sys.base_prefix).resolve(),
+            Path(sys.executable).resolve().parent]
+
+
+def _within(p, roots):
+    return any(r == p or r in p.parents for r in roots)
+
+
+def _keep_args():
+    """bwrap arguments that bring back, read-only, the kept folders lying under ``/tmp``.
+
+    The sandbox mounts an empty ``/tmp`` of its own; a course or venv cloned under ``/tmp`` (as a
+    CI job or an instructor's scratch checkout may be) would vanish with it. These binds follow that
+    mount and come before the hiding mounts, so what is hidden inside them stays hidden.
+    """
+    under = sorted({k for k in _kept() if _TMP in k.parents})
+    top = [k for k in under if not any(o in k.parents for o in under)]
+    return [a for k in top for a in ("--ro-bind", str(k), str(k))]
+
+
 def _hide_args(hide):
     """bwrap arguments hiding folders (tmpfs) or files (/dev/null) the sandbox must not see."""
-    keep = [PKG_PARENT, Path(sys.prefix).resolve(), Path(sys.base_prefix).resolve(),
-            Path(sys.executable).resolve().parent]
+    keep = _kept()
+    # under /tmp only what _keep_args brings back is visible; the rest the empty /tmp hides already
+    visible = [k for k in keep if _TMP in k.parents]
+
+    def hidden_anyway(p):
+        return (p == _TMP or _TMP in p.parents) and not _within(p, visible)
+
     dirs, files = set(), set()
     for p in hide:
         p = Path(p).resolve()
         if p.is_file():
             d = p.parent
-            if any(k == d or d in k.parents for k in keep):
+            if _within(d, keep):
                 files.add(p)
             else:
                 dirs.add(d)
@@ -181,14 +211,13 @@ def _hide_args(hide):
                 files |= {q for q in p.glob("*.csv")}
             else:
                 dirs.add(p)
-    tmp = Path("/tmp")
-    dirs = sorted(d for d in dirs if d != Path("/") and tmp not in d.parents and d != tmp)
+    dirs = sorted(d for d in dirs if d != Path("/") and not hidden_anyway(d))
     top = [d for d in dirs if not any(o in d.parents for o in dirs)]
     args = []
     for d in top:
         args += ["--tmpfs", str(d)]
     for f in sorted(files):
-        if not any(d in f.parents for d in top) and tmp not in f.parents:
+        if not any(d in f.parents for d in top) and not hidden_anyway(f):
             args += ["--ro-bind", "/dev/null", str(f)]
     return args
 
@@ -234,7 +263,7 @@ def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=
     if sandbox:
         cmd = ["bwrap", "--ro-bind", "/", "/", "--dev", "/dev", "--proc", "/proc",
                "--size", str(limits.tmp_mb << 20), "--perms", "1777", "--tmpfs", "/tmp",
-               *_hide_args([*hide, private]),
+               *_keep_args(), *_hide_args([*hide, private]),
                "--ro-bind", str(inbox), "/tmp/.gm-in",
                "--unshare-all", "--die-with-parent", "--new-session", "--cap-drop", "ALL",
                "--chdir", "/tmp", "--", *cmd]
