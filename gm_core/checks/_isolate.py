@@ -201,7 +201,7 @@ def _hide_args(hide):
         p = Path(p).resolve()
         if p.is_file():
             d = p.parent
-            if _within(d, keep):
+            if any(k == d or d in k.parents for k in keep):
                 files.add(p)
             else:
                 dirs.add(d)
