@@ -138,7 +138,7 @@ def play_animations(nbp, wait_ms: int = 900) -> tuple[list[str], int]:
         before_frame, before_px = img.get_attribute("data-frame"), img.screenshot()
         root.locator("button.gm-anim-play").click()
         # the picture on screen must change: poll (a busy page may show the next frame late)
-        deadline = time.monotonic() + max(wait_ms / 1000, 5.0)
+        deadline = time.monotonic() + max(wait_ms / 1000, 10.0)
         while True:
             page.wait_for_timeout(wait_ms // 3)
             after_frame, after_px = img.get_attribute("data-frame"), img.screenshot()
@@ -248,7 +248,7 @@ def _drag(page, x0, y, x1, steps, pause_ms):
     page.mouse.up()
 
 
-def _settle(nbp, keys, still: float = 0.8, timeout: float = 30.0):
+def _settle(nbp, keys, still: float = 1.5, timeout: float = 30.0):
     """Wait until every listed canvas has been unchanged for ``still`` s and the kernel is idle
     (``still`` is longer than the panels' key-frame delay)."""
     page = nbp.page
