@@ -235,3 +235,20 @@ def test_student_function_that_edits_its_input_cannot_corrupt_the_checker():
     first = [a[0].copy() for a in checks.ex1_4.a.inputs()][:3]
     checks.ex1_4.a.check(vandal, quiet=True)
     assert all(np.array_equal(x, a[0]) for x, a in zip(first, checks.ex1_4.a.inputs()))
+
+
+def test_one_sandbox_for_many_answers_falls_back_to_one_each_after_a_hang():
+    """tests/checkbatch.py (used above): an answer that hangs is stopped at its own time limit, and
+    it and every later answer get a sandbox each, so their verdicts are check()'s."""
+    import time
+
+    def hangs(*args):
+        while True:
+            time.sleep(0.01)
+
+    p = part("1.2", "a")
+    answers = [lambda *a: "text", hangs, raises]
+    batch = check_each(p, answers, time_limit=0.5)
+    single = [p.check(a, quiet=True, time_limit=0.5) for a in answers]
+    assert [(v.status, v.message) for v in batch] == [(v.status, v.message) for v in single]
+    assert batch[1].status == FAILED and "second" in batch[1].message, batch[1].message
