@@ -79,7 +79,7 @@ def test_swept_panels_come_from_the_site_config(site):
     config = site_sweeps.load()
     assert "TangentSpacePanel" in config
     sweeps = re.findall(r'<div class="gm-sweep" data-label="([^"]*)"', text)
-    assert len(sweeps) == sum(text.count(f"{name}()</span>") for name in config) == 1, sweeps
+    assert len(sweeps) == sum(text.count(f'>{name}</span><span class="p">()') for name in config) == 1, sweeps
     assert "where along the curve s" in sweeps[0]
     player = text[text.index('class="gm-sweep"'):]
     first = int(re.search(r"first = (\d+);", player).group(1))
