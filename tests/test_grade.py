@@ -12,6 +12,7 @@ Further runs (no kernels, or one) cover assignments, leftovers, bad files, empty
 refusal to run without a sandbox. Six kernel runs in all."""
 import csv
 import hashlib
+import inspect
 import json
 import os
 import site
@@ -347,6 +348,75 @@ def test_probe_inputs_are_salted_and_skip_only_where_sympy_allows():
     finally:
         _grading.set_probe_salt(None)
     assert [np.asarray(a[0]).tolist() for a in part.inputs()] == [np.asarray(a[0]).tolist() for a in plain]
+
+
+class Replay:
+    """A reference function that records its outputs, then plays them back in call order: the
+    'answer' of a student who hard-codes what the checker's calls returned last time."""
+
+    def __init__(self, f):
+        self.f, self.tape, self.replay, self.i = f, [], False, 0
+        self.__signature__ = inspect.signature(f)     # called the way the reference is
+
+    def __deepcopy__(self, memo):     # the in-process probes copy the answer: keep one tape
+        return self
+
+    def __call__(self, *args):
+        if not self.replay:
+            self.tape.append(self.f(*args))
+            return self.tape[-1]
+        self.i += 1
+        return self.tape[(self.i - 1) % len(self.tape)]
+
+
+def _replaying(ref):
+    if isinstance(ref, dict):
+        return {k: Replay(v) for k, v in ref.items()}
+    if isinstance(ref, tuple):
+        return tuple(Replay(v) for v in ref)
+    return Replay(ref)
+
+
+@pytest.mark.parametrize("part_id", ["1.2a", "1.4d", "2.1a", "4.2a", "5.1a"])
+def test_last_runs_probe_outputs_hard_coded_fail_a_new_run(part_id, clean, monkeypatch):
+    """Every part whose answer is called on inputs gets fresh inputs each graded run: the outputs
+    of the last run, played back, pass that run's inputs but not the next run's. (1.3c's and
+    4.1b's answers are values, called on nothing: there is no input to choose.)"""
+    monkeypatch.setenv("GM_CHECKS_NO_FORK", "1")          # the tape must stay in this process
+    ex_id, name = part_id[:3], part_id[3:]
+    part = REGISTRY[ex_id].parts[name]
+    answer = _replaying(part.reference)
+    tapes = list(answer.values()) if isinstance(answer, dict) else list(answer) \
+        if isinstance(answer, tuple) else [answer]
+    try:
+        _grading.set_probe_salt(1111)
+        assert part.check(answer, quiet=True).passed              # recorded on last run's inputs
+        for t in tapes:
+            t.replay = True
+        assert part.check(answer, quiet=True).passed              # the tape fools a fixed input
+        for t in tapes:
+            t.i = 0
+        _grading.set_probe_salt(2222)
+        v = part.check(answer, quiet=True)
+        assert not v.passed, (part_id, v.message)                 # ... but not this run's
+        assert part.check(part.reference, quiet=True).passed      # the honest answer still passes
+    finally:
+        _grading.set_probe_salt(None)
+    plain = [str(p) for p in part.probes()]
+    assert len(plain) == len(part.probes())
+
+
+def test_unsimplified_products_are_evaluated_at_a_salted_point(clean):
+    import sympy as sp
+    x, t = sp.symbols("x theta", real=True)
+    left = sp.Matrix([[sp.cos(t), -sp.sin(t), 0], [sp.sin(t), sp.cos(t), 0], [0, 0, 1]])
+    right_unsimplified = (left.T * left).applyfunc(lambda e: sp.expand(e))
+    v = REGISTRY["1.3"].parts["c"].check((x / x, 1, right_unsimplified, sp.eye(3)), quiet=True)
+    if right_unsimplified.free_symbols:
+        assert not v.passed and "only the simplification is missing" in v.message, v.message
+    v = REGISTRY["1.3"].parts["c"].check((1, 1, left * left, sp.eye(3)), quiet=True)
+    assert not v.passed and "is not the identity" in v.message, v.message
+    assert REGISTRY["1.3"].parts["c"].check((1, 1, sp.eye(3), sp.eye(3)), quiet=True).passed
 
 
 def test_strict_returns_none_on_success_and_raises_on_failure(clean):

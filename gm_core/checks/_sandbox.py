@@ -18,9 +18,10 @@ group, the keeper reaps them, and the check returns at once (it does not wait fo
 that still holds the result pipe). A worker can kill its keeper and call ``setsid`` (out of the
 keeper's tree, group and session); while a check runs the checking process is a subreaper as
 well, so such an orphan becomes its child, and it is ended and reaped there with its own tree
-(:class:`._proctree.Adoption`). No cgroup is needed (a student's laptop has none to give). The worker runs with a memory limit (``MEMORY_LIMIT_MB`` more
-address space than the kernel uses; ``GM_CHECKS_MEMORY_MB`` sets it, 0 turns it off) so a runaway
-allocation is a ``MemoryError``, not a frozen computer.
+(:class:`._proctree.Adoption`). No cgroup is needed (a student's laptop has none to give).
+The worker runs with a memory limit (``MEMORY_LIMIT_MB`` more address space than the kernel uses;
+``GM_CHECKS_MEMORY_MB`` sets it, 0 turns it off) so a runaway allocation is a ``MemoryError``,
+not a frozen computer.
 
 What stopped a call is said plainly: the time limit (``"timeout"``), Ctrl-C / SIGINT
 (``KeyboardInterrupt``), an alarm (``AlarmSignal``: ``signal.alarm`` or a timer in the student's
