@@ -1,7 +1,7 @@
 """A gait answer as plain data, for the gait exercises (4.2 and 5.1): one probe, one judge helper.
 
-The probe samples the student's gait (a Gait, a callable t -> r(t), or an array of shapes (K, J))
-at ``N_SAMPLES + 1`` equal time steps over one period -- what the judge measures -- and then at
+The probe samples the student's gait (a Gait, a callable t -> r(t), or an array of shapes (K, J);
+:func:`._answers.sample_gait`) at ``N_SAMPLES + 1`` equal time steps over one period -- what the judge measures -- and then at
 ``N_EXTRA`` further times inside the period. Those further times are drawn from the probe salt
 (:func:`._core.probe_rng`): fixed in the student's kernel, chosen afresh by the grader for every
 graded run. The judge asks each of them to lie on the loop between its two neighbouring samples,
@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._answers import describe, fmt_value, is_starter, to_numbers
+from ._answers import describe, fmt_value, sample_gait
 from ._core import probe_rng
-from ._sandbox import Unattempted, Wrong
+from ._sandbox import Wrong
 
 N_SAMPLES = 256
 N_EXTRA = 16
@@ -27,29 +27,7 @@ def extra_fractions() -> np.ndarray:
 
 def sample(answer, joints: int, example: str) -> np.ndarray:
     """Student side: the gait at the N_SAMPLES + 1 grid times, then at the N_EXTRA further times."""
-    from ..gaits import Gait, as_gait
-
-    if is_starter(answer):
-        raise Unattempted()
-    if isinstance(answer, (str, bytes, bool, np.bool_, dict)) or np.isscalar(answer) or not (
-            isinstance(answer, (Gait, list, tuple, np.ndarray)) or callable(answer)):
-        raise Wrong(f"your answer is {describe(answer)}; hand in a Gait (e.g. {example}), a "
-                    f"callable t -> r(t) of period 1 or an array of shapes (K, {joints}).")
-    if not callable(answer):
-        pts = to_numbers(answer, "your array of shapes")
-        if pts.ndim == 2 and pts.shape[0] == joints and pts.shape[1] > joints:
-            raise Wrong(f"your array has shape {pts.shape}: one row per shape, (K, {joints}), was "
-                        "expected (transpose it).")
-        if pts.ndim != 2 or pts.shape[0] < 3 or (joints == 2 and pts.shape[1] != 2):
-            raise Wrong(f"your array has shape {pts.shape}; an array of K >= 3 shapes, (K, {joints}), "
-                        "was expected.")
-        if not np.all(np.isfinite(pts)):
-            raise Wrong("your array of shapes contains NaN or infinite entries.")
-        answer = pts
-    gait = as_gait(answer)  # a callable of one time at a time works too (Gait handles it)
-    period = float(gait.period)
-    t = np.concatenate([np.linspace(0.0, period, N_SAMPLES + 1), period * extra_fractions()])
-    return to_numbers(gait(t), "the shapes your gait returned")
+    return sample_gait(answer, joints, example, N_SAMPLES, extra_fractions())
 
 
 def grid(r, joints: int, about: str = "") -> np.ndarray:
