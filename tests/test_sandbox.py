@@ -165,6 +165,29 @@ def test_a_student_process_that_kills_its_parent_leaves_nothing_behind(tmp_path,
     assert gone(tmp_path) == []
 
 
+def test_the_late_reaper_never_takes_a_process_the_notebook_starts_after_the_check():
+    """The check's process adopts orphans of the probe tree while the check runs; a process the
+    notebook starts once the check has returned (its next cell's subprocess) is not one of them,
+    however late the background reaper runs."""
+    from gm_core.checks._proctree import Adoption
+    adoption = Adoption().start()
+    pid = adoption.fork()
+    if pid == 0:  # pragma: no cover - a keeper with nothing to do
+        os._exit(0)
+    os.waitpid(pid, 0)
+    adoption.keeper_reaped()
+    adoption.close_window()                    # the check is over
+    time.sleep(0.05)
+    later = subprocess.Popen(["sleep", "30"])
+    try:
+        adoption.end_strays()                  # what the reaper thread does, late
+        assert later.poll() is None, "the notebook's own process was killed"
+    finally:
+        adoption.release()
+        later.kill()
+        later.wait()
+
+
 def test_the_stop_button_interrupts_the_check_and_ends_the_student_processes(tmp_path):
     """Jupyter's Stop button sends SIGINT to the kernel: the check stops at once with the usual
     KeyboardInterrupt, and the student's processes end with it."""

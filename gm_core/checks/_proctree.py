@@ -52,12 +52,23 @@ def _start_time(pid):
         return None
 
 
+def _ticks_now():
+    """Now, in the clock of /proc/<pid>/stat's start times (clock ticks since boot)."""
+    try:
+        with open("/proc/uptime", encoding="ascii") as f:
+            return int(float(f.read().split()[0]) * os.sysconf("SC_CLK_TCK"))
+    except (OSError, ValueError, IndexError):
+        return None
+
+
 class Adoption:
     """While a check runs, the checking process is a child subreaper too (Linux), so that an
     orphan of the probe tree -- its keeper killed -- becomes *our* child and cannot get away.
 
     ``start()`` before forking the keeper (it records the children there are), ``fork()`` to
-    fork it (registered, so no other check takes it for a stray), ``end_strays()`` kills every child born since then that is not the keeper, with all
+    fork it (registered, so no other check takes it for a stray), ``close_window()`` when the
+    check is over (a child born later is the notebook's own, however late the reaper runs),
+    ``end_strays()`` kills every child born since then that is not the keeper, with all
     below it, and reaps it; ``release()`` turns the subreaper off again once no check needs it.
     Counted, so that checks in several threads share it; a process that was a subreaper already
     (a course tool, the grader's runner) stays one."""
@@ -69,6 +80,11 @@ class Adoption:
 
     def __init__(self):
         self.before, self.keeper, self.since, self.active = set(), None, None, False
+        self.until = None
+
+    def close_window(self):
+        """The check is over: a child born from now on is the notebook's own, never a stray."""
+        self.until = _ticks_now()
 
     def start(self):
         cls = type(self)
@@ -109,7 +125,8 @@ class Adoption:
                 if p in type(self)._keepers or p in self.before:
                     continue
                 born = _start_time(p)
-                if born is not None and born >= self.since:
+                if born is not None and born >= self.since and (
+                        self.until is None or born <= self.until):
                     out.append(p)
         return out
 
@@ -303,6 +320,7 @@ def kill_tree(keeper, wait=False, adoption=None):
     if _killed_early(keeper) and os.path.isdir("/proc"):
         _kill_session(keeper)
     if adoption is not None:
+        adoption.close_window()
         adoption.end_strays()
     if not _freeze_and_kill(keeper):
         try:

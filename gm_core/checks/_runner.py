@@ -216,10 +216,11 @@ def run(config):
     reader = threading.Thread(target=_forward, args=(rfd, out, state), daemon=True)
     reader.start()
     setup = nbformat.v4.new_code_cell(
-        "import gm_core.checks._grading as __gm_grading\n"
+        "import gm_core.checks._grading as __gm_grading, gm_core.checks._sandbox as __gm_sandbox\n"
         f"__gm_grading.open_channel({wfd}, {config['nonce']!r}, {config['salt']!r}, "
         f"{config['time_limit']!r})\n"
-        "del __gm_grading")
+        f"__gm_sandbox.set_time_limit({config['time_limit']!r})\n"
+        "del __gm_grading, __gm_sandbox")
     nb.cells.insert(0, setup)
     client = _client_class()(nb, timeout=None, kernel_name="python3", allow_errors=True,
                              startup_timeout=120, resources={"metadata": {"path": work}})
