@@ -249,6 +249,19 @@ class LinkChain(LocomotionSystem):
         r, batch, Q, J = self._kinematics_T(r)
         return J.transpose(3, 2, 0, 1).reshape(batch + (self.n_links, 3, 3 + self.n_shape))
 
+    def _middle_chain(self):
+        """This chain seen from its middle link (or joint), cached."""
+        if self.frame == "middle":
+            return self
+        if self._middle is None:
+            self._middle = self.with_frame("middle")
+        return self._middle
+
+    def middle_link_jacobians(self, r):
+        """(J_1, ..., J_N), each (..., 3, 3 + n): the link Jacobians from (xi_middle, r_dot), with the
+        middle link (or joint) as body frame whatever this chain's frame; (2.57)-(2.59) for N = 3."""
+        return tuple(np.moveaxis(self._middle_chain().link_jacobians(r), -3, 0))
+
     def _weighted(self, J, rows, batch):
         """``sum_i (J_i^T M_i J_i)[:rows]`` (batch + (rows, 3 + n)) for the diagonal link matrices M_i,
         from the batch-last J (3, 3 + n, N, M): one contraction over the links and the rows of J."""
@@ -276,9 +289,7 @@ class LinkChain(LocomotionSystem):
         if self.frame == "middle":
             return super().constraint_curvature(r)
         r = self._shape(r)
-        if self._middle is None:
-            self._middle = self.with_frame("middle")
-        F = self._middle.constraint_curvature(r)
+        F = self._middle_chain().constraint_curvature(r)
         a, batch = _flat(r)
         P, B = _chain_poses_T(a, self._L)
         pose = lambda frame: np.stack(self._frame_pose(P, B, a, frame)[0][:3], -1).reshape(batch + (3,))  # noqa: E731
