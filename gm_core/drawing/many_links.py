@@ -24,7 +24,7 @@ from .connection import ROW_LABELS, ConnectionFieldArtist, style_shape_axes
 from .curvature import CurvatureMapArtist
 from .motion import SystemArtist, style_world_axes
 from .primitives import TrailArtist, animate
-from .toolkit import PALETTE, Scene, new_figure, readout
+from .toolkit import PALETTE, Scene, new_figure, readout, title
 
 __all__ = ["ChainSliceScene", "WaveGaitScene", "animate_chain_gait", "links_comparison_figure", "continuum_figure",
            "design_chain", "PHYSICS_LABELS"]
@@ -72,7 +72,7 @@ class ChainSliceScene(Scene):
     FIGSIZE = (9.0, 3.3)
     NCOLS = 3
 
-    def __init__(self, total_length=3.0, taper=0.0, limits=((-2.0, 2.0), (-2.0, 2.0)), n_map=41, **options):
+    def __init__(self, total_length=3.0, taper=0.0, limits=((-2.0, 2.0), (-2.0, 2.0)), n_map=25, **options):
         self.total_length, self.taper, self.limits, self.n_map = total_length, taper, limits, n_map
         super().__init__(**options)
 
@@ -91,7 +91,7 @@ class ChainSliceScene(Scene):
     def decorate(self):
         ax0, ax1, ax2 = self.axes
         style_world_axes(ax0, 0.62 * self.total_length)
-        ax0.set_title("the chain: slice joints bent (dots)", fontsize=9)
+        title(ax0, "the chain: slice joints bent (dots)")
 
     def create(self):
         self._build(4, "low_re", 1, 2)
@@ -103,6 +103,7 @@ class ChainSliceScene(Scene):
         self.field = ConnectionFieldArtist(ax1, self.slice, 0, color="0.3")
         self.map = CurvatureMapArtist(ax2, self.slice, 0, limits=self.limits, n=self.n_map)
         self.text = readout(ax0, 0.02, 0.02)
+        self.titles = (title(ax1), title(ax2))      # PathText: cheap to redraw when the row changes
         self._key = None
 
     def set(self, links=4, physics="low_re", row=2, axis1=1, axis2=2):
@@ -122,8 +123,8 @@ class ChainSliceScene(Scene):
                 ax.set_ylabel(names[1].replace("alpha", "α"), fontsize=9, labelpad=0)
         self.field.set(self.slice, row)
         self.map.set(self.slice, row)
-        self.axes[1].set_title(f"−A, row {ROW_LABELS[row]}, on the slice", fontsize=9)
-        self.axes[2].set_title(f"curvature D(−A), row {ROW_LABELS[row]}", fontsize=9)
+        self.titles[0].set_text(f"−A, row {ROW_LABELS[row]}, on the slice")
+        self.titles[1].set_text(f"curvature D(−A), row {ROW_LABELS[row]}")
         self.text.set_text(f"{_chain_axes_title(self.system)}; slice (α{self.pair[0] + 1}, α{self.pair[1] + 1})")
         self.row = row
 
