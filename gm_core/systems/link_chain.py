@@ -112,8 +112,10 @@ class LinkChain(LocomotionSystem):
         self.shape_limits = ((-np.pi, np.pi),) * self.n_shape
         self.may_be_singular, self.singular_description = False, "never singular"
         if self.frame == "minimum perturbation":
-            from .minimum_perturbation import MinimumPerturbationFrame
+            from .minimum_perturbation import MAX_DIMENSION, MinimumPerturbationFrame, too_many_dimensions
 
+            if self.n_shape > MAX_DIMENSION:
+                raise ValueError(too_many_dimensions("frame='minimum perturbation'", self.name, self.n_shape))
             self._mp = MinimumPerturbationFrame.fit(self.with_frame(base), bounds, nodes)
             self.shape_limits = self._mp.bounds
             self.may_be_singular = True
