@@ -12,11 +12,11 @@ import functools
 
 import numpy as np
 
-from ._answers import describe, fmt_value, is_starter, to_numbers
+from ._answers import describe, fmt_value, sample_gait
 from ._choice import ChoicePart
 from ._core import CustomPart, outcome_error
 from ._exercise import Exercise
-from ._sandbox import Unattempted, Wrong
+from ._sandbox import Wrong
 
 __all__ = ["ex5_1", "swimmer_5_1", "DISTANCE_MIN", "ANGLE_MAX"]
 
@@ -36,27 +36,7 @@ def swimmer_5_1():
 
 def _sample_gait(answer):
     """Student side of 5.1(a): the gait at _N_SAMPLES + 1 equal time steps over one period."""
-    from ..gaits import Gait, as_gait
-
-    if is_starter(answer):
-        raise Unattempted()
-    if isinstance(answer, (str, bytes, bool, np.bool_, dict)) or np.isscalar(answer) or not (
-            isinstance(answer, (Gait, list, tuple, np.ndarray)) or callable(answer)):
-        raise Wrong(f"your answer is {describe(answer)}; hand in a Gait (e.g. travelling_wave(3, ...)), a "
-                    "callable t -> r(t) of period 1 or an array of shapes (K, 3).")
-    if not callable(answer):
-        pts = to_numbers(answer, "your array of shapes")
-        if pts.ndim == 2 and pts.shape[0] == _JOINTS and pts.shape[1] > _JOINTS:
-            raise Wrong(f"your array has shape {pts.shape}: one row per shape, (K, 3), was expected "
-                        "(transpose it).")
-        if pts.ndim != 2 or pts.shape[0] < 3:
-            raise Wrong(f"your array has shape {pts.shape}; an array of K >= 3 shapes, (K, 3), was expected.")
-        if not np.all(np.isfinite(pts)):
-            raise Wrong("your array of shapes contains NaN or infinite entries.")
-        answer = pts
-    gait = as_gait(answer)  # a callable of one time at a time works too (Gait handles it)
-    t = np.linspace(0.0, float(gait.period), _N_SAMPLES + 1)
-    return to_numbers(gait(t), "the shapes your gait returned")
+    return sample_gait(answer, _JOINTS, "travelling_wave(3, ...)", _N_SAMPLES)
 
 
 def _judge_51a(outcomes):
