@@ -124,7 +124,7 @@ def test_one_centre_of_mass_frame_across_the_course():
     five = LinkChain((1.0, 0.8, 1.2, 0.9, 1.1), "floating", masses=(1, 2, 3, 2, 1), frame="com")
     r5 = _shapes(4, (5,))
     np.testing.assert_allclose(np.einsum("i,...ij->...j", five.link_weights(), five.link_poses(r5)), 0.0, atol=1e-13)
-    assert "centre of mass, middle-link axes" in FloatingSnake().body_frames(minimum_perturbation=False)
+    assert "centre of mass (middle-link axes)" in FloatingSnake().body_frames(minimum_perturbation=False)
 
 
 # ------------------------------------------------------------------ kinematics for N = 4, 5, 6

@@ -8,7 +8,7 @@ from .three_link import three_lengths
 __all__ = ["FloatingSnake"]
 
 #: The body frames of section 3.4.3 a floating snake is built in, and the names ``body_frames`` gives them.
-FRAME_NAMES = {"com middle": "centre of mass, middle-link axes", "middle": "middle link",
+FRAME_NAMES = {"com middle": "centre of mass (middle-link axes)", "middle": "middle link",
                "com": "centre of mass", "minimum perturbation": "minimum perturbation"}
 
 
