@@ -231,8 +231,10 @@ def test_gait_panel_families_for_every_system(gait_panel, family):
 
 def test_gait_panel_floating_snake_body_frame_choice():
     p = GaitPanel(system=FloatingSnake())
-    assert set(p.controls["frame"].options) == {"centre of mass", "middle link"}
-    p.set(family="ellipse", amplitude=1.0, center1=0.6, center2=0.4, aspect=0.5, angle=0.3, frame="centre of mass")
+    # the two frames of section 3.4.3: "centre of mass" alone means the mean orientation everywhere
+    assert set(p.controls["frame"].options) == {"centre of mass (middle-link axes)", "middle link"}
+    p.set(family="ellipse", amplitude=1.0, center1=0.6, center2=0.4, aspect=0.5, angle=0.3,
+          frame="centre of mass (middle-link axes)")
     g_com = p.net.copy()
     # the centre-of-mass frame: the translation rows of A vanish, so the fields show no arrows there
     assert np.allclose(np.ma.filled(p.fields[0].U, 0.0), 0.0)
