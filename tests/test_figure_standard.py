@@ -84,8 +84,34 @@ def test_checker_sees_multiline_and_math_texts():
     fig, ax = _good()
     ax.set_title("torus $\\mathbb{T}^2$\n(both pairs of edges glued)", fontsize=6)
     msgs = figstd.check_figure(fig)
-    # one message, for the whole two-line title (matplotlib hands the renderer no artist for it)
-    assert [m for m in msgs if "is 8.3 px" in m and "title 'torus $" in m and "(both pairs of edg" in m], _kinds(msgs)
+    # one message, for the whole two-line title (matplotlib hands the renderer no artist for it),
+    # naming the size of its smallest glyph: the superscript 2 at 0.7 x 6 pt = 5.8 px
+    assert [m for m in msgs if "is 5.8 px in its smallest mathtext script" in m and "title 'torus $" in m
+            and "(both pairs of edg" in m], _kinds(msgs)
+
+
+def test_checker_measures_mathtext_scripts():
+    """A sub- or superscript is drawn at 0.7 of its text's size: at 9 pt the subscripts of
+    $T_gL_h$ are 8.75 px, below the standard, although the text's own size (12.5 px) is not; at
+    MATH_PT they pass; a script of a script (0.49) fails even there. Text and PathText alike."""
+    from gm_core.drawing.toolkit import MATH_PT, PathText
+
+    fig, ax = _good()
+    ax.set_xlabel("the lift $T_gL_h$", fontsize=9)
+    msgs = figstd.check_figure(fig)
+    assert len(msgs) == 1 and "x-axis label 'the lift $T_gL_h$' is 8.8 px in its smallest mathtext script" in msgs[0], \
+        _kinds(msgs)
+    ax.set_xlabel("the lift $T_gL_h$", fontsize=MATH_PT)
+    assert figstd.check_figure(fig) == []
+    ax.set_xlabel("time t  (12 $ and 5 $: no formula)", fontsize=8)   # two dollar signs, escaped: plain text
+    ax.xaxis.label.set_text(r"time t  (12 \$ and 5 \$: no formula)")
+    assert figstd.check_figure(fig) == []
+    PathText(ax, 0.05, 0.5, r"$T_gR_{g^{-1}}$", size=MATH_PT, coords="axes")
+    PathText(ax, 0.05, 0.3, r"$\xi^s$ readout", size=8, coords="axes")
+    msgs = figstd.check_figure(fig)
+    assert any("readout '$T_gR_{g^{-1}}$' is 7.1 px in its smallest mathtext script" in m for m in msgs), _kinds(msgs)
+    assert any(r"readout '$\\xi^s$ readout' is 7.8 px in its smallest mathtext script" in m for m in msgs), _kinds(msgs)
+    assert len(msgs) == 2, _kinds(msgs)
 
 
 def test_checker_finds_overlapping_texts():

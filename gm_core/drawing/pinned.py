@@ -17,7 +17,7 @@ from ..three_link_chain import beta_frame_velocity, com_frame
 from .axes import square_axes
 from .chains import ArrowsArtist, ChainArtist, _ThreeLinkScene
 from .primitives import BodyArtist, FrameArtist
-from .toolkit import PALETTE, PathText, Scene, new_figure, readout
+from .toolkit import MATH_PT, PALETTE, PathText, Scene, new_figure, readout
 
 __all__ = ["plane_and_notes", "notes_text", "PinnedBodiesScene", "RelativePoseScene", "BetaVelocityScene",
            "BODY_OUTLINE"]
@@ -142,7 +142,9 @@ class RelativePoseScene(Scene):
         (self.coord_y,) = ax.plot([], [], "--", color=PALETTE["y"], lw=2.0, zorder=3)
         self.route = ArrowsArtist(ax, 2, color=PALETTE["purple"], width=0.006, zorder=5)
         self.arrow = ArrowsArtist(ax, 1, color="k", width=0.009, zorder=7)
-        self.text = notes_text(self.notes)
+        # proportional text at MATH_PT: its mathtext subscripts ($g_{h2,g1}$) are 10 px; the
+        # changing numbers sit on lines of their own, so a formula is laid out once per choice
+        self.text = PathText(self.notes, 0.0, 1.0, "", size=MATH_PT, va="top", coords="axes")
 
     def poses(self, alpha1, alpha2):
         """World poses of the named frames: dict name -> ``(3,)``."""
@@ -181,19 +183,18 @@ class RelativePoseScene(Scene):
         inv_err = float(np.max(np.abs(SE2.difference(SE2.inverse(rel), swapped))))
         self.text.set_text("\n".join([
             f"pose of {na} seen from {nb} (black):",
-            f" {sub(na, nb)} = {nb}⁻¹ {na}",
-            f"   = {_fmt(rel)}",
-            f"   x, y: along {nb}'s axes (dashed;",
-            f"   {nb}'s axes extended in blue)",
+            f"  {sub(na, nb)[:-1]} = {nb}^{{-1}}\\,{na}$",
+            f"     = {_fmt(rel)}",
+            f"  x, y: along {nb}'s axes (dashed),",
+            f"  {nb}'s axes drawn long in blue",
             "",
             f"through {nc} (purple; {nc} cancels):",
-            f" {sub(nc, nb)} {sub(na, nc)}",
-            f"   = {_fmt(chained)}",
-            f"   differs by {err:.0e}",
+            f"  {sub(nc, nb)[:-1]}\\,{sub(na, nc)[1:]}",
+            f"     = {_fmt(chained)}, differs by {err:.0e}",
             "",
             "swap the subscripts = invert:",
-            f" {sub(nb, na)} = {_fmt(swapped)}",
-            f" {sub(na, nb)}⁻¹ differs by {inv_err:.0e}",
+            f"  {sub(nb, na)[:-1]} = {sub(na, nb)[1:-1]}^{{-1}}$",
+            f"     = {_fmt(swapped)}, differs by {inv_err:.0e}",
         ]))
 
 

@@ -36,9 +36,9 @@ class LiftedScalarPanel(ScenePanel):
     scene_class = LiftedScalarScene
 
     def controls_spec(self):
-        return {"hx": slider(1.5, -1.0, 3.0, description="R²: hₓ"),
-                "hy": slider(1.0, -1.0, 2.5, description="R²: h_y"),
-                "h": slider(2.5, 0.2, 6.0, description="R⁺: h")}
+        return {"hx": slider(1.5, -1.0, 3.0, description=r"$\mathbb{R}^2$: $h_x$"),
+                "hy": slider(1.0, -1.0, 2.5, description=r"$\mathbb{R}^2$: $h_y$"),
+                "h": slider(2.5, 0.2, 6.0, description=r"$\mathbb{R}^+$: $h$")}
 
 
 @register
