@@ -9,6 +9,8 @@ returns one line per breach, naming the figure (``where``) and the text:
 * no text is smaller than ``MIN_TEXT_PX`` (10) px: font size in points x dpi / 72, and for
   mathtext its smallest glyph (matplotlib draws sub- and superscripts at 0.7 of the size, so
   ``$T_gL_h$`` at 9 pt has 8.75 px subscripts: too small);
+* no text holds formula markup outside mathtext (``T_pS``, ``ξ^``, ``g_{a,b}``: it reaches the
+  student raw; write ``$T_p\\mathbb{S}^1$``);
 * no text is sliced by the figure edge: its window extent lies inside the figure;
 * no two texts overlap (tick labels, axis labels, titles, legends, readouts), beyond
   ``OVERLAP_TOL_PX`` in both directions, and no axis label sits in the row (x) or column (y) of
@@ -30,6 +32,7 @@ from __future__ import annotations
 
 import gc
 import itertools
+import re
 import types
 
 import numpy as np
@@ -51,7 +54,7 @@ EDGE_TOL_PX = 0.5
 #: padding of ``bbox_inches="tight"`` (savefig.pad_inches), used for ``%matplotlib inline`` figures
 TIGHT_PAD_IN = 0.1
 
-__all__ = ["check_figure", "breaches", "FrameChecker", "figure_name", "MAX_WIDTH_PX", "MIN_TEXT_PX", "MIN_ARROW_PX"]
+__all__ = ["check_figure", "breaches", "raw_formula", "FrameChecker", "figure_name", "MAX_WIDTH_PX", "MIN_TEXT_PX", "MIN_ARROW_PX"]
 
 
 class _RecordingRenderer(RendererAgg):
@@ -120,6 +123,18 @@ def _smallest_pt(text: str, size: float, prop=None, parse_math: bool = True) -> 
             _SMALLEST[key] = hit
         smallest = min(smallest, hit)
     return smallest
+
+
+# formula markup that mathtext renders only between $...$ (as tests/test_notebook_text.py for markdown):
+# ``_{``, any ``^``, a backslash command, or a one-letter name with a subscript (``T_p``, ``g_1``)
+_RAW = re.compile(r"_\{|\^|\\[A-Za-z]+|(?<![\w/.-])(?:Ad|ad|[A-Za-zα-ωΑ-Ω])_[A-Za-z0-9α-ωΑ-Ω{]")
+_IN_MATH = re.compile(r"(?<!\\)\$.+?(?<!\\)\$")
+
+
+def raw_formula(text: str) -> str | None:
+    """The first piece of formula markup in ``text`` outside mathtext (None: there is none)."""
+    m = _RAW.search(_IN_MATH.sub(" ", str(text)))
+    return m.group(0) if m else None
 
 
 def _roles(fig) -> dict[int, tuple[str, object]]:
@@ -346,6 +361,9 @@ def breaches(fig, tight: bool = False) -> list[str]:
     for t, role, ax, text, size, bb, anchor in items:
         px = size * dpi / 72.0
         desc = f"{role} {_label(text)}"
+        raw = raw_formula(text)
+        if raw:
+            out.append(f"{desc} holds raw formula markup {raw!r} outside $...$ (write it as mathtext)")
         if px < MIN_TEXT_PX - 1e-6:
             scripts = " in its smallest mathtext script" if "$" in str(text) else ""
             out.append(f"{desc} is {px:.1f} px{scripts} (< {MIN_TEXT_PX:.0f} px)")

@@ -305,6 +305,33 @@ def test_panel_initial_state(name, cls):
     assert not msgs, f"{len(msgs)} breaches of the figure standard:\n  " + "\n  ".join(msgs)
 
 
+@pytest.mark.parametrize("name,cls", PANELS, ids=[n for n, _ in PANELS])
+def test_panel_words_have_no_raw_formula(name, cls):
+    """A panel's title and its controls' labels are HTML (no MathJax in a slider's label): a
+    formula there is Unicode or <sub>/<sup>, never ``ξ_β`` or ``p_y`` (issue 19 point 5)."""
+    import re
+
+    panel = cls()
+    words = [("title", re.sub(r"<[^>]+>", "", panel.title or ""))]
+    for key, c in panel.controls.items():
+        words.append((f"control {key!r}", (getattr(c, "description", "") or "") + " " + (getattr(c, "tooltip", "") or "")))
+    bad = [f"{what}: {text.strip()!r} holds {figstd.raw_formula(text)!r}" for what, text in words
+           if figstd.raw_formula(text) or "$" in text]
+    plt.close("all")
+    assert not bad, f"{name}: raw formula markup in its words:\n  " + "\n  ".join(bad)
+
+
+def test_raw_formula_markup_is_found_in_figures_and_words():
+    fig, ax = _good()
+    ax.set_title("the tangent line T_pS¹")
+    msgs = figstd.check_figure(fig)
+    assert len(msgs) == 1 and "holds raw formula markup 'T_p' outside $...$" in msgs[0], _kinds(msgs)
+    ax.set_title(r"the tangent line $T_p\mathbb{S}^1$", fontsize=11)
+    assert figstd.check_figure(fig) == []
+    assert [figstd.raw_formula(t) for t in ("Ad_g ξ", "ξ^ g", "g_{a,b}", "body_velocity", "$x_1$", "hg = (1, 2)")] \
+        == ["Ad_g", "^", "g_{", None, None, None]
+
+
 @pytest.mark.parametrize("path", nbrun.params(NOTEBOOKS))
 def test_notebook_figures(path, notebook_record):
     res = nbfigures.NotebookFigures.from_record(notebook_record(path))

@@ -212,6 +212,27 @@ class BetaVelocityScene(_ThreeLinkScene):
 
     figsize = (8.4, 4.4)
     SCALE = 1.2
+    # what the numbers are: fixed mathtext lines (PathText lays each distinct line out once), the
+    # changing numbers on lines of their own
+    NOTES = (
+        "body velocity of the frame, (2.60):",
+        r"$\xi_\beta = \mathrm{Ad}_\beta^{-1}\,\xi_2 + \mathrm{Ad}_\beta^{-1}\,v_\beta$",
+        "",
+        r"$\mathrm{Ad}_\beta^{-1}\,\xi_2$   carried by link 2 (blue)",
+        "   {carried}",
+        "",
+        r"$\mathrm{Ad}_\beta^{-1}\,v_\beta$   from the shape change (orange)",
+        "   {shape}",
+        "",
+        r"$\xi_\beta$   sum (black)",
+        "   {body}",
+        "",
+        r"$v_\beta = T_\beta R_\beta^{-1}\,\dot\beta$, (2.61):",
+        "   {v_beta}",
+    )
+    KEY = ("dotted: the path of the frame's origin under each cause\n"
+           "alone; faint orange: the shape part again, from the origin;\n"
+           "thin blue: link 2's velocity; arrows: world velocity × {SCALE}")
     COLORS = {"carried": PALETTE["blue"], "shape": PALETTE["orange"], "body": "k"}
 
     def make_figure(self):
@@ -238,7 +259,9 @@ class BetaVelocityScene(_ThreeLinkScene):
         self.shape_at_origin = ArrowsArtist(ax, 1, color=self.COLORS["shape"], scale=self.SCALE, width=0.005,
                                             zorder=7)
         self.shape_at_origin.quiver.set_alpha(0.6)
-        self.text = notes_text(self.notes)
+        self.text = PathText(self.notes, 0.0, 1.0, "", size=MATH_PT, va="top", coords="axes")
+        PathText(self.notes, 0.0, 0.0, self.KEY.replace("{SCALE}", f"{self.SCALE:g}"), size=8, va="bottom",
+                 coords="axes")
         self.s = np.linspace(-1.0, 1.0, 41)[:, None]
 
     def compute(self, **values):
@@ -270,26 +293,11 @@ class BetaVelocityScene(_ThreeLinkScene):
         shaped = com_frame(a + self.s * ad, self.lengths)[0]
         self.path_carried.set_data(carried[:, 0], carried[:, 1])
         self.path_shape.set_data(shaped[:, 0], shaped[:, 1])
-        self.text.set_text("\n".join([
-            "body velocity of the frame,",
-            "ξ_β = Ad⁻¹_β ξ₂ + Ad⁻¹_β v_β  (2.60)",
-            "",
-            "carried by link 2 (blue):",
-            f"  Ad⁻¹_β ξ₂   {_fmt(parts['carried'])}",
-            "from the shape change (orange):",
-            f"  Ad⁻¹_β v_β  {_fmt(parts['shape'])}",
-            "sum (black):",
-            f"  ξ_β         {_fmt(parts['body'])}",
-            "",
-            "v_β = T_β R_β⁻¹ dβ/dt  (2.61)",
-            f"              {_fmt(parts['v_beta'])}",
-            "dotted: the path of the frame's",
-            "origin under each cause alone",
-            "(faint orange: the shape part",
-            " again, from the origin)",
-            "thin blue: link 2's velocity",
-            f"arrows: world velocity × {self.SCALE:g}",
-        ]))
+        numbers = {k: _fmt(parts[k]) for k in ("carried", "shape", "body", "v_beta")}
+        text = "\n".join(self.NOTES)
+        for k, v in numbers.items():
+            text = text.replace("{" + k + "}", v)
+        self.text.set_text(text)
 
     def replot(self, **values):
         Scene.replot(self, **values)

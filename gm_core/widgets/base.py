@@ -414,9 +414,9 @@ def se2_sliders(x: float, y: float, theta: float, names: tuple[str, str, str] = 
 
 def xi_sliders(vx: float, vy: float, w: float) -> dict[str, W.FloatSlider]:
     """Three sliders for an se(2) velocity (vx, vy, w), each in [-1.5, 1.5]."""
-    return {"vx": slider(vx, -1.5, 1.5, description=r"$\xi^x$"),
-            "vy": slider(vy, -1.5, 1.5, description=r"$\xi^y$"),
-            "w": slider(w, -1.5, 1.5, description=r"$\xi^\theta$")}
+    return {"vx": slider(vx, -1.5, 1.5, description="ξˣ"),
+            "vy": slider(vy, -1.5, 1.5, description="ξʸ"),
+            "w": slider(w, -1.5, 1.5, description="ξᶿ")}
 
 
 def show(fig: Figure) -> None:
