@@ -179,7 +179,9 @@ class WaveGaitScene(Scene):
         self.traj = trajectory(self.system, self.gait, n_frames=61, substeps=8)
         self.g = self.traj.g[-1]
         try:
-            self.efficiency = efficiency(self.system, self.gait, check=False)
+            # g(T) of the trajectory drawn (within ~1e-9 of net_displacement's); 1024 samples of
+            # the wave's path length agree with 4096 to ~1e-7 (the readout shows 4 decimals)
+            self.efficiency = efficiency(self.system, self.gait, check=False, samples=1024, displacement=self.g)
         except TypeError:
             self.efficiency = None
 
