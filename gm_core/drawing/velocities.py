@@ -338,7 +338,7 @@ class AdjointScene(Scene):
         # numbers (changing, plain glyphs: fast) and what they are (fixed mathtext, laid out once)
         self.difference = PathText(ax, 0.02, 0.44, "", size=MATH_PT, va="top")
         self.summary = PathText(ax, 0.02, 0.44, "", size=MATH_PT, va="top", offset=(0, -1.3 * MATH_PT))
-        PathText(ax, 0.31, 0.44, "\n".join((
+        PathText(ax, 0.335, 0.44, "\n".join((
             r"$\xi^s = \mathrm{Ad}_g\,\xi$",
             r"$\xi^s$ from $d/dt\,(g(t)\,g^{-1})$ by finite differences, $g(t) = g\,\exp(t\xi)$",
             r"back again: $\mathrm{Ad}_g^{-1}\,\xi^s = \xi$")), size=MATH_PT, va="top", offset=(0, -1.3 * MATH_PT))
