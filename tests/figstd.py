@@ -329,8 +329,11 @@ def check_figure(fig, where: str = "", tight: bool = False) -> list[str]:
     ``tight=True`` measures the figure as ``%matplotlib inline`` shows it: saved with
     ``bbox_inches="tight"`` (0.1 in padding), so its width is that of its drawn contents and no
     text can be cut by the edge. Each message reads ``"<where>: figure '<name>': <what>"``."""
+    found = breaches(fig, tight=tight)
+    if not found:
+        return []   # naming the figure searches the whole heap for its owner: only for a message
     name = (f"{where}: " if where else "") + f"figure {figure_name(fig)!r}"
-    return [f"{name}: {m}" for m in breaches(fig, tight=tight)]
+    return [f"{name}: {m}" for m in found]
 
 
 def breaches(fig, tight: bool = False) -> list[str]:
