@@ -71,7 +71,9 @@ class Adoption:
     ``end_strays()`` kills every child born since then that is not the keeper, with all
     below it, and reaps it; ``release()`` turns the subreaper off again once no check needs it.
     Counted, so that checks in several threads share it; a process that was a subreaper already
-    (a course tool, the grader's runner) stays one."""
+    (a course tool, the grader's runner) stays one. The one thing taken for a stray wrongly: a
+    process that another thread of the notebook starts *while* a check runs (children from
+    before the check, and from after it, are never touched)."""
 
     _lock = threading.Lock()
     _users = 0
