@@ -38,7 +38,7 @@ from matplotlib.textpath import TextPath
 from matplotlib.transforms import blended_transform_factory as _blend
 
 __all__ = [
-    "DPI", "MAX_WIDTH_IN", "MIN_TEXT_PX", "MIN_TEXT_PT", "PALETTE", "STYLE", "apply_style",
+    "DPI", "MAX_WIDTH_IN", "MIN_TEXT_PX", "MIN_TEXT_PT", "MATH_PT", "PALETTE", "STYLE", "apply_style",
     "new_figure", "figure", "margins", "freeze_layout", "PathText", "readout", "ArrowSet", "arrow", "set_arrows",
     "title",
     "xticks", "yticks", "axis_label", "axes_row", "text_panel", "Scene", "TWO_PI",
@@ -54,6 +54,10 @@ MAX_WIDTH_IN = 9.0
 #: Smallest text on screen, in pixels, and the point size that gives it at DPI.
 MIN_TEXT_PX = 10.0
 MIN_TEXT_PT = 7.5           # 7.5 pt * 100 / 72 = 10.4 px
+#: Smallest size of a text holding mathtext sub- or superscripts (``$T_gL_h$``, ``$\\xi^s$``):
+#: matplotlib draws a script at 0.7 of its text's size, 0.7 * 10.5 pt = 10.2 px at DPI. Nested
+#: scripts (0.49) cannot meet the standard: write ``$R_g^{-1}$``, not ``$R_{g^{-1}}$``.
+MATH_PT = 10.5
 
 #: Okabe & Ito's colour-blind-safe palette, with the roles the course gives its colours.
 PALETTE = {
