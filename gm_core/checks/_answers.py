@@ -193,9 +193,11 @@ def sympy_function(answer, names, flat=None, what="your expression"):
     return call
 
 
-def sample_gait(answer, joints: int, example: str, n: int = 256):
+def sample_gait(answer, joints: int, example: str, n: int = 256, extra=()):
     """A student's gait (a Gait, a callable t -> r(t) of period 1, or an array of shapes (K, joints))
-    sampled at ``n + 1`` equal times over one period: the student side of the gait exercises.
+    sampled at ``n + 1`` equal times over one period, then at the fractions ``extra`` of the
+    period (:mod:`._gait_samples` draws them from the probe salt): the student side of the gait
+    exercises.
 
     ``example`` names a constructor to suggest (e.g. ``"circle_gait(...)"``). Raises Unattempted for
     the starter value and Wrong, with a friendly message, for anything that is not a gait.
@@ -220,5 +222,6 @@ def sample_gait(answer, joints: int, example: str, n: int = 256):
             raise Wrong("your array of shapes contains NaN or infinite entries.")
         answer = pts
     gait = as_gait(answer)  # a callable of one time at a time works too (Gait handles it)
-    t = np.linspace(0.0, float(gait.period), n + 1)
+    period = float(gait.period)
+    t = np.concatenate([np.linspace(0.0, period, n + 1), period * np.asarray(extra, dtype=float)])
     return to_numbers(gait(t), "the shapes your gait returned")

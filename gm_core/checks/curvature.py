@@ -11,7 +11,8 @@ import functools
 
 import numpy as np
 
-from ._answers import describe, fmt_value, is_starter, sample_gait, to_numbers
+from . import _gait_samples
+from ._answers import describe, fmt_value, is_starter, to_numbers
 from ._choice import ChoicePart
 from ._core import CustomPart, outcome_error
 from ._exercise import Exercise
@@ -161,12 +162,11 @@ ex4_1 = Exercise("4.1", "Which gait moves further? Reading a curvature map", [
 
 # ============================================================================ 4.2
 TURN_MIN, DRIFT_MAX = 0.2, 0.02
-_N_SAMPLES = 256
 
 
 def _sample_gait(answer):
-    """Student side of 4.2(a): the gait at _N_SAMPLES + 1 equal time steps over one period."""
-    return sample_gait(answer, 2, "circle_gait(...)", _N_SAMPLES)
+    """Student side of 4.2(a): the gait sampled over one period (:mod:`._gait_samples`)."""
+    return _gait_samples.sample(answer, 2, "circle_gait(...)")
 
 
 def _judge_42a(outcomes):
@@ -176,13 +176,7 @@ def _judge_42a(outcomes):
     o = outcomes[0] if outcomes else {"k": "crash", "m": ""}
     if o["k"] != "ok":
         outcome_error(o, "your gait", "the times of one period")
-    r = o["v"]
-    if not isinstance(r, np.ndarray) or r.shape != (_N_SAMPLES + 1, 2):
-        shape = r.shape if isinstance(r, np.ndarray) else describe(r)
-        raise Wrong(f"your gait returned shapes of shape {shape} for {_N_SAMPLES + 1} times; "
-                    f"({_N_SAMPLES + 1}, 2) was expected (two joint angles at each time).")
-    if not np.all(np.isfinite(r)):
-        raise Wrong("your gait returned NaN or infinite joint angles at some times.")
+    r = _gait_samples.grid(o["v"], 2)
     if np.max(np.abs(r)) > 2 * np.pi:
         raise Wrong("your gait reaches joint angles beyond 2 pi: the links would pass through each "
                     "other. Keep the loop within about (-3, 3) in each angle.")
