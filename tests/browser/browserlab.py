@@ -379,6 +379,8 @@ _STATUS_JS = r"""
     k.__gmHooked = true;
     k.iopubMessage.connect((_, msg) => {
       const t = msg.header.msg_type, c = msg.content || {};
+      // when the kernel last sent a picture (a comm message with a binary buffer: ipympl)
+      if (t === 'comm_msg' && msg.buffers && msg.buffers.length) window.__gmLastPicture = performance.now();
       // errors of executed cells are in their outputs already; keep the rest (widget callbacks)
       if (msg.parent_header && msg.parent_header.msg_type === 'execute_request') return;
       if (t === 'error') window.__gmKernelErrors.push({path, text: `${c.ename}: ${c.evalue}\n` + (c.traceback || []).join('\n').replace(/\x1b\[[0-9;]*m/g, '').slice(-1500)});
