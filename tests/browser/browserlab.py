@@ -377,6 +377,10 @@ _STATUS_JS = r"""
   window.__gmKernelErrors = window.__gmKernelErrors || [];
   if (k && !k.__gmHooked) {
     k.__gmHooked = true;
+    // when the page last sent the kernel a widget message (a slider's change, a canvas' draw request)
+    k.anyMessage.connect((_, m) => {
+      if (m.direction === 'send' && m.msg.header.msg_type === 'comm_msg') window.__gmLastSent = performance.now();
+    });
     k.iopubMessage.connect((_, msg) => {
       const t = msg.header.msg_type, c = msg.content || {};
       // when the kernel last sent a picture (a comm message with a binary buffer: ipympl)

@@ -201,8 +201,10 @@ _STATE_JS = r"""
 }
 """
 
-# milliseconds since the kernel last sent a picture (browserlab's iopub hook)
+# milliseconds since the kernel last sent a picture, and since the page last sent the kernel a
+# widget message (browserlab's hooks on the kernel connection)
 _PICTURE_AGE_JS = "() => window.__gmLastPicture === undefined ? 1e9 : performance.now() - window.__gmLastPicture"
+_SENT_AGE_JS = "() => window.__gmLastSent === undefined ? 1e9 : performance.now() - window.__gmLastSent"
 
 _PIXELS_JS = r"""
 (keys) => {
@@ -300,13 +302,22 @@ def _settle(nbp, keys, still: float = 0.5, timeout: float = 30.0):
 
     page = nbp.page
     deadline = time.monotonic() + timeout
-    out = labview.kernel_exec(nbp, SETTLE_CODE)
-    if "ERROR" in out or "GM-SETTLE" in out:
-        nbp.fail(f"waiting for the kernel to settle after the drags failed: {out[-800:]}")
+    while True:
+        # The kernel handles the page's messages in order: when the probe returns, everything the
+        # page sent before it has been handled. A message sent meanwhile (a canvas asking for
+        # the full draw the kernel announced) is waited for by probing again.
+        t0 = time.monotonic()
+        out = labview.kernel_exec(nbp, SETTLE_CODE)
+        if "ERROR" in out or "GM-SETTLE" in out:
+            nbp.fail(f"waiting for the kernel to settle after the drags failed: {out[-800:]}")
+        if page.evaluate(_SENT_AGE_JS) / 1000 > time.monotonic() - t0 + 0.05:
+            break
+        if time.monotonic() > deadline:
+            nbp.fail(f"the page kept sending the kernel messages for {timeout:.0f} s after the drags")
     last = page.evaluate(_STATE_JS, keys)
     since = time.monotonic()
     while time.monotonic() < deadline:
-        page.wait_for_timeout(50)
+        page.wait_for_timeout(120)   # (hashing every canvas costs the page a few ms: not too often)
         now = page.evaluate(_STATE_JS, keys)
         if now != last:
             last, since = now, time.monotonic()
@@ -371,7 +382,12 @@ def drag_check(nbp, shots_dir=None) -> tuple[list[str], dict]:
         # the slow drag: one mouse move. The slider shows its value on its grid (min + k *
         # step), so the handle ends on a grid value, a whole number of steps from where the
         # move back below leaves it, and the quick drag over the same displacement ends there too.
-        drag(k, +1, 1, 0, g)
+        # (A drag the page did not take, the handle not moved at all, is made again, twice at most.)
+        for _attempt in range(3):
+            drag(k, +1, 1, 0, g)
+            g = _geometry(page, k)
+            if g["value"] != start[k]["value"]:
+                break
     slow = _settle(nbp, keys)
     slow_px = _pixels(page, keys)
     for k in keys:  # back (one move), then the hurried drag over the same displacement
