@@ -11,6 +11,12 @@ import pytest
 os.environ["GM_COURSE_TESTING"] = "1"
 # Unit tests draw off-screen; notebooks choose their own backend with %matplotlib widget.
 os.environ.setdefault("MPLBACKEND", "Agg")
+# One BLAS thread per process (set before numpy loads; inherited by the xdist workers, nbval's and
+# JupyterLab's kernels and every subprocess): the suite already keeps both cores busy with its
+# workers, and OpenBLAS's extra threads only fight them (small-matrix routines such as logm ran
+# 10-100x slower on two loaded cores). The results are the same.
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "tests"))
 import nbrun  # noqa: E402

@@ -485,6 +485,79 @@ def _chain_args(alpha, lengths):
     return alpha, L
 
 
+def _flat(alpha):
+    """alpha (..., n) -> (n, M) with the batch flattened last, and the batch shape."""
+    return alpha.reshape(-1, alpha.shape[-1]).T, alpha.shape[:-1]
+
+
+def _chain_poses_T(a, L):
+    """The batch-last kernel of :func:`link_chain_poses`: joint angles ``a (n, M)``, lengths ``L (N,)``.
+
+    Returns ``(P, B)`` with ``P = (x, y, theta, cos theta, sin theta)``, each ``(N, M)``, the link
+    centres in link 1's frame, and ``B = (Bx, By, Btheta)``, ``Bx, By (N, n, M)``, ``Btheta
+    (N, n, 1)``, their body Jacobians. Batch-last arrays keep every operation on long contiguous
+    rows (the fast layout for many shapes at once); the link headings' cosines and sines come
+    from the joint angles' by the addition formulas (2 n transcendental calls per shape).
+    """
+    N, n = L.size, L.size - 1
+    th = np.zeros((N,) + a.shape[1:])
+    np.cumsum(a, axis=0, out=th[1:])
+    ca, sa = np.cos(a), np.sin(a)
+    c, s = np.empty_like(th), np.empty_like(th)
+    c[0], s[0] = 1.0, 0.0
+    for i in range(n):
+        c[i + 1] = c[i] * ca[i] - s[i] * sa[i]
+        s[i + 1] = s[i] * ca[i] + c[i] * sa[i]
+    half = L[:, None] / 2
+    sx, sy = half * c, half * s
+    qx = np.cumsum(2 * sx[:n], axis=0) - sx[:1]          # joint j, between links j and j + 1
+    qy = np.cumsum(2 * sy[:n], axis=0) - sy[:1]
+    px = np.concatenate([np.zeros_like(th[:1]), qx + sx[1:]])
+    py = np.concatenate([np.zeros_like(th[:1]), qy + sy[1:]])
+    beyond = (np.arange(N)[:, None] > np.arange(n)[None, :]).astype(float)[..., None]   # (N, n, 1): i > j
+    dx = (qy[None] - py[:, None]) * beyond                # d p_x,i / d alpha_j = -(p_y,i - q_y,j)
+    dy = (px[:, None] - qx[None]) * beyond
+    cc, ss = c[:, None], s[:, None]
+    return (px, py, th, c, s), (cc * dx + ss * dy, cc * dy - ss * dx, beyond)
+
+
+def _chain_jacobians_T(P, B, beta, Bb, rows=(0, 1, 2)):
+    """The batch-last kernel of :func:`link_chain_jacobians`: ``P, B`` from :func:`_chain_poses_T`,
+    the body frame ``beta = (x, y, theta, cos theta, sin theta)`` (each (M,)) relative to link 1
+    and its body Jacobian ``Bb = (Bx, By, Btheta)`` (each (n, M)). Returns ``(Q, J)``: ``Q`` the
+    links in the body frame as (x, y, theta, cos theta, sin theta) (each (N, M)), and
+    ``J (len(rows), 3 + n, N, M)``, the requested rows (0 = x, 1 = y, 2 = theta) and every column
+    of each link's Jacobian from (xi, alpha_dot) to its body velocity.
+    """
+    (px, py, th, cp, sp), (B0, B1, B2) = P, B
+    bx, by, bt, cb, sb = beta
+    dx, dy = px - bx, py - by
+    x, y, t = cb * dx + sb * dy, cb * dy - sb * dx, th - bt
+    c, sn = cp * cb + sp * sb, sp * cb - cp * sb          # cos, sin of theta_i - theta_beta
+    n = B0.shape[1]
+    J = np.empty((len(rows), 3 + n) + px.shape)
+    X, Y, T = (b[None] for b in Bb)                       # Ad_{P_i^-1} Ad_beta = Ad_{Q_i^-1}
+    cc, ss = c[:, None], sn[:, None]
+    for k, row in enumerate(rows):                        # Ad_{Q^-1} = [[c, s, e1], [-s, c, e2], [0, 0, 1]]
+        if row == 0:
+            e1 = sn * x - c * y
+            J[k, 0], J[k, 1], J[k, 2] = c, sn, e1
+            J[k, 3:] = np.swapaxes(B0 - (cc * X + ss * Y + e1[:, None] * T), 0, 1)
+        elif row == 1:
+            e2 = c * x + sn * y
+            J[k, 0], J[k, 1], J[k, 2] = -sn, c, e2
+            J[k, 3:] = np.swapaxes(B1 - (cc * Y - ss * X + e2[:, None] * T), 0, 1)
+        else:
+            J[k, 0], J[k, 1], J[k, 2] = 0.0, 0.0, 1.0
+            J[k, 3:] = np.swapaxes(B2 - T, 0, 1)
+    return (x, y, t, c, sn), J
+
+
+def _with_trig(x, y, t):
+    """A batch-last pose (x, y, theta) with its cosine and sine, as the kernels take it."""
+    return x, y, t, np.cos(t), np.sin(t)
+
+
 def link_chain_poses(alpha, lengths):
     """Link-centre poses ``(..., N, 3)`` of an N-link chain in link 1's centre frame and their body Jacobians.
 
@@ -496,25 +569,11 @@ def link_chain_poses(alpha, lengths):
     the joint: ``d p_i / d alpha_j = perp(p_i - q_j)`` for i > j, ``d theta_i / d alpha_j = 1``.
     """
     alpha, L = _chain_args(alpha, lengths)
+    a, batch = _flat(alpha)
+    (px, py, th, _, _), (B0, B1, B2) = _chain_poses_T(a, L)
     N, n = L.size, L.size - 1
-    batch = alpha.shape[:-1]
-    th = np.concatenate([np.zeros(batch + (1,)), np.cumsum(alpha, axis=-1)], -1)       # (..., N)
-    c, s = np.cos(th), np.sin(th)
-    half = L / 2
-    # joint j (between links j and j + 1) and link centres, all in link 1's frame
-    step_x, step_y = half * c, half * s
-    qx = np.cumsum(2 * step_x, axis=-1)[..., :n] - step_x[..., :1]
-    qy = np.cumsum(2 * step_y, axis=-1)[..., :n] - step_y[..., :1]
-    px = np.concatenate([np.zeros(batch + (1,)), qx + step_x[..., 1:]], -1)
-    py = np.concatenate([np.zeros(batch + (1,)), qy + step_y[..., 1:]], -1)
-    P = np.stack([px, py, th], -1)
-    beyond = (np.arange(N)[:, None] > np.arange(n)[None, :]).astype(float)             # (N, n): i > j
-    dx = -(py[..., :, None] - qy[..., None, :]) * beyond                              # d p_x,i / d alpha_j
-    dy = (px[..., :, None] - qx[..., None, :]) * beyond
-    B = np.empty(batch + (N, 3, n))
-    B[..., 0, :] = c[..., None] * dx + s[..., None] * dy                              # R(-theta_i) dp
-    B[..., 1, :] = -s[..., None] * dx + c[..., None] * dy
-    B[..., 2, :] = beyond
+    P = np.stack([px, py, th]).T.reshape(batch + (N, 3))
+    B = np.stack([B0, B1, np.broadcast_to(B2, B0.shape)]).transpose(3, 1, 0, 2).reshape(batch + (N, 3, n))
     return P, B
 
 
@@ -527,17 +586,15 @@ def link_chain_jacobians(P, B, beta, B_beta):
     (body velocities of products and inverses, section 1.5; (2.68) for any number of links).
     Returns ``(Q (..., N, 3), J (..., N, 3, 3 + n))``.
     """
-    Q = SE2.compose(SE2.inverse(beta[..., None, :]), P)
     n = B.shape[-1]
-    x, y = Q[..., 0], Q[..., 1]
-    c, sn = np.cos(Q[..., 2]), np.sin(Q[..., 2])
-    e1, e2 = sn * x - c * y, c * x + sn * y           # Ad_{Q^-1} = [[c, s, e1], [-s, c, e2], [0, 0, 1]]
-    J = np.empty(Q.shape[:-1] + (3, 3 + n))
-    J[..., 0, 0], J[..., 0, 1], J[..., 0, 2] = c, sn, e1
-    J[..., 1, 0], J[..., 1, 1], J[..., 1, 2] = -sn, c, e2
-    J[..., 2, 0], J[..., 2, 1], J[..., 2, 2] = 0.0, 0.0, 1.0
-    bx, by, bt = (B_beta[..., None, k, :] for k in range(3))  # Ad_{P_i^-1} Ad_beta = Ad_{Q_i^-1}
-    J[..., 0, 3:] = B[..., 0, :] - (c[..., None] * bx + sn[..., None] * by + e1[..., None] * bt)
-    J[..., 1, 3:] = B[..., 1, :] - (-sn[..., None] * bx + c[..., None] * by + e2[..., None] * bt)
-    J[..., 2, 3:] = B[..., 2, :] - bt
-    return Q, J
+    batch = np.broadcast_shapes(P.shape[:-2], B.shape[:-3], beta.shape[:-1], B_beta.shape[:-2])
+    N = P.shape[-2]
+    P = np.broadcast_to(P, batch + P.shape[-2:]).reshape(-1, N, 3)
+    B = np.broadcast_to(B, batch + B.shape[-3:]).reshape(-1, N, 3, n)
+    beta = np.broadcast_to(beta, batch + (3,)).reshape(-1, 3).T
+    Bb = np.broadcast_to(B_beta, batch + (3, n)).reshape(-1, 3, n).transpose(1, 2, 0)
+    PT = _with_trig(*(P[..., k].T for k in range(3)))
+    BT = tuple(B[:, :, k].transpose(1, 2, 0) for k in range(3))
+    (x, y, t, _, _), J = _chain_jacobians_T(PT, BT, _with_trig(*beta), tuple(Bb))
+    Q = np.stack([x, y, t]).T.reshape(batch + (N, 3))
+    return Q, J.transpose(3, 2, 0, 1).reshape(batch + (N, 3, 3 + n))

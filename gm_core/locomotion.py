@@ -5,7 +5,7 @@ where ``A`` is the *local connection*. This module holds the parts shared by eve
 :mod:`gm_core.systems` (which import it; it never imports them):
 
 * :func:`check_system` (the one validator of systems), :func:`body_velocity`;
-* :func:`fd_connection_derivative`, :func:`curvature_form`, :func:`connection_curl`: the connection's
+* :func:`fd_connection_derivative`, :func:`curvature_form`: the connection's
   derivative (one difference routine), its curvature 2-form and curl;
 * :func:`check_gait`: does a gait meet a singular shape?
 * :func:`net_displacement`, :func:`trajectory`: reconstruction of the position trajectory by
@@ -41,7 +41,7 @@ from .gaits import (
 from .groups import SE2, matvec
 
 __all__ = [
-    "body_velocity", "connection_curl", "check_system", "fd_connection_derivative", "curvature_form",
+    "body_velocity", "check_system", "fd_connection_derivative", "curvature_form",
     "exterior_derivative", "FD_STEP", "check_gait", "net_displacement", "trajectory", "displacement_until",
     "Trajectory", "drive", "AccuracyWarning",
 ]
@@ -135,26 +135,6 @@ def curvature_form(A, dA):
     X = np.moveaxis(A, -2, -1)                                      # (..., n, 3): the columns A_i
     br = SE2.bracket(X[..., :, None, :], X[..., None, :, :])          # (..., n, n, 3)
     return -ext + np.moveaxis(br, -1, -3)
-
-
-def connection_curl(system, r, h=None):
-    """Scalar curl (..., 3) of each connection row over a 2-D shape space.
-
-    For row i, ``d A_i2 / d alpha1 - d A_i1 / d alpha2``, from the system's
-    ``connection_derivative`` (closed form where there is one), or central differences with
-    relative step ``h`` if given. It vanishes where the row is locally the gradient of a
-    function of shape (an exact one-form, box on one-forms (3.xvii)); only then does a global
-    contour plot of that row make sense.
-    """
-    if check_system(system) != 2:
-        raise ValueError(f"system must have a 2-D shape space for a scalar curl; {system.name} has "
-                         f"{system.n_shape} shape variables")
-    r = as_array(r, "r", (2,), what=" (a point of a 2-D shape space)")
-    if h is None and callable(getattr(system, "connection_derivative", None)):
-        dA = system.connection_derivative(r)[1]
-    else:
-        dA = fd_connection_derivative(system, r, FD_STEP if h is None else h)[1]
-    return exterior_derivative(dA)[..., 0, 1]
 
 
 # ---------------------------------------------------------------------------------------------

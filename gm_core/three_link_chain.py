@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._validate import as_array, batch_shape, check_lengths
-from .chains import MobileChain
+from .chains import MobileChain, _chain_jacobians_T, _chain_poses_T, _flat
 from .groups import SE2, matvec
 
 __all__ = [
@@ -47,24 +47,33 @@ def _three_link_lengths(lengths):
     return check_lengths(lengths, 3)
 
 
+def middle_frame_T(alpha, lengths, rows=(0, 1, 2)):
+    """``(batch, (x, y, theta, cos, sin), J)``: the link poses (each (3, M)) and Jacobians J (rows, 5, 3, M) in the
+    middle link's frame, batch-last (the kernels of :func:`gm_core.chains.link_chain_poses` and
+    :func:`~gm_core.chains.link_chain_jacobians`); ``batch`` the shape M was flattened from."""
+    alpha = as_array(alpha, "alpha", (2,), what=" (alpha1, alpha2)")
+    L = np.asarray(_three_link_lengths(lengths))
+    a, batch = _flat(alpha)
+    P, B = _chain_poses_T(a, L)
+    Bm = (B[0][1], B[1][1], np.broadcast_to(B[2][1], B[0][1].shape))
+    return (batch,) + _chain_jacobians_T(P, B, tuple(p[1] for p in P), Bm, rows)
+
+
+def _middle_frame(alpha, lengths):
+    """(Q, J): the link poses (..., 3, 3) and Jacobians (..., 3, 3, 5) in the middle link's frame."""
+    batch, (x, y, t, _, _), J = middle_frame_T(alpha, lengths)
+    return np.stack([x, y, t]).T.reshape(batch + (3, 3)), J.transpose(3, 2, 0, 1).reshape(batch + (3, 3, 5))
+
+
 def three_link_poses(alpha, lengths=(1.0, 1.0, 1.0)):
     """Poses ``(..., 3, 3)`` of the three link centres g1, g2, g3 in the middle link's frame; book (2.12), fig. 2.8.
 
-    The closed form of the chain product ``g1 = (-l2/2, 0, 0) exp(-alpha1) (-l1/2, 0, 0)``,
-    ``g2 = e``, ``g3 = (l2/2, 0, 0) exp(alpha2) (l3/2, 0, 0)`` (the link index is on axis -2):
-    link 1 sits at heading -alpha1, link 3 at +alpha2. alpha: ``(..., 2)``.
+    The chain product ``g1 = (-l2/2, 0, 0) exp(-alpha1) (-l1/2, 0, 0)``, ``g2 = e``,
+    ``g3 = (l2/2, 0, 0) exp(alpha2) (l3/2, 0, 0)`` (the link index is on axis -2): link 1 sits at
+    heading -alpha1, link 3 at +alpha2. alpha: ``(..., 2)``. The N-link chain of
+    :func:`gm_core.chains.link_chain_poses` seen from its middle link (one copy for every N).
     """
-    alpha = as_array(alpha, "alpha", (2,), what=" (alpha1, alpha2)")
-    l1, l2, l3 = _three_link_lengths(lengths)
-    a1, a2 = alpha[..., 0], alpha[..., 1]
-    P = np.zeros(alpha.shape[:-1] + (3, 3))
-    P[..., 0, 0] = -l2 / 2 - l1 / 2 * np.cos(a1)
-    P[..., 0, 1] = l1 / 2 * np.sin(a1)
-    P[..., 0, 2] = -a1
-    P[..., 2, 0] = l2 / 2 + l3 / 2 * np.cos(a2)
-    P[..., 2, 1] = l3 / 2 * np.sin(a2)
-    P[..., 2, 2] = a2
-    return P
+    return _middle_frame(alpha, lengths)[0]
 
 
 def three_link_jacobians(alpha, lengths=(1.0, 1.0, 1.0)):
@@ -73,26 +82,14 @@ def three_link_jacobians(alpha, lengths=(1.0, 1.0, 1.0)):
     Each maps (xi_x, xi_y, xi_theta, alpha1_dot, alpha2_dot) -- the body velocity of the middle link
     and the joint speeds -- to the body velocity of link i's centre frame g_i. alpha: ``(..., 2)``
     with the sign convention of fig. 2.6 (link 1 sits at -alpha1 relative to link 2, link 3 at
-    +alpha2); lengths: three positive numbers. Corrections to the draft (see book/90-errata):
-    row 1 of (2.51) has -(xi_y - xi_theta l2/2) sin(alpha1); (2.56) needs the third row
-    xi_theta + alpha2_dot, so row 3 of (2.59) is (0, 0, 1, 0, 1).
+    +alpha2); lengths: three positive numbers. Computed as :func:`gm_core.chains.link_chain_jacobians`
+    with the middle link as body frame; ``tests/test_chains_three_link.py`` checks it against the
+    closed form (2.57)-(2.59). Corrections to the draft (see book/90-errata): row 1 of (2.51) has
+    -(xi_y - xi_theta l2/2) sin(alpha1); (2.56) needs the third row xi_theta + alpha2_dot, so
+    row 3 of (2.59) is (0, 0, 1, 0, 1).
     """
-    alpha = as_array(alpha, "alpha", (2,), what=" (alpha1, alpha2)")
-    l1, l2, l3 = _three_link_lengths(lengths)
-    c1, s1 = np.cos(alpha[..., 0]), np.sin(alpha[..., 0])
-    c2, s2 = np.cos(alpha[..., 1]), np.sin(alpha[..., 1])
-    batch = alpha.shape[:-1]
-    J1 = np.zeros(batch + (3, 5))
-    J1[..., 0, 0], J1[..., 0, 1], J1[..., 0, 2] = c1, -s1, l2 * s1 / 2
-    J1[..., 1, 0], J1[..., 1, 1], J1[..., 1, 2], J1[..., 1, 3] = s1, c1, -(l2 * c1 + l1) / 2, l1 / 2
-    J1[..., 2, 2], J1[..., 2, 3] = 1.0, -1.0
-    J2 = np.zeros(batch + (3, 5))
-    J2[..., :, :3] = np.eye(3)
-    J3 = np.zeros(batch + (3, 5))
-    J3[..., 0, 0], J3[..., 0, 1], J3[..., 0, 2] = c2, s2, l2 * s2 / 2
-    J3[..., 1, 0], J3[..., 1, 1], J3[..., 1, 2], J3[..., 1, 4] = -s2, c2, (l2 * c2 + l3) / 2, l3 / 2
-    J3[..., 2, 2], J3[..., 2, 4] = 1.0, 1.0
-    return J1, J2, J3
+    J = _middle_frame(alpha, lengths)[1]
+    return J[..., 0, :, :], J[..., 1, :, :], J[..., 2, :, :]
 
 
 # ------------------------------------------------------------------ generalized body frames
@@ -178,26 +175,17 @@ def com_frame(alpha, lengths=(1.0, 1.0, 1.0), weights=None):
     beta is the pose relative to the middle link of the three-link system: position the weighted
     mean of the link centres, orientation the weighted mean of the link orientations (-alpha1, 0,
     alpha2). ``weights`` default to the link lengths (uniform mass per unit length); pass
-    ``(1, 1, 1)`` for the plain mean.
+    ``(1, 1, 1)`` for the plain mean. This is the course's one "centre of mass" frame
+    (``LinkChain(..., frame="com")`` for any number of links).
     """
-    alpha = as_array(alpha, "alpha", (2,), what=" (alpha1, alpha2)")
-    P = three_link_poses(alpha, lengths)
-    l1, l2, l3 = _three_link_lengths(lengths)
-    w = np.array([l1, l2, l3]) if weights is None else check_lengths(weights, 3, "weights")
+    Q, J = _middle_frame(alpha, lengths)
+    w = np.array(_three_link_lengths(lengths)) if weights is None else check_lengths(weights, 3, "weights")
     w = w / w.sum()
-    a1, a2 = alpha[..., 0], alpha[..., 1]
-    c1, s1, c2, s2 = np.cos(a1), np.sin(a1), np.cos(a2), np.sin(a2)
-    x, y = np.moveaxis(np.einsum("i,...ij->...j", w, P[..., :2]), -1, 0)
-    th = np.einsum("i,...i->...", w, P[..., 2])
-    beta = np.stack([x, y, th], -1)
-    d = np.zeros(alpha.shape[:-1] + (3, 2))
-    d[..., 0, 0] = w[0] * l1 / 2 * s1
-    d[..., 0, 1] = -w[2] * l3 / 2 * s2
-    d[..., 1, 0] = w[0] * l1 / 2 * c1
-    d[..., 1, 1] = w[2] * l3 / 2 * c2
-    d[..., 2, 0] = -w[0]
-    d[..., 2, 1] = w[2]
-    return beta, d
+    # d(x_i, y_i)/d alpha = R(theta_i) (shape columns of J_i, rows x, y); d theta_i/d alpha = row theta
+    c, s = np.cos(Q[..., 2])[..., None], np.sin(Q[..., 2])[..., None]
+    Jr = J[..., 3:]
+    dP = np.stack([c * Jr[..., 0, :] - s * Jr[..., 1, :], s * Jr[..., 0, :] + c * Jr[..., 1, :], Jr[..., 2, :]], -2)
+    return np.einsum("i,...ij->...j", w, Q), np.einsum("i,...ijk->...jk", w, dP)
 
 
 def com_frame_jacobians(alpha, lengths=(1.0, 1.0, 1.0), weights=None):

@@ -13,9 +13,28 @@
       });
     });
   }
+  /* A pre-rendered sweep (tools/site_sweeps.py) shows the value of its control beside the
+     caption: the player marks the frame it shows in its picture's data-frame. */
+  function sweeps(root) {
+    root.querySelectorAll('.gm-sweep').forEach(function (s) {
+      if (s.getAttribute('data-gm-sweep')) return;
+      s.setAttribute('data-gm-sweep', '1');
+      var values = JSON.parse(s.getAttribute('data-values') || '[]');
+      var label = s.getAttribute('data-label') || '';
+      var img = s.querySelector('img.gm-anim-frame'), out = s.querySelector('.gm-sweep-value');
+      if (!img || !out) return;
+      function show() {
+        var k = parseInt(img.getAttribute('data-frame') || '0', 10);
+        if (values[k] !== undefined) out.textContent = label + ' = ' + values[k];
+      }
+      new MutationObserver(show).observe(img, {attributes: true, attributeFilter: ['data-frame']});
+      show();
+    });
+  }
   function start() {
     nameSliders(document);
-    new MutationObserver(function () { nameSliders(document); })
+    sweeps(document);
+    new MutationObserver(function () { nameSliders(document); sweeps(document); })
       .observe(document.body, {childList: true, subtree: true});
   }
   if (document.readyState === 'loading') { document.addEventListener('DOMContentLoaded', start); } else { start(); }

@@ -6,10 +6,15 @@ import pytest
 
 @pytest.fixture(autouse=True)
 def _close_figures():
-    """Close every matplotlib figure a test opened (panels create figures through pyplot)."""
+    """Close every matplotlib figure a test opened (panels create figures through pyplot), except
+    one a module-scoped fixture shares between tests and closes itself (``fig.gm_keep_open``)."""
     yield
-    if "matplotlib.pyplot" in sys.modules:
-        sys.modules["matplotlib.pyplot"].close("all")
+    plt = sys.modules.get("matplotlib.pyplot")
+    if plt is not None:
+        for num in plt.get_fignums():
+            fig = plt.figure(num)
+            if not getattr(fig, "gm_keep_open", False):
+                plt.close(fig)
 
 
 @pytest.fixture

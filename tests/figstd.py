@@ -6,7 +6,11 @@ returns one line per breach, naming the figure (``where``) and the text:
 
 * the figure is at most ``MAX_WIDTH_PX`` (900) CSS px wide: width in inches x dpi (an ipympl canvas
   is laid out at ``fig.dpi`` CSS px per inch; a jshtml frame is an image of that many pixels);
-* no text is smaller than ``MIN_TEXT_PX`` (10) px: font size in points x dpi / 72;
+* no text is smaller than ``MIN_TEXT_PX`` (10) px: font size in points x dpi / 72, and for
+  mathtext its smallest glyph (matplotlib draws sub- and superscripts at 0.7 of the size, so
+  ``$T_gL_h$`` at 9 pt has 8.75 px subscripts: too small);
+* no text holds formula markup outside mathtext (``T_pS``, ``ξ^``, ``g_{a,b}``: it reaches the
+  student raw; write ``$T_p\\mathbb{S}^1$``);
 * no text is sliced by the figure edge: its window extent lies inside the figure;
 * no two texts overlap (tick labels, axis labels, titles, legends, readouts), beyond
   ``OVERLAP_TOL_PX`` in both directions, and no axis label sits in the row (x) or column (y) of
@@ -28,11 +32,15 @@ from __future__ import annotations
 
 import gc
 import itertools
+import re
 import types
 
 import numpy as np
 from matplotlib.animation import AbstractMovieWriter
+from matplotlib import cbook
 from matplotlib.backends.backend_agg import RendererAgg
+from matplotlib.font_manager import FontProperties
+from matplotlib.mathtext import MathTextParser
 from matplotlib.quiver import Quiver
 from matplotlib.text import Text
 
@@ -46,7 +54,7 @@ EDGE_TOL_PX = 0.5
 #: padding of ``bbox_inches="tight"`` (savefig.pad_inches), used for ``%matplotlib inline`` figures
 TIGHT_PAD_IN = 0.1
 
-__all__ = ["check_figure", "breaches", "FrameChecker", "figure_name", "MAX_WIDTH_PX", "MIN_TEXT_PX", "MIN_ARROW_PX"]
+__all__ = ["check_figure", "breaches", "raw_formula", "FrameChecker", "figure_name", "MAX_WIDTH_PX", "MIN_TEXT_PX", "MIN_ARROW_PX"]
 
 
 class _RecordingRenderer(RendererAgg):
@@ -86,6 +94,47 @@ class _RecordingRenderer(RendererAgg):
 def _label(t, limit: int = 40) -> str:
     s = " ".join((t if isinstance(t, str) else t.get_text()).split())
     return repr(s if len(s) <= limit else s[: limit - 1] + "…")
+
+
+_MATH = MathTextParser("path")
+_SMALLEST: dict = {}
+
+
+def _smallest_pt(text: str, size: float, prop=None, parse_math: bool = True) -> float:
+    """Point size of the smallest glyph ``text`` is drawn with at font size ``size``: ``size``
+    itself, or for a line holding mathtext (``$...$``, laid out per line as matplotlib does) its
+    smallest sub- or superscript, measured by matplotlib's own mathtext parser."""
+    smallest = float(size)
+    if not parse_math:
+        return smallest
+    for line in str(text).split("\n"):
+        if not cbook.is_math_text(line):
+            continue
+        key = (line, float(size), None if prop is None else hash(prop))
+        hit = _SMALLEST.get(key)
+        if hit is None:
+            fp = (prop.copy() if prop is not None else FontProperties())
+            fp.set_size(size)
+            try:
+                glyphs = _MATH.parse(line, 72, fp).glyphs
+                hit = min((float(g[1]) for g in glyphs), default=float(size))
+            except ValueError:  # not valid mathtext: matplotlib would fail to draw it anyway
+                hit = float(size)
+            _SMALLEST[key] = hit
+        smallest = min(smallest, hit)
+    return smallest
+
+
+# formula markup that mathtext renders only between $...$ (as tests/test_notebook_text.py for markdown):
+# ``_{``, any ``^``, a backslash command, or a one-letter name with a subscript (``T_p``, ``g_1``)
+_RAW = re.compile(r"_\{|\^|\\[A-Za-z]+|(?<![\w/.-])(?:Ad|ad|[A-Za-zα-ωΑ-Ω])_[A-Za-z0-9α-ωΑ-Ω{]")
+_IN_MATH = re.compile(r"(?<!\\)\$.+?(?<!\\)\$")
+
+
+def raw_formula(text: str) -> str | None:
+    """The first piece of formula markup in ``text`` outside mathtext (None: there is none)."""
+    m = _RAW.search(_IN_MATH.sub(" ", str(text)))
+    return m.group(0) if m else None
 
 
 def _roles(fig) -> dict[int, tuple[str, object]]:
@@ -223,7 +272,7 @@ def _path_texts(fig) -> list[tuple]:
         if ax is not None and _inside(anchor, ax.get_window_extent(), tol=-0.5):
             role = "readout"
         out.append((pt, f"{role} (PathText)" if role == "text" else role, ax, text,
-                    float(getattr(pt, "size", 0.0)), bb, anchor))
+                    _smallest_pt(text, float(getattr(pt, "size", 0.0))), bb, anchor))
     return out
 
 
@@ -280,8 +329,11 @@ def check_figure(fig, where: str = "", tight: bool = False) -> list[str]:
     ``tight=True`` measures the figure as ``%matplotlib inline`` shows it: saved with
     ``bbox_inches="tight"`` (0.1 in padding), so its width is that of its drawn contents and no
     text can be cut by the edge. Each message reads ``"<where>: figure '<name>': <what>"``."""
+    found = breaches(fig, tight=tight)
+    if not found:
+        return []   # naming the figure searches the whole heap for its owner: only for a message
     name = (f"{where}: " if where else "") + f"figure {figure_name(fig)!r}"
-    return [f"{name}: {m}" for m in breaches(fig, tight=tight)]
+    return [f"{name}: {m}" for m in found]
 
 
 def breaches(fig, tight: bool = False) -> list[str]:
@@ -303,14 +355,21 @@ def breaches(fig, tight: bool = False) -> list[str]:
     for t, bb in renderer.texts:
         if t.get_visible():
             role, ax = roles.get(id(t), ("text", None))
-            items.append((t, role, ax, t.get_text(), t.get_fontsize(), bb, _anchor(t, bb)))
+            size = t.get_fontsize()
+            if not t.get_usetex():
+                size = _smallest_pt(t.get_text(), size, t.get_fontproperties(), t.get_parse_math())
+            items.append((t, role, ax, t.get_text(), size, bb, _anchor(t, bb)))
     items += _path_texts(fig)
     boxes = []
     for t, role, ax, text, size, bb, anchor in items:
         px = size * dpi / 72.0
         desc = f"{role} {_label(text)}"
+        raw = raw_formula(text)
+        if raw:
+            out.append(f"{desc} holds raw formula markup {raw!r} outside $...$ (write it as mathtext)")
         if px < MIN_TEXT_PX - 1e-6:
-            out.append(f"{desc} is {px:.1f} px (< {MIN_TEXT_PX:.0f} px)")
+            scripts = " in its smallest mathtext script" if "$" in str(text) else ""
+            out.append(f"{desc} is {px:.1f} px{scripts} (< {MIN_TEXT_PX:.0f} px)")
         if not np.all(np.isfinite([bb.x0, bb.y0, bb.x1, bb.y1])):
             continue
         cut = {"left": -bb.x0, "right": bb.x1 - W, "bottom": -bb.y0, "top": bb.y1 - H}

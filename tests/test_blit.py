@@ -3,7 +3,9 @@
 A live panel renders slider changes by blitting (gm_core.drawing.blit). Here each panel is built
 on Agg with blitting on and receives a sequence of changes; its last blitted picture is compared
 pixel by pixel with a full redraw of the same figure in the same state (the blitter disconnected,
-so every artist is drawn from scratch). One panel per comparison, not two.
+so every artist is drawn from scratch). One panel per comparison, not two, and one panel per name
+for the two tests that move every panel (``panel``: first the full-draw test moves it through
+three states, then the comparison moves it through four more and compares).
 """
 import matplotlib.pyplot as plt
 import numpy as np
@@ -23,19 +25,43 @@ def _picture(fig):
     return np.asarray(fig.canvas.buffer_rgba()).copy()
 
 
-@pytest.mark.parametrize("name", sorted(PANELS))
-def test_blitted_frames_match_full_redraws(name, monkeypatch):
-    cls = PANELS[name]
-    monkeypatch.setattr(Panel, "blit_everywhere", True)
-    p = cls()
+@pytest.fixture(scope="module", params=sorted(PANELS))
+def panel(request):
+    """``(name, panel)``: one panel of each registered class, built with blitting on, shared by the
+    tests below that take it (pytest runs them together, one name after the other, in file order);
+    closed after the last of them."""
+    name = request.param
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(Panel, "blit_everywhere", True)
+        p = PANELS[name]()
+    p.fig.gm_keep_open = True     # not closed by conftest's _close_figures between the tests
+    yield name, p
+    p.fig.gm_keep_open = False
+    plt.close(p.fig)
+
+
+def test_full_draw_leaves_figure_clean(panel):
+    """The draw callback must not touch the figure: a figure left stale after a draw makes ipympl
+    request another draw, forever (a redraw loop that only shows in a live browser)."""
+    name, p = panel
+    rng = np.random.default_rng(5)
+    for _ in range(3):
+        p.refresh(**p.sample_values(rng))
+        p.fig.canvas.draw()
+        assert not p.fig.stale, f"{name}: figure is stale right after a full draw"
+
+
+def test_blitted_frames_match_full_redraws(panel):
+    name, p = panel
     try:
         p.fig.canvas.draw()
+        drawn = (p.blitter.full_draws + p.blitter.blits) if p.blitter is not None else 0
         rng = np.random.default_rng(3)
         for _ in range(4):
             p.refresh(**p.sample_values(rng))
         blitted = _picture(p.fig)
         if p.blitter is not None:
-            assert p.blitter.full_draws + p.blitter.blits >= 4
+            assert p.blitter.full_draws + p.blitter.blits - drawn >= 4
             p.blitter.disconnect()   # nothing animated any more: the next draw renders every artist
         p.fig.canvas.draw()          # the full redraw of the very same state, from scratch
         full = _picture(p.fig)
@@ -45,7 +71,7 @@ def test_blitted_frames_match_full_redraws(name, monkeypatch):
         # artist overlapped a moving one; anything more means a stale or missing artist.
         assert differing < 5e-3, f"{name}: {differing:.2%} of pixels differ from a full redraw"
     finally:
-        plt.close(p.fig)
+        p.fig.gm_keep_open = False   # the last test using this panel
 
 
 def test_the_blit_comparison_sees_a_stale_artist(monkeypatch):
@@ -119,15 +145,3 @@ def test_saving_a_blitted_figure_draws_each_artist_once(blitting, tmp_path):
     plt.close(live.fig)
     plt.close(plain.fig)
 
-
-@pytest.mark.parametrize("name", sorted(PANELS))
-def test_full_draw_leaves_figure_clean(name, monkeypatch):
-    """The draw callback must not touch the figure: a figure left stale after a draw makes ipympl
-    request another draw, forever (a redraw loop that only shows in a live browser)."""
-    monkeypatch.setattr(Panel, "blit_everywhere", True)
-    p = PANELS[name]()
-    rng = np.random.default_rng(5)
-    for _ in range(3):
-        p.refresh(**p.sample_values(rng))
-        p.fig.canvas.draw()
-        assert not p.fig.stale, f"{name}: figure is stale right after a full draw"

@@ -6,6 +6,7 @@ import sys
 
 import numpy as np
 import pytest
+from checkbatch import check_each
 
 from gm_core import checks
 from gm_core.checks import (
@@ -41,6 +42,21 @@ def test_all_sixteen_exercises_are_registered():
     assert all(getattr(checks, "ex" + i.replace(".", "_")) is REGISTRY[i] for i in expected)
 
 
+def verdicts_of(p, answers):
+    """``[p.check(a, quiet=True) for a in answers]``, the probes of all answers run in one sandbox
+    (tests/checkbatch.py), each answer judged on its own; one of them (a different one for each
+    part, so every answer of a list is covered) also goes through ``check()`` itself, in a sandbox
+    of its own, and must get the same verdict."""
+    answers = list(answers)
+    if len(answers) <= 2:   # a sandbox each costs no more than the batch plus the one check()
+        return [p.check(a, quiet=True) for a in answers]
+    verdicts = check_each(p, answers)
+    k = PARTS.index((p.exercise.id, p.name)) % len(answers)
+    v = p.check(answers[k], quiet=True)
+    assert (v.status, v.message) == (verdicts[k].status, verdicts[k].message), (answers[k], v, verdicts[k])
+    return verdicts
+
+
 @pytest.mark.parametrize("ex_id,name", PARTS)
 def test_reference_passes(ex_id, name):
     p = part(ex_id, name)
@@ -53,16 +69,14 @@ def test_reference_passes(ex_id, name):
 def test_wrong_answers_fail_with_a_message(ex_id, name):
     p = part(ex_id, name)
     assert p.wrong, f"{ex_id}{name} has no plausible wrong answer to test"
-    for w in p.wrong:
-        v = p.check(w, quiet=True)
-        assert v.status == FAILED and len(v.message) > 20, v
+    for w, v in zip(p.wrong, verdicts_of(p, p.wrong), strict=True):
+        assert v.status == FAILED and len(v.message) > 20, (w, v)
 
 
 @pytest.mark.parametrize("ex_id,name", PARTS)
 def test_starter_is_unattempted(ex_id, name):
     p = part(ex_id, name)
-    for starter in (p.starter, None, ...):
-        v = p.check(starter, quiet=True)
+    for v in verdicts_of(p, (p.starter, None, ...)):
         assert v.status == UNATTEMPTED, v
 
 
@@ -85,8 +99,7 @@ JUNK = [
 @pytest.mark.parametrize("ex_id,name", PARTS)
 def test_junk_gives_a_verdict_not_a_traceback(ex_id, name, capsys):
     p = part(ex_id, name)
-    for junk in JUNK:
-        v = p.check(junk, quiet=True)
+    for junk, v in zip(JUNK, verdicts_of(p, JUNK), strict=True):
         if p.kind == "choice" and isinstance(junk, str):
             # text that names no option asks for a letter and is not recorded as a wrong answer
             assert v.status == UNATTEMPTED and "letter" in v.message, (junk, v)
@@ -222,3 +235,20 @@ def test_student_function_that_edits_its_input_cannot_corrupt_the_checker():
     first = [a[0].copy() for a in checks.ex1_4.a.inputs()][:3]
     checks.ex1_4.a.check(vandal, quiet=True)
     assert all(np.array_equal(x, a[0]) for x, a in zip(first, checks.ex1_4.a.inputs()))
+
+
+def test_one_sandbox_for_many_answers_falls_back_to_one_each_after_a_hang():
+    """tests/checkbatch.py (used above): an answer that hangs is stopped at its own time limit, and
+    it and every later answer get a sandbox each, so their verdicts are check()'s."""
+    import time
+
+    def hangs(*args):
+        while True:
+            time.sleep(0.01)
+
+    p = part("1.2", "a")
+    answers = [lambda *a: "text", hangs, raises]
+    batch = check_each(p, answers, time_limit=0.5)
+    single = [p.check(a, quiet=True, time_limit=0.5) for a in answers]
+    assert [(v.status, v.message) for v in batch] == [(v.status, v.message) for v in single]
+    assert batch[1].status == FAILED and "second" in batch[1].message, batch[1].message

@@ -84,8 +84,34 @@ def test_checker_sees_multiline_and_math_texts():
     fig, ax = _good()
     ax.set_title("torus $\\mathbb{T}^2$\n(both pairs of edges glued)", fontsize=6)
     msgs = figstd.check_figure(fig)
-    # one message, for the whole two-line title (matplotlib hands the renderer no artist for it)
-    assert [m for m in msgs if "is 8.3 px" in m and "title 'torus $" in m and "(both pairs of edg" in m], _kinds(msgs)
+    # one message, for the whole two-line title (matplotlib hands the renderer no artist for it),
+    # naming the size of its smallest glyph: the superscript 2 at 0.7 x 6 pt = 5.8 px
+    assert [m for m in msgs if "is 5.8 px in its smallest mathtext script" in m and "title 'torus $" in m
+            and "(both pairs of edg" in m], _kinds(msgs)
+
+
+def test_checker_measures_mathtext_scripts():
+    """A sub- or superscript is drawn at 0.7 of its text's size: at 9 pt the subscripts of
+    $T_gL_h$ are 8.75 px, below the standard, although the text's own size (12.5 px) is not; at
+    MATH_PT they pass; a script of a script (0.49) fails even there. Text and PathText alike."""
+    from gm_core.drawing.toolkit import MATH_PT, PathText
+
+    fig, ax = _good()
+    ax.set_xlabel("the lift $T_gL_h$", fontsize=9)
+    msgs = figstd.check_figure(fig)
+    assert len(msgs) == 1 and "x-axis label 'the lift $T_gL_h$' is 8.8 px in its smallest mathtext script" in msgs[0], \
+        _kinds(msgs)
+    ax.set_xlabel("the lift $T_gL_h$", fontsize=MATH_PT)
+    assert figstd.check_figure(fig) == []
+    ax.set_xlabel("time t  (12 $ and 5 $: no formula)", fontsize=8)   # two dollar signs, escaped: plain text
+    ax.xaxis.label.set_text(r"time t  (12 \$ and 5 \$: no formula)")
+    assert figstd.check_figure(fig) == []
+    PathText(ax, 0.05, 0.5, r"$T_gR_{g^{-1}}$", size=MATH_PT, coords="axes")
+    PathText(ax, 0.05, 0.3, r"$\xi^s$ readout", size=8, coords="axes")
+    msgs = figstd.check_figure(fig)
+    assert any("readout '$T_gR_{g^{-1}}$' is 7.1 px in its smallest mathtext script" in m for m in msgs), _kinds(msgs)
+    assert any(r"readout '$\\xi^s$ readout' is 7.8 px in its smallest mathtext script" in m for m in msgs), _kinds(msgs)
+    assert len(msgs) == 2, _kinds(msgs)
 
 
 def test_checker_finds_overlapping_texts():
@@ -277,6 +303,33 @@ def test_panel_initial_state(name, cls):
     assert panel.fig is not None, f"{name} has no figure"
     msgs = figstd.check_figure(panel.fig, f"panel {name}")
     assert not msgs, f"{len(msgs)} breaches of the figure standard:\n  " + "\n  ".join(msgs)
+
+
+@pytest.mark.parametrize("name,cls", PANELS, ids=[n for n, _ in PANELS])
+def test_panel_words_have_no_raw_formula(name, cls):
+    """A panel's title and its controls' labels are HTML (no MathJax in a slider's label): a
+    formula there is Unicode or <sub>/<sup>, never ``ξ_β`` or ``p_y`` (issue 19 point 5)."""
+    import re
+
+    panel = cls()
+    words = [("title", re.sub(r"<[^>]+>", "", panel.title or ""))]
+    for key, c in panel.controls.items():
+        words.append((f"control {key!r}", (getattr(c, "description", "") or "") + " " + (getattr(c, "tooltip", "") or "")))
+    bad = [f"{what}: {text.strip()!r} holds {figstd.raw_formula(text)!r}" for what, text in words
+           if figstd.raw_formula(text) or "$" in text]
+    plt.close("all")
+    assert not bad, f"{name}: raw formula markup in its words:\n  " + "\n  ".join(bad)
+
+
+def test_raw_formula_markup_is_found_in_figures_and_words():
+    fig, ax = _good()
+    ax.set_title("the tangent line T_pS¹")
+    msgs = figstd.check_figure(fig)
+    assert len(msgs) == 1 and "holds raw formula markup 'T_p' outside $...$" in msgs[0], _kinds(msgs)
+    ax.set_title(r"the tangent line $T_p\mathbb{S}^1$", fontsize=11)
+    assert figstd.check_figure(fig) == []
+    assert [figstd.raw_formula(t) for t in ("Ad_g ξ", "ξ^ g", "g_{a,b}", "body_velocity", "$x_1$", "hg = (1, 2)")] \
+        == ["Ad_g", "^", "g_{", None, None, None]
 
 
 @pytest.mark.parametrize("path", nbrun.params(NOTEBOOKS))

@@ -210,7 +210,7 @@ GAIT = GA.circle_gait(0.5, (1.0, -0.5))
 LOCOMOTION_CASES = [
     Case("body_velocity", LO.body_velocity, {"system": CAR, "r": R, "r_dot": RD}, objects={"system"},
          batch=("r", "r_dot"), out_tail=(3,)),
-    Case("connection_curl", LO.connection_curl, {"system": SNAKE, "r": np.array([1.0, -0.5]), "h": 1e-5},
+    Case("connection_curl", GE.connection_curl, {"system": SNAKE, "r": np.array([1.0, -0.5]), "h": 1e-5},
          objects={"system"}, also_valid={"h": (None,)}),
 ]
 SLOW_CASES = [

@@ -62,6 +62,21 @@ def test_path_length_is_pacing_independent_and_euclidean_circle():
         dissipation_metric(s, np.zeros(3))
 
 
+def test_efficiency_from_a_known_displacement_and_fewer_samples():
+    """A live panel passes the g(T) of the trajectory it draws and fewer path samples: the same
+    efficiency (to far below its readout's 4 decimals); a wrong g(T) gives a different one."""
+    s = sysplotter_swimmer()
+    g = sysplotter_stroke("efficiency")
+    ref = efficiency(s, g)
+    g_T = trajectory(s, g, n_frames=61, substeps=8).g[-1]
+    assert efficiency(s, g, samples=1024, displacement=g_T) == pytest.approx(ref, rel=1e-7)
+    assert efficiency(s, g, displacement=2 * g_T) == pytest.approx(2 * ref, rel=1e-7)
+    with pytest.raises(ValueError, match="displacement"):
+        efficiency(s, g, displacement=np.zeros(2))
+    with pytest.raises(ValueError, match="samples"):
+        efficiency(s, g, samples=3)
+
+
 # -- sysplotter's strokes ----------------------------------------------------------------------
 @pytest.mark.parametrize("which", ["displacement", "efficiency"])
 def test_sysplotter_strokes_in_our_model(which):

@@ -8,6 +8,7 @@ os.environ.setdefault("GM_COURSE_TESTING", "1")
 
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
+from matplotlib.animation import AbstractMovieWriter  # noqa: E402
 
 from gm_core import SE2  # noqa: E402
 from gm_core.drawing import curvature as D  # noqa: E402
@@ -136,14 +137,25 @@ def test_swimmer_animation_places_the_links():
     tr = trajectory(s, g, n_frames=31)
     fig, anim = D.animate_swimmer(s, g, tr, n_frames=31, row=0, limits=((-2.6, 2.6), (-2.6, 2.6)))
     figure_standard(fig)
-    anim._func(2)  # the third frame (frames are shortened under test, indices still map to traj)
+
+    class Grab(AbstractMovieWriter):   # matplotlib's public writer interface: keep each frame's patches
+        def setup(self, fig, outfile, dpi=None):
+            super().setup(fig, outfile, dpi=dpi)
+            self.seen = []
+
+        def grab_frame(self, **savefig_kwargs):
+            self.seen.append([p.get_xy().copy() for p in fig.axes[1].patches])
+
+        def finish(self):
+            pass
+
+    writer = Grab(fps=10)
+    anim.save("frames-kept-in-memory", writer=writer)
+    # the third frame (frames are shortened under test, indices still map to traj)
     i = np.linspace(0, 30, 31).round().astype(int)[2]
-    sw = [a for a in fig.axes[1].patches]
     poses = SE2.compose(tr.g[i][None], s.part_poses(tr.r[i]))
-    for patch, part, pose in zip(sw, s.parts(), poses):
-        np.testing.assert_allclose(patch.get_xy()[: len(part.outline)], SE2.act_on_points(pose, part.outline),
-                                   atol=1e-12)
-    anim.event_source = None
+    for xy, part, pose in zip(writer.seen[2], s.parts(), poses):
+        np.testing.assert_allclose(xy[: len(part.outline)], SE2.act_on_points(pose, part.outline), atol=1e-12)
 
 
 def test_optimize_with_progress_reports(capsys):

@@ -12,6 +12,7 @@ Further runs (no kernels, or one) cover assignments, leftovers, bad files, empty
 refusal to run without a sandbox. Six kernel runs in all."""
 import csv
 import hashlib
+import inspect
 import json
 import os
 import site
@@ -27,12 +28,13 @@ import pytest
 
 from gm_core.checks import _evidence, _grading, _report, ex1_1, ex1_2
 from gm_core.checks._exercise import REGISTRY, exercise_ids
-from gm_core.checks._isolate import sandbox_problem
+from gm_core.checks._isolate import _own_cgroup_dirs, sandbox_problem
 from gm_core.checks.grade import identify, leftover_reason, load_assignment
 
 ROOT = Path(__file__).resolve().parent.parent
 TOKEN = f"gm-test-daemon-{uuid.uuid4().hex[:8]}"
 NO_SANDBOX = sandbox_problem()
+CGROUPS = {"pids", "memory"} <= set(_own_cgroup_dirs())
 needs_sandbox = pytest.mark.skipif(NO_SANDBOX is not None, reason=f"no sandbox: {NO_SANDBOX}")
 
 
@@ -123,6 +125,51 @@ def tamper_cells(out, honest, neighbour):
             "ex1_2.b.check(lambda h, g: np.diag(h))"]
 
 
+def staller_cells():
+    """A kernel that pauses the cell clock: a check announced for a part that does not exist, a
+    patched clock, then its runner stopped with SIGSTOP (only the grading process's own clock,
+    outside the sandbox, can end that cell)."""
+    return ["import numpy as np, os, signal, time\nfrom gm_core.checks import ex1_2, _grading\n"
+            "ex1_2.a.check(lambda h, g: h * g)",
+            "os.write(_grading._STATE['fd'], b'B 9.9/z\\n')   # 'my probes are running'\n"
+            "time.monotonic = time.time = time.perf_counter = lambda: 0.0\n"
+            "time.sleep(10**6)",
+            "ex1_2.b.check(lambda h, g: np.diag(h))",
+            "os.kill(os.getppid(), signal.SIGSTOP)           # the grader's runner\n"
+            "signal.signal(signal.SIGINT, signal.SIG_IGN)\ntime.sleep(10**6)",
+            "ex1_2.c.check(lambda h, g: np.diag(h))"]
+
+
+BOMB = f"gmb{TOKEN[-8:]}"          # the fork bomb's processes carry this name (/proc/<pid>/comm)
+
+
+def bomb_cells():
+    """A fork bomb, once it has checked that the process limit holds (so it never runs unbounded)."""
+    name = f"ctypes.CDLL(None).prctl(15, {BOMB.encode()!r}, 0, 0, 0)"
+    return ["import numpy as np, os, signal, time, ctypes\nfrom gm_core.checks import ex1_2\n"
+            "ex1_2.a.check(lambda h, g: h * g)",
+            "n = 0\nwhile n < 150:\n    try:\n        pid = os.fork()\n    except OSError:\n        break\n"
+            f"    if pid == 0:\n        {name}\n        while True:\n            time.sleep(1)\n"
+            "    n += 1\nheld = n < 100\n"
+            "if held:                                        # the process limit held\n"
+            "    ex1_2.b.check(lambda h, g: np.diag(h))",
+            "signal.signal(signal.SIGINT, signal.SIG_IGN)\n"
+            f"while held:\n    try:\n        if os.fork() == 0:\n            {name}\n"
+            "    except OSError:\n        time.sleep(0.5)",
+            "ex1_2.c.check(lambda h, g: h + g)"]
+
+
+def named(comm):
+    found = []
+    for p in Path("/proc").glob("[0-9]*/comm"):
+        try:
+            if p.read_text().strip() == comm:
+                found.append(p.parent.name)
+        except OSError:
+            pass
+    return found
+
+
 def alive_with(token):
     found = []
     for p in Path("/proc").glob("[0-9]*/cmdline"):
@@ -144,20 +191,27 @@ def batch(tmp_path_factory):
     neighbour.parent.mkdir()
     neighbour.write_text("{}")
     write_nb(tmp / "tamper" / "ex1_2.ipynb", tamper_cells(out, honest, neighbour))
+    write_nb(tmp / "staller" / "ex1_2.ipynb", staller_cells())
+    write_nb(tmp / "bomb" / "ex1_2.ipynb", bomb_cells())
     for kind in ("solutions", "exercises"):
         (tmp / kind).mkdir()
         (tmp / kind / "ex1_1.ipynb").write_bytes((ROOT / kind / "ex1_1.ipynb").read_bytes())
     course, pth = tree_hash(ROOT / "gm_core"), honest.read_bytes()
     t = time.monotonic()
-    res = grade_cli(tmp / "tamper", tmp / "honest", tmp / "forger", tmp / "solutions",
-                    tmp / "exercises", "--out", out, "--cell-timeout", "4", "--jobs", "3", "--memory", "2048", cwd=tmp)
+    proc = subprocess.Popen([sys.executable, "-m", "gm_core.grade", *map(str, (
+        tmp / "tamper", tmp / "honest", tmp / "forger", tmp / "staller", tmp / "bomb", tmp / "solutions",
+        tmp / "exercises", "--out", out, "--cell-timeout", "4", "--jobs", "3", "--memory", "2048",
+        "--max-processes", "64"))], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        cwd=tmp, env=env())
+    stdout, stderr = proc.communicate(timeout=900)
+    res = subprocess.CompletedProcess(proc.args, proc.returncode, stdout, stderr)
     elapsed = time.monotonic() - t
     assert res.returncode == 0, res.stderr + res.stdout
     snapshot = {f: (out / f).read_bytes() for f in ("results.json", "grades.csv")}
     rows = list(csv.DictReader(open(out / "grades.csv", encoding="utf-8")))
     return {"tmp": tmp, "out": out, "rows": rows, "stdout": res.stdout, "snapshot": snapshot,
             "results": json.loads(snapshot["results.json"]), "course": course, "honest": pth,
-            "honest_path": honest, "elapsed": elapsed}
+            "honest_path": honest, "elapsed": elapsed, "grader_pid": proc.pid}
 
 
 def rows_of(batch, folder):
@@ -204,6 +258,33 @@ def test_tampering_reaches_nothing_and_no_process_survives(batch):
 
 
 @needs_sandbox
+def test_a_kernel_cannot_stop_its_cell_clock(batch):
+    rows = rows_of(batch, "staller")
+    assert scores(batch, "staller") == {"a": 2.0, "b": 2.0, "c": 0.0}, rows
+    lines = batch["results"]["output"].splitlines()
+    assert any(ln.startswith("staller/ex1_2.ipynb: cell 2 (`os.write(_grading._STATE['fd'], b'B 9.9/z")
+               and ln.endswith("ran longer than the cell limit and was interrupted") for ln in lines), lines
+    msg = rows["c"]["message"]
+    assert "the grader ended the notebook in cell 4 (`os.kill(os.getppid(), signal.SIGSTOP)" in msg, msg
+
+
+@needs_sandbox
+def test_a_fork_bomb_is_held_and_ended_whole(batch):
+    held = CGROUPS or os.geteuid() != 0
+    rows = rows_of(batch, "bomb")
+    assert scores(batch, "bomb") == {"a": 2.0, "b": 2.0 if held else 0.0, "c": 0.0}, rows
+    if held:
+        assert "kernel stopped in cell 3" in rows["c"]["message"], rows["c"]["message"]
+    else:
+        assert "no pids" in batch["results"]["output"]
+    assert named(BOMB) == []
+    assert scores(batch, "honest") == {"a": 2.0, "b": 2.0, "c": 2.0}     # its classmates unharmed
+    left = [d for c in ("pids", "memory") for d in Path(f"/sys/fs/cgroup/{c}").rglob("gm-grade-*")
+            if str(batch["grader_pid"]) in d.name]
+    assert left == []                                                    # its cgroups removed
+
+
+@needs_sandbox
 def test_a_solution_full_marks_its_exercise_zero(batch):
     assert scores(batch, "solutions") == {"a": 1.0, "b": 1.0}
     assert scores(batch, "exercises") == {"a": 0.0, "b": 0.0}
@@ -212,22 +293,28 @@ def test_a_solution_full_marks_its_exercise_zero(batch):
 @needs_sandbox
 def test_results_are_gradescope_ready(batch):
     res = batch["results"]
-    assert res["score"] == pytest.approx(sum(t["score"] for t in res["tests"])) == 10.0
-    assert len(res["tests"]) == len(batch["rows"]) == 3 * 3 + 2 * 2
+    held = CGROUPS or os.geteuid() != 0
+    total = 6 + 2 + 4 + (4 if held else 2) + 2          # honest, tamper, staller, bomb, solution
+    assert res["score"] == pytest.approx(sum(t["score"] for t in res["tests"])) == total
+    assert len(res["tests"]) == len(batch["rows"]) == 5 * 3 + 2 * 2
     for t in res["tests"]:
         assert {"name", "number", "score", "max_score", "output", "visibility", "status"} <= set(t)
         assert 0 <= t["score"] <= t["max_score"] and t["visibility"] == "visible"
         assert not t["name"].startswith("/") and str(batch["tmp"]) not in t["name"] + t["output"]
-    assert "10 / 22 points" in batch["stdout"]
+    assert f"{total} / 34 points" in batch["stdout"]
 
 
 @needs_sandbox
 def test_assignment_leftovers_bad_files_and_no_sandbox(tmp_path):
     """Declared exercises fix the maximum; leftovers are skipped with a note; a misnamed, a
-    deep-JSON and a metadata-string notebook get messages; the dict call form (no sandbox)."""
+    deep-JSON and a metadata-string notebook get messages; the dict call form (no sandbox); a
+    setsid daemon, which no pid namespace ends here, is ended with the notebook's cgroup."""
     sub = tmp_path / "sub"
-    write_nb(sub / "ex1_1.ipynb", ["from gm_core.checks import ex1_1\n"
-                                   "ex1_1.check({'a': 'b', 'b': 'c'}, strict=True)"])
+    token = f"gm-test-nosandbox-{uuid.uuid4().hex[:8]}"
+    write_nb(sub / "ex1_1.ipynb", [
+        "import subprocess, sys\nfrom gm_core.checks import ex1_1\n"
+        f"subprocess.Popen([sys.executable, '-c', 'import time\\nwhile True: time.sleep(1)', {token!r}],"
+        " start_new_session=True)\nex1_1.check({'a': 'b', 'b': 'c'}, strict=True)"])
     for name in ("ex1_1.course-update.ipynb", "ex1_1-Copy1.ipynb", "Copy of ex1_2.ipynb",
                  ".ipynb_checkpoints/ex1_1-checkpoint.ipynb"):
         write_nb(sub / name, ["from gm_core.checks import ex1_1\nex1_1.a.check('b')"])
@@ -236,8 +323,14 @@ def test_assignment_leftovers_bad_files_and_no_sandbox(tmp_path):
     (tmp_path / "a.json").write_text(json.dumps({"exercises": ["1.1", "1.2", "1.3"], "max_score": 10,
                                                  "visibility": "after_due_date",
                                                  "part_visibility": {"1.1a": "hidden"}}))
-    res = grade_cli(sub, "--out", tmp_path / "out", "--assignment", tmp_path / "a.json",
-                    "--no-sandbox", cwd=tmp_path)
+    try:
+        res = grade_cli(sub, "--out", tmp_path / "out", "--assignment", tmp_path / "a.json",
+                        "--no-sandbox", cwd=tmp_path)
+        daemons = alive_with(token)
+    finally:
+        for pid in alive_with(token):
+            os.kill(int(pid), 9)
+    assert daemons == [] if CGROUPS else daemons            # without a cgroup: the limitation
     assert res.returncode == 0, res.stderr
     r = json.loads((tmp_path / "out" / "results.json").read_text())
     tests = {t["number"]: t for t in r["tests"] if t["number"]}
@@ -250,6 +343,7 @@ def test_assignment_leftovers_bad_files_and_no_sandbox(tmp_path):
     for leftover in ("course-update", "Copy1", "Copy of", "checkpoint"):
         assert leftover in r["output"], r["output"]
     assert "homework.ipynb" in r["output"] and "not one of the course's exercise" in r["output"]
+    assert ("Grader note" in r["output"]) != CGROUPS
 
 
 def test_empty_upload_says_so_and_no_sandbox_means_refusal(tmp_path):
@@ -349,11 +443,134 @@ def test_probe_inputs_are_salted_and_skip_only_where_sympy_allows():
     assert [np.asarray(a[0]).tolist() for a in part.inputs()] == [np.asarray(a[0]).tolist() for a in plain]
 
 
+class Replay:
+    """A reference function that records its outputs, then plays them back in call order: the
+    'answer' of a student who hard-codes what the checker's calls returned last time."""
+
+    def __init__(self, f):
+        self.f, self.tape, self.replay, self.i = f, [], False, 0
+        self.__signature__ = inspect.signature(f)     # called the way the reference is
+
+    def __deepcopy__(self, memo):     # the in-process probes copy the answer: keep one tape
+        return self
+
+    def __call__(self, *args):
+        if not self.replay:
+            self.tape.append(self.f(*args))
+            return self.tape[-1]
+        self.i += 1
+        return self.tape[(self.i - 1) % len(self.tape)]
+
+
+def _replaying(ref):
+    if isinstance(ref, dict):
+        return {k: Replay(v) for k, v in ref.items()}
+    if isinstance(ref, tuple):
+        return tuple(Replay(v) for v in ref)
+    return Replay(ref)
+
+
+@pytest.mark.parametrize("part_id", ["1.2a", "1.4d", "2.1a", "4.2a", "5.1a"])
+def test_last_runs_probe_outputs_hard_coded_fail_a_new_run(part_id, clean, monkeypatch):
+    """Every part whose answer is called on inputs gets fresh inputs each graded run: the outputs
+    of the last run, played back, pass that run's inputs but not the next run's. (1.3c's and
+    4.1b's answers are values, called on nothing: there is no input to choose.)"""
+    monkeypatch.setenv("GM_CHECKS_NO_FORK", "1")          # the tape must stay in this process
+    ex_id, name = part_id[:3], part_id[3:]
+    part = REGISTRY[ex_id].parts[name]
+    answer = _replaying(part.reference)
+    tapes = list(answer.values()) if isinstance(answer, dict) else list(answer) \
+        if isinstance(answer, tuple) else [answer]
+    try:
+        _grading.set_probe_salt(1111)
+        assert part.check(answer, quiet=True).passed              # recorded on last run's inputs
+        for t in tapes:
+            t.replay = True
+        assert part.check(answer, quiet=True).passed              # the tape fools a fixed input
+        for t in tapes:
+            t.i = 0
+        _grading.set_probe_salt(2222)
+        v = part.check(answer, quiet=True)
+        assert not v.passed, (part_id, v.message)                 # ... but not this run's
+        assert part.check(part.reference, quiet=True).passed      # the honest answer still passes
+    finally:
+        _grading.set_probe_salt(None)
+    plain = [str(p) for p in part.probes()]
+    assert len(plain) == len(part.probes())
+
+
+def test_unsimplified_products_are_evaluated_at_a_salted_point(clean):
+    import sympy as sp
+    x, t = sp.symbols("x theta", real=True)
+    left = sp.Matrix([[sp.cos(t), -sp.sin(t), 0], [sp.sin(t), sp.cos(t), 0], [0, 0, 1]])
+    right_unsimplified = (left.T * left).applyfunc(lambda e: sp.expand(e))
+    v = REGISTRY["1.3"].parts["c"].check((x / x, 1, right_unsimplified, sp.eye(3)), quiet=True)
+    if right_unsimplified.free_symbols:
+        assert not v.passed and "only the simplification is missing" in v.message, v.message
+    v = REGISTRY["1.3"].parts["c"].check((1, 1, left * left, sp.eye(3)), quiet=True)
+    assert not v.passed and "is not the identity" in v.message, v.message
+    assert REGISTRY["1.3"].parts["c"].check((1, 1, sp.eye(3), sp.eye(3)), quiet=True).passed
+
+
 def test_strict_returns_none_on_success_and_raises_on_failure(clean):
     assert ex1_1.a.check("b", strict=True, quiet=True) is None
     with pytest.raises(AssertionError, match="exercise 1.1a"):
         ex1_1.a.check("a", strict=True, quiet=True)
     assert ex1_1.a.check("b", quiet=True).passed                 # the default still returns a Verdict
+
+
+def test_the_cell_clock_credits_checks_only_as_long_as_an_honest_one_takes():
+    from gm_core.checks._clock import CELL_BUDGET, CellClock, check_caps
+    caps = check_caps(REGISTRY["1.2"], 5.0)
+    cap = caps["1.2/a"]
+    assert set(caps) == {"1.2/a", "1.2/b", "1.2/c"} and cap >= 5.0 * len(ex1_2.a.probes())
+    clock = CellClock(caps)
+    clock.restart(100.0)
+    clock.begin("1.2/a", 101.0)
+    clock.end(104.0)                                    # a real check: 3 s not counted
+    assert clock.seconds(110.0) == pytest.approx(7.0)
+    clock.begin("9.9/z", 110.0)                         # a part this notebook does not grade
+    assert clock.seconds(120.0) == pytest.approx(17.0)
+    clock.begin("1.2/a", 120.0)                         # announced, never ended: capped
+    assert clock.seconds(120.0 + cap + 30) == pytest.approx(17.0 + 30)
+    clock.restart(0.0)
+    for k in range(100):                                # announced again and again: the budget
+        clock.begin("1.2/b", k * 1000.0)
+        clock.end(k * 1000.0 + 999.0)
+    assert clock.credited(1e6) == pytest.approx(CELL_BUDGET * sum(caps.values()))
+
+
+@pytest.mark.skipif(not CGROUPS, reason="no writable pids and memory cgroups here")
+def test_cgroups_of_a_sandbox_end_every_process_and_a_dead_graders_are_removed():
+    from gm_core.checks._isolate import Limits, _Cgroups
+    gone = subprocess.Popen(["true"])
+    gone.wait()
+    stale = [Path(base) / f"gm-grade-{gone.pid}-dead" for _, base in _own_cgroup_dirs().values()]
+    for d in stale:
+        d.mkdir()
+    cg = _Cgroups(Limits(processes=16), f"gm-grade-{os.getpid()}-{uuid.uuid4().hex[:6]}")
+    try:
+        assert sorted(cg.kinds) == ["memory", "pids"] and not any(d.exists() for d in stale)
+        pids = next(d for d in cg.dirs if "pids" in str(d))
+        assert (pids / "pids.max").read_text().strip() == "16"
+        daemon = subprocess.Popen(["sh", "-c", f"echo $$ > {pids}/cgroup.procs; setsid sleep 60 & "
+                                   "sleep 60"])
+        deadline = time.monotonic() + 10
+        while len(cg.pids()) < 2 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert len(cg.pids()) >= 2                       # the shell and its setsid'd sleep
+    finally:
+        cg.close()
+    daemon.wait(timeout=10)
+    assert not any(d.exists() for d in cg.dirs)          # every process ended, the cgroups gone
+
+
+def test_the_report_says_when_no_cgroup_could_be_made():
+    from gm_core.checks.grade import _limits_note
+    assert _limits_note([{"cgroups": ["memory", "pids"]}], True) is None
+    note = _limits_note([{"cgroups": []}, {"cgroups": ["memory", "pids"]}], True)
+    assert "no memory or pids cgroup" in note and "pid namespace" in note and "README" in note
+    assert "outlived" in _limits_note([{"cgroups": ["memory"]}], False)
 
 
 def test_results_are_written_atomically(tmp_path):

@@ -3,7 +3,7 @@
 Fast tests check the converted notebooks for every solution: one question / one autograder test
 per part with the registry's points, the starter code kept, instructor-only cells never turned
 into student tasks. The slow tests run the real tools (from PyPI, in their own venv .venv-kits
-made by tools/venvs.py) on exercise 3.1, with a correct and a wrong submission:
+made by tools/venvs.py in set-up) on exercise 3.2, with a correct and a wrong submission:
 ``otter assign`` + ``otter run`` and nbgrader's ``generate_assignment`` + ``autograde``."""
 import csv
 import json
@@ -25,8 +25,10 @@ import venvs  # noqa: E402
 from gm_core.checks._exercise import REGISTRY  # noqa: E402
 
 SOLUTIONS = sorted((ROOT / "solutions").glob("ex*.ipynb"))
-EX = "3.1"
-STEM = "ex3_1"
+# Exercise 3.2: two parts, each graded alone; its notebook runs in a few seconds (each tool
+# executes it several times).
+EX = "3.2"
+STEM = "ex3_2"
 
 
 def _id(path):
@@ -129,13 +131,16 @@ def _run(bin_dir, args, cwd, timeout=600):
 
 
 def _wrong(nb):
-    """A plausible wrong 3.1: theta always 0 (part a wrong), the right letter for part b."""
+    """A plausible wrong 3.2: a wrong letter for part a, the right letter for part b."""
     right_b = sorted(REGISTRY[EX].parts["b"].correct)[0]
+    wrong_a = sorted(set("abcd") - set(REGISTRY[EX].parts["a"].correct))[0]
+    seen = set()
     for cell in nb.cells:
-        if cell.cell_type == "code" and cell.source.startswith("def theta("):
-            cell.source = "def theta(alpha1, alpha2, R, w):\n    return 0.0   # wrong"
+        if cell.cell_type == "code" and cell.source.startswith("answer_a = None"):
+            cell.source, _ = f"answer_a = {wrong_a!r}   # wrong", seen.add("a")
         elif cell.cell_type == "code" and cell.source.startswith("answer_b = None"):
-            cell.source = f"answer_b = {right_b!r}"
+            cell.source, _ = f"answer_b = {right_b!r}", seen.add("b")
+    assert seen == {"a", "b"}, "the student notebook has both answer cells"
     return nb
 
 

@@ -1,6 +1,6 @@
 """Chains of any number of links (gm_core.systems.LinkChain): every formula against an independent route.
 
-Routes: today's three-link systems (N = 3), the chapter-2 frame graph (kinematics.MobileChain),
+Routes: the book's three-link closed forms (2.57)-(2.59) assembled link by link (N = 3), the chapter-2 frame graph (kinematics.MobileChain),
 finite differences of the forward kinematics, the resistive-force law integrated by quadrature
 (fluids.drag_wrench) and momentum summed link by link along integrated gaits, the group's own
 inverse and a mirror reflection.
@@ -25,38 +25,106 @@ def _shapes(n, batch, scale=2.0):
     return RNG.uniform(-scale, scale, batch + (n,))
 
 
-# ------------------------------------------------------------------ N = 3 is today's three-link systems
-@pytest.mark.parametrize("old, new", [
-    (LowReSwimmer(LENGTHS3, drag_ratio=3.0), LinkChain(LENGTHS3, "low_re", drag_ratio=3.0)),
-    (HighReSwimmer(LENGTHS3, aspect_ratio=6.0, body_density=0.3), LinkChain(LENGTHS3, "high_re", aspect_ratio=6.0,
-                                                                            body_density=0.3)),
-    (FloatingSnake(LENGTHS3, masses=(1, 2, 3), frame="middle"), LinkChain(LENGTHS3, "floating", masses=(1, 2, 3))),
-    (LowReSwimmer(), LinkChain((1, 1, 1))),
-], ids=["low_re", "high_re", "floating", "defaults"])
-def test_three_links_equal_todays_systems(old, new):
-    r = _shapes(2, (40,))
-    np.testing.assert_allclose(new.connection(r), old.connection(r), atol=1e-14)
-    np.testing.assert_allclose(new.metric(r), old.metric(r), atol=1e-13)
-    np.testing.assert_allclose(new.pfaffian(r), old.pfaffian(r), atol=1e-13)
-    np.testing.assert_allclose(new.link_poses(r), old.link_poses(r), atol=1e-15)
-    np.testing.assert_allclose(new.shape_metric(r), old.shape_metric(r), atol=1e-13)
-    for a, b in zip(new.parts(), old.parts()):
-        np.testing.assert_allclose(a.outline, b.outline)
-    g = circle_gait(0.8, (0.3, -0.2))
-    np.testing.assert_allclose(net_displacement(new, g), net_displacement(old, g), atol=1e-12)
+# ------------------------------------------------------------------ N = 3: the book's closed forms
+def _book_jacobians(alpha, lengths):
+    """(2.57)-(2.59) as corrected in the errata, written out: the three links' Jacobians (..., 3, 3, 5)
+    from (xi_middle, alpha_dot); the closed form the three-link systems had before they became LinkChain."""
+    l1, l2, l3 = lengths
+    c1, s1, c2, s2 = np.cos(alpha[..., 0]), np.sin(alpha[..., 0]), np.cos(alpha[..., 1]), np.sin(alpha[..., 1])
+    J = np.zeros(alpha.shape[:-1] + (3, 3, 5))
+    J[..., 0, 0, :3], J[..., 0, 1, :3] = np.stack([c1, -s1, l2 * s1 / 2], -1), np.stack([s1, c1, -(l2 * c1 + l1) / 2], -1)
+    J[..., 0, 1, 3], J[..., 0, 2, 2], J[..., 0, 2, 3] = l1 / 2, 1.0, -1.0
+    J[..., 1, :, :3] = np.eye(3)
+    J[..., 2, 0, :3], J[..., 2, 1, :3] = np.stack([c2, s2, l2 * s2 / 2], -1), np.stack([-s2, c2, (l2 * c2 + l3) / 2], -1)
+    J[..., 2, 1, 4], J[..., 2, 2, 2], J[..., 2, 2, 4] = l3 / 2, 1.0, 1.0
+    return J
+
+
+def _book_poses(alpha, lengths):
+    l1, l2, l3 = lengths
+    a1, a2 = alpha[..., 0], alpha[..., 1]
+    P = np.zeros(alpha.shape[:-1] + (3, 3))
+    P[..., 0, :] = np.stack([-l2 / 2 - l1 / 2 * np.cos(a1), l1 / 2 * np.sin(a1), -a1], -1)
+    P[..., 2, :] = np.stack([l2 / 2 + l3 / 2 * np.cos(a2), l3 / 2 * np.sin(a2), a2], -1)
+    return P
+
+
+@pytest.mark.parametrize("system, matrices", [
+    (LowReSwimmer(LENGTHS3, drag_ratio=3.0), [np.diag([l, 3 * l, 3 * l ** 3 / 12]) for l in LENGTHS3]),
+    (LinkChain(LENGTHS3, "low_re", drag_ratio=3.0), [np.diag([l, 3 * l, 3 * l ** 3 / 12]) for l in LENGTHS3]),
+    (FloatingSnake(LENGTHS3, masses=(1, 2, 3), frame="middle"),
+     [np.diag([m, m, m * l ** 2 / 12]) for m, l in zip((1, 2, 3), LENGTHS3)]),
+    (LowReSwimmer(), [np.diag([1, 2, 2 / 12])] * 3),
+], ids=["low_re", "chain", "floating", "defaults"])
+def test_three_links_are_the_books_closed_forms(system, matrices):
+    """N = 3 (the named three-link classes are LinkChain) against (2.57)-(2.59) written out and
+    the Pfaffian assembled link by link, sum J_i^T M_i J_i (3.39), (3.44)."""
+    for batch in BATCHES:
+        r = _shapes(2, batch)
+        J = _book_jacobians(r, system.lengths)
+        D = sum(np.swapaxes(J[..., i, :, :], -1, -2) @ M @ J[..., i, :, :] for i, M in enumerate(matrices))
+        np.testing.assert_allclose(system.link_jacobians(r), J, atol=1e-14)
+        np.testing.assert_allclose(system.link_poses(r), _book_poses(r, system.lengths), atol=1e-15)
+        np.testing.assert_allclose(system.metric(r), D, atol=1e-13)
+        np.testing.assert_allclose(system.pfaffian(r), D[..., :3, :], atol=1e-13)
+        np.testing.assert_allclose(system.connection(r), np.linalg.solve(D[..., :3, :3], D[..., :3, 3:]), atol=1e-13)
+
+
+def test_high_re_three_links_are_the_books_closed_forms():
+    s = HighReSwimmer(LENGTHS3, aspect_ratio=6.0, body_density=0.3)
+    from gm_core.fluids import ellipse_added_mass
+
+    Ms = [np.diag([m, m, m * (a * a + b * b) / 4]) + ellipse_added_mass(a, b, 1.0)
+          for a, b, m in ((l / 2, l / 12, 0.3 * np.pi * l * l / 24) for l in LENGTHS3)]
+    r = _shapes(2, (3, 4))
+    J = _book_jacobians(r, LENGTHS3)
+    D = sum(np.swapaxes(J[..., i, :, :], -1, -2) @ M @ J[..., i, :, :] for i, M in enumerate(Ms))
+    np.testing.assert_allclose(s.mass_matrix(r), D, atol=1e-13)
+    assert isinstance(s, LinkChain) and s.n_links == 3 and s.name == "high-Reynolds swimmer"
 
 
 def test_centre_of_mass_frame_is_the_reframed_three_link_system():
-    """frame='com' (lengths as weights, mean orientation) = centre_of_mass_coordinates of today's swimmer;
-    for the floating chain the centre of mass does not move (zero momentum), as for FloatingSnake."""
+    """frame='com' (lengths as weights, mean orientation) = centre_of_mass_coordinates of today's swimmer
+    (the generic route: Reframed with a finite-difference frame Jacobian); for the floating chain the
+    centre of mass does not move (zero momentum), and its theta row is the section-3.4.3 frame's
+    ('com middle': centre of mass, middle-link axes) minus the rate of the mean orientation."""
     r = _shapes(2, (30,))
     np.testing.assert_allclose(LinkChain(LENGTHS3, frame="com").connection(r),
                                centre_of_mass_coordinates(LowReSwimmer(LENGTHS3)).connection(r), atol=1e-8)
     fl = LinkChain(LENGTHS3, "floating", masses=(1, 2, 1.5), frame="com")
     A = fl.connection(r)
     assert np.abs(A[..., :2, :]).max() < 1e-13
-    np.testing.assert_allclose(A[..., 2, :], FloatingSnake(LENGTHS3, (1, 2, 1.5), frame="com").connection(r)[..., 2, :]
-                               - [-1 / 4.5, 1.5 / 4.5], atol=1e-13)
+    book = FloatingSnake(LENGTHS3, (1, 2, 1.5)).connection(r)          # frame "com middle", (3.38)
+    assert np.abs(book[..., :2, :]).max() < 1e-13
+    np.testing.assert_allclose(A[..., 2, :], book[..., 2, :] - [-1 / 4.5, 1.5 / 4.5], atol=1e-13)
+    np.testing.assert_allclose(FloatingSnake(LENGTHS3, (1, 2, 1.5), frame="com").connection(r), A, atol=1e-15)
+    np.testing.assert_allclose(book[..., 2, :], FloatingSnake(LENGTHS3, (1, 2, 1.5), frame="middle").connection(r)[..., 2, :],
+                               atol=1e-13)
+
+
+def test_one_centre_of_mass_frame_across_the_course():
+    """"Centre of mass" means position the weighted mean of the link centres and orientation the
+    weighted mean of the link orientations everywhere: exercise 2.3's com_frame, CentreOfMassFrame,
+    LinkChain(frame='com') for N = 3 and 5, body_frames()['centre of mass'] of every system made of
+    links (the floating snake included: its section-3.4.3 frame is listed under another name)."""
+    from gm_core.systems import CentreOfMassFrame, KinematicSnake
+    from gm_core.three_link_chain import com_frame
+
+    r = _shapes(2, (6,))
+    for s in (LowReSwimmer(LENGTHS3), HighReSwimmer(LENGTHS3), FloatingSnake(LENGTHS3, (1, 2, 1.5)),
+              KinematicSnake(LENGTHS3), LinkChain(LENGTHS3, "floating", masses=(3, 1, 2))):
+        com = s.body_frames(centre_of_mass=True, minimum_perturbation=False)["centre of mass"]
+        mid = s.body_frames(centre_of_mass=False, minimum_perturbation=False)["middle link"]
+        w = s.link_weights()
+        beta, _ = com_frame(r, s.lengths, weights=w)                  # exercise 2.3, relative to the middle link
+        np.testing.assert_allclose(com.link_poses(r), SE2.compose(SE2.inverse(beta)[..., None, :], mid.link_poses(r)),
+                                   atol=1e-13)
+        np.testing.assert_allclose(CentreOfMassFrame(mid).pose(r), beta, atol=1e-13)
+        np.testing.assert_allclose(np.einsum("i,...ij->...j", w, com.link_poses(r)), 0.0, atol=1e-13)
+    five = LinkChain((1.0, 0.8, 1.2, 0.9, 1.1), "floating", masses=(1, 2, 3, 2, 1), frame="com")
+    r5 = _shapes(4, (5,))
+    np.testing.assert_allclose(np.einsum("i,...ij->...j", five.link_weights(), five.link_poses(r5)), 0.0, atol=1e-13)
+    assert "centre of mass (middle-link axes)" in FloatingSnake().body_frames(minimum_perturbation=False)
 
 
 # ------------------------------------------------------------------ kinematics for N = 4, 5, 6

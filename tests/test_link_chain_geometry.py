@@ -115,8 +115,20 @@ def test_minimum_perturbation_built_into_the_chain(mp3):
 
 
 def test_too_large_boxes_are_refused_with_the_reason():
-    with pytest.raises(ValueError, match="at most 3 shape variables"):
+    """Four or more joints: refused at once (no minutes of finite elements), with a ValueError that
+    names the argument that asked for it and says what to use instead."""
+    with pytest.raises(ValueError, match="^system: .*at most 3 shape variables.*frame='com'"):
         minimum_perturbation_coordinates(LinkChain((1.0,) * 5))
+    for N in (5, 6, 8):
+        with pytest.raises(ValueError, match=f"^frame='minimum perturbation': .*at most 3 .*has {N - 1}"):
+            LinkChain((1.0,) * N, frame="minimum perturbation")
+        with pytest.raises(ValueError, match="^frame='minimum perturbation'"):
+            LinkChain((1.0,) * N).with_frame("minimum perturbation")
+    with pytest.raises(ValueError, match="^coordinates='minimum perturbation'.*coordinates='given'"):
+        optimize_gait(LinkChain((1.0,) * 5), "efficiency", order=1)
+    from gm_core.systems import MinimumPerturbationFrame
+    with pytest.raises(ValueError, match="^system: "):
+        MinimumPerturbationFrame.fit(chain_approximation(SlenderBody(3.0, "serpenoid"), 5).base_system, None, None)
     with pytest.raises(ValueError, match="nodes"):
         minimum_perturbation_coordinates(LinkChain((1.0,) * 4), n=40)
     with pytest.raises(ValueError, match=r"bounds must have shape \(3, 2\)"):

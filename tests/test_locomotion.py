@@ -274,7 +274,7 @@ def test_nonsingular_systems_never_raise():
 
 
 def test_connection_curl():
-    from gm_core.locomotion import connection_curl
+    from gm_core.geometry.curvature import connection_curl
     assert np.allclose(connection_curl(DifferentialDrive(0.3, 0.7), RNG.uniform(-3, 3, (5, 2))), 0)
     s = KinematicSnake((1.0, 0.8, 1.2))
     r = np.array([0.7, -0.6])

@@ -13,12 +13,12 @@ from test_locomotion import reference_displacement  # the solve_ivp route, writt
 from gm_core import SE2, SingularShapeError, chains
 from gm_core.connection import metric_from_jacobians, pfaffian_determinant
 from gm_core.gaits import Gait, GaitWarning, circle_gait
+from gm_core.geometry.curvature import connection_curl
 from gm_core.holonomic import accessible_circle
 from gm_core.locomotion import (
     AccuracyWarning,
     body_velocity,
     check_gait,
-    connection_curl,
     net_displacement,
     trajectory,
 )

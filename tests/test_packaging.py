@@ -9,8 +9,13 @@ import subprocess
 import sys
 from pathlib import Path
 
-import tomllib
+import pytest
 import yaml
+
+try:
+    import tomllib
+except ModuleNotFoundError:    # Python 3.10 (tomli is declared in [test] for it)
+    import tomli as tomllib
 
 ROOT = Path(__file__).resolve().parent.parent
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())
@@ -25,6 +30,9 @@ REPO2DOCKER_PYTHON = re.compile(r"python\s*=+\s*([\d\.]*)")
 # ImportError / importorskip); never needed to run or test the course.
 OPTIONAL_PEERS = {"jax", "jaxlie", "geomstats"}
 TEST_TOOLS = {"pytest", "nbval", "hypothesis", "playwright", "ruff", "mpmath", "pyyaml"}
+# Back-ports imported only where the standard library lacks the module (``except
+# ModuleNotFoundError``), declared with a python_version marker: {module: the marker's Python}.
+BACKPORTS = {"tomli": "3.11"}
 
 
 def _parse(req):
@@ -32,10 +40,19 @@ def _parse(req):
     return m.group(1).lower().replace("_", "-"), m.group(3)
 
 
-def group(name):
-    """{distribution: lower bound} of the core ("core") or an extra, self-references left out."""
+def _below(req):
+    """The Python version a requirement is limited to (``; python_version < "3.11"``), or None."""
+    m = re.search(r""";\s*python_version\s*<\s*['"]([\d.]+)['"]\s*$""", req)
+    return m.group(1) if m else None
+
+
+def group(name, python="3.11"):
+    """{distribution: lower bound} of the core ("core") or an extra, self-references left out;
+    requirements limited to Pythons below ``python`` (the environment files pin 3.11) left out."""
     reqs = PROJECT["dependencies"] if name == "core" else PROJECT["optional-dependencies"][name]
-    return dict(_parse(r) for r in reqs if _parse(r)[0] != SELF)
+    keep = [r for r in reqs if _parse(r)[0] != SELF
+            and not (_below(r) and tuple(map(int, python.split("."))) >= tuple(map(int, _below(r).split("."))))]
+    return dict(_parse(r) for r in keep)
 
 
 def groups(*names):
@@ -112,15 +129,56 @@ def test_binder_image_has_no_test_tools_and_installs_the_course():
 
 
 def test_readme_binder_link_opens_the_start_page_in_jupyterlab():
+    sys.path.insert(0, str(ROOT / "tools"))
+    import set_repository
+
     repo = PYPROJECT["tool"]["gm-course"]["repository"]
     branch = PYPROJECT["tool"]["gm-course"]["branch"]
     owner_name = re.fullmatch(r"https://github\.com/([^/]+/[^/]+)", repo).group(1)
     link = f"https://mybinder.org/v2/gh/{owner_name}/{branch}?urlpath=lab/tree/book/00-start-here.ipynb"
+    assert set_repository.binder_url("book/00-start-here.ipynb") == link
     readme = (ROOT / "README.md").read_text()
     assert link in readme, f"README needs the Binder launch link {link}"
     assert re.search(r"\[!\[[^\]]*Binder[^\]]*\]\([^)]*badge[^)]*\)\]\(" + re.escape(link) + r"\)", readme), (
         "README needs a Binder badge linking to the start page")
     assert (ROOT / "book" / "00-start-here.ipynb").exists()
+    assert set_repository.problems() == [], "README/CITATION links derive from [tool.gm-course]"
+    assert "python tools/set_repository.py https://github.com/" in readme, "the README says how to set it"
+
+
+def test_the_repository_is_set_in_one_place_and_every_link_follows(tmp_path):
+    """An instructor runs tools/set_repository.py once: [tool.gm-course] changes and every link
+    written in a file (README badge and launch link, CITATION.cff) follows; nothing of the old
+    address is left; the site's links are computed from the same value (tests/test_site.py)."""
+    sys.path.insert(0, str(ROOT / "tools"))
+    import set_repository
+
+    for name in ("pyproject.toml", "README.md", "CITATION.cff"):
+        (tmp_path / name).write_text((ROOT / name).read_text())
+    old, _ = set_repository.read(tmp_path)
+    changed = set_repository.write("https://github.com/some-university/geomech-2027", "fall27", tmp_path)
+    assert sorted(changed) == ["CITATION.cff", "README.md", "pyproject.toml"]
+    assert set_repository.read(tmp_path) == ("https://github.com/some-university/geomech-2027", "fall27")
+    assert set_repository.problems(tmp_path) == []
+    readme = (tmp_path / "README.md").read_text()
+    link = "https://mybinder.org/v2/gh/some-university/geomech-2027/fall27?urlpath=lab/tree/book/00-start-here.ipynb"
+    assert readme.count(link) == (ROOT / "README.md").read_text().count(set_repository.binder_url("book/00-start-here.ipynb"))
+    assert re.search(r"\[!\[[^\]]*Binder[^\]]*\]\([^)]*badge[^)]*\)\]\(" + re.escape(link) + r"\)", readme)
+    old_path = old.removeprefix("https://github.com/")
+    for name in ("pyproject.toml", "README.md", "CITATION.cff"):
+        assert old_path not in (tmp_path / name).read_text(), f"{name} still names {old}"
+    assert yaml.safe_load((tmp_path / "CITATION.cff").read_text())["repository-code"] == \
+        "https://github.com/some-university/geomech-2027"
+    tomllib.loads((tmp_path / "pyproject.toml").read_text())       # still valid TOML
+    assert set_repository.write("https://github.com/some-university/geomech-2027", "fall27", tmp_path) == []
+    # a hand-edited link that does not derive from it is reported
+    (tmp_path / "README.md").write_text(readme + "\n[x](https://mybinder.org/v2/gh/a/b/main?urlpath=lab/tree/book/01.ipynb)\n")
+    assert any("does not derive" in p for p in set_repository.problems(tmp_path))
+    for bad in ("https://gitlab.com/a/b", "github.com/a/b", "https://github.com/a", None, "https://github.com/a/b; rm"):
+        with pytest.raises(ValueError, match="repository"):
+            set_repository.write(bad, "main", tmp_path)
+    with pytest.raises(ValueError, match="branch"):
+        set_repository.write("https://github.com/a/b", "../x", tmp_path)
 
 
 def test_licences_and_citation():
@@ -181,7 +239,7 @@ def _distributions(module):
 
 def _check_declared(paths, declared, where):
     missing = []
-    for mod in sorted(_third_party(_imports(paths)) - OPTIONAL_PEERS):
+    for mod in sorted(_third_party(_imports(paths)) - OPTIONAL_PEERS - set(BACKPORTS)):
         dists = _distributions(mod)
         assert dists, f"{where} imports {mod!r}, which no installed distribution provides"
         if not dists & set(declared):
@@ -202,6 +260,52 @@ def test_every_package_tests_and_tools_import_is_declared():
     paths = [p for d in ("tests", "tools", "benchmarks") for p in sorted((ROOT / d).rglob("*.py"))]
     paths.append(ROOT / "conftest.py")
     _check_declared(paths, groups("core", "lab", "grade", "test"), "tests/tools/benchmarks")
+
+
+def test_backports_are_declared_for_old_pythons_and_imported_only_as_fallbacks():
+    """requires-python allows 3.10, which has no tomllib: every ``import tomllib`` in the tools and
+    tests falls back to tomli, which [test] and the site venv declare for Pythons below 3.11."""
+    low = re.match(r">=\s*(\d+\.\d+)", PROJECT["requires-python"]).group(1)
+    sys.path.insert(0, str(ROOT / "tools"))
+    import venvs
+
+    for mod, below in BACKPORTS.items():
+        assert tuple(map(int, low.split("."))) < tuple(map(int, below.split(".")))
+        for reqs, where in ((PROJECT["optional-dependencies"]["test"], "[test]"), (venvs.TOOLS["site"], "the site venv")):
+            assert [r for r in reqs if _parse(r)[0] == mod and _below(r) == below], f"{where} declares {mod} for < {below}"
+    std = {"tomli": "tomllib"}
+    paths = [p for d in ("tests", "tools", "benchmarks", "gm_core") for p in sorted((ROOT / d).rglob("*.py"))]
+    for path in paths:
+        tree = ast.parse(path.read_text())
+        guarded = {id(n) for t in ast.walk(tree) if isinstance(t, ast.Try)
+                   and any(isinstance(h.type, ast.Name) and h.type.id in ("ModuleNotFoundError", "ImportError")
+                           for h in t.handlers) for n in ast.walk(t)}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Import) and any(a.name in std.values() for a in node.names):
+                assert id(node) in guarded, f"{path.relative_to(ROOT)}:{node.lineno}: import tomllib without the tomli fallback"
+
+
+def test_tools_read_pyproject_on_a_python_without_tomllib():
+    """What Python 3.10 does: tomllib cannot be imported, tomli (here pip's own copy) is used."""
+    code = f"""
+import importlib.abc, sys, types
+class Block(importlib.abc.MetaPathFinder):
+    def find_spec(self, name, path=None, target=None):
+        if name == 'tomllib':
+            raise ModuleNotFoundError('no tomllib (Python 3.10)', name=name)
+sys.meta_path.insert(0, Block())
+from pip._vendor import tomli          # stands in for the tomli distribution of Python 3.10
+sys.modules['tomli'] = tomli
+sys.path.insert(0, {str(ROOT / "tools")!r})
+import venvs, build_site, set_repository
+assert 'tomllib' not in sys.modules
+reqs = venvs.course_requirements()
+assert 'numpy>=2.0' in reqs and any(r.startswith('ipympl') for r in reqs), reqs
+print(set_repository.read()[1])
+"""
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.strip() == PYPROJECT["tool"]["gm-course"]["branch"]
 
 
 def test_the_import_scan_sees_what_it_should():

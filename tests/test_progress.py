@@ -175,13 +175,23 @@ def _start_together(cwd, code, n, timeout=240):
     go.unlink(missing_ok=True)
     env = dict(os.environ, PYTHONPATH=str(ROOT), GM_CHECKS_NO_FORK="")
     env.pop("GM_COURSE_WORKSPACE", None)
+    ready = [Path(cwd) / f"ready-{w}" for w in range(n)]
+    for r in ready:
+        r.unlink(missing_ok=True)
     prelude = ("import os, time, sys\nWORKER = int(sys.argv[1])\n"
+               f"open({str(cwd)!r} + '/ready-%d' % WORKER, 'w').close()\n"
                f"while not os.path.exists({str(go)!r}): time.sleep(0.005)\n")
     procs = [subprocess.Popen([sys.executable, "-c", prelude + code, str(w)], cwd=cwd, env=env,
                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
              for w in range(n)]
     import time
-    time.sleep(1.5)                                  # every process is waiting at the barrier
+    deadline = time.monotonic() + 60
+    while not all(r.exists() for r in ready):        # every process is waiting at the barrier
+        assert time.monotonic() < deadline and all(p.poll() is None for p in procs), \
+            [p.communicate()[1] for p in procs if p.poll() is not None]
+        time.sleep(0.01)
+    for r in ready:
+        r.unlink()
     go.write_text("go")
     outs = []
     for p in procs:

@@ -85,7 +85,10 @@ def _mypy(*args, cwd=ROOT):
 
 
 def _typed_files():
-    import tomllib
+    try:
+        import tomllib
+    except ModuleNotFoundError:    # Python 3.10
+        import tomli as tomllib
 
     files = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["mypy"]["files"]
     out = []

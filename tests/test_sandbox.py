@@ -139,21 +139,53 @@ def test_a_fork_bomb_under_the_time_limit_is_ended_whole(tmp_path):
     assert gone(tmp_path) == []
 
 
-@pytest.mark.parametrize("then", ["returns", "leaves its process group and loops"])
+@pytest.mark.parametrize("then", ["returns", "leaves its process group and loops",
+                                  "leaves its session and loops", "leaves its session, forks, returns"])
 def test_a_student_process_that_kills_its_parent_leaves_nothing_behind(tmp_path, then):
     def f(_):
         if os.fork() == 0:
             busy(tmp_path)
         os.kill(os.getppid(), signal.SIGKILL)    # the sandbox's keeper
         time.sleep(0.1)
-        if then != "returns":
+        if then == "leaves its process group and loops":
             os.setpgid(0, 0)
             busy(tmp_path)
+        elif then.startswith("leaves its session"):
+            os.setsid()                          # out of the keeper's session and group
+            if then.endswith("loops"):
+                busy(tmp_path)
+            if os.fork() == 0:
+                os.setsid()                      # (fails: already a leader) and orphaned below
+                busy(tmp_path)
+            time.sleep(0.1)
         return 2.0
     outcomes, _ = collect(f, [lambda g: g(0)], time_limit=2)
-    assert outcomes[0]["k"] == ("ok" if then == "returns" else "timeout")
+    assert outcomes[0]["k"] == ("timeout" if then.endswith("loops") else "ok")
     wait_for_pids(tmp_path, 1 if then == "returns" else 2)
     assert gone(tmp_path) == []
+
+
+def test_the_late_reaper_never_takes_a_process_the_notebook_starts_after_the_check():
+    """The check's process adopts orphans of the probe tree while the check runs; a process the
+    notebook starts once the check has returned (its next cell's subprocess) is not one of them,
+    however late the background reaper runs."""
+    from gm_core.checks._proctree import Adoption
+    adoption = Adoption().start()
+    pid = adoption.fork()
+    if pid == 0:  # pragma: no cover - a keeper with nothing to do
+        os._exit(0)
+    os.waitpid(pid, 0)
+    adoption.keeper_reaped()
+    adoption.close_window()                    # the check is over
+    time.sleep(0.05)
+    later = subprocess.Popen(["sleep", "30"])
+    try:
+        adoption.end_strays()                  # what the reaper thread does, late
+        assert later.poll() is None, "the notebook's own process was killed"
+    finally:
+        adoption.release()
+        later.kill()
+        later.wait()
 
 
 def test_the_stop_button_interrupts_the_check_and_ends_the_student_processes(tmp_path):

@@ -192,14 +192,25 @@ def test_singular_set_of_the_snake_includes_the_fold_lines_on_the_window_edge():
 
 
 # ------------------------------------------------------------------------- gaits for every system
-@pytest.mark.parametrize("name", sorted(ALL_SYSTEMS()))
+@pytest.fixture(scope="module", params=sorted(ALL_SYSTEMS()))
+def gait_panel(request):
+    """``(name, GaitPanel)``: one panel per system, shared by the three families below (each test
+    sets every control the family reads), closed after them."""
+    import matplotlib.pyplot as plt
+
+    p = GaitPanel(system=ALL_SYSTEMS()[request.param])
+    p.fig.gm_keep_open = True     # not closed by conftest's _close_figures between the tests
+    yield request.param, p
+    plt.close(p.fig)
+
+
 @pytest.mark.parametrize("family", ["ellipse", "serpenoid", "figure eight"])
-def test_gait_panel_families_for_every_system(name, family):
+def test_gait_panel_families_for_every_system(gait_panel, family):
     from gm_core import SingularShapeError
     from gm_core.gaits import family_gait
 
+    name, p = gait_panel
     system = ALL_SYSTEMS()[name]
-    p = GaitPanel(system=system)
     (lo1, hi1), (lo2, hi2) = system.shape_limits
     c = (0.1 * hi1, -0.3 * hi2) if name != "KinematicSnake" else (0.5, -1.2)
     size = 0.25 * min(hi1 - lo1, hi2 - lo2) if name != "KinematicSnake" else 0.6
@@ -220,8 +231,10 @@ def test_gait_panel_families_for_every_system(name, family):
 
 def test_gait_panel_floating_snake_body_frame_choice():
     p = GaitPanel(system=FloatingSnake())
-    assert set(p.controls["frame"].options) == {"centre of mass", "middle link"}
-    p.set(family="ellipse", amplitude=1.0, center1=0.6, center2=0.4, aspect=0.5, angle=0.3, frame="centre of mass")
+    # the two frames of section 3.4.3: "centre of mass" alone means the mean orientation everywhere
+    assert set(p.controls["frame"].options) == {"centre of mass (middle-link axes)", "middle link"}
+    p.set(family="ellipse", amplitude=1.0, center1=0.6, center2=0.4, aspect=0.5, angle=0.3,
+          frame="centre of mass (middle-link axes)")
     g_com = p.net.copy()
     # the centre-of-mass frame: the translation rows of A vanish, so the fields show no arrows there
     assert np.allclose(np.ma.filled(p.fields[0].U, 0.0), 0.0)

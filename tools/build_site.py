@@ -34,9 +34,11 @@ import shutil
 import subprocess
 import sys
 import time
+from html import escape, unescape
 from pathlib import Path
 
-import tomllib
+import set_repository  # tools/: where the course is published ([tool.gm-course] of pyproject.toml)
+import site_sweeps  # tools/: pre-rendered slider sweeps (site/sweeps.toml)
 
 ROOT = Path(__file__).resolve().parent.parent
 NPM_DIR = ROOT / "site"
@@ -117,17 +119,6 @@ del __gm_site_setup
 '''
 
 
-def repository():
-    tool = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["gm-course"]
-    return tool["repository"], tool["branch"]
-
-
-def binder_url(rel):
-    repo, branch = repository()
-    owner_name = repo.removeprefix("https://github.com/")
-    return f"https://mybinder.org/v2/gh/{owner_name}/{branch}?urlpath=lab/tree/{rel}"
-
-
 def pages(only=None):
     """Relative paths (book/..., exercises/...) of the pages, in reading order."""
     book = sorted(p.relative_to(ROOT).as_posix() for p in (ROOT / "book").glob("*.ipynb"))
@@ -149,12 +140,13 @@ def execute(rel, src_dir, cache_dir, fresh=False):
 
     text = (ROOT / rel).read_text(encoding="utf-8")
     code = "".join(p.read_text() for p in sorted((ROOT / "gm_core").rglob("*.py")))
-    key = hashlib.sha256((text + KERNEL_SETUP + code).encode()).hexdigest()[:20]   # page, setup and course code
+    setup = KERNEL_SETUP + site_sweeps.kernel_code()
+    key = hashlib.sha256((text + setup + code).encode()).hexdigest()[:20]   # page, setup and course code
     cached = cache_dir / (rel.replace("/", "__") + f".{key}.ipynb")
     if cached.exists() and not fresh:
         return nbformat.read(cached, as_version=4), 0.0
     nb = nbformat.reads(text, as_version=4)
-    nb.cells.insert(0, nbformat.v4.new_code_cell(KERNEL_SETUP))
+    nb.cells.insert(0, nbformat.v4.new_code_cell(setup))
     work = src_dir / Path(rel).parent
     work.mkdir(parents=True, exist_ok=True)
     env_before = dict(os.environ)
@@ -201,8 +193,10 @@ def _refs(value, out):
 
 
 def prune_widgets(nb):
-    """Outputs with a picture keep only the picture; widget state keeps what the views left use.
-    A view whose models need a front end the site does not load (ipympl) is replaced by a note."""
+    """Outputs with a picture keep only the picture (it has alt text; a live canvas cannot draw
+    without a kernel); widget state keeps what the views left use. The views left are drawn from
+    their saved state by the widget manager, ipympl's canvases by ipympl's front end; a view with
+    a canvas that has no saved picture of its own (``_data_url``) is replaced by a note."""
     state = nb.metadata.get("widgets", {}).get(WIDGET_STATE, {}).get("state", {})
     roots = []
     for cell in nb.cells:
@@ -225,7 +219,8 @@ def prune_widgets(nb):
             refs = set()
             _refs(state[m].get("state", {}), refs)
             todo += list(refs)
-        if root not in state or any(state[m].get("model_module") == "jupyter-matplotlib" for m in need):
+        if root not in state or any(state[m].get("model_name") == "MPLCanvasModel" and not state[m]["state"].get("_data_url")
+                                    for m in need):
             del out["data"][WIDGET_VIEW]
             out["data"].setdefault("text/plain", "(an interactive control: open the page in JupyterLab to use it)")
         else:
@@ -247,15 +242,20 @@ def _frames(html):
 
 def compress_animation(html, keep_every=1):
     """Re-encode a course player's frames as WebP; keep every ``keep_every``-th frame (and make
-    each shown ``keep_every`` times as long, so the motion keeps its speed)."""
+    each shown ``keep_every`` times as long, so the motion keeps its speed). The frame the player
+    starts at is kept (a sweep starts at its panel's first state), and a sweep's values follow."""
     from PIL import Image
 
     m = _PLAYER_FRAMES.search(html)
     if not m:
         return html
-    frames = json.loads(m.group(1))[::keep_every]
+    frames = json.loads(m.group(1))
+    st = re.search(r"first = (\d+);", html)
+    start = int(st.group(1)) if st else 0
+    pick = list(range(start % keep_every, len(frames), keep_every))
+    start = pick.index(start)
     encoded = []
-    for url in frames:
+    for url in (frames[i] for i in pick):
         head, _, data = url.partition(",")
         if "webp" in head:
             encoded.append(url)
@@ -266,11 +266,19 @@ def compress_animation(html, keep_every=1):
     interval = int(m.group(2)) * keep_every
     n = len(encoded)
     html = html[:m.start()] + f"frames = {json.dumps(encoded)}, interval = {interval}" + html[m.end():]
+    if st:
+        html = re.sub(r"first = \d+;", f"first = {start};", html, count=1)
     html = re.sub(r'data-frames="\d+"', f'data-frames="{n}"', html, count=1)
-    html = re.sub(r'(<img id="_anim_img\w+" src=")[^"]*"', lambda k: k.group(1) + encoded[0] + '"', html, count=1)
-    html = re.sub(r'(class="gm-anim-slider" min="0" max=")\d+"', lambda k: k.group(1) + f'{n - 1}"', html, count=1)
-    html = re.sub(r'(<span class="gm-anim-counter">1 / )\d+', lambda k: k.group(1) + str(n), html, count=1)
-    return html
+    html = re.sub(r'(<img id="_anim_img\w+" src=")[^"]*"', lambda k: k.group(1) + encoded[start] + '"', html, count=1)
+    html = re.sub(r'(class="gm-anim-slider" min="0" max=")\d+"( value=")\d+"',
+                  lambda k: k.group(1) + f'{n - 1}"' + k.group(2) + f'{start}"', html, count=1)
+    html = re.sub(r'(<span class="gm-anim-counter">)\d+ / \d+', lambda k: k.group(1) + f"{start + 1} / {n}", html, count=1)
+
+    def values(k):
+        vals = json.loads(unescape(k.group(1)))
+        return 'data-values="' + escape(json.dumps([vals[i] for i in pick])) + '"'
+
+    return re.sub(r'data-values="([^"]*)"', values, html, count=1)
 
 
 def _is_animation(out):
@@ -291,6 +299,9 @@ def prepare(nb, rel, page_set):
     import nbformat
 
     nb.metadata["gm_site_page"] = rel
+    for cell in nb.cells:
+        for out in cell.get("outputs", []):
+            site_sweeps.prefer_sweep(out)
     prune_widgets(nb)
     anims = []
     for i, cell in enumerate(nb.cells):
@@ -299,7 +310,8 @@ def prepare(nb, rel, page_set):
                 src = "".join(out["data"]["text/html"])
                 n = len(_frames(src))
                 alt = f"Animation ({n} frames) for “{_heading_before(nb, i)}”; the player's buttons step through it"
-                src = re.sub(r'(<img id="_anim_img\w+" [^>]*?)alt="[^"]*"', lambda k: f'{k.group(1)}alt="{alt}"', src, count=1)
+                if 'class="gm-sweep"' not in src:         # a sweep's pictures say what they show
+                    src = re.sub(r'(<img id="_anim_img\w+" [^>]*?)alt="[^"]*"', lambda k: f'{k.group(1)}alt="{alt}"', src, count=1)
                 out["data"]["text/html"] = src
                 anims.append([out, src, 1])
             data = out.get("data", {})
@@ -315,7 +327,6 @@ def prepare(nb, rel, page_set):
             break
         big[2] *= 2
         big[0]["data"]["text/html"] = compress_animation(big[1], big[2])
-    repo, branch = repository()
     here = Path(rel).parent
 
     def link(m):
@@ -329,14 +340,14 @@ def prepare(nb, rel, page_set):
         if norm in page_set:
             new = os.path.relpath(norm, here.as_posix())
         else:
-            new = f"{repo}/blob/{branch}/{norm}"
+            new = set_repository.file_url(norm)
         return f"{m.group(1)}({new}{'#' + anchor if anchor else ''})"
 
     for cell in nb.cells:
         if cell.cell_type == "markdown":
             cell.source = re.sub(r"(\]\s*)\(([^)\s]+)\)", link, cell.source)
             cell.source = re.sub(r"<details\b.*?</details>", _html_math, cell.source, flags=re.S)
-    banner = (f"> **Live version.** [Open this notebook in JupyterLab on Binder]({binder_url(rel)}), "
+    banner = (f"> **Live version.** [Open this notebook in JupyterLab on Binder]({set_repository.binder_url(rel)}), "
               f"or run `make lab` in a copy of the course and open `{rel}`. On this page every live "
               "figure is a picture of its first state; animations play here.")
     first_md = next((k for k, c in enumerate(nb.cells) if c.cell_type == "markdown"), -1)
@@ -348,11 +359,20 @@ def prepare(nb, rel, page_set):
 
 def npm_assets():
     mods = NPM_DIR / "node_modules"
-    need = ["mathjax/es5/tex-mml-chtml.js", "@jupyter-widgets/html-manager/dist/embed.js",
+    need = ["mathjax/es5/tex-mml-chtml.js", "@jupyter-widgets/html-manager/dist/embed-amd.js", "requirejs/require.js",
             "font-awesome/css/font-awesome.min.css", "axe-core/axe.min.js"]
     if not all((mods / n).exists() for n in need):
         subprocess.run(["npm", "install", "--no-audit", "--no-fund", "--loglevel=error"], cwd=NPM_DIR, check=True)
     return mods
+
+
+def ipympl_front_end():
+    """jupyter-matplotlib, ipympl's front end as an AMD module: the wheel installs it (for the
+    classic notebook) under the venv's share/jupyter/nbextensions."""
+    path = Path(sys.prefix) / "share" / "jupyter" / "nbextensions" / "jupyter-matplotlib" / "index.js"
+    if not path.exists():
+        raise RuntimeError(f"ipympl's front end is not at {path}: build the site in .venv-site (tools/venvs.py site)")
+    return path
 
 
 def copy_static(src_dir):
@@ -360,17 +380,24 @@ def copy_static(src_dir):
     static = src_dir / "_assets"      # copied into the site's _static; not _static itself, whose
                                       # every .js Jupyter Book would add to every page
     static.mkdir(parents=True, exist_ok=True)
-    for own in ("gm-site.css", "gm-site.js"):
+    for own in ("gm-site.css", "gm-site.js", "gm-widgets.js"):
         shutil.copyfile(NPM_DIR / own, static / own)
+    (static / "require").mkdir(exist_ok=True)
+    shutil.copyfile(mods / "requirejs" / "require.js", static / "require" / "require.js")
+    (static / "ipympl").mkdir(exist_ok=True)
+    front = ipympl_front_end()
+    for name in ("index.js", "index.js.LICENSE.txt"):
+        if (front.parent / name).exists():
+            shutil.copyfile(front.parent / name, static / "ipympl" / name)
     for name, dest in (("mathjax/es5", "mathjax"), ("@jupyter-widgets/html-manager/dist", "widgets"),
                        ("font-awesome", "font-awesome")):
         if (static / dest).exists():
             shutil.rmtree(static / dest)
-        shutil.copytree(mods / name, static / dest, ignore=shutil.ignore_patterns("*.map", "less", "scss", "*.md"))
+        shutil.copytree(mods / name, static / dest, ignore=shutil.ignore_patterns("*.map", "less", "scss", "*.md", "embed.js", "libembed-amd.js"))
 
 
 def write_book(src_dir, rels):
-    repo, branch = repository()
+    repo, branch = set_repository.read()
     book = [r for r in rels if r.startswith("book/")]
     ex = [r for r in rels if r.startswith("exercises/")]
     root = (book or ex)[0]
@@ -394,7 +421,9 @@ def write_book(src_dir, rels):
         "parse": {"myst_enable_extensions": ["dollarmath", "amsmath", "colon_fence", "html_image"]},
         "sphinx": {"config": {
             "mathjax_path": "mathjax/tex-mml-chtml.js",
-            "nb_ipywidgets_js": {"widgets/embed.js": {}},   # base controls only: no require.js
+            # require.js, then where the site keeps the widget modules (ipympl's front end), then
+            # the widget manager, which renders every saved widget view from the page's state
+            "nb_ipywidgets_js": {"require/require.js": {}, "gm-widgets.js": {}, "widgets/embed-amd.js": {}},
             "nb_mime_priority_overrides": [["html", "image/png", 1], ["html", WIDGET_VIEW, 2]],
             "html_static_path": ["_assets"],
             "suppress_warnings": ["mystnb.unknown_mime_type", "myst.header"],

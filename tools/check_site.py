@@ -4,8 +4,10 @@
 
 The site is served on 127.0.0.1; every other request is aborted and counted. Per page: no failed
 or outside request, no page error; every picture loaded with a non-zero size, visible, with an alt
-text that is not a file name; every formula rendered by MathJax (no raw ``\\(...\\)`` or ``$...$``
-left in the prose); every animation plays (its Play button changes the frame shown); axe-core's
+text that is not a file name; every saved widget view drawn (non-zero size) by the widget
+manager served from the site; every formula rendered by MathJax (no raw ``\\(...\\)`` or ``$...$``
+left in the prose); every animation plays (its Play button changes the frame shown) and every pre-rendered sweep
+moves (its slider, moved from the keyboard, changes the picture and the value shown); axe-core's
 automated WCAG 2.1 A/AA checks, injected from the npm package, find no serious or critical
 violation. Writes ``report-browser.json`` beside the site and exits 1 on any failure.
 Uses Debian's /usr/bin/chromium through playwright (never ``playwright install``).
@@ -98,6 +100,31 @@ def check_page(page, base, path):
     out["missing_alt"] = [i["src"] for i in imgs if not i["alt"].strip() or i["alt"].endswith((".png", ".webp"))]
     math = page.evaluate(_RAW_MATH)
     out["math_rendered"], out["raw_math"], out["math_errors"] = math["rendered"], math["bad"], math["errors"]
+    views = page.evaluate("""() => [...document.querySelectorAll('script[type="application/vnd.jupyter.widget-view+json"]')]
+      .map(s => { const w = s.parentElement.querySelector('.jupyter-widgets, .lm-Widget');
+                  const r = w ? w.getBoundingClientRect() : null;
+                  return r && r.width > 0 && r.height > 0; })""")
+    out["widgets"], out["blank_widgets"] = len(views), views.count(False)   # drawn from the saved state
+    out["sweeps"], out["still_sweeps"] = 0, []
+    for sweep in page.query_selector_all(".gm-sweep"):        # a pre-rendered slider sweep moves
+        img, slider = sweep.query_selector("img.gm-anim-frame"), sweep.query_selector("input.gm-anim-slider")
+        value = sweep.query_selector(".gm-sweep-value")
+        if img is None or slider is None or value is None:
+            out["still_sweeps"].append("a sweep without its picture, slider or value")
+            continue
+        out["sweeps"] += 1
+        sweep.scroll_into_view_if_needed()
+        before, shown = img.get_attribute("src")[-200:], value.text_content()
+        at_end = slider.evaluate("s => s.value === s.max")
+        slider.focus()
+        page.keyboard.press("Home" if at_end else "End")        # what a keyboard user does
+        try:
+            page.wait_for_function("([el, b]) => el.getAttribute('src').slice(-200) !== b", arg=[img, before], timeout=5000)
+            moved = value.text_content() != shown and img.bounding_box()["width"] > 0
+        except Exception:  # noqa: BLE001 - playwright's TimeoutError
+            moved = False
+        if not moved:
+            out["still_sweeps"].append(img.get_attribute("id"))
     out["animations"], out["still_animations"] = 0, []
     for player in page.query_selector_all(".gm-anim"):
         img = player.query_selector("img")
@@ -125,7 +152,8 @@ def check_page(page, base, path):
     out["axe"] = axe
     out["axe_serious"] = [v for v in axe if v["impact"] in ("serious", "critical")]
     out["ok"] = not (failed or outside or errors or out["bad_images"] or out["missing_alt"] or out["raw_math"]
-                     or out["math_errors"] or out["still_animations"] or out["axe_serious"])
+                     or out["math_errors"] or out["still_animations"] or out["still_sweeps"] or out["blank_widgets"]
+                     or out["axe_serious"])
     return out
 
 
@@ -166,11 +194,11 @@ def main(argv=None):
     for r in results:
         moderate = sorted({v["id"] for v in r["axe"] if v["impact"] not in ("serious", "critical")})
         print(f"{'ok  ' if r['ok'] else 'FAIL'} {r['page']}: {r['images']} pictures, {r['math_rendered']} formulas, "
-              f"{r['animations']} animations; axe serious/critical {len(r['axe_serious'])}"
+              f"{r['animations']} animations ({r['sweeps']} sweeps), {r['widgets']} widgets; axe serious/critical {len(r['axe_serious'])}"
               f"{' (minor/moderate: ' + ', '.join(moderate) + ')' if moderate else ''}")
         if not r["ok"]:
             for k in ("failed", "outside", "errors", "bad_images", "missing_alt", "raw_math", "math_errors",
-                      "still_animations", "axe_serious"):
+                      "still_animations", "still_sweeps", "blank_widgets", "axe_serious"):
                 if r[k]:
                     print(f"     {k}: {json.dumps(r[k])[:600]}")
     return 0 if all(r["ok"] for r in results) else 1

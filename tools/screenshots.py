@@ -5,13 +5,15 @@
     python tools/screenshots.py --only book/04  # notebooks whose path contains the text
     make screenshots
 
-Writes ``build/screenshots/`` (git-ignored) with ``index.html``:
+Writes ``build/screenshots/`` (git-ignored) with ``index.html`` (and the same captions as ``index.txt``):
 
 * **browser** (Chromium + playwright, as tests/browser): JupyterLab on a scratch copy of the
   course, a 1366 x 768 window with the file browser open (what a student on a laptop sees); for
   every notebook that draws, Run All, then one PNG per output holding a figure (ipympl canvas,
   inline image or animation), cut exactly as the output area shows it, plus a window shot; the
-  layout problems of tests/browser/labview.py are listed beside the pictures; then the first
+  layout problems of tests/browser/labview.py and the control problems of tests/browser/student.py
+  (short slider tracks, cut labels, panels taller than one screen) are listed beside the pictures,
+  and each panel's caption gives its height with its controls and its shortest track; then the first
   slider of every panel is dragged slowly and quickly (tests/browser/student.py) and both final
   canvases are shown (after a quick drag the picture must be the slow drag's, with no ghost).
 * **headless** (always available): every figure of every notebook and every panel's initial state
@@ -101,9 +103,16 @@ _MARK_FIGURES_JS = r"""
   for (const o of root.querySelectorAll('.jp-OutputArea-output')) {
     if (!o.querySelector('canvas, img')) continue;
     o.setAttribute('data-gm-shot', String(k));
+    // a panel (a canvas with controls): its height with the controls, its shortest slider track
+    const ctl = o.querySelector('.widget-slider, .widget-dropdown, .widget-toggle-buttons, .widget-checkbox');
+    const box = o.querySelector('.jupyter-widgets.widget-container, .jupyter-widgets') || o;
+    const tracks = [...o.querySelectorAll('.widget-slider .noUi-target, .widget-slider .slider-container')]
+      .map(t => t.getBoundingClientRect().width).filter(w => w > 0);
     out.push({index: k, cell: 'In[' + (inNum.get(o.closest('.jp-Cell')) || '?') + ']',
               kind: o.querySelector('img[id^="_anim_img"]') ? 'animation'
-                    : o.querySelector('.jupyter-matplotlib canvas') ? 'interactive figure' : 'image'});
+                    : o.querySelector('.jupyter-matplotlib canvas') ? 'interactive figure' : 'image',
+              height: ctl ? Math.round(box.getBoundingClientRect().height) : null,
+              track: tracks.length ? Math.round(Math.min(...tracks)) : null});
     k++;
   }
   return out;
@@ -120,6 +129,31 @@ def _window_shot(nbp, rel: str, d: Path) -> dict | None:
     name = f"{_slug(rel)}-window.png"
     nbp.page.screenshot(path=str(d / name))
     return {"png": f"browser/{name}", "caption": f"{rel}: the 1366 x 768 window", "problems": []}
+
+
+def _played_animations(nbp, rel: str, d: Path, notes: list[str]) -> list[dict]:
+    """Press ▶ on every animation, shoot it 1.5 s later and pause it again (tests/browser/student.py
+    checks that the frame changes; here a person sees which frame it reached)."""
+    import student
+
+    page, shots = nbp.page, []
+    for a in page.evaluate(student._ANIMS_JS, nbp.read_status()["panelId"])["anims"]:
+        root = page.locator(f'[data-gm-anim="{a["index"]}"]')
+        root.scroll_into_view_if_needed()
+        try:
+            root.locator("button.gm-anim-play").click(timeout=10_000)
+            page.wait_for_timeout(1500)
+            name = f"{_slug(rel)}-anim{a['index']:02d}-played.png"
+            frame = root.locator("img").first.get_attribute("data-frame")
+            root.screenshot(path=str(d / name))
+            root.locator("button.gm-anim-play").click(timeout=10_000)
+        except Exception as e:  # noqa: BLE001 - a failed press is a finding, not a crash
+            notes.append(f"animation #{a['index']}: could not press ▶: {e}"[:300])
+            continue
+        shots.append({"png": f"browser/{name}", "caption": f"{rel} animation #{a['index']} 1.5 s after ▶ "
+                      f"(frame {frame} of {a['frames']}; it starts at frame {a['frame']})",
+                      "problems": [] if frame != a["frame"] else ["the frame did not change after ▶"]})
+    return shots
 
 
 def browser(out: Path, only: str | None) -> list[dict]:
@@ -150,6 +184,7 @@ def browser(out: Path, only: str | None) -> list[dict]:
                     nbp.run_all()
                     nbp.page.wait_for_timeout(2500)  # canvases drawn, images decoded
                     problems, counts = labview.layout_problems(nbp)
+                    problems += student.control_problems(nbp)  # short tracks, cut labels, tall panels
                     notes += problems
                     st = nbp.check_no_errors()
                     if shots_window := _window_shot(nbp, rel, d):
@@ -164,12 +199,16 @@ def browser(out: Path, only: str | None) -> list[dict]:
                         loc = nbp.page.locator(f'[data-gm-shot="{fig["index"]}"]')
                         loc.scroll_into_view_if_needed()
                         loc.screenshot(path=str(d / name), timeout=30_000)
-                        mine = [p for p in problems if p.startswith(fig["cell"] + " ")]
-                        shots.append({"png": f"browser/{name}", "caption": f"{rel} {fig['cell']} ({fig['kind']})",
+                        mine = [p for p in problems if p.startswith(fig["cell"] + " ") or p.startswith(fig["cell"] + ":")]
+                        size = (f"; with its controls {fig['height']} px tall" if fig.get("height") else "") + (
+                            f", shortest slider track {fig['track']} px" if fig.get("track") else "")
+                        shots.append({"png": f"browser/{name}", "caption": f"{rel} {fig['cell']} ({fig['kind']}){size}",
                                       "problems": mine})
                     nbp.page.set_viewport_size(dict(zip(("width", "height"), labview.STUDENT_WINDOW)))
                     if len(shots) == 1:  # a window shot but no figure
                         shots.clear()
+                    # every animation after ▶ (its frames must move: compare with its first frame)
+                    shots += _played_animations(nbp, rel, d, notes)
                     # what a hurried student is left with: every panel's canvas after a quick
                     # drag of its first slider (beside the slow drag's, which it must equal)
                     drag_dir = d / f"{_slug(rel)}-drag"
@@ -223,6 +262,13 @@ def write_index(out: Path, sections: list[tuple[str, list[dict]]]):
                 parts.append(f"<figure><a href='{e(s['png'])}'><img src='{e(s['png'])}' loading='lazy'></a>"
                              f"<figcaption>{e(s['caption'])}{bad}</figcaption></figure>")
     (out / "index.html").write_text("\n".join(parts), encoding="utf-8")
+    lines = []  # the same, as text: to read beside the pictures, or to compare two runs
+    for label, entries in sections:
+        for ent in entries:
+            lines += [f"== {label}: {ent['title']}"] + [f"  ! {n}" for n in ent["notes"]]
+            for s in ent["shots"]:
+                lines += [f"  {s['png']}: {s['caption']}"] + [f"    ! {q}" for q in s["problems"]]
+    (out / "index.txt").write_text("\n".join(lines) + "\n", encoding="utf-8")
 
 
 def main(argv=None):

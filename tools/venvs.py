@@ -1,28 +1,39 @@
 """Separate virtual environments for the heavy publishing tools, kept out of the course's .venv.
 
     python tools/venvs.py kits     # .venv-kits: otter-grader, nbgrader (+ the course's core and [lab] deps)
-    python tools/venvs.py site     # .venv-site: Jupyter Book 1 / myst-nb, playwright (+ the same)
+    python tools/venvs.py site     # .venv-site: Jupyter Book 1 / myst-nb, playwright (+ the same),
+                                   # and the site's npm files (site/node_modules)
+    python tools/venvs.py gradescope   # .venv-gradescope: an autograder folder made by the
+                                   # Gradescope kit's own setup.sh (tests/test_gradescope_kit.py)
 
 Each venv lives in the repository (git-ignored) and is made from PyPI with the venv's own pip the
 first time it is needed, and again when its package list changes (a stamp file records it). The
 course itself is *not* installed into them: the tools run with ``PYTHONPATH`` set to the
 repository, so they always see this checkout's gm_core. ``ensure(name)`` returns the venv's
 ``bin`` folder; it raises ``VenvError`` (with pip's message) when the packages cannot be installed.
+``make test`` makes all three in its set-up (a failure there only makes the tests that need them
+skip), so the tests themselves install nothing from PyPI.
 """
 from __future__ import annotations
 
 import hashlib
+import os
+import shutil
 import subprocess
 import sys
+import zipfile
 from pathlib import Path
 
-import tomllib
+try:
+    import tomllib
+except ModuleNotFoundError:    # Python 3.10: the same parser from PyPI (tomli, declared for < 3.11)
+    import tomli as tomllib
 
 ROOT = Path(__file__).resolve().parent.parent
 
 TOOLS = {
     "kits": ["otter-grader>=6", "nbgrader>=0.9", "ipympl>=0.9.3"],
-    "site": ["jupyter-book>=1.0.4,<2", "playwright>=1.40", "pillow>=10.0"],
+    "site": ["jupyter-book>=1.0.4,<2", "playwright>=1.40", "pillow>=10.0", 'tomli>=1.1; python_version < "3.11"'],
 }
 
 
@@ -61,16 +72,76 @@ def ensure(name: str, quiet: bool = True) -> Path:
     return venv / "bin"
 
 
+GRADESCOPE = ROOT / ".venv-gradescope"
+
+
+def unpack_kit(kit: Path, root: Path) -> None:
+    """Unpack a Gradescope zip into ``root/source`` as Gradescope does (file modes kept)."""
+    src = root / "source"
+    if src.exists():
+        shutil.rmtree(src)
+    src.mkdir(parents=True)
+    with zipfile.ZipFile(kit) as zf:
+        zf.extractall(src)
+        for info in zf.infolist():
+            os.chmod(src / info.filename, (info.external_attr >> 16) & 0o777)
+
+
+def run_setup(root: Path) -> subprocess.CompletedProcess:
+    """The kit's setup.sh, in ``root`` (GM_AUTOGRADER_ROOT), with this Python making its venv."""
+    env = {k: v for k, v in os.environ.items() if k not in {"PYTHONPATH", "VIRTUAL_ENV"}}
+    env.update(GM_AUTOGRADER_ROOT=str(root), GM_AUTOGRADER_PYTHON=sys.executable)
+    return subprocess.run(["bash", str(root / "source" / "setup.sh")], cwd=root, env=env,
+                          capture_output=True, text=True, timeout=1800)
+
+
+def gradescope() -> Path:
+    """An autograder folder (``.venv-gradescope``) whose ``gm-venv`` the Gradescope kit's own
+    setup.sh made, in a fresh folder, from the package index: made again whenever the course's
+    requirements or setup.sh change. A test unpacks the current zip into it and runs setup.sh
+    again (which then only installs the course from the zip), instead of downloading numpy,
+    scipy and matplotlib for every run."""
+    sys.path.insert(0, str(ROOT / "tools"))
+    import gradescope_kit
+
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    reqs = list(project["dependencies"]) + list(project["optional-dependencies"]["grade"]) + [gradescope_kit.SETUP_SH]
+    digest = hashlib.sha256("\n".join(reqs).encode()).hexdigest()[:16]
+    stamp = GRADESCOPE / ".gm-stamp"
+    if stamp.exists() and stamp.read_text().strip() == digest and (GRADESCOPE / "gm-venv" / "bin" / "python").exists():
+        return GRADESCOPE
+    if GRADESCOPE.exists():
+        shutil.rmtree(GRADESCOPE)
+    GRADESCOPE.mkdir()
+    kit = gradescope_kit.build_kit(GRADESCOPE / "kit.zip", exercises=["1.1"])
+    unpack_kit(kit, GRADESCOPE)
+    res = run_setup(GRADESCOPE)
+    if res.returncode != 0:
+        raise VenvError(f"the Gradescope kit's setup.sh failed: {(res.stdout + res.stderr).strip()[-1500:]}")
+    stamp.write_text(digest + "\n")
+    return GRADESCOPE
+
+
 def main(argv=None):
     args = sys.argv[1:] if argv is None else argv
-    if len(args) != 1 or args[0] not in TOOLS:
-        print(f"usage: python tools/venvs.py {{{','.join(TOOLS)}}}", file=sys.stderr)
+    known = [*TOOLS, "gradescope"]
+    if not args or any(a not in known for a in args):
+        print(f"usage: python tools/venvs.py {{{','.join(known)}}} ...", file=sys.stderr)
         return 2
-    try:
-        print(ensure(args[0], quiet=False))
-    except VenvError as exc:
-        print(f"venvs: {exc}", file=sys.stderr)
-        return 1
+    for name in args:
+        try:
+            if name == "gradescope":
+                print(gradescope())
+            else:
+                print(ensure(name, quiet=False))
+                if name == "site":
+                    sys.path.insert(0, str(ROOT / "tools"))
+                    import build_site
+
+                    print(build_site.npm_assets())
+        except (VenvError, subprocess.CalledProcessError, OSError) as exc:
+            print(f"venvs: {name}: {exc}", file=sys.stderr)
+            return 1
     return 0
 
 

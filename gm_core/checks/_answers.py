@@ -191,3 +191,37 @@ def sympy_function(answer, names, flat=None, what="your expression"):
                            [np.broadcast_arrays(*[np.asarray(o) for o in row]) for row in out])
         return out
     return call
+
+
+def sample_gait(answer, joints: int, example: str, n: int = 256, extra=()):
+    """A student's gait (a Gait, a callable t -> r(t) of period 1, or an array of shapes (K, joints))
+    sampled at ``n + 1`` equal times over one period, then at the fractions ``extra`` of the
+    period (:mod:`._gait_samples` draws them from the probe salt): the student side of the gait
+    exercises.
+
+    ``example`` names a constructor to suggest (e.g. ``"circle_gait(...)"``). Raises Unattempted for
+    the starter value and Wrong, with a friendly message, for anything that is not a gait.
+    """
+    from ..gaits import Gait, as_gait
+
+    if is_starter(answer):
+        raise Unattempted()
+    if isinstance(answer, (str, bytes, bool, np.bool_, dict)) or np.isscalar(answer) or not (
+            isinstance(answer, (Gait, list, tuple, np.ndarray)) or callable(answer)):
+        raise Wrong(f"your answer is {describe(answer)}; hand in a Gait (e.g. {example}), a "
+                    f"callable t -> r(t) of period 1 or an array of shapes (K, {joints}).")
+    if not callable(answer):
+        pts = to_numbers(answer, "your array of shapes")
+        if pts.ndim == 2 and pts.shape[0] == joints and pts.shape[1] > joints:
+            raise Wrong(f"your array has shape {pts.shape}: one row per shape, (K, {joints}), was "
+                        "expected (transpose it).")
+        if pts.ndim != 2 or pts.shape[1] != joints or pts.shape[0] < 3:
+            raise Wrong(f"your array has shape {pts.shape}; an array of K >= 3 shapes, (K, {joints}), "
+                        "was expected.")
+        if not np.all(np.isfinite(pts)):
+            raise Wrong("your array of shapes contains NaN or infinite entries.")
+        answer = pts
+    gait = as_gait(answer)  # a callable of one time at a time works too (Gait handles it)
+    period = float(gait.period)
+    t = np.concatenate([np.linspace(0.0, period, n + 1), period * np.asarray(extra, dtype=float)])
+    return to_numbers(gait(t), "the shapes your gait returned")

@@ -6,7 +6,7 @@ import numpy as np
 
 from ..groups import SE2, wrap_angle
 from ._answers import fmt_value, is_starter, match_shape, to_numbers
-from ._core import FunctionPart, outcome_error, probe_rng, rng_inputs
+from ._core import FunctionPart, outcome_error, probe_rng, rng_inputs, salted
 from ._sandbox import Unattempted, Wrong
 
 
@@ -87,7 +87,17 @@ _D_NAMES = {"euler_left": "Euler on the left-invariant field", "euler_right": "E
 _D_XIS = (np.array([1.0, 0.0, 0.5]), np.array([0.3, -0.7, 2.0]), np.array([1.0, 0.5, -4.0]))
 _D_NS = {"euler_left": (1, 2, 7, 40), "euler_right": (1, 2, 7, 40), "product": (1, 2, 7, 40),
          "taylor": (1, 2, 5, 12, 30)}
-_D_CALLS = [(k, xi, n) for k in _D_KEYS for xi in _D_XIS for n in _D_NS[k]]
+
+
+def _d_calls():
+    """The (route, xi, n) calls of 1.4(d): in the student's kernel always the three xis above; when
+    grading, the first of them and two drawn from this run's salt (one turning each way)."""
+    xis = _D_XIS
+    if salted():
+        rng = probe_rng(17)
+        xis = (_D_XIS[0],) + tuple(np.array([*rng.uniform(-1.5, 1.5, 2), sign * rng.uniform(0.3, 4.0)])
+                                   for sign in (1.0, -1.0))
+    return [(k, xi, n) for k in _D_KEYS for xi in xis for n in _D_NS[k]]
 
 
 def _d_structure(answer):
@@ -118,7 +128,7 @@ def _d_call(answer, k, xi, n):
 
 
 def _d_probes():
-    return [_d_structure] + [lambda ans, c=c: _d_call(ans, *c) for c in _D_CALLS]
+    return [_d_structure] + [lambda ans, c=c: _d_call(ans, *c) for c in _d_calls()]
 
 
 def _d_close(got, want):
@@ -150,11 +160,12 @@ def _d_mistakes(k):
 def _d_judge(outcomes):
     if not outcomes or outcomes[0]["k"] != "ok":
         outcome_error(outcomes[0] if outcomes else {"k": "crash", "m": ""}, "your dict", "")
-    if len(outcomes) != len(_D_CALLS) + 1:
+    calls = _d_calls()
+    if len(outcomes) != len(calls) + 1:
         raise Wrong("the check could not evaluate every route.")
-    results = dict(zip(range(len(_D_CALLS)), outcomes[1:]))
+    results = dict(zip(range(len(calls)), outcomes[1:]))
     by_key = {k: [] for k in _D_KEYS}
-    for i, (k, xi, n) in enumerate(_D_CALLS):
+    for i, (k, xi, n) in enumerate(calls):
         o = results[i]
         label = f"xi = {fmt_value(xi)}, n = {n}"
         if o["k"] != "ok":
@@ -162,7 +173,7 @@ def _d_judge(outcomes):
         if o["v"] is None:
             raise Unattempted(f"answer[{k!r}] still returns None for {label}.") if all(
                 results[j]["k"] == "ok" and results[j]["v"] is None
-                for j, c in enumerate(_D_CALLS) if c[0] == k) else Wrong(
+                for j, c in enumerate(calls) if c[0] == k) else Wrong(
                 f"answer[{k!r}] returned None for {label} (a branch without return?).")
         got = np.asarray(o["v"], dtype=float)
         if got.shape != (3,) or not np.all(np.isfinite(got)):

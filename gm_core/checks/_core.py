@@ -481,6 +481,11 @@ def probe_rng(seed: int) -> np.random.Generator:
     return np.random.default_rng(seed if salt is None else [int(seed), salt])
 
 
+def salted() -> bool:
+    """True while the grader has salted the probe inputs (a graded run, or its judging)."""
+    return _grading.probe_salt() is not None
+
+
 def rng_inputs(seed: int, n: int, make: Callable[[np.random.Generator], Sequence[Any]],
                edges: Iterable[Sequence[Any]] = ()) -> Callable[[], Iterable[tuple]]:
     """A function yielding the edge cases first, then ``n`` seeded random argument tuples."""
@@ -494,4 +499,4 @@ def rng_inputs(seed: int, n: int, make: Callable[[np.random.Generator], Sequence
 
 
 __all__ = ["Verdict", "Part", "FunctionPart", "TuplePart", "CustomPart", "outcome_error", "rng_inputs",
-           "probe_rng"]
+           "probe_rng", "salted"]

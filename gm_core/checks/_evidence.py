@@ -149,6 +149,12 @@ def summarise(run, ex, sources):
     if not fatal and not done:
         if run.get("killed") == "time":
             problem = "the notebook ran longer than the time allowed for a whole notebook"
+        elif run.get("killed") == "cell":
+            at = where(running) if isinstance(running, int) and running not in cells else \
+                "a cell"
+            problem = (f"the grader ended the notebook in {at}: it ran far past the cell limit "
+                       "while the grader's runner had stopped enforcing it (stopped or stalled "
+                       "from inside the notebook)")
         elif run.get("killed") == "evidence":
             problem = "the notebook sent far too much on the grader's evidence channel"
         elif stop_cell is not None:

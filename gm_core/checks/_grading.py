@@ -3,7 +3,8 @@
 When the grader runs a notebook (:mod:`gm_core.checks.grade`), its runner executes one hidden
 cell *before any of the student's cells*: :func:`open_channel` binds the write end of a pipe the
 runner created before the kernel started, and records this run's nonce and probe-input salt
-(chosen by the grader, unpredictable to the notebook). From then on every ``part.check(...)``
+(chosen by the grader, unpredictable to the notebook) and the grader's per-call time limit (a
+``set_time_limit`` or ``check(time_limit=...)`` in the notebook may lower it, not raise it). From then on every ``part.check(...)``
 in the notebook, whatever form the call takes (keywords, ``Exercise.check({...})``, an alias, a
 helper function), writes one line to that pipe at the moment it is called: the part, and the
 plain outcomes its probes produced on the answer *as it was then*. The grader reads that pipe,
@@ -17,17 +18,21 @@ from __future__ import annotations
 import json
 import os
 
-_STATE = {"fd": None, "nonce": None, "salt": None}
+_STATE = {"fd": None, "nonce": None, "salt": None, "time_limit": None}
 MAX_RECORD_BYTES = 4_000_000
 
 
 def open_channel(fd, nonce, salt, time_limit=None):
     """Bind the evidence pipe (called by the grader's runner before any student code runs)."""
-    from . import _sandbox
     _STATE["fd"], _STATE["nonce"] = int(fd), str(nonce)
     set_probe_salt(salt)
-    if time_limit is not None:
-        _sandbox.set_time_limit(time_limit)
+    if time_limit is not None:     # the runner also makes it the default (_sandbox.set_time_limit)
+        _STATE["time_limit"] = float(time_limit)
+
+
+def time_limit():
+    """The grader's per-call limit while grading (no check may allow more), else None."""
+    return _STATE["time_limit"] if active() else None
 
 
 def set_probe_salt(salt):

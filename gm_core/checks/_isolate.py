@@ -10,9 +10,15 @@ The sandbox (``bwrap``, Debian's ``bubblewrap`` package) gives the notebook's ke
 * new user, pid, network, IPC and UTS namespaces (``--unshare-all``: no network at all), no
   capabilities, a new session; ``--die-with-parent`` and the pid namespace mean that when the
   sandbox ends, every process it started ends too (a ``setsid`` daemon included);
-* limits: total wall time per notebook (the grader kills it), memory (``RLIMIT_AS`` per
-  process, and a memory cgroup for the whole tree where one can be made), processes (a pids
-  cgroup; ``RLIMIT_NPROC`` for a non-root grader), file size and ``/tmp`` size.
+* limits: total wall time per notebook and per cell, kept by the grading process itself
+  (:class:`_OuterClock`: the kernel can stop its runner, not the grader), memory (``RLIMIT_AS`` per
+  process, and a memory cgroup for the whole tree), processes (a pids cgroup; ``RLIMIT_NPROC``
+  too for a non-root grader), file size and ``/tmp`` size. Each notebook gets cgroups of its own
+  (``pids.max``, the memory limit) wherever this process may create them (cgroup v1 or v2); at the
+  end, or at a limit, every process in them is killed and they are removed. Where none can be
+  made (``GM_GRADE_NO_CGROUPS=1`` also says so) the sandbox's pid namespace still ends every
+  process with it, but the number of processes is not bounded for a root grader and the memory
+  limit is per process: the grader says so in its report.
 
 Evidence comes back on a pipe created here before the sandbox starts and inherited by the
 runner (:mod:`._runner`); the grader reads at most ``MAX_EVIDENCE_BYTES`` of it. Nothing the
@@ -37,6 +43,9 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+from ._clock import OUTER_MARGIN, STARTUP_LIMIT, CellClock
+from ._runner import GRACE as _RUNNER_GRACE
 
 PKG_PARENT = Path(__file__).resolve().parents[2]
 MAX_EVIDENCE_BYTES = 64_000_000
@@ -99,16 +108,34 @@ def _own_cgroup_dirs():
     return {c: v for c, v in out.items() if os.access(v[1], os.W_OK)}
 
 
+def _remove_stale(base):
+    """Remove the empty cgroups a grader that died (killed, power cut) left behind: named
+    ``gm-grade-<pid>-...`` after a process that is gone. A cgroup with a process in it cannot be
+    removed, so nothing that still runs loses its limits."""
+    try:
+        names = [p for p in base.iterdir() if p.name.startswith("gm-grade-")]
+    except OSError:
+        return
+    for d in names:
+        pid = d.name.split("-")[2] if d.name.count("-") >= 3 else ""
+        if pid.isdigit() and not Path(f"/proc/{pid}").exists():
+            try:
+                d.rmdir()
+            except OSError:
+                pass
+
+
 class _Cgroups:
     """Child cgroups (memory, pids) for one sandbox, where this process may create them."""
 
     def __init__(self, limits, tag):
         self.dirs, self.kinds = [], []
         try:
-            found = _own_cgroup_dirs()
+            found = {} if os.environ.get("GM_GRADE_NO_CGROUPS") == "1" else _own_cgroup_dirs()
         except Exception:  # noqa: BLE001
             found = {}
         for ctrl, (ver, base) in found.items():
+            _remove_stale(base)
             d = base / tag
             try:
                 d.mkdir(exist_ok=True)
@@ -144,7 +171,14 @@ class _Cgroups:
         return out
 
     def close(self):
-        for _ in range(50):
+        """Kill every process of the cgroups (a daemon that called setsid, a probe that killed its
+        keeper: all of them), then remove the cgroups."""
+        for d in self.dirs:
+            try:
+                (d / "cgroup.kill").write_text("1")    # cgroup v2 (Linux 5.14+): all at once
+            except OSError:
+                pass
+        for _ in range(100):
             left = self.pids()
             if not left:
                 break
@@ -241,8 +275,49 @@ def _mpl_cache():
         return None
 
 
-def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=None):
-    """Run ``notebook`` in its sandbox; return ({"records": [...], "log": text, ...})."""
+class _OuterClock:
+    """The runner's cell clock kept again here, outside the sandbox, from its records as they
+    arrive (:mod:`._clock`): the kernel can stop or stall its runner, not this process."""
+
+    def __init__(self, limits, caps, started):
+        self.clock = CellClock(caps)
+        self.clock.restart(started)
+        self.cell_bound = limits.cell_timeout + _RUNNER_GRACE + OUTER_MARGIN
+        self.bound = STARTUP_LIMIT            # until the first cell starts
+        self.head = b""                       # the start of the line being received
+
+    def feed(self, chunk, now):
+        pieces = chunk.split(b"\n")
+        for i, piece in enumerate(pieces):
+            if len(self.head) < 200:
+                self.head += piece[:200 - len(self.head)]
+            if i < len(pieces) - 1:           # a whole line: act on its kind
+                self._line(self.head, now)
+                self.head = b""
+
+    def _line(self, head, now):
+        if head.startswith((b'{"t": "run"', b'{"t": "cell"')):
+            self.clock.restart(now)
+            self.bound = self.cell_bound
+        elif head.startswith(b'{"t": "b"'):
+            try:
+                key = json.loads(head.decode("utf-8", "replace")).get("part")
+            except (ValueError, AttributeError):
+                key = None
+            if isinstance(key, str):
+                self.clock.begin(key, now)
+        elif head.startswith(b'{"t": "k"'):
+            self.clock.end(now)
+
+    def over(self, now):
+        return self.clock.seconds(now) > self.bound
+
+
+def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=None, caps=None):
+    """Run ``notebook`` in its sandbox; return ({"records": [...], "log": text, ...}).
+
+    ``caps``: {"<exercise>/<part>": seconds} the longest honest check of each part may take
+    (:func:`._clock.check_caps`), credited on the cell clocks."""
     notebook = Path(notebook)
     private = Path(tempfile.mkdtemp(prefix="gm-grade-"))
     os.chmod(private, 0o700)
@@ -256,7 +331,7 @@ def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=
     config = {"notebook": f"{inside}/{name}", "workdir": f"{scratch}/work", "evidence_fd": wfd,
               "nonce": nonce or secrets.token_hex(16), "salt": salt if salt is not None else secrets.randbits(62),
               "cell_timeout": limits.cell_timeout, "time_limit": limits.time_limit,
-              "mpl_cache": _mpl_cache()}
+              "mpl_cache": _mpl_cache(), "caps": dict(caps or {})}
     (inbox / "config.json").write_text(json.dumps(config))
     cmd = [sys.executable, "-m", "gm_core.checks._runner", f"{inside}/config.json"]
     cgroups = _Cgroups(limits, f"gm-grade-{os.getpid()}-{secrets.token_hex(4)}")
@@ -282,19 +357,25 @@ def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=
         wfd = None
         streams = {rfd: "e", proc.stdout.fileno(): "o"}
         deadline = started + limits.notebook_timeout
+        outer = _OuterClock(limits, caps, started)
         while streams:
             if rfd not in streams and proc.poll() is not None:
                 break   # the runner is gone and said all it will say
-            wait = deadline - time.monotonic()
+            now = time.monotonic()
+            wait = deadline - now
             if wait <= 0:
                 killed = "time"
                 break
-            ready, _, _ = select.select(list(streams), [], [], min(wait, 1.0))
+            if outer.over(now):
+                killed = "cell"       # the runner did not end an over-long cell: end it all
+                break
+            ready, _, _ = select.select(list(streams), [], [], min(wait, 0.5))
             for fd in ready:
                 chunk = os.read(fd, 1 << 16)
                 if not chunk:
                     del streams[fd]
                 elif streams[fd] == "e":
+                    outer.feed(chunk, time.monotonic())
                     if len(evidence) < MAX_EVIDENCE_BYTES:
                         evidence += chunk
                         if b'"t": "done"' in evidence[-200:]:

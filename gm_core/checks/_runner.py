@@ -10,13 +10,18 @@ grader (``config["evidence_fd"]``):
   "ok" | "error" | "timeout" | "died", ...}`` when it ends;
 * ``{"t": "k", "cell": index, "line": "..."}``: a line the kernel's checks wrote on the pipe
   this runner created *before the kernel started* (forwarded as text; the grader parses it);
+* ``{"t": "b", "cell": index, "part": "1.4/a"}``: a check announced itself (its probes' time is
+  credited, capped, on this runner's cell clock and on the grader's, :mod:`._clock`);
 * ``{"t": "fatal", "m": ...}`` and ``{"t": "done"}``.
 
 Before the student's first cell a hidden cell binds the kernel's end of that pipe
 (:func:`._grading.open_channel`). Each code cell runs under the cell limit, *not counting the
 time its checks' probes take* (every probe already has the per-call limit the student's own
-kernel uses); a cell over the limit is interrupted (SIGINT), and killed 5 s later if it ignores
-that, so only the parts checked in it or later are lost. Outputs are counted and dropped: the
+kernel uses; each check is credited at most its part's longest honest time, :mod:`._clock`); a
+cell over the limit is interrupted (SIGINT), and killed 5 s later if it ignores that, so only
+the parts checked in it or later are lost. The kernel can signal this process (same user), so
+the grading process keeps the same clock outside the sandbox from these records and ends the
+whole sandbox should this runner stop keeping it (a SIGSTOP, say). Outputs are counted and dropped: the
 grader never looks at what a notebook prints.
 """
 from __future__ import annotations
@@ -28,6 +33,8 @@ import signal
 import sys
 import threading
 import time
+
+from ._clock import CellClock
 
 MAX_FORWARD_BYTES = 32_000_000
 MAX_LINE_BYTES = 4_100_000
@@ -51,21 +58,22 @@ class _Out:
 
 
 class _State:
-    def __init__(self):
+    def __init__(self, caps=None):
         self.cell = None            # index of the cell running now
-        self.started = 0.0
-        self.check_since = None     # a check's probes are running since ...
-        self.check_time = 0.0       # probe seconds in this cell (not counted)
+        self.clock = CellClock(caps)   # student seconds of that cell (checks' probes credited)
         self.interrupted = None
         self.timed_out = False
         self.lock = threading.Lock()
 
+    def start_cell(self, index, now):
+        with self.lock:
+            self.cell = index
+            self.clock.restart(now)
+            self.interrupted, self.timed_out = None, False
+
     def student_seconds(self, now):
         with self.lock:
-            t = now - self.started - self.check_time
-            if self.check_since is not None:
-                t -= now - self.check_since
-            return t
+            return self.clock.seconds(now)
 
 
 def _forward(rfd, out, state):
@@ -96,14 +104,14 @@ def _forward(rfd, out, state):
 
 def _handle(line, out, state):
     now = time.monotonic()
+    if line.startswith(b"B "):
+        key = line[2:80].decode("utf-8", "replace").strip()
+        with state.lock:
+            state.clock.begin(key, now)
+        out.send({"t": "b", "cell": state.cell, "part": key})   # the grader's clock credits it too
+        return
     with state.lock:
-        if line.startswith(b"B "):
-            if state.check_since is None:
-                state.check_since = now
-            return
-        if state.check_since is not None:
-            state.check_time += now - state.check_since
-            state.check_since = None
+        state.clock.end(now)
     text = line.decode("utf-8", "replace")
     out.send({"t": "k", "cell": state.cell, "line": text[2:] if text.startswith("R ") else text})
 
@@ -203,15 +211,16 @@ def run(config):
         pass
 
     rfd, wfd = os.pipe()
-    state = _State()
+    state = _State(config.get("caps"))
     stop = threading.Event()
     reader = threading.Thread(target=_forward, args=(rfd, out, state), daemon=True)
     reader.start()
     setup = nbformat.v4.new_code_cell(
-        "import gm_core.checks._grading as __gm_grading\n"
+        "import gm_core.checks._grading as __gm_grading, gm_core.checks._sandbox as __gm_sandbox\n"
         f"__gm_grading.open_channel({wfd}, {config['nonce']!r}, {config['salt']!r}, "
         f"{config['time_limit']!r})\n"
-        "del __gm_grading")
+        f"__gm_sandbox.set_time_limit({config['time_limit']!r})\n"
+        "del __gm_grading, __gm_sandbox")
     nb.cells.insert(0, setup)
     client = _client_class()(nb, timeout=None, kernel_name="python3", allow_errors=True,
                              startup_timeout=120, resources={"metadata": {"path": work}})
@@ -229,17 +238,14 @@ def run(config):
         with client.setup_kernel(pass_fds=(wfd,), cwd=work):
             os.close(wfd)
             out.send({"t": "kernel", "pid": pid_of()})
-            state.cell, state.started = -1, time.monotonic()
+            state.start_cell(-1, time.monotonic())
             client.execute_cell(setup, 0)
             if client.last_error:
                 out.send({"t": "fatal", "m": "the course's checkers could not be loaded in the "
                           f"notebook's kernel ({client.last_error})"})
                 return 0
             for index, cell in cells:
-                with state.lock:
-                    state.cell, state.started = index, time.monotonic()
-                    state.check_time, state.check_since = 0.0, None
-                    state.interrupted, state.timed_out = None, False
+                state.start_cell(index, time.monotonic())
                 client.last_error = None
                 out.send({"t": "run", "i": index})
                 try:
@@ -247,11 +253,11 @@ def run(config):
                 except Exception as exc:  # noqa: BLE001 - DeadKernelError and kin
                     status = "timeout" if state.timed_out else "died"
                     out.send({"t": "cell", "i": index, "status": status,
-                              "m": type(exc).__name__, "s": round(time.monotonic() - state.started, 1)})
+                              "m": type(exc).__name__, "s": round(time.monotonic() - state.clock.started, 1)})
                     return 0
                 status = "timeout" if state.timed_out else ("error" if client.last_error else "ok")
                 out.send({"t": "cell", "i": index, "status": status, "m": client.last_error or "",
-                          "s": round(time.monotonic() - state.started, 1)})
+                          "s": round(time.monotonic() - state.clock.started, 1)})
             state.cell = None
             out.send({"t": "output", "bytes": client.output_bytes})
             out.send({"t": "done"})   # the grader ends the sandbox now: no slow kernel shutdown

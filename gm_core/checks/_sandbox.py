@@ -15,9 +15,13 @@ process group) and becomes the "child subreaper" of everything below it (Linux),
 calls ``os.setsid`` and forks again, a daemon) stays in the keeper's tree; when the probes are
 done, or at the time limit, the parent stops and kills that whole tree and the keeper's process
 group, the keeper reaps them, and the check returns at once (it does not wait for a grandchild
-that still holds the result pipe). The worker runs with a memory limit (``MEMORY_LIMIT_MB`` more
-address space than the kernel uses; ``GM_CHECKS_MEMORY_MB`` sets it, 0 turns it off) so a runaway
-allocation is a ``MemoryError``, not a frozen computer.
+that still holds the result pipe). A worker can kill its keeper and call ``setsid`` (out of the
+keeper's tree, group and session); while a check runs the checking process is a subreaper as
+well, so such an orphan becomes its child, and it is ended and reaped there with its own tree
+(:class:`._proctree.Adoption`). No cgroup is needed (a student's laptop has none to give).
+The worker runs with a memory limit (``MEMORY_LIMIT_MB`` more address space than the kernel uses;
+``GM_CHECKS_MEMORY_MB`` sets it, 0 turns it off) so a runaway allocation is a ``MemoryError``,
+not a frozen computer.
 
 What stopped a call is said plainly: the time limit (``"timeout"``), Ctrl-C / SIGINT
 (``KeyboardInterrupt``), an alarm (``AlarmSignal``: ``signal.alarm`` or a timer in the student's
@@ -51,7 +55,8 @@ from contextlib import redirect_stderr, redirect_stdout
 
 import numpy as np
 
-from ._proctree import become_subreaper, how_it_ended, kill_tree
+from . import _grading
+from ._proctree import Adoption, become_subreaper, how_it_ended, kill_tree
 
 try:
     import resource
@@ -301,6 +306,9 @@ def collect(answer, probes, time_limit=None, raw=False):
     ``raw=True`` they stay JSON-able (for the grader, which decodes them in its own process).
     """
     limit = TIME_LIMIT[0] if time_limit is None else float(time_limit)
+    graded = _grading.time_limit()
+    if graded is not None:
+        limit = min(limit, graded)     # while grading, no call gets more than the grader allows
     probes = list(probes)
     if not probes:
         return [], ""
@@ -308,13 +316,15 @@ def collect(answer, probes, time_limit=None, raw=False):
         outcomes, output = _in_process(probes, answer, raw)
         return outcomes, output
     rfd, wfd = os.pipe()
+    adoption = Adoption().start()   # orphans of the probe tree come to this process, not init
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # "multi-threaded process, fork() may deadlock" (3.12+)
-            pid = os.fork()
+            pid = adoption.fork()
     except OSError:
         os.close(rfd)
         os.close(wfd)
+        adoption.release()
         return _in_process(probes, answer, raw)
     if pid == 0:  # pragma: no cover - runs in the keeper
         os.close(rfd)
@@ -354,7 +364,7 @@ def collect(answer, probes, time_limit=None, raw=False):
                 deadline = time.monotonic() + limit  # the next probe gets its own limit
     finally:
         os.close(rfd)
-        kill_tree(pid)
+        kill_tree(pid, adoption=adoption)
     outcomes = outcomes[:len(probes)]
     if len(outcomes) < len(probes):
         if ended:

@@ -209,9 +209,16 @@ def _product_probe(answer, i):
     item = answer[i]
     if is_starter(item):
         raise Wrong(f"{_PRODUCT_LABELS[i]} is still None.")
-    free = sorted(str(x) for x in getattr(item, "free_symbols", ())) if is_sympy(item) else []
-    if free:
-        return [free, None]
+    symbols = sorted(getattr(item, "free_symbols", ()), key=str) if is_sympy(item) else []
+    if symbols:
+        # still symbolic: its value at a point drawn from the probe salt says whether it is right
+        rng = probe_rng(33)
+        point = {x: float(rng.uniform(0.5, 2.0)) for x in symbols}
+        try:
+            value = to_numbers(item.subs(point), _PRODUCT_LABELS[i])
+        except Exception:  # noqa: BLE001 - left symbolic in a way that has no value
+            value = None
+        return [[str(x) for x in symbols], value]
     return [[], to_numbers(item, _PRODUCT_LABELS[i])]
 
 
@@ -221,12 +228,17 @@ def _product_judge(outcomes):
             outcome_error(o, "your products", "")
         free, value = o["v"]
         label = _PRODUCT_LABELS[i]
+        n = 1 if i < 2 else 3
+        value = None if value is None else np.asarray(value, dtype=float)
+        right = value is not None and value.size == n * n and np.allclose(
+            value.reshape(n, n), np.eye(n), atol=1e-9 if free else 1e-12)
         if free:
             raise Wrong(f"{label} still contains {', '.join(free)}: simplify it (sp.simplify) until "
-                        "the symbols cancel; that cancellation is what the exercise shows.")
-        n = 1 if i < 2 else 3
-        value = np.asarray(value, dtype=float)
-        if value.size != n * n or not np.allclose(value.reshape(n, n), np.eye(n), atol=1e-12):
+                        "the symbols cancel; that cancellation is what the exercise shows." + (
+                            " (At a random point it is the identity, so only the simplification "
+                            "is missing.)" if right else " (At a random point it is not the "
+                            "identity: check the order of the factors and parts (a) and (b).)"))
+        if not right:
             raise Wrong(f"{label} should simplify to the identity{' matrix' if n == 3 else ' 1'}; "
                         "yours does not. Check the order of the factors and parts (a) and (b).")
     return "Correct: each product simplifies to the identity, so each pair are inverses."

@@ -5,12 +5,14 @@ routes (finite differences, the group layer) are in tests/test_checks_ch2.py.
 """
 from __future__ import annotations
 
+import functools
 import inspect
 
 import numpy as np
 
 from ..groups import SE2
 from ..three_link_chain import com_frame, com_frame_jacobians, three_link_jacobians
+from . import _grading
 from ._answers import (
     describe,
     fmt_value,
@@ -20,7 +22,7 @@ from ._answers import (
     to_numbers,
 )
 from ._choice import ChoicePart  # noqa: F401 - kept for chapter modules that add choices
-from ._core import CustomPart, FunctionPart, outcome_error, rng_inputs
+from ._core import CustomPart, FunctionPart, outcome_error, probe_rng, rng_inputs
 from ._exercise import Exercise
 from ._sandbox import Unattempted, Wrong
 
@@ -90,22 +92,44 @@ def _unit(rng, n):
     return u / np.linalg.norm(u, axis=1, keepdims=True)
 
 
-_rng = np.random.default_rng(21)
-_SPHERE = _R2 * _unit(_rng, 30)
-_RADII = np.linspace(0.05, 4.0, 240)
-_DIRS = np.vstack([_unit(_rng, 6), [[0, 0, 1.0], [0, 0, -1.0]]])
-_RAYS = (_DIRS[:, None, :] * _RADII[None, :, None]).reshape(-1, 3)
-_CIRCLE = np.array([[np.cos(t), np.sin(t), 1.0] for t in np.linspace(0, 2 * np.pi, 24, endpoint=False)])
-_ZS = np.array([z for z in np.linspace(-1.4, 1.4, 57) if abs(z - 1.0) > 0.04])
-_LONS = np.linspace(0, 2 * np.pi, 48, endpoint=False)
-_LATS = np.array([[np.sqrt(2 - z * z) * np.cos(t), np.sqrt(2 - z * z) * np.sin(t), z]
-                  for z in _ZS for t in _LONS])
-_MZ = np.linspace(-_R2, _R2, 121)
-_MLONS = np.linspace(0, 2 * np.pi, 8, endpoint=False) + 0.3
-_MERIDIANS = np.array([[np.sqrt(max(2 - z * z, 0)) * np.cos(t), np.sqrt(max(2 - z * z, 0)) * np.sin(t), z]
-                       for t in _MLONS for z in _MZ])
-_F1_POINTS = np.vstack([_SPHERE, _RAYS])
-_F2_POINTS = np.vstack([_CIRCLE, _LATS, _MERIDIANS])
+@functools.lru_cache(maxsize=4)
+def _grid(salt):
+    """The points where 2.1's constraints are sampled: a sphere of random points, rays along random
+    directions (and the poles), the circle, latitude rings and meridians of the sphere. In the
+    student's kernel always the same; when grading, the random directions, the rings' longitudes,
+    the meridians and the radii along the rays are drawn from this run's salt (``salt``)."""
+    rng = probe_rng(21)
+    sphere = _R2 * _unit(rng, 30)
+    dirs = np.vstack([_unit(rng, 6), [[0, 0, 1.0], [0, 0, -1.0]]])
+    radii = np.linspace(0.05, 4.0, 240)
+    lon0, mer0, z0 = 0.0, 0.3, 0.0
+    if salt is not None:
+        radii = radii + rng.uniform(0.0, radii[1] - radii[0])
+        lon0 = rng.uniform(0.0, 2 * np.pi / 48)
+        mer0 = rng.uniform(0.0, 2 * np.pi / 8)
+        z0 = rng.uniform(-0.02, 0.02)
+    rays = (dirs[:, None, :] * radii[None, :, None]).reshape(-1, 3)
+    circle = np.array([[np.cos(t), np.sin(t), 1.0]
+                       for t in lon0 + np.linspace(0, 2 * np.pi, 24, endpoint=False)])
+    zs = np.array([z for z in np.linspace(-1.4, 1.4, 57) + z0 if abs(z - 1.0) > 0.04])
+    lons = lon0 + np.linspace(0, 2 * np.pi, 48, endpoint=False)
+    lats = np.array([[np.sqrt(2 - z * z) * np.cos(t), np.sqrt(2 - z * z) * np.sin(t), z]
+                     for z in zs for t in lons])
+    mz = np.linspace(-_R2, _R2, 121)
+    mlons = np.linspace(0, 2 * np.pi, 8, endpoint=False) + mer0
+    meridians = np.array([[np.sqrt(max(2 - z * z, 0)) * np.cos(t), np.sqrt(max(2 - z * z, 0)) * np.sin(t), z]
+                          for t in mlons for z in mz])
+    f1, f2 = np.vstack([sphere, rays]), np.vstack([circle, lats, meridians])
+    # when grading the points are also visited in an order of this run's own
+    p1 = rng.permutation(len(f1)) if salt is not None else np.arange(len(f1))
+    p2 = rng.permutation(len(f2)) if salt is not None else np.arange(len(f2))
+    return {"sphere": sphere, "dirs": dirs, "radii": radii, "circle": circle, "zs": zs,
+            "lons": lons, "lats": lats, "mz": mz, "mlons": mlons, "meridians": meridians,
+            "f1": f1, "f2": f2, "p1": p1, "p2": p2}
+
+
+def _points():
+    return _grid(_grading.probe_salt())
 
 
 def _zeros_along(values, scale):
@@ -123,17 +147,22 @@ def _judge_2_1(outcomes):
     for o in outcomes:
         if o["k"] != "ok":
             outcome_error(o, "your constraint", "a point p")
-    f1 = np.asarray(outcomes[0]["v"], dtype=float)
-    f2 = np.asarray(outcomes[1]["v"], dtype=float)
-    for vals, pts, label in ((f1, _F1_POINTS, "f1"), (f2, _F2_POINTS, "f2")):
+    G = _points()
+    f1, f2 = (np.array(outcomes[i]["v"], dtype=float) for i in (0, 1))
+    if f1.shape != G["p1"].shape or f2.shape != G["p2"].shape:
+        raise Wrong("the check could not evaluate your constraints at every point.")
+    f1[G["p1"]], f2[G["p2"]] = f1.copy(), f2.copy()   # back from the order they were visited in
+    g_f1, g_f2, g_sphere, g_dirs, g_radii = G["f1"], G["f2"], G["sphere"], G["dirs"], G["radii"]
+    g_circle, g_lats, g_zs, g_lons, g_mz, g_mlons = G["circle"], G["lats"], G["zs"], G["lons"], G["mz"], G["mlons"]
+    for vals, pts, label in ((f1, g_f1, "f1"), (f2, g_f2, "f2")):
         bad = np.flatnonzero(~np.isfinite(vals))
         if bad.size:
             raise Wrong(f"{label} gives NaN or inf at p = {fmt_value(np.round(pts[bad[0]], 3))}.")
     scale1 = max(1.0, float(np.median(np.abs(f1))))
-    sphere, rays = f1[:len(_SPHERE)], f1[len(_SPHERE):].reshape(len(_DIRS), len(_RADII))
+    sphere, rays = f1[:len(g_sphere)], f1[len(g_sphere):].reshape(len(g_dirs), len(g_radii))
     if np.any(np.abs(sphere) > 1e-7 * scale1):
         for r in (1.0, 2.0):
-            k = int(np.argmin(np.abs(_RADII - r)))
+            k = int(np.argmin(np.abs(g_radii - r)))
             if np.all(np.abs(rays[:, k]) < 1e-2 * scale1) and np.all(np.abs(rays[:, k]) <= np.abs(rays).min(axis=1) + 1e-12):
                 raise Wrong(f"f1 vanishes on a sphere of radius {r:g}; the circle x^2 + y^2 = 1, "
                             "z = 1 is not on that sphere, so the two constraints would have no "
@@ -143,32 +172,32 @@ def _judge_2_1(outcomes):
                     "the origin.")
     for ray in rays:
         for i in _zeros_along(ray, scale1):
-            if abs(_RADII[i] - _R2) > 0.03 and not (i + 1 < len(_RADII) and _RADII[i] < _R2 < _RADII[i + 1]):
-                raise Wrong(f"f1 also vanishes near distance {_RADII[i]:.3g} from the origin, so its "
+            if abs(g_radii[i] - _R2) > 0.03 and not (i + 1 < len(g_radii) and g_radii[i] < _R2 < g_radii[i + 1]):
+                raise Wrong(f"f1 also vanishes near distance {g_radii[i]:.3g} from the origin, so its "
                             "zero set is more than one sphere.")
     scale2 = max(1.0, float(np.median(np.abs(f2))))
-    circle = f2[:len(_CIRCLE)]
+    circle = f2[:len(g_circle)]
     if np.any(np.abs(circle) > 1e-7 * scale2):
-        p = _CIRCLE[int(np.argmax(np.abs(circle)))]
+        p = g_circle[int(np.argmax(np.abs(circle)))]
         raise Wrong(f"f2 does not vanish at the circle point {fmt_value(np.round(p, 3))}, so the "
                     "accessible manifold misses part of the circle.")
-    lats = f2[len(_CIRCLE):len(_CIRCLE) + len(_LATS)].reshape(len(_ZS), len(_LONS))
-    for z, row in zip(_ZS, lats):
+    lats = f2[len(g_circle):len(g_circle) + len(g_lats)].reshape(len(g_zs), len(g_lons))
+    for z, row in zip(g_zs, lats):
         if np.all(np.abs(row) <= 1e-7 * scale2):
             raise Wrong(f"f2 also vanishes on the whole circle z = {z:.3g} of the same sphere, so "
                         "the accessible manifold would be more than one circle.")
         loop = np.append(row, row[0])
         hits = _zeros_along(loop, scale2)
         if hits:
-            t = _LONS[hits[0] % len(_LONS)]
+            t = g_lons[hits[0] % len(g_lons)]
             p = np.array([np.sqrt(2 - z * z) * np.cos(t), np.sqrt(2 - z * z) * np.sin(t), z])
             raise Wrong(f"f2 also vanishes near {fmt_value(np.round(p, 3))}, a point of the sphere "
                         "off the circle, so the accessible manifold is larger than the circle.")
-    mer = f2[len(_CIRCLE) + len(_LATS):].reshape(len(_MLONS), len(_MZ))
-    for t, col in zip(_MLONS, mer):
+    mer = f2[len(g_circle) + len(g_lats):].reshape(len(g_mlons), len(g_mz))
+    for t, col in zip(g_mlons, mer):
         for i in _zeros_along(col, scale2):
-            z = _MZ[i]
-            if abs(z - 1.0) > 0.04 and not (i + 1 < len(_MZ) and _MZ[i] < 1.0 < _MZ[i + 1]):
+            z = g_mz[i]
+            if abs(z - 1.0) > 0.04 and not (i + 1 < len(g_mz) and g_mz[i] < 1.0 < g_mz[i + 1]):
                 p = np.array([np.sqrt(max(2 - z * z, 0)) * np.cos(t), np.sqrt(max(2 - z * z, 0)) * np.sin(t), z])
                 raise Wrong(f"f2 also vanishes near {fmt_value(np.round(p, 3))}, a point of the "
                             "sphere off the circle, so the accessible manifold is larger than the circle.")
@@ -177,7 +206,8 @@ def _judge_2_1(outcomes):
 
 
 def _probes_2_1():
-    return [lambda ans: _values(ans, 0, _F1_POINTS), lambda ans: _values(ans, 1, _F2_POINTS)]
+    G = _points()
+    return [lambda ans: _values(ans, 0, G["f1"][G["p1"]]), lambda ans: _values(ans, 1, G["f2"][G["p2"]])]
 
 
 ex2_1 = Exercise("2.1", "Holonomic constraints: the circle as a sphere cut by a second constraint", [

@@ -11,6 +11,7 @@ import functools
 
 import numpy as np
 
+from . import _gait_samples
 from ._answers import describe, fmt_value, is_starter, to_numbers
 from ._choice import ChoicePart
 from ._core import CustomPart, outcome_error
@@ -161,33 +162,11 @@ ex4_1 = Exercise("4.1", "Which gait moves further? Reading a curvature map", [
 
 # ============================================================================ 4.2
 TURN_MIN, DRIFT_MAX = 0.2, 0.02
-_N_SAMPLES = 256
 
 
 def _sample_gait(answer):
-    """Student side of 4.2(a): the gait at _N_SAMPLES + 1 equal time steps over one period."""
-    from ..gaits import Gait, as_gait
-
-    if is_starter(answer):
-        raise Unattempted()
-    if isinstance(answer, (str, bytes, bool, np.bool_, dict)) or np.isscalar(answer) or not (
-            isinstance(answer, (Gait, list, tuple, np.ndarray)) or callable(answer)):
-        raise Wrong(f"your answer is {describe(answer)}; hand in a Gait (e.g. circle_gait(...)), a "
-                    "callable t -> r(t) of period 1 or an array of shapes (K, 2).")
-    if not callable(answer):
-        pts = to_numbers(answer, "your array of shapes")
-        if pts.ndim == 2 and pts.shape[0] == 2 and pts.shape[1] > 2:
-            raise Wrong(f"your array has shape {pts.shape}: one row per shape, (K, 2), was expected "
-                        "(transpose it).")
-        if pts.ndim != 2 or pts.shape[1] != 2 or pts.shape[0] < 3:
-            raise Wrong(f"your array has shape {pts.shape}; an array of K >= 3 shapes, (K, 2), was "
-                        "expected.")
-        if not np.all(np.isfinite(pts)):
-            raise Wrong("your array of shapes contains NaN or infinite entries.")
-        answer = pts
-    gait = as_gait(answer)  # a callable of one time at a time works too (Gait handles it)
-    t = np.linspace(0.0, float(gait.period), _N_SAMPLES + 1)
-    return to_numbers(gait(t), "the shapes your gait returned")
+    """Student side of 4.2(a): the gait sampled over one period (:mod:`._gait_samples`)."""
+    return _gait_samples.sample(answer, 2, "circle_gait(...)")
 
 
 def _judge_42a(outcomes):
@@ -197,13 +176,7 @@ def _judge_42a(outcomes):
     o = outcomes[0] if outcomes else {"k": "crash", "m": ""}
     if o["k"] != "ok":
         outcome_error(o, "your gait", "the times of one period")
-    r = o["v"]
-    if not isinstance(r, np.ndarray) or r.shape != (_N_SAMPLES + 1, 2):
-        shape = r.shape if isinstance(r, np.ndarray) else describe(r)
-        raise Wrong(f"your gait returned shapes of shape {shape} for {_N_SAMPLES + 1} times; "
-                    f"({_N_SAMPLES + 1}, 2) was expected (two joint angles at each time).")
-    if not np.all(np.isfinite(r)):
-        raise Wrong("your gait returned NaN or infinite joint angles at some times.")
+    r = _gait_samples.grid(o["v"], 2)
     if np.max(np.abs(r)) > 2 * np.pi:
         raise Wrong("your gait reaches joint angles beyond 2 pi: the links would pass through each "
                     "other. Keep the loop within about (-3, 3) in each angle.")

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import re
 import secrets
 import sys
@@ -43,6 +44,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from . import _grading, _report
+from ._clock import check_caps
 from ._evidence import summarise
 from ._exercise import REGISTRY, exercise_ids
 from ._isolate import Limits, run_submission, sandbox_problem
@@ -238,12 +240,18 @@ def grade(paths, out_dir, weights=None, *, limits=None, sandbox=True, assignment
     done = {}
     with ThreadPoolExecutor(max_workers=max(1, int(jobs))) as pool:
         futures = {pool.submit(run_submission, path, limits=limits, hide=hide, sandbox=sandbox,
-                               salt=salt): path for path, _, _, _ in runs}
+                               salt=salt, caps=check_caps(REGISTRY[ex_id], limits.time_limit)): path
+                   for path, _, ex_id, _ in runs}
         for fut, path in futures.items():
             try:
                 done[path] = fut.result()
             except Exception as exc:  # noqa: BLE001 - the grader's own failure: a row, not a crash
                 done[path] = f"the grader could not run it ({type(exc).__name__}: {exc})"[:300]
+    ran = [r for r in done.values() if isinstance(r, dict)]
+    if ran:
+        note = _limits_note(ran, sandbox)
+        if note:
+            lines.insert(0, note)
     rows = []
     for kind, item in plan:
         if kind == "row":
@@ -260,6 +268,22 @@ def grade(paths, out_dir, weights=None, *, limits=None, sandbox=True, assignment
     res = _report.write(rows, out_dir, message="\n".join(lines), elapsed=time.monotonic() - t0,
                         visibility=visibility, max_score=assignment.get("max_score"))
     return res
+
+
+def _limits_note(ran, sandbox):
+    """The report's header line when a notebook ran without its own cgroups (else None)."""
+    missing = sorted({c for r in ran for c in ("pids", "memory") if c not in r.get("cgroups", [])})
+    if not missing:
+        return None
+    what = {"pids": "the number of its processes was not bounded (RLIMIT_NPROC does not hold "
+                    "root)" if os.geteuid() == 0 else "its processes were bounded per user "
+                    "(RLIMIT_NPROC), not per notebook",
+            "memory": "its memory was limited per process (RLIMIT_AS), not for the whole tree"}
+    end = ("the sandbox's pid namespace still ended every process with it" if sandbox else
+           "processes that left the kernel's session may have outlived it")
+    return (f"Grader note: no {' or '.join(missing)} cgroup could be made here for "
+            f"{'a notebook' if len(ran) == 1 else 'the notebooks'}, so "
+            + "; ".join(what[c] for c in missing) + f"; {end} (see the README, 'Limits').")
 
 
 def _judge_one(path, rel, ex_id, data, run, weights, part_vis, lines):

@@ -12,17 +12,17 @@ import functools
 
 import numpy as np
 
-from ._answers import describe, fmt_value, is_starter, to_numbers
+from . import _gait_samples
+from ._answers import fmt_value
 from ._choice import ChoicePart
 from ._core import CustomPart, outcome_error
 from ._exercise import Exercise
-from ._sandbox import Unattempted, Wrong
+from ._sandbox import Wrong
 
 __all__ = ["ex5_1", "swimmer_5_1", "DISTANCE_MIN", "ANGLE_MAX"]
 
 #: Net translation per cycle asked for, and the largest joint angle allowed (the links must not cross).
 DISTANCE_MIN, ANGLE_MAX = 0.3, 1.2
-_N_SAMPLES = 256
 _JOINTS = 3
 
 
@@ -35,28 +35,8 @@ def swimmer_5_1():
 
 
 def _sample_gait(answer):
-    """Student side of 5.1(a): the gait at _N_SAMPLES + 1 equal time steps over one period."""
-    from ..gaits import Gait, as_gait
-
-    if is_starter(answer):
-        raise Unattempted()
-    if isinstance(answer, (str, bytes, bool, np.bool_, dict)) or np.isscalar(answer) or not (
-            isinstance(answer, (Gait, list, tuple, np.ndarray)) or callable(answer)):
-        raise Wrong(f"your answer is {describe(answer)}; hand in a Gait (e.g. travelling_wave(3, ...)), a "
-                    "callable t -> r(t) of period 1 or an array of shapes (K, 3).")
-    if not callable(answer):
-        pts = to_numbers(answer, "your array of shapes")
-        if pts.ndim == 2 and pts.shape[0] == _JOINTS and pts.shape[1] > _JOINTS:
-            raise Wrong(f"your array has shape {pts.shape}: one row per shape, (K, 3), was expected "
-                        "(transpose it).")
-        if pts.ndim != 2 or pts.shape[0] < 3:
-            raise Wrong(f"your array has shape {pts.shape}; an array of K >= 3 shapes, (K, 3), was expected.")
-        if not np.all(np.isfinite(pts)):
-            raise Wrong("your array of shapes contains NaN or infinite entries.")
-        answer = pts
-    gait = as_gait(answer)  # a callable of one time at a time works too (Gait handles it)
-    t = np.linspace(0.0, float(gait.period), _N_SAMPLES + 1)
-    return to_numbers(gait(t), "the shapes your gait returned")
+    """Student side of 5.1(a): the gait sampled over one period (:mod:`._gait_samples`)."""
+    return _gait_samples.sample(answer, _JOINTS, "travelling_wave(3, ...)")
 
 
 def _judge_51a(outcomes):
@@ -66,16 +46,8 @@ def _judge_51a(outcomes):
     o = outcomes[0] if outcomes else {"k": "crash", "m": ""}
     if o["k"] != "ok":
         outcome_error(o, "your gait", "the times of one period")
-    r = o["v"]
-    if not isinstance(r, np.ndarray) or r.ndim != 2 or r.shape[0] != _N_SAMPLES + 1:
-        shape = r.shape if isinstance(r, np.ndarray) else describe(r)
-        raise Wrong(f"your gait returned shapes of shape {shape} for {_N_SAMPLES + 1} times; "
-                    f"({_N_SAMPLES + 1}, 3) was expected (three joint angles at each time).")
-    if r.shape[1] != _JOINTS:
-        raise Wrong(f"your gait has {r.shape[1]} joint angles per time; the four-link swimmer has three "
-                    "joints (alpha1, alpha2, alpha3).")
-    if not np.all(np.isfinite(r)):
-        raise Wrong("your gait returned NaN or infinite joint angles at some times.")
+    r = _gait_samples.grid(o["v"], _JOINTS, " (the four-link swimmer has three joints: alpha1, "
+                           "alpha2, alpha3)")
     if np.linalg.norm(r[-1] - r[0]) > 1e-6 * max(1.0, float(np.max(np.abs(r)))):
         raise Wrong(f"your gait does not close: r(0) = {fmt_value(r[0])} but r(T) = "
                     f"{fmt_value(r[-1])}. A gait must come back to its first shape after one period.")

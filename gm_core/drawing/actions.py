@@ -12,7 +12,7 @@ from ..axioms import powers
 from ..groups import S1, SE2, R2xS1
 from .axes import plane
 from .primitives import BodyArtist, FrameArtist
-from .toolkit import PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, set_arrows, title
+from .toolkit import MATH_PT, PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, set_arrows, title
 
 __all__ = ["BODY", "SlideRuleScene", "CircleIsoScene",
            "LeftRightActionScene", "ForwardLeftScene", "BodyPointsScene"]
@@ -97,20 +97,20 @@ class CircleIsoScene(Scene):
 
     G = S1(1.0)
 
-    FIGSIZE = (7, 3.4)
+    FIGSIZE = (7.6, 3.2)
     NCOLS = 2
-    MARGINS = dict(left=0.02, right=0.98, bottom=0.05, top=0.84, wspace=0.1)
+    MARGINS = dict(left=0.01, right=0.99, bottom=0.02, top=0.88, wspace=0.04)
 
     def decorate(self):
         t = np.linspace(0, TWO_PI, 120)
         for ax in self.axes:
             ax.plot(np.cos(t), np.sin(t), color="0.7")
-            ax.set_xlim(-1.35, 1.35)
-            ax.set_ylim(-1.35, 1.35)
+            ax.set_xlim(-1.75, 1.75)
+            ax.set_ylim(-1.45, 1.45)
             ax.set_aspect("equal")
             ax.axis("off")
-        title(self.axes[0], "circle (S¹, + mod 1): add cycles")
-        title(self.axes[1], "SO(2): multiply matrices, act on e₁")
+        title(self.axes[0], r"circle $(\mathbb{S}^1$, + mod 1): add cycles", size=MATH_PT)
+        title(self.axes[1], r"SO(2): multiply matrices, act on $e_1$", size=MATH_PT)
 
     def create(self):
         ax_s, ax_r = self.axes
@@ -119,8 +119,13 @@ class CircleIsoScene(Scene):
                                 zorder=5)
         self.vecs = ArrowSet(ax_r, color=[PALETTE["blue"], PALETTE["orange"], PALETTE["vermillion"]], n=3, width=0.012)
         self.check = ArrowSet(ax_r, color="k", width=0.005)
-        self.readout = PathText(ax_s, 0, -1.3, "", size=8, ha="center")
-        self.r_readout = PathText(ax_r, 0, -1.3, "", size=8, ha="center")
+        self.readout = PathText(ax_s, 0, -1.3, "", size=9, ha="center")
+        self.r_readout = PathText(ax_r, 0, -1.3, "", size=MATH_PT, ha="center")
+        # a key on the picture: each point (left) and arrow tip (right) carries its name
+        colors = (PALETTE["blue"], PALETTE["orange"], PALETTE["vermillion"])
+        names = (r"$a_1$", r"$a_2$", r"$a_1 \oplus a_2$")
+        self.names = [[PathText(ax, 0, 0, n, size=MATH_PT, color=c, ha="center", va="center")
+                       for n, c in zip(names, colors)] for ax in (ax_s, ax_r)]
 
     def set(self, a1=0.2, a2=0.35):
         G = self.G
@@ -137,7 +142,11 @@ class CircleIsoScene(Scene):
         set_arrows(self.check, [0, 0], self.sum_matrix @ e1 * 0.6)
         self.mismatch = float(np.max(np.abs(M - self.sum_matrix)))
         self.readout.set_text(f"{a1:.2f} + {a2:.2f} mod 1 = {s[0]:.2f} cycles")
-        self.r_readout.set_text(f"max |R(a1)R(a2) − R(a1 ⊕ a2)| = {self.mismatch:.1e}")
+        self.r_readout.set_text(r"$\max\,|R(a_1)R(a_2) - R(a_1 \oplus a_2)|$" + f" = {self.mismatch:.1e}")
+        for labels in self.names:
+            for k, (lab, a) in enumerate(zip(labels, ang)):
+                r = 1.17 + 0.08 * k   # the sum a little further out, clear of a1 or a2 when a2 ~ 0
+                lab.set_position((r * np.cos(a), r * np.sin(a)))
 
 
 # ================================================================================ 1.3 SE(2)
@@ -236,8 +245,8 @@ class ForwardLeftScene(Scene):
     def decorate(self):
         for ax in self.axes:
             plane(ax, self.LIM)
-        title(self.axes[0], "(R² × S¹, +):  g + g + …")
-        title(self.axes[1], "SE(2):  g ∘ g ∘ …")
+        title(self.axes[0], r"$(\mathbb{R}^2 \times \mathbb{S}^1, +)$:  g + g + …", size=MATH_PT)
+        title(self.axes[1], "SE(2):  g ∘ g ∘ …", size=MATH_PT)
 
     def create(self):
         self.bodies, self.frames, self.steps, self.texts = [], [], [], []

@@ -129,9 +129,16 @@ class Blitter:
 
         def extent(a):
             try:
-                return a.get_window_extent(renderer)
+                box = a.get_window_extent(renderer)
             except Exception:  # an artist without a usable extent: assume it covers everything
                 return None
+            clip = a.get_clip_box() if a.get_clip_on() else None
+            if clip is not None:
+                # what a clipped artist paints lies inside its clip box (a body reaching past
+                # the axes edge never covers the title above it); an unknown (null) extent
+                # becomes the clip box
+                box = Bbox.intersection(box, clip) or Bbox([[0.0, 0.0], [0.0, 0.0]])
+            return box
 
         out, moving = [], [a for a in self.dynamic if a.figure is not None]
         leaves = [a for a in leaves if not (isinstance(a, Text) and not a.get_text().strip())]

@@ -13,11 +13,11 @@ from matplotlib.patches import Rectangle
 
 from .motion import SystemArtist, VelocityArtist, draw_system_naive, style_world_axes, system_extent
 from .primitives import SingularFlag
-from .toolkit import PALETTE, Scene, new_figure, readout
+from .toolkit import MATH_PT, PALETTE, Scene, new_figure, readout
 
-__all__ = ["ROW_LABELS", "shape_grid", "connection_field", "ConnectionFieldArtist", "draw_singular_set",
+__all__ = ["ROW_LABELS", "math_title", "shape_grid", "connection_field", "ConnectionFieldArtist", "draw_singular_set",
            "ShapeCursorArtist", "style_shape_axes", "singular_contour_grid", "SHAPE_PAD", "connection_fields_figure", "regimes_figure",
-           "poor_pictures_figure", "ConnectionFieldScene", "field_grid_axes", "FieldGridScene"]
+           "poor_pictures_figure", "ConnectionFieldScene", "field_grid_axes", "FieldGridScene", "WIDE_SHAPES"]
 
 ROW_LABELS = ("ξx (forward)", "ξy (sideways)", "ξθ (turning)")  # plain text: no mathtext parse cost
 
@@ -253,10 +253,22 @@ def style_shape_axes(ax, system, title=None, limits=None, pad=SHAPE_PAD):
     ax.set_xticks([lo1, 0.0, hi1], [_tick_label(v) for v in (lo1, 0.0, hi1)])
     ax.set_yticks([lo2, 0.0, hi2], [_tick_label(v) for v in (lo2, 0.0, hi2)])
     ax.tick_params(labelsize=8, pad=2)
-    ax.set_xlabel("α₁", labelpad=1)
-    ax.set_ylabel("α₂", labelpad=1)
+    ax.set_xlabel(r"$\alpha_1$", labelpad=1, fontsize=MATH_PT)
+    ax.set_ylabel(r"$\alpha_2$", labelpad=1, fontsize=MATH_PT)
     if title:
-        ax.set_title(title)
+        title = math_title(title)
+        ax.set_title(title, fontsize=MATH_PT if "$" in title else None)
+
+
+#: the row names of :data:`ROW_LABELS` as mathtext, for figure titles (a dropdown keeps the plain ones)
+_ROW_MATH = {"ξx": r"$\xi^x$", "ξy": r"$\xi^y$", "ξθ": r"$\xi^\theta$"}
+
+
+def math_title(text: str) -> str:
+    """``text`` with the plain row names of :data:`ROW_LABELS` (``ξx``) written as mathtext (``$\\xi^x$``)."""
+    for plain, math in _ROW_MATH.items():
+        text = text.replace(plain, math)
+    return text
 
 
 def connection_fields_figure(system, n=None, figsize=(9, 3.3)):
@@ -280,7 +292,7 @@ def regimes_figure(systems, n=None, figsize=(8.5, 11)):
             ax = axes[k, i]
             style_shape_axes(ax, s, ROW_LABELS[i] if k == 0 else None)
             if i == 0:
-                ax.set_ylabel(f"{s.name}\nα₂", labelpad=1)
+                ax.set_ylabel(f"{s.name}\n" + r"$\alpha_2$", labelpad=1, fontsize=MATH_PT)
             ConnectionFieldArtist(ax, s, i, n=n)
             draw_singular_set(ax, s)
     return fig, axes
@@ -320,45 +332,73 @@ def poor_pictures_figure(system, row=2, n=6, figsize=(9, 3.4)):
                 c = np.array([a1[k], a2[k]]) + j * gap * nrm
                 axes[1].plot([c[0] - h * t[0], c[0] + h * t[0]], [c[1] - h * t[1], c[1] + h * t[1]],
                              color=PALETTE["purple"], lw=1)
-    axes[0].set(xlabel="α₁", ylabel="α₂", title="(a) plane field")
+    axes[0].set(title="(a) plane field")
+    axes[0].set_xlabel(r"$\alpha_1$", fontsize=MATH_PT)
+    axes[0].set_ylabel(r"$\alpha_2$", fontsize=MATH_PT)
     axes[0].tick_params(labelsize=7.5, pad=0)
     for ax, title in zip(axes[1:], ["(b) local level lines", "(c) connection vector field"]):
         style_shape_axes(ax, system, title)
     ConnectionFieldArtist(axes[2], system, row, n=n)
     for ax in axes[1:]:
         draw_singular_set(ax, system)
-    fig.suptitle(f"{system.name}, row {ROW_LABELS[row]}")
+    fig.suptitle(f"{system.name}, row {math_title(ROW_LABELS[row])}", fontsize=MATH_PT)
     return fig, axes
 
 
-def field_grid_axes(figsize=(6.2, 5.9)):
-    """A 2 x 2 figure: three shape-space axes (one per connection row) and a world axes."""
-    fig, axes = new_figure(2, 2, figsize=figsize)
-    return fig, [axes[0, 0], axes[0, 1], axes[1, 0]], axes[1, 1]
+#: a shape window wider than this (width / height) is drawn in the stacked layout
+WIDE_SHAPES = 1.6
+
+
+def field_grid_axes(figsize=(6.2, 5.9), limits=None):
+    """Three shape-space axes (one per connection row) and a world axes: ``(fig, field_axes, ax)``.
+
+    A square-ish shape window (``limits``, default square) gets a 2 x 2 grid. A wide one (width
+    over height above :data:`WIDE_SHAPES`, e.g. the Ackerman car's wheel angle by steering angle)
+    would leave squashed fields and large gaps in that grid, so its three fields are stacked in
+    the left column with the world to their right, in a figure of about the same size."""
+    wide = False
+    if limits is not None:
+        (x0, x1), (y0, y1) = _padded(limits, SHAPE_PAD)
+        wide = (x1 - x0) > WIDE_SHAPES * (y1 - y0)
+    if not wide:
+        fig, axes = new_figure(2, 2, figsize=figsize)
+        return fig, [axes[0, 0], axes[0, 1], axes[1, 0]], axes[1, 1]
+    fig, axes = new_figure(3, 2, figsize=(figsize[0], figsize[1] - 0.5),
+                           gridspec_kw=dict(width_ratios=[1.15, 1]))
+    world = fig.add_subplot(axes[0, 1].get_subplotspec().get_gridspec()[:, 1])
+    for ax in axes[:, 1]:
+        ax.remove()
+    return fig, list(axes[:, 0]), world
 
 
 class FieldGridScene(Scene):
-    """A scene on the 2 x 2 grid of :func:`field_grid_axes`: ``self.field_axes`` (the three
-    connection rows over shape space) and ``self.ax`` (the world)."""
+    """A scene on the grid of :func:`field_grid_axes` (its layout chosen by the system's shape
+    window): ``self.field_axes`` (the three connection rows over shape space) and ``self.ax``
+    (the world)."""
 
     def make_figure(self):
-        fig, self.field_axes, self.ax = field_grid_axes()
+        system = getattr(self, "system", None)
+        fig, self.field_axes, self.ax = field_grid_axes(limits=getattr(system, "shape_limits", None))
         return fig, self.field_axes + [self.ax]
 
 
 def thin_labels(field_axes, body_ax, body_labels=True):
-    """Fewer texts, faster redraws: tick labels only on the outer edges of the 2 x 2 grid."""
+    """Fewer texts, faster redraws: tick labels only on the outer edges of the grid (2 x 2: the
+    bottom row and the left column; stacked: the bottom field)."""
     top_left, top_right, bottom_left = field_axes
+    stacked = top_left.get_subplotspec().colspan == top_right.get_subplotspec().colspan
     for ax in (top_left, top_right):
         ax.tick_params(labelbottom=False)
         ax.set_xlabel("")
-    top_right.tick_params(labelleft=False)
-    top_right.set_ylabel("")
+    if not stacked:
+        top_right.tick_params(labelleft=False)
+        top_right.set_ylabel("")
     if not body_labels:
         body_ax.tick_params(labelbottom=False, labelleft=False)
 
 
 def _fmt(xi):
+    xi = [0.0 if abs(v) < 5e-4 else v for v in xi]   # never "-0.000"
     return f"ξ = ({xi[0]:+.3f}, {xi[1]:+.3f}, {xi[2]:+.3f})"
 
 

@@ -197,6 +197,11 @@ class GaitScene(FieldGridScene):
             self.message = str(err)
             self.trail.line.set_visible(False)
             self.body.set_visible(False)
+            # The picture is a function of the values alone: the body at its start (identity,
+            # the gait's first shape) in the default window, not the start and window of the
+            # last non-singular gait the slider passed through (a quick drag's ghost, issue 19).
+            self._fit_view(np.zeros((1, 3)))
+            self.start.set(np.zeros(3), path[0])
             self.text.set_text("no motion: the connection is\nundefined on the red line")
             return
         self.flag.hide()

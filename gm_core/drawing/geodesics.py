@@ -17,6 +17,7 @@ from .actions import BODY
 from .axes import plain_3d, plane, wire
 from .primitives import BodyArtist, FrameArtist, TrailArtist, animate
 from .toolkit import (
+    MATH_PT,
     PALETTE,
     TWO_PI,
     PathText,
@@ -151,6 +152,7 @@ class HelixScene(Scene):
         ax3, ax2 = self.axes
         plain_3d(ax3, lim=3.2, labels=("x", "y", "θ"))
         ax3.set_zlim(-7.0, 7.0)
+        ax3.set_box_aspect((1, 1, 1.1), zoom=1.45)    # the helices fill their half of the figure
         ax3.view_init(elev=22, azim=-62)
         plane(ax2, 3.2)
         title(ax2, "xy projection: circles through the origin")
@@ -205,7 +207,7 @@ class PuckArcScene(Scene):
         a, b, c = self.axes
         plane(a, 4.5)
         plane(b, 4.5)
-        title(a, "(R² × S¹, +): straight line, spinning")
+        title(a, r"$(\mathbb{R}^2 \times \mathbb{S}^1, +)$: line, spinning", size=MATH_PT)
         title(b, "SE(2): arc, constant body velocity")
         c.set_xlim(0, self.T_MAX)
         c.set_ylim(-1.6, 1.6)
@@ -320,7 +322,7 @@ class ExpFourWaysScene(Scene):
     """
 
     NS = tuple(2 ** k for k in range(7))
-    METHODS = (("taylor", PALETTE["green"], "Taylor partial sums"), ("product", PALETTE["blue"], "(I + ξ^/n)ᵏ"),
+    METHODS = (("taylor", PALETTE["green"], "Taylor partial sums"), ("product", PALETTE["blue"], r"$(I + \hat\xi/n)^k$"),
                ("euler", PALETTE["orange"], "Euler steps"))
 
     FIGSIZE = (9.6, 4.0)
@@ -333,7 +335,7 @@ class ExpFourWaysScene(Scene):
         a.set_ylim(-17, 1.5)
         xticks(a, range(7), [str(n) for n in self.NS])
         yticks(a, [0, -4, -8, -12, -16], ["1", "1e-4", "1e-8", "1e-12", "1e-16"])
-        title(a, "error ‖estimate − exp(ξ^)‖ against n (log scales)")
+        title(a, r"error $\|$estimate $-\, \exp(\hat\xi)\|$ against n (log scales)", size=MATH_PT)
         PathText(a, 6.2, -16.5, "n steps / terms →", size=7.5, ha="right")
         b.set_aspect("equal")
         b.set_xticks([])
@@ -344,7 +346,7 @@ class ExpFourWaysScene(Scene):
         b.set_ylim(-0.95, 0.95)
         b.axhline(0, color="0.85", lw=0.8, zorder=0)
         b.axvline(0, color="0.85", lw=0.8, zorder=0)
-        title(b, "intermediate values in the xy plane")
+        title(b, "intermediate values in the xy plane", size=MATH_PT)
 
     def create(self):
         a, b = self.axes
@@ -353,7 +355,7 @@ class ExpFourWaysScene(Scene):
             (self.err_lines[m],) = a.plot([], [], "-o", color=col, ms=4, lw=1.5)
             (self.err_marks[m],) = a.plot([], [], "*", color=col, ms=13, mec="k", mew=0.5)
             (self.path_lines[m],) = b.plot([], [], "-o", color=col, ms=3.5, lw=1.0, alpha=0.85)
-            PathText(a, 0.03, 0.30 - 0.07 * k, label, size=8, color=col, coords="axes")
+            PathText(a, 0.03, 0.30 - 0.08 * k, label, size=MATH_PT, color=col, coords="axes")
         (self.arc,) = b.plot([], [], color="0.3", lw=2.5, alpha=0.5)
         (self.target,) = b.plot([], [], "k*", ms=12)
         self.info = PathText(b, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes", family="monospace")

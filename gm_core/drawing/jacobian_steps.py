@@ -14,8 +14,8 @@ from .. import chains as C
 from ..groups import SE2
 from .axes import square_axes
 from .chains import ChainArtist
-from .pinned import notes_text, plane_and_notes
-from .toolkit import PALETTE, Scene, arrow, set_arrows
+from .pinned import plane_and_notes
+from .toolkit import MATH_PT, PALETTE, PathText, Scene, arrow, set_arrows
 
 __all__ = ["JacobianStepScene", "COLUMN_COLORS"]
 
@@ -66,7 +66,9 @@ class JacobianStepScene(Scene):
         self.total = arrow(ax, color="k", width=0.005, zorder=9, minlength=0)
         (self.ring,) = ax.plot([], [], "o", ms=18, mfc="none", mew=2.5, zorder=7)
         (self.sleeves,) = ax.plot([], [], "--", color="0.3", lw=2, zorder=1)   # the slide of a P joint
-        self.text = notes_text(self.notes)
+        # proportional text at MATH_PT so the formula's scripts are 10 px (each distinct line is laid
+        # out once; the numbers change on lines without mathtext)
+        self.text = PathText(self.notes, 0.0, 1.0, "", size=MATH_PT, va="top", coords="axes")
 
     def compute(self, **values):
         """Frames ``(2n, 3)``, rate-weighted body columns ``(n, 2n, 3)`` and J q_dot ``(3,)`` of the tip."""
@@ -127,8 +129,9 @@ class JacobianStepScene(Scene):
         rows = [f" {j + 1}  {_fmt(cols[j])}" if j < k else f" {j + 1}    ·" for j in range(n)]
         return "\n".join(head + [
             "",
-            f"columns: body velocity of {tipname}",
-            f"  Ad⁻¹(f_j⁻¹ {tipname}) X_j dq_j/dt  (2.37)",
+            f"columns: body velocity of {tipname}, (2.37):",
+            rf"  $\mathrm{{Ad}}_g^{{-1}}\,X_j\,\dot q_j$ with $g = f_j^{{-1}}h_{n}$",
+            "",
         ] + rows + [
             "",
             f"sum of columns 1..{k} (black)" if k else "sum: no columns yet",

@@ -4,6 +4,9 @@
   slice of its shape space and the constraint curvature of that row on the same slice;
 * :class:`WaveGaitScene`: a travelling-wave gait (amplitude, phase lag between joints) and the
   motion it makes over one cycle, with the net displacement and the efficiency;
+* :class:`OptimalGaitScene`: a chain you design (links, taper, physics), a wave to start from
+  and, once :meth:`OptimalGaitScene.optimise` has run, its most efficient gait and one cycle of
+  the motion;
 * :func:`animate_chain_gait`: a gait of any number of joints as an animation that plays without a
   kernel (joint angles against time, and the body moving in the plane);
 * :func:`links_comparison_figure`, :func:`continuum_figure`: the notebook's two comparisons.
@@ -16,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import check_int, check_option
-from ..geometry import efficiency, travelling_wave
+from ..geometry import efficiency, optimise_chain_gait, travelling_wave, wave_start
 from ..groups import SE2
 from ..locomotion import trajectory
 from ..systems import LinkChain, shape_slice
@@ -24,10 +27,10 @@ from .connection import ROW_LABELS, ConnectionFieldArtist, style_shape_axes
 from .curvature import CurvatureMapArtist
 from .motion import SystemArtist, style_world_axes
 from .primitives import TrailArtist, animate
-from .toolkit import PALETTE, Scene, new_figure, readout
+from .toolkit import PALETTE, Scene, new_figure, readout, title
 
-__all__ = ["ChainSliceScene", "WaveGaitScene", "animate_chain_gait", "links_comparison_figure", "continuum_figure",
-           "design_chain", "PHYSICS_LABELS"]
+__all__ = ["ChainSliceScene", "WaveGaitScene", "OptimalGaitScene", "animate_chain_gait", "links_comparison_figure",
+           "continuum_figure", "design_chain", "PHYSICS_LABELS"]
 
 #: Dropdown labels of the physics of :class:`~gm_core.systems.LinkChain`.
 PHYSICS_LABELS = {"low Re (drag)": "low_re", "high Re (added mass)": "high_re", "floating (momentum)": "floating"}
@@ -72,7 +75,7 @@ class ChainSliceScene(Scene):
     FIGSIZE = (9.0, 3.3)
     NCOLS = 3
 
-    def __init__(self, total_length=3.0, taper=0.0, limits=((-2.0, 2.0), (-2.0, 2.0)), n_map=41, **options):
+    def __init__(self, total_length=3.0, taper=0.0, limits=((-2.0, 2.0), (-2.0, 2.0)), n_map=25, **options):
         self.total_length, self.taper, self.limits, self.n_map = total_length, taper, limits, n_map
         super().__init__(**options)
 
@@ -91,7 +94,7 @@ class ChainSliceScene(Scene):
     def decorate(self):
         ax0, ax1, ax2 = self.axes
         style_world_axes(ax0, 0.62 * self.total_length)
-        ax0.set_title("the chain: slice joints bent (dots)", fontsize=9)
+        title(ax0, "the chain: slice joints bent (dots)")
 
     def create(self):
         self._build(4, "low_re", 1, 2)
@@ -103,6 +106,7 @@ class ChainSliceScene(Scene):
         self.field = ConnectionFieldArtist(ax1, self.slice, 0, color="0.3")
         self.map = CurvatureMapArtist(ax2, self.slice, 0, limits=self.limits, n=self.n_map)
         self.text = readout(ax0, 0.02, 0.02)
+        self.titles = (title(ax1), title(ax2))      # PathText: cheap to redraw when the row changes
         self._key = None
 
     def set(self, links=4, physics="low_re", row=2, axis1=1, axis2=2):
@@ -122,8 +126,8 @@ class ChainSliceScene(Scene):
                 ax.set_ylabel(names[1].replace("alpha", "α"), fontsize=9, labelpad=0)
         self.field.set(self.slice, row)
         self.map.set(self.slice, row)
-        self.axes[1].set_title(f"−A, row {ROW_LABELS[row]}, on the slice", fontsize=9)
-        self.axes[2].set_title(f"curvature D(−A), row {ROW_LABELS[row]}", fontsize=9)
+        self.titles[0].set_text(f"−A, row {ROW_LABELS[row]}, on the slice")
+        self.titles[1].set_text(f"curvature D(−A), row {ROW_LABELS[row]}")
         self.text.set_text(f"{_chain_axes_title(self.system)}; slice (α{self.pair[0] + 1}, α{self.pair[1] + 1})")
         self.row = row
 
@@ -179,7 +183,9 @@ class WaveGaitScene(Scene):
         self.traj = trajectory(self.system, self.gait, n_frames=61, substeps=8)
         self.g = self.traj.g[-1]
         try:
-            self.efficiency = efficiency(self.system, self.gait, check=False)
+            # g(T) of the trajectory drawn (within ~1e-9 of net_displacement's); 1024 samples of
+            # the wave's path length agree with 4096 to ~1e-7 (the readout shows 4 decimals)
+            self.efficiency = efficiency(self.system, self.gait, check=False, samples=1024, displacement=self.g)
         except TypeError:
             self.efficiency = None
 
@@ -198,6 +204,97 @@ class WaveGaitScene(Scene):
         self.trail.set(self.traj.g[:, :2])
         eff = "" if self.efficiency is None else f"\nefficiency {self.efficiency:.4f}"
         self.text.set_text(f"g(T) = ({self.g[0]:+.3f}, {self.g[1]:+.3f}, {self.g[2]:+.3f}){eff}")
+
+
+class OptimalGaitScene(Scene):
+    """A chain you design and its most efficient gait: joint angles against time and one cycle of motion.
+
+    Values: ``links`` (3-6), ``physics``, ``taper`` (0 equal links; up to 0.6, the tail links
+    shorter), ``order`` (Fourier harmonics per joint, 1 or 2). Each design starts from a
+    travelling wave (:func:`gm_core.geometry.wave_start`, dashed); :meth:`optimise` runs
+    :func:`gm_core.geometry.optimise_chain_gait` for the design shown (a second or so) and keeps
+    the result, which is then drawn solid with the motion of one cycle (body at the start,
+    faint, and at the end, with the path of the body frame). Option: ``total_length`` (3).
+    """
+
+    FIGSIZE = (8.4, 3.3)
+    NCOLS = 2
+    MAX_JOINTS = 5
+
+    def __init__(self, total_length=3.0, **options):
+        self.total_length = total_length
+        self._results = {}
+        super().__init__(**options)
+
+    def decorate(self):
+        ax0, ax1 = self.axes
+        ax0.set_xlim(0, 2 * np.pi)
+        ax0.set_ylim(-2.2, 2.2)
+        ax0.set_xlabel("t", fontsize=9, labelpad=0)
+        ax0.set_ylabel("joint angles (rad)", fontsize=9, labelpad=0)
+        ax0.set_title("the gait: start wave (dashed), best (solid)", fontsize=9)
+        style_world_axes(ax1, 0.7 * self.total_length, (-0.15 * self.total_length, 0.0))
+        ax1.set_title("one cycle of the start wave", fontsize=9)
+
+    def create(self):
+        ax0, ax1 = self.axes
+        colours = JOINT_COLOURS[:self.MAX_JOINTS]
+        self.start_lines = [ax0.plot([], [], color=c, lw=1.0, ls="--", alpha=0.7)[0] for c in colours]
+        self.best_lines = [ax0.plot([], [], color=c, lw=2.0)[0] for c in colours]
+        self.first = PartsArtist(ax1, facecolor=PALETTE["orange"], alpha=0.2, edgecolor="0.5")
+        self.last = PartsArtist(ax1)
+        self.trail = TrailArtist(ax1, color=PALETTE["green"])
+        self.text = readout(ax1, 0.02, 0.02)
+
+    @staticmethod
+    def _key(links, physics, taper, order):
+        return (int(links), physics, round(float(taper), 6), int(order))
+
+    def set(self, links=4, physics="low_re", taper=0.0, order=1):
+        links = check_int(links, "links", minimum=3, maximum=self.MAX_JOINTS + 1)
+        physics = check_option(PHYSICS_LABELS.get(physics, physics), "physics", tuple(PHYSICS_LABELS.values()))
+        order = check_int(order, "order", minimum=1, maximum=2)
+        self.key = self._key(links, physics, taper, order)
+        self.system = design_chain(links, physics, self.total_length, float(taper))
+        self.start = wave_start(self.system.n_shape)
+        self.result = self._results.get(self.key)
+        gait = self.start if self.result is None else self.result.gait
+        t = np.linspace(0, 2 * np.pi, 121)
+        for lines, g in ((self.start_lines, self.start), (self.best_lines, None if self.result is None else gait)):
+            r = None if g is None else g(t)
+            for k, line in enumerate(lines):
+                line.set_data(*((t, r[:, k]) if r is not None and k < self.system.n_shape else ([], [])))
+        traj = trajectory(self.system, gait, n_frames=41, substeps=4)
+        self.first.set(self.system, traj.g[0], traj.r[0])
+        self.last.set(self.system, traj.g[-1], traj.r[-1])
+        self.trail.set(traj.g[:, :2])
+        gT = traj.g[-1]
+        if self.result is None:
+            self.start_efficiency = efficiency(self.system, self.start, check=False, samples=256, displacement=gT)
+            self.axes[1].set_title("one cycle of the start wave", fontsize=9)
+            self.text.set_text(f"start: efficiency {self.start_efficiency:.4f}\npress “optimise”")
+        else:
+            res = self.result
+            self.axes[1].set_title("one cycle of the best gait", fontsize=9)
+            still = res.efficiency < 1e-9
+            self.text.set_text(f"best: efficiency {res.efficiency:.4f} ({res.nit} steps)\n"
+                               + ("no gait translates it: zero momentum\nkeeps its centre of mass still" if still else
+                                  f"g(T) = ({gT[0]:+.2f}, {gT[1]:+.2f}, {gT[2]:+.2f})"))
+
+    def optimise(self, callback=None):
+        """Optimise the gait of the design shown (see :func:`gm_core.geometry.optimise_chain_gait`),
+        keep the result for this design and draw it; ``callback(iteration, efficiency)`` reports
+        progress. Returns the :class:`~gm_core.geometry.optimal.OptimalGait`."""
+        links, physics, taper, order = self.key
+        self._results[self.key] = optimise_chain_gait(self.system, order, start=self.start, callback=callback)
+        self.set(links, physics, taper, order)
+        return self.result
+
+    def animation(self, n_frames=48, cycles=2):
+        """The gait shown (the best one once found, else the start wave) as (anim, fig, traj):
+        :func:`animate_chain_gait`."""
+        gait = self.start if self.result is None else self.result.gait
+        return animate_chain_gait(self.system, gait, n_frames=n_frames, cycles=cycles)
 
 
 def animate_chain_gait(system, gait, n_frames=60, cycles=2, interval=60, world_lim=None):

@@ -16,6 +16,7 @@ from .actions import BODY
 from .axes import plane
 from .primitives import BodyArtist, FrameArtist, TrailArtist
 from .toolkit import (
+    MATH_PT,
     PALETTE,
     ArrowSet,
     PathText,
@@ -65,13 +66,14 @@ class ObserverScene(Scene):
         plane(ax, self.LIM)
         FrameArtist(ax, (0, 0, 0), length=0.5, colors=("0.6", "0.6"), zorder=2)
         PathText(ax, -0.1, -0.1, "page", size=7.5, color="0.5", ha="right", va="top")
-        title(ax, "one motion, watched from the frame h")
+        title(ax, "one motion, watched from the frame h", size=MATH_PT)
         text_panel(tx)
-        title(tx, "what h measures; Ad as conjugation, g ξ^ g⁻¹ = (Ad_g ξ)^")
-        PathText(tx, 0.02, 0.70, "ξ^  (body, same for every h)", size=8, weight="bold")
-        PathText(tx, 0.52, 0.70, "g = h⁻¹ g_body", size=8, weight="bold")
-        PathText(tx, 0.02, 0.40, "g ξ^ g⁻¹  (matrix products)", size=8, weight="bold")
-        PathText(tx, 0.52, 0.40, "(Ad_g ξ)^  (1.43)", size=8, weight="bold")
+        title(tx, r"what h measures; Ad as conjugation, $g\,\hat\xi\,g^{-1} = (\mathrm{Ad}_g\,\xi)^\wedge$",
+              size=MATH_PT)
+        PathText(tx, 0.02, 0.70, r"$\hat\xi$  (same for all h)", size=MATH_PT, weight="bold")
+        PathText(tx, 0.52, 0.70, r"$g = h^{-1}\,g_\mathrm{body}$", size=MATH_PT, weight="bold")
+        PathText(tx, 0.02, 0.40, r"$g\,\hat\xi\,g^{-1}$  (products)", size=MATH_PT, weight="bold")
+        PathText(tx, 0.52, 0.40, r"$(\mathrm{Ad}_g\,\xi)^\wedge$  (1.43)", size=MATH_PT, weight="bold")
 
     def create(self):
         ax, tx = self.axes
@@ -84,7 +86,7 @@ class ObserverScene(Scene):
         self.v_spatial = ArrowSet(ax, color=PALETTE["vermillion"], width=0.011)
         (self.spokes,) = ax.plot([], [], color=PALETTE["orange"], ls=":", lw=1.3, zorder=3)
         (self.icr_mark,) = ax.plot([], [], "*", color=PALETTE["orange"], ms=14, mec="k", mew=0.6, zorder=7)
-        self.icr_note = PathText(ax, 0.5, 0.965, "", size=8.5, ha="center", va="top", coords="axes",
+        self.icr_note = PathText(ax, 0.5, 0.965, "", size=MATH_PT, ha="center", va="top", coords="axes",
                                  color=PALETTE["vermillion"], weight="bold")
         # the numbers go beside the picture, so no arrow ever runs under them
         self.readout = readout(tx, 0.02, 0.96, "", size=8, va="top")
@@ -114,7 +116,7 @@ class ObserverScene(Scene):
             self.icr_world = None
             self.icr_mark.set_visible(False)
             self.spokes.set_visible(False)
-            self.icr_note.set_text("ξᶿ = 0: ICR at infinity (pure translation)")
+            self.icr_note.set_text(r"$\xi^\theta = 0$: ICR at infinity (pure translation)")
         else:
             self.icr_world = SE2.act_on_points(g, p_body)
             inside = np.max(np.abs(self.icr_world)) <= self.LIM

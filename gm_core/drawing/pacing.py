@@ -13,7 +13,7 @@ from ..gaits import circle_gait, sine_pacing
 from ..locomotion import displacement_until, trajectory
 from ..systems.directional import RATE_MAPS, rate_map, replay
 from .primitives import FrameArtist
-from .toolkit import PALETTE, Scene, new_figure, readout
+from .toolkit import MATH_PT, PALETTE, Scene, new_figure, readout
 
 __all__ = ["PacingSquareScene", "DirectionalScene"]
 
@@ -63,8 +63,8 @@ class PacingSquareScene(Scene):
             pad = 0.25 * np.ptp(path, axis=0).max()
             ax.set(xlim=(path[:, 0].min() - pad, path[:, 0].max() + pad),
                    ylim=(path[:, 1].min() - pad, path[:, 1].max() + pad), aspect="equal", title=ttl)
-            ax.set_xlabel("α₁", labelpad=1)
-            ax.set_ylabel("α₂", labelpad=1)
+            ax.set_xlabel(r"$\alpha_1$", labelpad=1, fontsize=MATH_PT)
+            ax.set_ylabel(r"$\alpha_2$", labelpad=1, fontsize=MATH_PT)
         for ax, ttl in ((ax_g, "its position path"), (ax_g2, "position path of ψ′")):
             ax.plot(self.base.g[:, 0], self.base.g[:, 1], color="0.75", lw=1)
             # room below the path for the readout
@@ -144,8 +144,8 @@ class DirectionalScene(Scene):
     def decorate(self):
         ax = self.ax_b
         ax.set(xlim=(-1, 1), ylim=(-1, 1), aspect="equal", title="b(ṙ) over shape velocities")
-        ax.set_xlabel("ṙ₁", labelpad=1)
-        ax.set_ylabel("ṙ₂", labelpad=1)
+        ax.set_xlabel(r"$\dot r_1$", labelpad=1, fontsize=MATH_PT)
+        ax.set_ylabel(r"$\dot r_2$", labelpad=1, fontsize=MATH_PT)
         for ang in np.linspace(0, np.pi, 6, endpoint=False):
             ax.plot([-np.cos(ang), np.cos(ang)], [-np.sin(ang), np.sin(ang)], color="0.3", lw=0.6)
         ax = self.ax_x

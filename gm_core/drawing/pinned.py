@@ -17,7 +17,7 @@ from ..three_link_chain import beta_frame_velocity, com_frame
 from .axes import square_axes
 from .chains import ArrowsArtist, ChainArtist, _ThreeLinkScene
 from .primitives import BodyArtist, FrameArtist
-from .toolkit import PALETTE, PathText, Scene, new_figure, readout
+from .toolkit import MATH_PT, PALETTE, PathText, Scene, new_figure, readout
 
 __all__ = ["plane_and_notes", "notes_text", "PinnedBodiesScene", "RelativePoseScene", "BetaVelocityScene",
            "BODY_OUTLINE"]
@@ -142,7 +142,9 @@ class RelativePoseScene(Scene):
         (self.coord_y,) = ax.plot([], [], "--", color=PALETTE["y"], lw=2.0, zorder=3)
         self.route = ArrowsArtist(ax, 2, color=PALETTE["purple"], width=0.006, zorder=5)
         self.arrow = ArrowsArtist(ax, 1, color="k", width=0.009, zorder=7)
-        self.text = notes_text(self.notes)
+        # proportional text at MATH_PT: its mathtext subscripts ($g_{h2,g1}$) are 10 px; the
+        # changing numbers sit on lines of their own, so a formula is laid out once per choice
+        self.text = PathText(self.notes, 0.0, 1.0, "", size=MATH_PT, va="top", coords="axes")
 
     def poses(self, alpha1, alpha2):
         """World poses of the named frames: dict name -> ``(3,)``."""
@@ -181,19 +183,18 @@ class RelativePoseScene(Scene):
         inv_err = float(np.max(np.abs(SE2.difference(SE2.inverse(rel), swapped))))
         self.text.set_text("\n".join([
             f"pose of {na} seen from {nb} (black):",
-            f" {sub(na, nb)} = {nb}⁻¹ {na}",
-            f"   = {_fmt(rel)}",
-            f"   x, y: along {nb}'s axes (dashed;",
-            f"   {nb}'s axes extended in blue)",
+            f"  {sub(na, nb)[:-1]} = {nb}^{{-1}}\\,{na}$",
+            f"     = {_fmt(rel)}",
+            f"  x, y: along {nb}'s axes (dashed),",
+            f"  {nb}'s axes drawn long in blue",
             "",
             f"through {nc} (purple; {nc} cancels):",
-            f" {sub(nc, nb)} {sub(na, nc)}",
-            f"   = {_fmt(chained)}",
-            f"   differs by {err:.0e}",
+            f"  {sub(nc, nb)[:-1]}\\,{sub(na, nc)[1:]}",
+            f"     = {_fmt(chained)}, differs by {err:.0e}",
             "",
             "swap the subscripts = invert:",
-            f" {sub(nb, na)} = {_fmt(swapped)}",
-            f" {sub(na, nb)}⁻¹ differs by {inv_err:.0e}",
+            f"  {sub(nb, na)[:-1]} = {sub(na, nb)[1:-1]}^{{-1}}$",
+            f"     = {_fmt(swapped)}, differs by {inv_err:.0e}",
         ]))
 
 
@@ -211,6 +212,27 @@ class BetaVelocityScene(_ThreeLinkScene):
 
     figsize = (8.4, 4.4)
     SCALE = 1.2
+    # what the numbers are: fixed mathtext lines (PathText lays each distinct line out once), the
+    # changing numbers on lines of their own
+    NOTES = (
+        "body velocity of the frame, (2.60):",
+        r"$\xi_\beta = \mathrm{Ad}_\beta^{-1}\,\xi_2 + \mathrm{Ad}_\beta^{-1}\,v_\beta$",
+        "",
+        r"$\mathrm{Ad}_\beta^{-1}\,\xi_2$   carried by link 2 (blue)",
+        "   {carried}",
+        "",
+        r"$\mathrm{Ad}_\beta^{-1}\,v_\beta$   from the shape change (orange)",
+        "   {shape}",
+        "",
+        r"$\xi_\beta$   sum (black)",
+        "   {body}",
+        "",
+        r"$v_\beta = T_\beta R_\beta^{-1}\,\dot\beta$, (2.61):",
+        "   {v_beta}",
+    )
+    KEY = ("dotted: the path of the frame's origin under each cause\n"
+           "alone; faint orange: the shape part again, from the origin;\n"
+           "thin blue: link 2's velocity; arrows: world velocity × {SCALE}")
     COLORS = {"carried": PALETTE["blue"], "shape": PALETTE["orange"], "body": "k"}
 
     def make_figure(self):
@@ -237,7 +259,9 @@ class BetaVelocityScene(_ThreeLinkScene):
         self.shape_at_origin = ArrowsArtist(ax, 1, color=self.COLORS["shape"], scale=self.SCALE, width=0.005,
                                             zorder=7)
         self.shape_at_origin.quiver.set_alpha(0.6)
-        self.text = notes_text(self.notes)
+        self.text = PathText(self.notes, 0.0, 1.0, "", size=MATH_PT, va="top", coords="axes")
+        PathText(self.notes, 0.0, 0.0, self.KEY.replace("{SCALE}", f"{self.SCALE:g}"), size=8, va="bottom",
+                 coords="axes")
         self.s = np.linspace(-1.0, 1.0, 41)[:, None]
 
     def compute(self, **values):
@@ -269,26 +293,11 @@ class BetaVelocityScene(_ThreeLinkScene):
         shaped = com_frame(a + self.s * ad, self.lengths)[0]
         self.path_carried.set_data(carried[:, 0], carried[:, 1])
         self.path_shape.set_data(shaped[:, 0], shaped[:, 1])
-        self.text.set_text("\n".join([
-            "body velocity of the frame,",
-            "ξ_β = Ad⁻¹_β ξ₂ + Ad⁻¹_β v_β  (2.60)",
-            "",
-            "carried by link 2 (blue):",
-            f"  Ad⁻¹_β ξ₂   {_fmt(parts['carried'])}",
-            "from the shape change (orange):",
-            f"  Ad⁻¹_β v_β  {_fmt(parts['shape'])}",
-            "sum (black):",
-            f"  ξ_β         {_fmt(parts['body'])}",
-            "",
-            "v_β = T_β R_β⁻¹ dβ/dt  (2.61)",
-            f"              {_fmt(parts['v_beta'])}",
-            "dotted: the path of the frame's",
-            "origin under each cause alone",
-            "(faint orange: the shape part",
-            " again, from the origin)",
-            "thin blue: link 2's velocity",
-            f"arrows: world velocity × {self.SCALE:g}",
-        ]))
+        numbers = {k: _fmt(parts[k]) for k in ("carried", "shape", "body", "v_beta")}
+        text = "\n".join(self.NOTES)
+        for k, v in numbers.items():
+            text = text.replace("{" + k + "}", v)
+        self.text.set_text(text)
 
     def replot(self, **values):
         Scene.replot(self, **values)

@@ -58,7 +58,7 @@ _STYLE = """
 # The player. `root` is the .gm-anim element; every lookup is inside it (no global ids needed).
 _SCRIPT = r"""
 (function () {
-  var id = %(id)s, frames = %(frames)s, interval = %(interval)d, mode0 = %(mode)s;
+  var id = %(id)s, frames = %(frames)s, interval = %(interval)d, mode0 = %(mode)s, first = %(start)d;
   var me = document.currentScript;
   function setup(root) {
     if (root.getAttribute('data-gm-ready')) return;
@@ -108,7 +108,7 @@ _SCRIPT = r"""
       else if (act === 'next') { stop(); show(k + 1); }
     });
     slider.addEventListener('input', function () { stop(); show(parseInt(slider.value, 10)); });
-    show(0);
+    show(first);
   }
   function find(tries) {
     var root = (me && me.parentNode && me.parentNode.classList &&
@@ -122,16 +122,20 @@ _SCRIPT = r"""
 
 
 def player_html(frames: list[str], interval: float = 50, width: float | None = None,
-                mode: str = "loop", title: str = "animation") -> str:
+                mode: str = "loop", title: str = "animation", start: int = 0, slider_label: str = "frame") -> str:
     """HTML (with its script) playing ``frames`` (PNG data URLs) ``interval`` ms apart.
 
     ``width`` is the frames' width in CSS px (the ``<img>`` gets it, so the page lays the picture
-    out at its true size before any script runs); ``mode`` is one of :data:`MODES`.
+    out at its true size before any script runs); ``mode`` is one of :data:`MODES`; ``start`` is
+    the frame shown first (a pre-rendered slider sweep starts at the slider's own value) and
+    ``slider_label`` the accessible name of the frame slider.
     """
     if mode not in MODES:
         raise ValueError(f"mode must be one of {MODES}, got {mode!r}")
     if not frames:
         raise ValueError("frames must hold at least one frame")
+    if isinstance(start, bool) or not isinstance(start, int) or not 0 <= start < len(frames):
+        raise ValueError(f"start must be a frame index in [0, {len(frames) - 1}], got {start!r}")
     uid = uuid.uuid4().hex[:12]
     size = f' width="{int(round(width))}"' if width else ""
     buttons = "".join(
@@ -144,14 +148,16 @@ def player_html(frames: list[str], interval: float = 50, width: float | None = N
         "frames": json.dumps(frames),
         "interval": max(1, int(round(interval))),
         "mode": json.dumps(mode),
+        "start": start,
         "icons": json.dumps({"play": _icon("play"), "pause": _icon("pause")}),
     }
     return (f'<div class="gm-anim" id="gm-anim-{uid}" data-frames="{len(frames)}" '
             f'aria-label="{_html.escape(title, quote=True)}">'
             f"<style>{_STYLE}</style>"
-            f'<img id="_anim_img{uid}" src="{frames[0]}"{size} class="gm-anim-frame" alt="{_html.escape(title, quote=True)}">'
+            f'<img id="_anim_img{uid}" src="{frames[start]}"{size} class="gm-anim-frame" alt="{_html.escape(title, quote=True)}">'
             f'<div class="gm-anim-controls">{buttons}'
-            f'<input type="range" class="gm-anim-slider" min="0" max="{len(frames) - 1}" value="0" step="1" aria-label="frame">'
+            f'<input type="range" class="gm-anim-slider" min="0" max="{len(frames) - 1}" value="{start}" step="1" '
+            f'aria-label="{_html.escape(slider_label, quote=True)}">'
             f'<select class="gm-anim-mode" aria-label="when the last frame is reached">{options}</select>'
-            f'<span class="gm-anim-counter">1 / {len(frames)}</span></div>'
+            f'<span class="gm-anim-counter">{start + 1} / {len(frames)}</span></div>'
             f"<script>{script}</script></div>")

@@ -259,7 +259,7 @@ class LoopsScene(Scene):
     R, r, rho = 2.0, 0.7, 1.6
 
     def make_figure(self):
-        return axes_row((8, 3.6), ("3d", "3d"), left=0.0, right=1.0, bottom=0.02, top=0.88, wspace=0.0)
+        return axes_row((8, 2.9), ("3d", "3d"), left=0.0, right=1.0, bottom=-0.14, top=0.93, wspace=0.0)
 
     def decorate(self):
         ax_t, ax_s = self.axes
@@ -267,8 +267,11 @@ class LoopsScene(Scene):
             P = _surface_points(kind)
             wire(ax, P[..., 0], P[..., 1], P[..., 2], color="0.82")
             plain_3d(ax, lim=2.2, axes_lines=False)
-            ax.set_box_aspect((1, 1, 0.55 if kind == "torus" else 1))
-            ax.set_zlim(-1.2, 1.2) if kind == "torus" else ax.set_zlim(-1.7, 1.7)
+            # equal scales on all three axes (the box's height over its width is the z range over
+            # the x range), so the sphere is round and the torus not flattened
+            zlim = 1.2 if kind == "torus" else 2.2
+            ax.set_zlim(-zlim, zlim)
+            ax.set_box_aspect((1, 1, zlim / 2.2), zoom=1.0 if kind == "torus" else 1.1)
             ax.view_init(elev=28, azim=-55)
         u = np.linspace(0, TWO_PI, 120)
         L = torus_xyz(u, 0.0 * u + np.pi / 2)  # the loop round the hole, drawn fixed for reference
@@ -295,7 +298,7 @@ class LoopsScene(Scene):
         self.sphere_point.set_visible(contracted)
         self.sphere_loop.set_data_3d(S[:, 0], S[:, 1], S[:, 2])
         self.sphere_point.set_data_3d([0.0], [0.0], [self.rho])
-        self.t_title.set_text(f"torus: red loop length {self.torus_length:.2f}\n(cannot shrink)")
+        self.t_title.set_text(f"torus: tube loop length {self.torus_length:.2f}\n(cannot shrink)")
         self.s_title.set_text(f"sphere: loop length {self.sphere_length:.2f}"
                               + ("\n(contracted to the pole)" if contracted else "\n(shrinks to a point)"))
 

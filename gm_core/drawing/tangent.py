@@ -12,7 +12,7 @@ from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
 from ..manifolds import circle_point_velocity, sphere_tangent_basis, sphere_velocity, sphere_xyz
 from .axes import plain_3d, wire
-from .toolkit import PALETTE, TWO_PI, ArrowSet, PathText, Scene, axes_row, readout, set_arrows
+from .toolkit import MATH_PT, PALETTE, TWO_PI, ArrowSet, PathText, Scene, axes_row, readout, set_arrows
 from .velocities import vec_text
 
 __all__ = ["TangentSpaceScene", "arrow_3d"]
@@ -63,9 +63,9 @@ class TangentSpaceScene(Scene):
         u = np.linspace(0, TWO_PI, 200)
         ax2.plot(np.cos(u), np.sin(u), color="0.35", lw=1.5)
         ax2.plot([-2.2, 2.2], [self.LINE_Y, self.LINE_Y], color="0.35", lw=1.5)
-        PathText(ax2, -0.78, -0.78, "S¹", size=10, ha="right", va="top")
-        PathText(ax2, -2.2, self.LINE_Y - 0.12, "ℝ¹ (its tangent spaces lie along the line itself)", size=8,
-                 va="top")
+        PathText(ax2, -0.78, -0.78, r"$\mathbb{S}^1$", size=MATH_PT, ha="right", va="top")
+        PathText(ax2, -2.2, self.LINE_Y - 0.12, "the line ℝ (its tangent spaces lie along the line itself)",
+                 size=8, va="top")
         PathText(ax2, 0.5, 1.0, "fig. 1.11: tangent line to the circle, and the line", size=9, ha="center",
                  va="bottom", coords="axes", offset=(0, 2))
         lat, lon = np.meshgrid(np.linspace(-np.pi / 2, np.pi / 2, 9), np.linspace(0, TWO_PI, 17))
@@ -84,7 +84,7 @@ class TangentSpaceScene(Scene):
         (self.tangent_line,) = ax2.plot([], [], color=PALETTE["sky"], lw=2.5, alpha=0.8, zorder=2)
         (self.points2,) = ax2.plot([], [], "o", color="k", ms=6, zorder=5)
         self.arrows2 = ArrowSet(ax2, n=2, color=PALETTE["vermillion"], width=0.011, zorder=6)
-        self.label_line = PathText(ax2, 0, 0, "T_pS¹", size=9, color=PALETTE["blue"], ha="center")
+        self.label_line = PathText(ax2, 0, 0, r"$T_p\mathbb{S}^1$", size=MATH_PT, color=PALETTE["blue"], ha="center")
         self.readout2 = readout(ax2, 0.0, 0.0, "", size=7.5)
         self.plane = Poly3DCollection([np.zeros((4, 3))], facecolors=PALETTE["sky"], edgecolors=PALETTE["blue"],
                                       alpha=0.45, linewidths=1.0, zorder=2)
@@ -92,7 +92,7 @@ class TangentSpaceScene(Scene):
         self.arrow3 = Line3DCollection(np.zeros((3, 2, 3)), colors=PALETTE["vermillion"], linewidths=2.5, zorder=4)
         ax3.add_collection3d(self.arrow3)
         (self.point3,) = ax3.plot([], [], [], "o", color="k", ms=6, zorder=5)
-        self.label_plane = ax3.text(0, 0, 0, "T_pS²", fontsize=9, color=PALETTE["blue"], zorder=6)
+        self.label_plane = ax3.text(0, 0, 0, r"$T_p\mathbb{S}^2$", fontsize=MATH_PT, color=PALETTE["blue"], zorder=6)
         self.readout3 = readout(ax3, 0.02, 0.02, "", size=7.5)
 
     def set(self, s=0.8, speed=1.0):
@@ -126,4 +126,4 @@ class TangentSpaceScene(Scene):
         lab = P + 1.05 * h * (east + north)
         self.label_plane.set_position_3d(lab)
         ax3.view_init(elev=np.rad2deg(lat) * 0.6 + 12, azim=np.rad2deg(lon) - 20)
-        self.readout3.set_text(f"p = {vec_text(P)}\nv = {vec_text(V)}\np·v = {_num(P @ V)}: v lies in T_pS²")
+        self.readout3.set_text(f"p = {vec_text(P)}\nv = {vec_text(V)}\np·v = {_num(P @ V)}: v lies in the tangent plane")

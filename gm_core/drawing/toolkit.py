@@ -22,6 +22,7 @@
 """
 from __future__ import annotations
 
+import re
 from typing import Any
 
 import matplotlib as mpl
@@ -37,7 +38,7 @@ from matplotlib.textpath import TextPath
 from matplotlib.transforms import blended_transform_factory as _blend
 
 __all__ = [
-    "DPI", "MAX_WIDTH_IN", "MIN_TEXT_PX", "MIN_TEXT_PT", "PALETTE", "STYLE", "apply_style",
+    "DPI", "MAX_WIDTH_IN", "MIN_TEXT_PX", "MIN_TEXT_PT", "MATH_PT", "PALETTE", "STYLE", "apply_style",
     "new_figure", "figure", "margins", "freeze_layout", "PathText", "readout", "ArrowSet", "arrow", "set_arrows",
     "title",
     "xticks", "yticks", "axis_label", "axes_row", "text_panel", "Scene", "TWO_PI",
@@ -53,6 +54,10 @@ MAX_WIDTH_IN = 9.0
 #: Smallest text on screen, in pixels, and the point size that gives it at DPI.
 MIN_TEXT_PX = 10.0
 MIN_TEXT_PT = 7.5           # 7.5 pt * 100 / 72 = 10.4 px
+#: Smallest size of a text holding mathtext sub- or superscripts (``$T_gL_h$``, ``$\\xi^s$``):
+#: matplotlib draws a script at 0.7 of its text's size, 0.7 * 10.5 pt = 10.2 px at DPI. Nested
+#: scripts (0.49) cannot meet the standard: write ``$R_g^{-1}$``, not ``$R_{g^{-1}}$``.
+MATH_PT = 10.5
 
 #: Okabe & Ito's colour-blind-safe palette, with the roles the course gives its colours.
 PALETTE = {
@@ -181,26 +186,52 @@ def _char(c, size, weight, family="sans"):
     return hit
 
 
+#: a ``$...$`` span of a line (``\\$`` is a literal dollar sign, as in matplotlib's mathtext)
+_MATH_SPAN = re.compile(r"(?<!\\)\$(.*?)(?<!\\)\$")
+
+
+def _math(span, size, weight, family="sans"):
+    """(vertices in inches, codes, advance in inches) of one ``$...$`` span laid out by
+    matplotlib's mathtext (cached: a span is parsed once, whatever numbers surround it)."""
+    key = (span, size, weight, family, "math")
+    hit = _PATH_CACHE.get(key)
+    if hit is None:
+        from matplotlib.mathtext import MathTextParser
+
+        prop = FontProperties(family=_FAMILIES[family], weight=weight, size=size)
+        tp = TextPath((0, 0), span, size=size / 72.0, prop=prop)
+        # the advance as mathtext places what follows the span (parsed at 7200 dpi: the
+        # parser rounds its box up to whole pixels)
+        advance = MathTextParser("path").parse(span, dpi=7200, prop=prop).width / 7200.0
+        hit = (tp.vertices.copy(), tp.codes.copy(), advance)
+        _PATH_CACHE[key] = hit
+    return hit
+
+
 def _glyphs(line, size, weight, family="sans"):
     """Outline of one line of text as a Path in inches, left/baseline at (0, 0), and its width.
 
     Built from cached per-character outlines and advances (no kerning), so changing a numeric
-    readout costs a few array concatenations instead of a font layout. A line with a pair of
-    ``$`` is laid out whole as matplotlib mathtext (``"$T_gL_h$ = identity"``), once per
-    distinct line.
+    readout costs a few array concatenations instead of a font layout. A ``$...$`` span is laid
+    out as matplotlib mathtext (``"$T_gL_h$ = identity"``), once per distinct span, so a
+    readout whose numbers change beside a formula never re-parses the formula.
     """
     key = (line, size, weight, family, "line")
     hit = _PATH_CACHE.get(key)
-    if hit is None and line.count("$") >= 2:
-        prop = FontProperties(family=_FAMILIES[family], weight=weight)
-        tp = TextPath((0, 0), line, size=size / 72.0, prop=prop)
-        width = float(tp.get_extents().x1) if len(tp.vertices) else 0.0
-        hit = (Path(tp.vertices.copy(), tp.codes.copy()), width)
-        _PATH_CACHE[key] = hit
     if hit is None:
+        pieces = []     # (vertices, codes, advance) in order
+        spans = list(_MATH_SPAN.finditer(line))
+        at = 0
+        for m in spans + [None]:
+            plain = line[at:m.start() if m else len(line)]
+            if spans:
+                plain = plain.replace("\\$", "$")
+            pieces += [_char(c, size, weight, family) for c in plain]
+            if m:
+                pieces.append(_math(m.group(0), size, weight, family))
+                at = m.end()
         verts, codes, x = [], [], 0.0
-        for c in line:
-            v, k, adv = _char(c, size, weight, family)
+        for v, k, adv in pieces:
             if len(v):
                 verts.append(v + (x, 0.0))
                 codes.append(k)

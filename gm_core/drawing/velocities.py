@@ -17,6 +17,7 @@ from .actions import BODY
 from .axes import plane
 from .primitives import BodyArtist, FrameArtist
 from .toolkit import (
+    MATH_PT,
     PALETTE,
     ArrowSet,
     PathText,
@@ -143,13 +144,13 @@ class LiftedScalarScene(Scene):
     def decorate(self):
         ax2, ax1 = self.axes
         plane(ax2, 2.5)
-        title(ax2, r"$(\mathbb{R}^2, +)$: $T_gL_h$ = identity")
+        title(ax2, r"$(\mathbb{R}^2, +)$: $T_gL_h$ = identity", size=MATH_PT)
         ax1.set_xlim(-0.2, 10.5)
         ax1.set_ylim(-1.0, 1.6)
         ax1.set_yticks([])
         ax1.plot([0, 10.5], [0, 0], color="k", lw=1)
         xticks(ax1, [0, 1, 4, 6, 8, 10], ["0", "1 = e", "4", "6", "8", "10"])
-        title(ax1, r"$(\mathbb{R}^+, \times)$: $T_gL_h$ = h scales the arrow")
+        title(ax1, r"$(\mathbb{R}^+, \times)$: $T_gL_h$ = h scales the arrow", size=MATH_PT)
 
     def create(self):
         ax2, ax1 = self.axes
@@ -158,7 +159,7 @@ class LiftedScalarScene(Scene):
         self.shift2 = ArrowSet(ax2, color="0.6", width=0.005)
         (self.pts1,) = ax1.plot([], [], "o", color="k", ms=6)
         self.arrows1 = arrow(ax1, color=[PALETTE["blue"], PALETTE["orange"]], n=2, width=0.008)
-        self.text1 = PathText(ax1, 0.02, 0.06, "", size=8, coords="axes")
+        self.text1 = PathText(ax1, 0.02, 0.05, "", size=MATH_PT, coords="axes", va="bottom")
 
     def set(self, hx=1.5, hy=1.0, h=2.5):
         g2 = self.G_R2
@@ -174,8 +175,8 @@ class LiftedScalarScene(Scene):
         self.pts1.set_data([g1, hg1], [0, 0])
         set_arrows(self.arrows1, [[g1, 0.5], [hg1, 0.5]], [[self.V_RP, 0], [lifted, 0]])
         self.text1.set_text(f"g = {g1:.2f}, ġ = {self.V_RP:.2f}  →  hg = {hg1:.2f}, "
-                            f"$T_gL_h\\,\\dot g$ = {lifted:.2f};  ratio ġ/g = {self.V_RP / g1:.3f} = "
-                            f"{lifted / hg1:.3f}")
+                            f"$T_gL_h\\,\\dot g$ = {lifted:.2f}\n"
+                            f"ratio ġ/g = {self.V_RP / g1:.3f} = {lifted / hg1:.3f} (the same at g and hg)")
 
 
 def vec_text(a, digits=2):
@@ -199,8 +200,8 @@ class LiftedSE2Scene(Scene):
     G_XY = np.array([-1.2, -1.0])
     SCALE = 0.7
 
-    FIGSIZE = (5.8, 4.9)
-    MARGINS = dict(left=0.02, right=0.98, bottom=0.02, top=0.93)
+    FIGSIZE = (5.8, 5.4)
+    MARGINS = dict(left=0.02, right=0.98, bottom=0.12, top=0.93)
 
     def decorate(self):
         (ax,) = self.axes
@@ -212,8 +213,9 @@ class LiftedSE2Scene(Scene):
         self.bodies = [BodyArtist(ax, BODY * 1.6, facecolor=c, alpha=0.45) for c in colors]
         self.vel = [ArrowSet(ax, color=c, n=4, width=0.007) for c in colors]
         (self.weld,) = ax.plot([], [], color=PALETTE["orange"], ls=":", lw=1.5)
-        self.title = title(ax, size=8)
-        self.text = PathText(ax, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes", family="monospace")
+        self.title = title(ax, size=MATH_PT)
+        # below the plane, where no body or arrow can run under it
+        self.text = PathText(ax, 0.0, -0.015, "", size=7.5, va="top", coords="axes", family="monospace")
 
     def set(self, theta=0.3, u=2.0, v=1.5, beta=1.0):
         g = np.array([self.G_XY[0], self.G_XY[1], theta])
@@ -250,10 +252,10 @@ class VelocityScene(Scene):
 
     def decorate(self):
         names = ["(a) world velocity ġ", "(b) body velocity ξ, in the body frame",
-                 "(c) ξ after moving the body to e", "(d) spatial velocity ξˢ at the origin"]
+                 "(c) ξ after moving the body to e", r"(d) spatial velocity $\xi^s$ at the origin"]
         for ax, name in zip(self.axes, names):
             plane(ax, self.LIM)
-            title(ax, name, size=8.5)
+            title(ax, name, size=MATH_PT)
 
     def create(self):
         a, b, c, d = self.axes
@@ -268,7 +270,8 @@ class VelocityScene(Scene):
         # the instantaneous centre of rotation: the one point of the moving plane at rest (a, d)
         self.icr_marks = [ax.plot([], [], "*", color=PALETTE["orange"], ms=12, mec="k", mew=0.5, zorder=7)[0]
                           for ax in (a, d)]
-        self.texts = [PathText(ax, 0.03, 0.02, "", size=8, coords="axes", va="bottom") for ax in self.axes]
+        self.texts = [PathText(ax, 0.03, 0.02, "", size=MATH_PT, coords="axes", va="bottom")
+                      for k, ax in enumerate(self.axes)]
 
     def set(self, x=1.2, y=0.6, theta=0.7, vx=0.8, vy=0.3, w=0.6):
         g = np.array([x, y, theta])
@@ -302,9 +305,9 @@ class VelocityScene(Scene):
         where = ("ICR at infinity: pure translation" if far else
                  f"ICR ★ ({self.icr_world[0]:+.2f}, {self.icr_world[1]:+.2f})" + ("" if shown else ", off view"))
         self.texts[0].set_text(f"ġ = {f(self.g_dot)}\n{where}")
-        self.texts[1].set_text(f"ξ = {f(xi)}\n(red: ξˣ, green: ξʸ)")
-        self.texts[2].set_text(r"$\xi = T_gL_{g^{-1}}\,\dot g$ = " + f(SE2.world_to_body(g, self.g_dot)))
-        self.texts[3].set_text(f"ξˢ = {f(self.xi_s)} = ġ + ξᶿ × l")
+        self.texts[1].set_text(f"ξ = {f(xi)}\n" + r"(red: $\xi^x$, green: $\xi^y$)")
+        self.texts[2].set_text(r"$\xi = T_gL_g^{-1}\,\dot g$" + f"\n= {f(SE2.world_to_body(g, self.g_dot))}")
+        self.texts[3].set_text(r"$\xi^s$" + f" = {f(self.xi_s)}\n= ġ + " + r"$\xi^\theta$ × (lever to the origin)")
 
 
 def _matrix_lines(M):
@@ -317,21 +320,28 @@ class AdjointScene(Scene):
     Values ``x, y, theta`` (g) and ``vx, vy, w`` (body velocity xi).
     """
 
-    FIGSIZE = (7.6, 2.9)
+    FIGSIZE = (7.6, 2.05)
     MARGINS = dict(left=0.0, right=1.0, bottom=0.0, top=1.0)
 
     def decorate(self):
         (ax,) = self.axes
         text_panel(ax)
-        heads = [r"$\mathrm{Ad}_g$, closed form (1.43)", r"$T_gR_{g^{-1}}\,T_eL_g$  (1.40)", "same, finite differences"]
+        # R_g^{-1} = R_{g^{-1}}, written with one level of scripts (a script of a script is 5 px)
+        heads = [r"$\mathrm{Ad}_g$, closed form (1.43)", r"$T_gR_g^{-1}\,T_eL_g$  (1.40)", "same, finite differences"]
         for k, s in enumerate(heads):
-            PathText(ax, 0.02 + 0.33 * k, 0.92, s, size=8, weight="bold")
+            PathText(ax, 0.02 + 0.33 * k, 0.9, s, size=MATH_PT, weight="bold")
 
     def create(self):
         (ax,) = self.axes
-        self.blocks = [PathText(ax, 0.02 + 0.33 * k, 0.82, "", size=8, va="top", color=c)
+        self.blocks = [PathText(ax, 0.02 + 0.33 * k, 0.8, "", size=8.5, va="top", color=c, family="monospace")
                        for k, c in enumerate(("k", PALETTE["blue"], PALETTE["green"]))]
-        self.summary = PathText(ax, 0.02, 0.42, "", size=8, va="top")
+        # numbers (changing, plain glyphs: fast) and what they are (fixed mathtext, laid out once)
+        self.difference = PathText(ax, 0.02, 0.44, "", size=MATH_PT, va="top")
+        self.summary = PathText(ax, 0.02, 0.44, "", size=MATH_PT, va="top", offset=(0, -1.3 * MATH_PT))
+        PathText(ax, 0.335, 0.44, "\n".join((
+            r"$\xi^s = \mathrm{Ad}_g\,\xi$",
+            r"$\xi^s$ from $d/dt\,(g(t)\,g^{-1})$ by finite differences, $g(t) = g\,\exp(t\xi)$",
+            r"back again: $\mathrm{Ad}_g^{-1}\,\xi^s = \xi$")), size=MATH_PT, va="top", offset=(0, -1.3 * MATH_PT))
 
     def set(self, x=1.0, y=-0.5, theta=0.8, vx=0.5, vy=0.2, w=0.7):
         g = np.array([x, y, theta])
@@ -351,9 +361,7 @@ class AdjointScene(Scene):
         for blk, M in zip(self.blocks, (self.Ad, Ad_tn, self.Ad_fd)):
             blk.set_text(_matrix_lines(M))
         f = lambda a: vec_text(a, 4)  # noqa: E731
+        self.difference.set_text(f"largest difference between the three matrices: {self.mismatch:.1e}")
         self.summary.set_text(
-            f"largest difference between the three matrices: {self.mismatch:.1e}\n"
-            f"{f(self.xi_s)}   $\\xi^s = \\mathrm{{Ad}}_g\\,\\xi$\n"
-            f"{f(self.xi_s_fd)}   ξˢ from d/dt (g(t) g⁻¹) by finite differences, g(t) = g exp(tξ)\n"
-            f"{f(SE2.Ad_inv(g) @ self.xi_s)}   back again: $\\mathrm{{Ad}}_g^{{-1}}\\,\\xi^s = \\xi$")
+            f"{f(self.xi_s)}\n{f(self.xi_s_fd)}\n{f(SE2.Ad_inv(g) @ self.xi_s)}")
 

@@ -11,24 +11,29 @@ book's (``xi = -A(r) r_dot``, (3.10)).
   :mod:`.chain_strokes`: optimal strokes of 3-, 4- and 5-link chains (``chain_stroke``);
 * :mod:`.estimates`: ``shaped_gait``, ``displacement_estimates``, ``row_scaled``, ``field_rms`` (notebook 10's panels).
 """
-from .chain_strokes import CHAIN_STROKES, chain_stroke, chain_swimmer
+from .chain_strokes import CHAIN_STROKES, chain_stroke, chain_swimmer, optimise_chain_gait, wave_start
 from .coordinates import (
-    body_frames,
     centre_of_mass,
     centre_of_mass_coordinates,
     drift_and_turn,
     minimum_perturbation_coordinates,
     reframe,
 )
-from .curvature import body_velocity_integral, connection_derivative, constraint_curvature, stokes_estimate
+from .curvature import (
+    body_velocity_integral,
+    connection_curl,
+    connection_derivative,
+    constraint_curvature,
+    stokes_estimate,
+)
 from .estimates import FRAMES, Estimates, displacement_estimates, field_rms, row_scaled, shaped_gait
 from .metrics import dissipation_metric, efficiency, path_length
 from .optimal import FourierGait, OptimalGait, fourier_gait, gait_objective, optimize_gait, travelling_wave
 from .strokes import SYSPLOTTER_STROKES, sysplotter_stroke, sysplotter_swimmer
 
-__all__ = ["constraint_curvature", "connection_derivative", "stokes_estimate", "body_velocity_integral",
-           "reframe", "body_frames", "centre_of_mass", "drift_and_turn", "centre_of_mass_coordinates", "minimum_perturbation_coordinates",
+__all__ = ["constraint_curvature", "connection_derivative", "connection_curl", "stokes_estimate", "body_velocity_integral",
+           "reframe", "centre_of_mass", "drift_and_turn", "centre_of_mass_coordinates", "minimum_perturbation_coordinates",
            "dissipation_metric", "path_length", "efficiency",
            "FourierGait", "OptimalGait", "fourier_gait", "travelling_wave", "gait_objective", "optimize_gait",
-           "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer", "CHAIN_STROKES", "chain_stroke", "chain_swimmer",
+           "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer", "CHAIN_STROKES", "chain_stroke", "chain_swimmer", "wave_start", "optimise_chain_gait",
            "FRAMES", "Estimates", "displacement_estimates", "field_rms", "row_scaled", "shaped_gait"]

@@ -11,10 +11,13 @@ and reproduces the stored efficiency and displacement.
 """
 from __future__ import annotations
 
-from ..systems import LinkChain
-from .optimal import fourier_gait
+import numpy as np
 
-__all__ = ["CHAIN_STROKES", "chain_swimmer", "chain_stroke"]
+from .._validate import check_int, positive_number
+from ..systems import LinkChain
+from .optimal import fourier_gait, optimize_gait, travelling_wave
+
+__all__ = ["CHAIN_STROKES", "chain_swimmer", "chain_stroke", "wave_start", "optimise_chain_gait"]
 
 #: Fourier coefficients (a, b: (N - 1, 2); center: (N - 1,)) and the values they give.
 CHAIN_STROKES = {
@@ -56,3 +59,25 @@ def chain_stroke(n_links):
         raise ValueError(f"n_links must be one of {sorted(CHAIN_STROKES)}; got {n_links!r}")
     c = CHAIN_STROKES[n_links]
     return fourier_gait(c["a"], c["b"], c["center"], name=f"optimal {n_links}-link stroke (efficiency, order 2)")
+
+
+def wave_start(n_joints, amplitude=0.6, lag=0.8, *, spread=0.05, seed=0):
+    """A start for optimising a chain's gait: the :func:`travelling_wave` (``amplitude``, ``lag``)
+    with its Fourier coefficients nudged by a seeded normal ``spread``, so an optimisation leaves
+    the symmetric saddle points a perfect wave can sit on (deterministic for a given ``seed``)."""
+    w = travelling_wave(n_joints, amplitude, lag)
+    spread = positive_number(spread, "spread", allow_zero=True, maximum=1.0)
+    rng = np.random.default_rng(check_int(seed, "seed", minimum=0, maximum=2 ** 31))
+    return fourier_gait(w.a + spread * rng.standard_normal(w.a.shape), w.b + spread * rng.standard_normal(w.b.shape),
+                        name=f"start: wave, amplitude {amplitude:g}, lag {lag:g} rad")
+
+
+def optimise_chain_gait(system, order=1, *, start=None, maxiter=40, intervals=64, callback=None):
+    """The most efficient Fourier gait of ``order`` of a chain of any number of links, from
+    :func:`wave_start` (or ``start``), measured in the chain's own body frame (use
+    ``frame="com"``): :func:`optimize_gait` with ``objective="efficiency"``,
+    ``coordinates="given"``. ``maxiter`` and ``intervals`` default to a live run of a second or
+    so; ``callback(iteration, efficiency)`` reports progress. Returns the :class:`OptimalGait`."""
+    start = wave_start(system.n_shape) if start is None else start
+    return optimize_gait(system, "efficiency", order=order, start=start, coordinates="given", maxiter=maxiter,
+                         intervals=intervals, callback=callback)

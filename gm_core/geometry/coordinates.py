@@ -17,7 +17,7 @@ from ..locomotion import check_system, net_displacement
 from ..systems.minimum_perturbation import MinimumPerturbationFrame
 from ..systems.reframed import CentreOfMassFrame, PoseFrame, Reframed
 
-__all__ = ["reframe", "centre_of_mass", "centre_of_mass_coordinates", "drift_and_turn", "body_frames",
+__all__ = ["reframe", "centre_of_mass", "centre_of_mass_coordinates", "drift_and_turn",
            "minimum_perturbation_coordinates"]
 
 
@@ -82,11 +82,3 @@ def minimum_perturbation_coordinates(system, bounds=None, n=None, *, reference=N
     return Reframed(system, frame, name=f"{system.name} (minimum perturbation)")
 
 
-def body_frames(system, bounds=None, *, n=None):
-    """``system.body_frames(bounds, n=n)``: the system in its own frame, its centre of mass and minimum perturbation.
-
-    The frames are the system's behaviour (:meth:`gm_core.systems.LocomotionSystem.body_frames`);
-    this function is the geometry package's spelling of the call, for the curvature panels.
-    """
-    check_system(system)
-    return system.body_frames(bounds, n=n)

@@ -24,10 +24,17 @@ import numpy as np
 from .._validate import SingularShapeError, as_array, check_int, positive_number
 from ..gaits import as_gait
 from ..groups import matvec
-from ..locomotion import check_gait, check_system, curvature_form, fd_connection_derivative
+from ..locomotion import (
+    FD_STEP,
+    check_gait,
+    check_system,
+    curvature_form,
+    exterior_derivative,
+    fd_connection_derivative,
+)
 from ..systems.base import LocomotionSystem
 
-__all__ = ["constraint_curvature", "connection_derivative", "stokes_estimate",
+__all__ = ["constraint_curvature", "connection_derivative", "connection_curl", "stokes_estimate",
            "body_velocity_integral", "closed_gait", "require_planar"]
 
 
@@ -40,20 +47,42 @@ def require_planar(system, what="curvature maps and Stokes estimates"):
     return system
 
 
-def connection_derivative(system, r, *, method="auto"):
+def connection_derivative(system, r, *, method="auto", h=None):
     """Connection and its shape derivative: ``(A (..., 3, n), dA (..., 3, n, n))``, ``dA[..., i, j, k] = d A_ij / d r_k``.
 
     ``method="auto"`` asks the system (its ``connection_derivative``: a closed form for the
     differential drive, Ackerman car and kinematic snake, else central differences);
-    ``"fd"`` forces central differences (:func:`gm_core.locomotion.fd_connection_derivative`).
+    ``"fd"`` forces central differences (:func:`gm_core.locomotion.fd_connection_derivative`) with
+    relative step ``h`` (default :data:`gm_core.locomotion.FD_STEP`). The one place that chooses.
     """
     n = check_system(system)
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     if method not in ("auto", "fd"):
         raise ValueError(f"method must be 'auto' or 'fd'; got {method!r}")
+    if h is not None:
+        h = positive_number(h, "h")
+        if method == "auto":
+            method = "fd"
     if method == "auto" and isinstance(system, LocomotionSystem):
         return system.connection_derivative(r)
-    return fd_connection_derivative(system, r)
+    return fd_connection_derivative(system, r, FD_STEP if h is None else h)
+
+
+def connection_curl(system, r, h=None):
+    """Scalar curl (..., 3) of each connection row over a 2-D shape space.
+
+    For row i, ``d A_i2 / d alpha1 - d A_i1 / d alpha2``, from :func:`connection_derivative`
+    (the system's closed form where there is one), or central differences with relative step
+    ``h`` if given. It vanishes where the row is locally the gradient of a function of shape (an
+    exact one-form, box on one-forms (3.xvii)); only then does a global contour plot of that row
+    make sense.
+    """
+    if check_system(system) != 2:
+        raise ValueError(f"system must have a 2-D shape space for a scalar curl; {system.name} has "
+                         f"{system.n_shape} shape variables")
+    r = as_array(r, "r", (2,), what=" (a point of a 2-D shape space)")
+    dA = connection_derivative(system, r, h=h)[1]
+    return exterior_derivative(dA)[..., 0, 1]
 
 
 def constraint_curvature(system, r, *, method="auto", pair=None):

@@ -22,7 +22,6 @@ import numpy as np
 
 from .._validate import SingularShapeError, as_array, check_int, positive_number, real_number
 from ..locomotion import check_system, net_displacement
-from .coordinates import body_frames
 from .curvature import body_velocity_integral, constraint_curvature, stokes_estimate
 from .optimal import fourier_gait
 
@@ -157,7 +156,8 @@ def frames_of(system, limits, n=33):
 
 @functools.lru_cache(maxsize=8)
 def _frames(system, limits, n):
-    return MappingProxyType(body_frames(system, limits, n=n))
+    check_system(system)
+    return MappingProxyType(system.body_frames(limits, n=n))
 
 
 def curvature_grid(system, limits, n):

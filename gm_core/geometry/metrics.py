@@ -75,10 +75,18 @@ def path_length(system, gait, *, metric=None, samples=None, check=True):
     return float(np.sqrt(np.maximum(speed2, 0.0)).sum() * gait.period / n)
 
 
-def efficiency(system, gait, *, metric=None, check=True):
-    """Efficiency (float): translation ``|(x, y) of g(T)|`` per unit path length in the cost metric."""
+def efficiency(system, gait, *, metric=None, check=True, samples=None, displacement=None):
+    """Efficiency (float): translation ``|(x, y) of g(T)|`` per unit path length in the cost metric.
+
+    ``samples`` as for :func:`path_length`. ``displacement``: g(T) (3,) when it is already known
+    (the last pose of a :func:`~gm_core.locomotion.trajectory` a live panel draws), instead of
+    :func:`~gm_core.locomotion.net_displacement`.
+    """
     check_system(system)
     gait = closed_gait(gait, system)
-    L = path_length(system, gait, metric=metric, check=check)
-    g = net_displacement(system, gait, check=False)
+    L = path_length(system, gait, metric=metric, check=check, samples=samples)
+    if displacement is None:
+        g = net_displacement(system, gait, check=False)
+    else:
+        g = as_array(displacement, "displacement", (3,), what=" (the net displacement g(T) = (x, y, theta))")
     return float(np.hypot(g[0], g[1]) / L)

@@ -22,7 +22,7 @@ from .._validate import SingularShapeError, as_array, check_int, check_option, p
 from ..gaits import Gait
 from ..groups import SE2, matvec
 from ..locomotion import check_gait, check_system, net_displacement, trajectory
-from ..systems.minimum_perturbation import MinimumPerturbationFrame
+from ..systems.minimum_perturbation import MAX_DIMENSION, MinimumPerturbationFrame, too_many_dimensions
 from ..systems.reframed import Reframed
 from .curvature import connection_derivative
 from .metrics import metric_function, path_length
@@ -266,8 +266,12 @@ def optimize_gait(system, objective="displacement", order=3, start=None, *, coor
     check_system(system)
     if coordinates not in ("minimum perturbation", "given"):
         raise ValueError(f"coordinates must be 'minimum perturbation' or 'given'; got {coordinates!r}")
-    already = isinstance(system, Reframed) and isinstance(system.frame, MinimumPerturbationFrame)
+    already = (isinstance(system, Reframed) and isinstance(system.frame, MinimumPerturbationFrame)
+               or getattr(system, "frame", None) == "minimum perturbation")
     if coordinates == "minimum perturbation" and not already:
+        if system.n_shape > MAX_DIMENSION:
+            raise ValueError(too_many_dimensions("coordinates='minimum perturbation'", system.name, system.n_shape)
+                             + "; or pass coordinates='given' to measure in the system's own frame")
         system = minimum_perturbation_coordinates(system, bounds)
     if objective not in ("displacement", "efficiency"):
         raise ValueError(f"objective must be 'displacement' or 'efficiency'; got {objective!r}")

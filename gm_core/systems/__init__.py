@@ -2,10 +2,12 @@
 
 Every system has ``connection(r)`` (..., 3, n) with ``xi = -A(r) r_dot`` (3.10), ``pfaffian(r)``
 (..., 3, 3 + n), ``body_velocity(r, r_dot)``, ``singularity(r)`` / ``is_singular(r)``, and
-``parts()`` / ``part_poses(r)`` for drawing. Three-link systems also have ``link_poses(r)`` and
-``link_jacobians(r)`` (from :mod:`gm_core.chains`, moved to the system's body frame); the ones
-defined by a balance over the links (:class:`LinkMetricSystem`: floating snake, swimmers) have
-``link_matrices()`` and ``metric(r)``, called ``mass_matrix(r)`` or ``drag_matrix(r)``. Fluid
+``parts()`` / ``part_poses(r)`` for drawing. Systems made of links also have ``link_poses(r)`` and
+``link_jacobians(r)`` (from :mod:`gm_core.chains`, in the system's body frame). The ones defined
+by a balance over the links are :class:`LinkChain` for any number of links; the floating snake
+and the two swimmers of section 3.4 are its N = 3 cases (named subclasses that add only their
+book names and signatures), with ``link_matrices()`` and ``metric(r)``, called ``mass_matrix(r)``
+or ``drag_matrix(r)``. :class:`ThreeLinkSystem` is the base of the kinematic snake. Fluid
 coefficients come from :mod:`gm_core.fluids`. These modules import :mod:`gm_core.locomotion`,
 never the other way round.
 """
@@ -21,9 +23,9 @@ from .minimum_perturbation import MinimumPerturbationFrame
 from .reframed import BodyFrame, CentreOfMassFrame, PoseFrame, Reframed
 from .restricted import AffineRestriction, shape_slice
 from .slender_body import SlenderBody, chain_approximation, serpenoid_modes
-from .three_link import LinkMetricSystem, ThreeLinkSystem
+from .three_link import ThreeLinkSystem
 
-__all__ = ["LocomotionSystem", "Part", "ThreeLinkSystem", "LinkMetricSystem", "DifferentialDrive", "Ackerman",
+__all__ = ["LocomotionSystem", "Part", "ThreeLinkSystem", "DifferentialDrive", "Ackerman",
            "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer",
            "LinkChain", "BodyFrame", "PoseFrame", "CentreOfMassFrame", "Reframed", "MinimumPerturbationFrame",
            "AffineRestriction", "shape_slice", "SlenderBody", "chain_approximation", "serpenoid_modes",

@@ -1,122 +1,71 @@
 """Floating snake: a three-link chain in free space conserving zero momentum, book section 3.4.3."""
 from __future__ import annotations
 
-import numpy as np
-
-from .._validate import as_array, check_positive
-from ..connection import connection_from_pfaffian, metric_from_jacobians
-from ..three_link_chain import com_frame
-from .three_link import LinkMetricSystem
+from .._validate import as_array
+from .link_chain import LinkChain
+from .three_link import three_lengths
 
 __all__ = ["FloatingSnake"]
 
+#: The body frames of section 3.4.3 a floating snake is built in, and the names ``body_frames`` gives them.
+FRAME_NAMES = {"com middle": "centre of mass (middle-link axes)", "middle": "middle link",
+               "com": "centre of mass", "minimum perturbation": "minimum perturbation"}
 
-class FloatingSnake(LinkMetricSystem):
-    """Three rigid links in free space (e.g. an astronaut or a falling cat), total momentum zero.
+
+def _three(value, name, what):
+    if value is None:
+        return None
+    v = as_array(value, name, (3,), what=what)
+    if v.ndim != 1:
+        raise ValueError(f"{name} must have shape (3,); got shape {v.shape}")
+    return v
+
+
+class FloatingSnake(LinkChain):
+    """Three rigid links in free space (e.g. an astronaut or a falling cat), total momentum zero:
+    ``LinkChain(lengths, "floating", masses=..., inertias=...)`` with N = 3.
 
     The kinetic energy is ``1/2 sum xi_i^T diag(m_i, m_i, I_i) xi_i`` with link body velocities
     ``xi_i = J_i [xi; r_dot]``; its mass matrix has the block form (3.39)-(3.40), so
     ``A = I_locked^-1 (I A)`` (the corrected (3.38)). The Pfaffian is the momentum map, the top
     three rows of the mass matrix.
 
-    ``inertias=None`` means uniform slender rods, ``I_i = m_i l_i^2 / 12``. ``frame="com"`` puts
-    the body frame at the system's centre of mass, oriented with the middle link (then the first
-    two rows of A vanish: the centre of mass does not move); ``frame="middle"`` uses the middle
-    link's own frame. The frame is fixed at construction.
+    ``inertias=None`` means uniform slender rods, ``I_i = m_i l_i^2 / 12``. The body frame is
+    fixed at construction (one of :data:`gm_core.systems.link_chain.FRAMES`):
+
+    * ``frame="com middle"`` (default, section 3.4.3): at the system's centre of mass, with the
+      middle link's axes; the first two rows of A vanish (the centre of mass does not move) and
+      the third is the middle link's turning rate, the draft's (3.38);
+    * ``frame="middle"``: the middle link's own frame;
+    * ``frame="com"``: the centre of mass with the mass-weighted mean link orientation, what
+      "centre of mass frame" means everywhere else in the course (exercise 2.3); its first two
+      rows vanish too, its third is (3.38)'s minus the rate of the mean orientation.
     """
 
-    name = "floating snake"
-
-    def __init__(self, lengths=(1.0, 1.0, 1.0), masses=(1.0, 1.0, 1.0), inertias=None, frame="com"):
-        super().__init__(lengths)
-        masses = as_array(masses, "masses", (3,), what=" (the three link masses)")
-        if masses.ndim != 1:
-            raise ValueError(f"masses must have shape (3,); got shape {masses.shape}")
-        check_positive(masses, "masses")
-        self.masses = tuple(float(m) for m in masses)
-        if inertias is None:
-            self.inertias = tuple(m * l ** 2 / 12 for m, l in zip(self.masses, self.lengths))
-        else:
-            inertias = as_array(inertias, "inertias", (3,), what=" (the links' moments of inertia about their centres)")
-            if inertias.ndim != 1:
-                raise ValueError(f"inertias must have shape (3,); got shape {inertias.shape}")
-            check_positive(inertias, "inertias")
-            self.inertias = tuple(float(i) for i in inertias)
-        if frame not in ("com", "middle"):
-            raise ValueError(f"frame must be 'com' or 'middle'; got {frame!r}")
-        self.frame = frame
-
-    # -- centre of mass ----------------------------------------------------------------------
-    def _com(self, r):
-        """Centre of mass (..., 2) in the middle link's frame and its derivative (..., 2, 2) wrt r."""
-        beta, dbeta = com_frame(r, self.lengths, weights=self.masses)
-        return beta[..., :2], dbeta[..., :2, :]
-
-    def frame_offset(self, r):
-        r = self._shape(r)
-        off = np.zeros(r.shape[:-1] + (3,))
-        if self.frame == "com":
-            off[..., :2] = -self._com(r)[0]
-        return off
-
-    def frame_change(self, r):
-        if self.frame != "com":
-            return None
-        r = self._shape(r)
-        c, dc = self._com(r)
-        T = np.zeros(r.shape[:-1] + (5, 5))
-        T[..., 0, 0] = T[..., 1, 1] = T[..., 2, 2] = T[..., 3, 3] = T[..., 4, 4] = 1.0
-        # middle link at -c in the COM frame: xi_mid = Ad_{h^-1} xi_com - dc/dr r_dot
-        T[..., 0, 2] = c[..., 1]
-        T[..., 1, 2] = -c[..., 0]
-        T[..., 0:2, 3:5] = -dc
-        return T
-
-    def link_matrices(self):
-        """Link mass matrices diag(m_i, m_i, I_i), each (3, 3), in the links' centre frames."""
-        return [np.diag([m, m, i]) for m, i in zip(self.masses, self.inertias)]
+    def __init__(self, lengths=(1.0, 1.0, 1.0), masses=(1.0, 1.0, 1.0), inertias=None, frame="com middle"):
+        masses = _three(masses, "masses", " (the three link masses)")
+        inertias = _three(inertias, "inertias", " (the links' moments of inertia about their centres)")
+        super().__init__(three_lengths(lengths), "floating", masses=masses, inertias=inertias, frame=frame)
+        self.name = "floating snake"
 
     def mass_matrix(self, r):
         """Mass matrix (..., 5, 5) of (3.39): sum of J_i^T diag(m_i, m_i, I_i) J_i."""
         return self.metric(r)
 
-    def connection(self, r):
-        """Local connection (..., 3, 2) from the mass matrix, (3.40).
-
-        Computed in the middle link's frame and then moved to the centre-of-mass frame: with
-        the middle link at -c(r) in the COM frame, ``xi_mid = B xi_com - (dc/dr) r_dot`` where
-        ``B = [[1, 0, c_y], [0, 1, -c_x], [0, 0, 1]]``, so ``A_com = B^-1 (A_mid - [dc/dr; 0])``.
-        """
-        r = self._shape(r)
-        J = self.middle_link_jacobians(r)
-        A = connection_from_pfaffian(metric_from_jacobians(J, self.link_matrices(), rows=3))
-        if self.frame == "com":
-            c, dc = self._com(r)
-            A[..., :2, :] -= dc
-            A[..., 0, :] -= c[..., 1, None] * A[..., 2, :]
-            A[..., 1, :] += c[..., 0, None] * A[..., 2, :]
-        return A
-
-    def link_weights(self):
-        """Normalised link weights for the centre of mass: the masses."""
-        w = np.array(self.masses)
-        return w / w.sum()
-
     def body_frames(self, bounds=None, *, n=None, centre_of_mass=True, minimum_perturbation=True):
-        """{name: system}: this frame and the other one of section 3.4.3 (centre of mass oriented
-        with the middle link, or the middle link): the frames its physics defines, always listed;
-        ``centre_of_mass`` adds nothing (its centre-of-mass frame is one of them); and, if asked,
+        """{name: system}: this frame and the other one of section 3.4.3 (the centre of mass with
+        the middle link's axes, or the middle link), always listed, as the frames its physics
+        defines; if asked, the centre of mass with the mean orientation (``centre_of_mass``) and
         minimum perturbation over ``bounds``."""
-        from .minimum_perturbation import MinimumPerturbationFrame
-        from .reframed import Reframed
-
-        names = {"com": "centre of mass", "middle": "middle link"}
-        other = "middle" if self.frame == "com" else "com"
-        out = {names[self.frame]: self, names[other]: FloatingSnake(self.lengths, self.masses, self.inertias, other)}
-        if minimum_perturbation:
-            out["minimum perturbation"] = Reframed(self, MinimumPerturbationFrame.fit(self, bounds, n),
-                                                   name=f"{self.name} (minimum perturbation)")
-        return out
+        own = {FRAME_NAMES[self.frame]: self}
+        for frame in ("com middle", "middle"):
+            if frame != self.frame:
+                own[FRAME_NAMES[frame]] = self.with_frame(frame)
+        if centre_of_mass and self.frame != "com":
+            own[FRAME_NAMES["com"]] = self.with_frame("com")
+        if minimum_perturbation and self.frame != "minimum perturbation":
+            own[FRAME_NAMES["minimum perturbation"]] = self.with_frame("minimum perturbation", bounds, n)
+        return own
 
     def __repr__(self):
         return (f"FloatingSnake(lengths={self.lengths}, masses={self.masses}, "

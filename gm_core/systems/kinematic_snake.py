@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..three_link_chain import middle_frame_T
 from .base import Part, rectangle_outline
 from .three_link import ThreeLinkSystem
 
@@ -31,8 +32,8 @@ class KinematicSnake(ThreeLinkSystem):
 
     def pfaffian(self, r):
         """Pfaffian (..., 3, 5): the lateral (y) rows of J1, J2, J3, i.e. no link slides sideways."""
-        J1, J2, J3 = self.middle_link_jacobians(r)
-        return np.stack([J1[..., 1, :], J2[..., 1, :], J3[..., 1, :]], -2)
+        batch, _, J = middle_frame_T(self._shape(r), self.lengths, rows=(1,))    # J (row, column, link, M)
+        return J[0].transpose(2, 1, 0).reshape(batch + (3, 5))
 
     def _closed_form_parts(self, r):
         """Numerator N (..., 3, 2), denominator D (...,) of the closed form A = N / D and their

@@ -15,28 +15,44 @@ are :func:`gm_core.chains.link_chain_poses` and :func:`gm_core.chains.link_chain
 
 The system matrix ``sum J_i^T M_i J_i`` (:meth:`LinkChain.metric`, (3.39), (3.47)) has the total
 wrench or momentum as its top rows: the Pfaffian. No shape is singular (the locked block is
-positive definite). Body frames (``frame``): ``"middle"`` (the middle link for odd N, the middle
-joint, oriented halfway between its two links, for even N), ``"com"`` (the centre of mass --
-lengths as weights unless floating -- with the mean link orientation), ``"minimum
-perturbation"`` (Hatton's frame over ``bounds``, composed on top of the middle frame, see
-:mod:`gm_core.systems.minimum_perturbation`).
+positive definite). Body frames (``frame``, :data:`FRAMES`):
+
+* ``"middle"``: the middle link for odd N; for even N the middle joint, oriented halfway between
+  its two links;
+* ``"com"``: **the centre of mass with the mean orientation**, the one meaning of "centre of
+  mass frame" in this course (exercise 2.3, (2.69); :class:`~gm_core.systems.CentreOfMassFrame`;
+  ``body_frames()["centre of mass"]`` of every system made of links): position the weighted mean
+  of the link centres, orientation the weighted mean of the link orientations, weights the masses
+  if floating, else the lengths;
+* ``"com middle"``: the centre of mass with the middle frame's axes, the frame of section 3.4.3
+  in which the draft writes the floating snake's connection (3.38) (the default of
+  :class:`~gm_core.systems.FloatingSnake`); its theta row is the middle frame's;
+* ``"minimum perturbation"``: Hatton's frame over ``bounds``, composed on top of the middle frame
+  (or, through :meth:`LinkChain.with_frame`, of the frame the chain was in;
+  :mod:`gm_core.systems.minimum_perturbation`).
+
+Constraint curvature in a frame other than the middle one is the middle frame's moved by gauge
+covariance, ``D(-A~) = Ad_{beta^-1} D(-A)`` (:mod:`gm_core.systems.reframed`).
 """
 from __future__ import annotations
+
+import copy
 
 import numpy as np
 
 from .._validate import as_array, check_int, check_option, check_positive, positive_number
-from ..chains import link_chain_jacobians, link_chain_poses
+from ..chains import _chain_jacobians_T, _chain_poses_T, _flat, _with_trig
 from ..connection import connection_from_pfaffian, shape_space_metric
 from ..fluids import ellipse_added_mass, slender_link_drag
 from ..groups import SE2
 from .base import LocomotionSystem, Part, ellipse_outline, rectangle_outline
-from .reframed import body_jacobian
 
 __all__ = ["LinkChain", "PHYSICS", "FRAMES", "MAX_LINKS"]
 
 PHYSICS = ("low_re", "high_re", "floating")
-FRAMES = ("middle", "com", "minimum perturbation")
+FRAMES = ("middle", "com", "com middle", "minimum perturbation")
+#: Suffix of a chain's name when :meth:`LinkChain.with_frame` moves it to these frames.
+FRAME_SUFFIX = {"com": " (centre of mass, mean orientation)", "minimum perturbation": " (minimum perturbation)"}
 #: Most links a chain may have (a typo such as 10**6 links must not hang the kernel).
 MAX_LINKS = 200
 _PHYSICS_NAMES = {"low_re": "low-Reynolds", "high_re": "high-Reynolds", "floating": "floating"}
@@ -71,7 +87,6 @@ class LinkChain(LocomotionSystem):
         N = len(lengths)
         self.lengths = _per_link(lengths, "lengths", N, " (the link lengths)")
         self.physics = check_option(physics, "physics", PHYSICS)
-        self.frame = check_option(frame, "frame", FRAMES)
         self.n_links, self.n_shape = N, N - 1
         self.shape_names = tuple(f"alpha{j + 1}" for j in range(N - 1))
         self.shape_limits = ((-np.pi, np.pi),) * (N - 1)
@@ -85,13 +100,23 @@ class LinkChain(LocomotionSystem):
         self.inertias = (tuple(m * l ** 2 / 12 for m, l in zip(self.masses, self.lengths)) if inertias is None
                          else _per_link(inertias, "inertias", N, " (the links' moments of inertia about their centres)"))
         self._diag = np.array([np.diag(M) for M in self.link_matrices()])          # (N, 3): all diagonal
+        self._L = np.array(self.lengths)
         self.name = f"{N}-link {_PHYSICS_NAMES[self.physics]} chain"
-        self._mp = None
-        if self.frame == "minimum perturbation":
-            from .minimum_perturbation import MinimumPerturbationFrame
+        self._set_frame(frame, bounds, nodes)
 
-            middle = self.with_frame("middle")
-            self._mp = MinimumPerturbationFrame.fit(middle, bounds, nodes)
+    def _set_frame(self, frame, bounds, nodes, base="middle"):
+        """Set the body frame; a minimum-perturbation frame is fitted on top of the frame ``base``."""
+        self.frame = check_option(frame, "frame", FRAMES)
+        self._mp_base = base
+        self._mp, self._middle = None, None
+        self.shape_limits = ((-np.pi, np.pi),) * self.n_shape
+        self.may_be_singular, self.singular_description = False, "never singular"
+        if self.frame == "minimum perturbation":
+            from .minimum_perturbation import MAX_DIMENSION, MinimumPerturbationFrame, too_many_dimensions
+
+            if self.n_shape > MAX_DIMENSION:
+                raise ValueError(too_many_dimensions("frame='minimum perturbation'", self.name, self.n_shape))
+            self._mp = MinimumPerturbationFrame.fit(self.with_frame(base), bounds, nodes)
             self.shape_limits = self._mp.bounds
             self.may_be_singular = True
             self.singular_description = self._mp.domain_description
@@ -116,8 +141,13 @@ class LinkChain(LocomotionSystem):
                     aspect_ratio=self.aspect_ratio, fluid_density=self.fluid_density, body_density=self.body_density)
 
     def with_frame(self, frame, bounds=None, nodes=None):
-        """The same chain seen from another body frame (one of :data:`FRAMES`)."""
-        return LinkChain(self.lengths, frame=frame, bounds=bounds, nodes=nodes, **self._options())
+        """The same chain (same class, same physics) seen from another body frame (one of
+        :data:`FRAMES`); its name gains the suffix of :data:`FRAME_SUFFIX`."""
+        new = copy.copy(self)
+        new._set_frame(frame, bounds, nodes, self._mp_base if self.frame == "minimum perturbation" else self.frame)
+        if new.frame != self.frame:
+            new.name = self.name.removesuffix(FRAME_SUFFIX.get(self.frame, "")) + FRAME_SUFFIX.get(new.frame, "")
+        return new
 
     def body_frames(self, bounds=None, *, n=None, centre_of_mass=True, minimum_perturbation=True):
         """{name: system}: the middle link (or joint), the centre of mass and, if asked and feasible
@@ -126,7 +156,7 @@ class LinkChain(LocomotionSystem):
         from .minimum_perturbation import MAX_DIMENSION
 
         middle = "middle link" if self.n_links % 2 else "middle joint"
-        out = {middle: self.with_frame("middle")}
+        out = {middle: self if self.frame == "middle" else self.with_frame("middle")}
         if centre_of_mass:
             out["centre of mass"] = self.with_frame("com")
         if minimum_perturbation and self.n_shape <= MAX_DIMENSION:
@@ -141,101 +171,157 @@ class LinkChain(LocomotionSystem):
         if self.physics == "floating":
             return [np.diag([m, m, i]) for m, i in zip(self.masses, self.inertias)]
         out = []
-        for l in self.lengths:
-            a, b = l / 2, l / 2 / self.aspect_ratio
+        for a, b in self.semi_axes():
             m = self.body_density * np.pi * a * b
             out.append(np.diag([m, m, m * (a ** 2 + b ** 2) / 4]) + ellipse_added_mass(a, b, self.fluid_density))
         return out
+
+    def semi_axes(self):
+        """[(a_i, b_i)]: the semi-axes l_i / 2 and l_i / (2 aspect_ratio) of the links as ellipses (high Re)."""
+        return [(l / 2, l / 2 / self.aspect_ratio) for l in self.lengths]
 
     def link_weights(self):
         """Normalised link weights for the centre of mass: masses if floating, else lengths."""
         w = np.array(self.masses if self.physics == "floating" else self.lengths)
         return w / w.sum()
 
-    # -- kinematics ----------------------------------------------------------------------------
-    def _frame_pose(self, P, B, alpha):
-        """Pose (..., 3) of the body frame relative to link 1 and its body Jacobian (..., 3, n)."""
-        N = self.n_links
-        if self.frame == "com":
-            w = self.link_weights()
-            th = P[..., 2]
-            c, s = np.cos(th)[..., None], np.sin(th)[..., None]
-            dp = np.stack([c * B[..., 0, :] - s * B[..., 1, :], s * B[..., 0, :] + c * B[..., 1, :], B[..., 2, :]], -2)
-            beta = np.einsum("i,...ij->...j", w, P)
-            return beta, body_jacobian(beta, np.einsum("i,...ijk->...jk", w, dp))
-        m = N // 2
-        if N % 2:
-            beta, Bb = P[..., m, :], B[..., m, :, :]
-        else:   # the middle joint, between links m and m + 1 (1-based), halfway in orientation
-            j = m - 1
-            step = np.zeros(P.shape[:-2] + (3,))
-            step[..., 0] = self.lengths[j] / 2
-            step[..., 2] = alpha[..., j] / 2
-            beta = SE2.compose(P[..., j, :], step)
-            Bb = SE2.Ad_inv(step) @ B[..., j, :, :]
-            Bb[..., 2, j] += 0.5
-        if self._mp is not None:
-            b2 = self._mp.pose(alpha)
-            Bb = SE2.Ad_inv(b2) @ Bb + self._mp.jacobian(alpha)
-            beta = SE2.compose(beta, b2)
-        return beta, Bb
+    # -- kinematics (batch-last arrays, see gm_core.chains._chain_poses_T) ----------------------
+    def _frame_pose(self, P, B, a, frame=None):
+        """Pose ``(x, y, theta, cos theta, sin theta)`` (each (M,)) of the body frame (or of ``frame``)
+        relative to link 1 and its body Jacobian ``(Bx, By, Btheta)`` (each (n, M)), from the
+        kernel's ``P, B`` (:func:`gm_core.chains._chain_poses_T`); ``a (n, M)`` the joint angles."""
+        frame = frame or self.frame
+        if frame == "minimum perturbation":
+            beta, Bb = self._frame_pose(P, B, a, self._mp_base)
+            r = a.T
+            b2, jac = self._mp.pose(r), self._mp.jacobian(r)
+            beta = SE2.compose(np.stack(beta[:3], -1), b2)
+            Bb = SE2.Ad_inv(b2) @ np.stack(Bb).transpose(2, 0, 1) + jac
+            return _with_trig(*beta.T), tuple(Bb.transpose(1, 2, 0))
+        if frame in ("com", "com middle"):
+            w = self.link_weights()[:, None]
+            (px, py, th, c, s), (B0, B1, B2) = P, B
+            cc, ss = c[:, None], s[:, None]
+            x, y = (w * px).sum(0), (w * py).sum(0)
+            dx, dy = (w[..., None] * (cc * B0 - ss * B1)).sum(0), (w[..., None] * (ss * B0 + cc * B1)).sum(0)
+            if frame == "com middle":      # the middle frame's orientation and its rate
+                mid, Bm = self._middle_pose(P, B, a)
+                _, _, t, cb, sb = mid
+                dt = Bm[2]
+            else:
+                t = (w * th).sum(0)
+                cb, sb = np.cos(t), np.sin(t)
+                dt = np.broadcast_to((w[..., None] * B2).sum(0), dx.shape)
+            return (x, y, t, cb, sb), (cb * dx + sb * dy, cb * dy - sb * dx, dt)
+        return self._middle_pose(P, B, a)
 
-    def _kinematics(self, r):
+    def _middle_pose(self, P, B, a):
+        """Pose and body Jacobian, batch-last as in :meth:`_frame_pose`, of the middle link (odd N)
+        or of the middle joint, oriented halfway between its links (even N)."""
+        N = self.n_links
+        m = N // 2
+        (px, py, th, c, s), (B0, B1, B2) = P, B
+        if N % 2:
+            return tuple(p[m] for p in P), (B0[m], B1[m], np.broadcast_to(B2[m], B0[m].shape))
+        j = m - 1               # the joint between links m and m + 1 (1-based)
+        h = self.lengths[j] / 2
+        cp, sp = np.cos(a[j] / 2), np.sin(a[j] / 2)      # the step (h, 0, a_j / 2) from link j
+        beta = (px[j] + h * c[j], py[j] + h * s[j], th[j] + a[j] / 2, c[j] * cp - s[j] * sp, s[j] * cp + c[j] * sp)
+        Bt = np.array(np.broadcast_to(B2[j], B0[j].shape))
+        Bx = cp * B0[j] + sp * B1[j] + sp * h * Bt        # Ad_inv of the step
+        By = cp * B1[j] - sp * B0[j] + cp * h * Bt
+        Bt[j] += 0.5
+        return beta, (Bx, By, Bt)
+
+    def _kinematics_T(self, r):
+        """(r, batch shape, Q, J) in the batch-last layout of :func:`gm_core.chains._chain_jacobians_T`."""
         r = self._shape(r)
-        P, B = link_chain_poses(r, self.lengths)
-        beta, Bb = self._frame_pose(P, B, r)
-        Q, J = link_chain_jacobians(P, B, beta, Bb)
-        return r, Q, J
+        a, batch = _flat(r)
+        P, B = _chain_poses_T(a, self._L)
+        Q, J = _chain_jacobians_T(P, B, *self._frame_pose(P, B, a))
+        return r, batch, Q, J
 
     def link_poses(self, r):
         """Poses (..., N, 3) of the link centres in the body frame."""
-        return self._kinematics(r)[1]
+        r, batch, Q, J = self._kinematics_T(r)
+        return np.stack(Q[:3]).T.reshape(batch + (self.n_links, 3))
 
     def link_jacobians(self, r):
         """Link Jacobians (..., N, 3, 3 + n) from (xi, r_dot) to each link's body velocity, in the body frame."""
-        return self._kinematics(r)[2]
+        r, batch, Q, J = self._kinematics_T(r)
+        return J.transpose(3, 2, 0, 1).reshape(batch + (self.n_links, 3, 3 + self.n_shape))
+
+    def _middle_chain(self):
+        """This chain seen from its middle link (or joint), cached."""
+        if self.frame == "middle":
+            return self
+        if self._middle is None:
+            self._middle = self.with_frame("middle")
+        return self._middle
+
+    def middle_link_jacobians(self, r):
+        """(J_1, ..., J_N), each (..., 3, 3 + n): the link Jacobians from (xi_middle, r_dot), with the
+        middle link (or joint) as body frame whatever this chain's frame; (2.57)-(2.59) for N = 3."""
+        return tuple(np.moveaxis(self._middle_chain().link_jacobians(r), -3, 0))
+
+    def _weighted(self, J, rows, batch):
+        """``sum_i (J_i^T M_i J_i)[:rows]`` (batch + (rows, 3 + n)) for the diagonal link matrices M_i,
+        from the batch-last J (3, 3 + n, N, M): one contraction over the links and the rows of J."""
+        X = np.einsum("rkim,rjim->mkj", J[:, :rows] * self._diag.T[:, None, :, None], J)
+        return X.reshape(batch + X.shape[1:])
 
     def metric(self, r):
         """System matrix (..., 3 + n, 3 + n): ``sum J_i^T M_i J_i`` over the links (drag or mass matrix)."""
-        r, Q, J = self._kinematics(r)
-        return self._masked(r, self._weighted(J, J))
+        r, batch, Q, J = self._kinematics_T(r)
+        return self._masked(r, self._weighted(J, 3 + self.n_shape, batch))
 
     def pfaffian(self, r):
         """Pfaffian (..., 3, 3 + n): the top rows of :meth:`metric` (total wrench or momentum = 0)."""
-        r, Q, J = self._kinematics(r)
-        return self._masked(r, self._weighted(J[..., :3], J))
+        r, batch, Q, J = self._kinematics_T(r)
+        return self._masked(r, self._weighted(J, 3, batch))
 
     def connection(self, r):
         """Local connection (..., 3, n): xi = -A r_dot (3.10) from the Pfaffian, (3.40)."""
         return connection_from_pfaffian(self.pfaffian(r))
+
+    def constraint_curvature(self, r):
+        """Constraint curvature D(-A) ((..., 3) for two joints, else (..., 3, n, n)): in the middle
+        frame from the connection's derivative, in any other frame moved there by gauge covariance
+        ``D(-A~) = Ad_{beta^-1} D(-A)`` with beta the frame's pose in the middle frame."""
+        if self.frame == "middle":
+            return super().constraint_curvature(r)
+        r = self._shape(r)
+        F = self._middle_chain().constraint_curvature(r)
+        a, batch = _flat(r)
+        P, B = _chain_poses_T(a, self._L)
+        pose = lambda frame: np.stack(self._frame_pose(P, B, a, frame)[0][:3], -1).reshape(batch + (3,))  # noqa: E731
+        Ad = SE2.Ad_inv(SE2.compose(SE2.inverse(pose("middle")), pose(self.frame)))
+        F = (Ad @ F[..., None])[..., 0] if self.n_shape == 2 else np.einsum("...ij,...jkl->...ikl", Ad, F)
+        return self._masked(r, F)
 
     def shape_metric(self, r):
         """Cost metric on shape space M(r) = [-A; I]^T D [-A; I] (..., n, n) (power or twice kinetic energy)."""
         D = self.metric(r)
         return shape_space_metric(D, connection_from_pfaffian(D[..., :3, :]))
 
-    def _weighted(self, left, J):
-        """sum_i left_i^T M_i J_i for diagonal link matrices M_i, as one batched product (..., k, 3 + n)."""
-        N = self.n_links
-        Jw = (J * self._diag[:, :, None]).reshape(J.shape[:-3] + (3 * N, J.shape[-1]))
-        return np.swapaxes(left.reshape(left.shape[:-3] + (3 * N, left.shape[-1])), -1, -2) @ Jw
-
     def _masked(self, r, X):
+        """X (..., *tail) with NaN at the shapes outside the minimum-perturbation frame's box."""
         if self._mp is None:
             return X
-        return np.where(self._mp.contains(r)[..., None, None], X, np.nan)
+        inside = self._mp.contains(r)
+        return np.where(inside.reshape(inside.shape + (1,) * (X.ndim - inside.ndim)), X, np.nan)
 
     def singularity(self, r):
-        r = self._shape(r)
-        return np.where(self._mp.contains(r), 1.0, 0.0) if self._mp is not None else np.ones(r.shape[:-1])
+        """Scaled det(omega_xi) (...,): never zero (the locked block is positive definite), except
+        outside a minimum-perturbation frame's box, where it is 0."""
+        return self._masked(self._shape(r), super().singularity(r))
 
     # -- drawing -------------------------------------------------------------------------------
     def parts(self):
         if self.physics == "low_re":
             return [Part(f"link {i + 1}", ellipse_outline(l / 2, l / 24), "link") for i, l in enumerate(self.lengths)]
         if self.physics == "high_re":
-            return [Part(f"link {i + 1}", ellipse_outline(l / 2, l / 2 / self.aspect_ratio), "link")
-                    for i, l in enumerate(self.lengths)]
+            return [Part(f"link {i + 1}", ellipse_outline(a, b), "link") for i, (a, b) in enumerate(self.semi_axes())]
         w = 0.08 * sum(self.lengths) / 3
         return [Part(f"link {i + 1}", rectangle_outline(l, w), "link") for i, l in enumerate(self.lengths)]
 

@@ -1,16 +1,15 @@
 """Three-link swimmer at low Reynolds number (resistive force theory), book section 3.4.4."""
 from __future__ import annotations
 
-from .._validate import positive_number
-from ..fluids import slender_link_drag
-from .base import Part, ellipse_outline
-from .three_link import LinkMetricSystem
+from .link_chain import LinkChain
+from .three_link import three_lengths
 
 __all__ = ["LowReSwimmer"]
 
 
-class LowReSwimmer(LinkMetricSystem):
-    """Three slender links in a viscous fluid; drag balances exactly, so net force and moment vanish.
+class LowReSwimmer(LinkChain):
+    """Three slender links in a viscous fluid: ``LinkChain(lengths, "low_re", drag_ratio=...)``
+    with N = 3, body frame the middle link; drag balances exactly, so net force and moment vanish.
 
     Per unit length, each link feels longitudinal drag ``-c u_par`` and lateral drag
     ``-k u_perp`` with ``k = drag_ratio * c`` (resistive force theory; c = 1 here because the
@@ -18,7 +17,8 @@ class LowReSwimmer(LinkMetricSystem):
     ``F_x = -c l xi_x``, ``F_y = -k l xi_y``, ``M = -k l^3/12 xi_theta`` about the link centre,
     i.e. (3.41)-(3.43) with L = l/2 (:func:`gm_core.fluids.slender_link_drag`). The net wrench in
     the body frame, ``sum J_xi,i^T F_i``, is the corrected (3.44) (it includes the middle link's
-    own drag and uses each link's own length); setting it to zero is the Pfaffian (3.45).
+    own drag and uses each link's own length); setting it to zero is the Pfaffian (3.45). All of
+    it is :class:`~gm_core.systems.LinkChain`'s (one copy for every N).
 
     What ``drag_ratio = 1`` means: drag is then isotropic, ``-c u`` whatever the direction, so the
     total force is ``-c`` times the velocity of the length-weighted centroid of the links; zero
@@ -29,23 +29,13 @@ class LowReSwimmer(LinkMetricSystem):
     is what lets them swim.
     """
 
-    name = "low-Reynolds swimmer"
-
     def __init__(self, lengths=(1.0, 1.0, 1.0), drag_ratio=2.0):
-        super().__init__(lengths)
-        self.drag_ratio = positive_number(drag_ratio, "drag_ratio")
-
-    def link_matrices(self):
-        """Link drag matrices diag(l, k l, k l^3/12), each (3, 3), in the links' centre frames."""
-        return [slender_link_drag(l, self.drag_ratio) for l in self.lengths]
+        super().__init__(three_lengths(lengths), "low_re", drag_ratio=drag_ratio)
+        self.name = "low-Reynolds swimmer"
 
     def drag_matrix(self, r):
         """Drag matrix (..., 5, 5): sum of J_i^T D_i J_i; its top rows map (xi, r_dot) to -(net wrench)."""
         return self.metric(r)
-
-    def parts(self):
-        return [Part(f"link {i + 1}", ellipse_outline(l / 2, l / 24), "link")
-                for i, l in enumerate(self.lengths)]
 
     def __repr__(self):
         return f"LowReSwimmer(lengths={self.lengths}, drag_ratio={self.drag_ratio:g})"

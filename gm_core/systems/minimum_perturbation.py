@@ -24,12 +24,21 @@ from .._validate import SingularShapeError, as_array
 from ..locomotion import check_system
 from .reframed import BodyFrame, body_jacobian
 
-__all__ = ["MinimumPerturbationFrame", "MAX_NODES", "MAX_DIMENSION", "default_nodes"]
+__all__ = ["MinimumPerturbationFrame", "MAX_NODES", "MAX_DIMENSION", "default_nodes", "too_many_dimensions"]
 
 #: Largest finite-element grid (nodes) and box dimension the solver accepts.
 MAX_NODES = 40_000
 MAX_DIMENSION = 3
 _GAUSS = ((1 - 1 / np.sqrt(3)) / 2, (1 + 1 / np.sqrt(3)) / 2)
+
+
+def too_many_dimensions(argument, name, d):
+    """The message that refuses minimum-perturbation coordinates on a box of dimension d > MAX_DIMENSION."""
+    return (f"{argument}: minimum-perturbation coordinates are feasible here for at most {MAX_DIMENSION} shape "
+            f"variables (chains of up to {MAX_DIMENSION + 1} links): {name} has {d}, and the finite-element problem "
+            f"on a {d}-dimensional box takes minutes (about 2 minutes for 9^4 nodes on this machine). Use "
+            "frame='com' (centre of mass, mean orientation), which is close to it for swimmers, or a 2-D slice "
+            "(gm_core.systems.shape_slice)")
 
 
 def default_nodes(dim):
@@ -124,11 +133,7 @@ class MinimumPerturbationFrame(BodyFrame):
 
         d = check_system(system)
         if d > MAX_DIMENSION:
-            raise ValueError(f"minimum-perturbation coordinates are feasible here for at most {MAX_DIMENSION} shape "
-                             f"variables (chains of up to {MAX_DIMENSION + 1} links): {system.name} has {d}, and the "
-                             f"finite-element problem on a {d}-dimensional box takes minutes (about 2 minutes for 9^4 "
-                             "nodes on this machine). Use frame='com' (centre of mass, mean orientation), which is "
-                             "close to it for swimmers, or a 2-D slice (gm_core.systems.shape_slice)")
+            raise ValueError(too_many_dimensions("system", system.name, d))
         bounds = system.shape_limits if bounds is None else bounds
         B = as_array(bounds, "bounds", (2,), what=f" (a box of shape space: one (lo, hi) per shape variable, {d} here)")
         if B.shape != (d, 2):

@@ -49,12 +49,25 @@ class AffineRestriction(LocomotionSystem):
     def connection(self, r):
         return self.base_system.connection(self.full_shape(r)) @ self.matrix
 
+    def _base_has_closed_form(self):
+        return type(self.base_system).connection_derivative is not LocomotionSystem.connection_derivative
+
     def connection_derivative(self, r):
+        """(A_q, dA_q): the base's closed form pulled back, else central differences of
+        :meth:`connection` along the m directions of the restriction (not the base's n)."""
+        if not self._base_has_closed_form():
+            return super().connection_derivative(r)
         A, dA = self.base_system.connection_derivative(self.full_shape(r))
         S = self.matrix
         return A @ S, np.einsum("...ijk,ja,kb->...iab", dA, S, S)
 
     def constraint_curvature(self, r):
+        """The pull-back of the base's curvature 2-form, ``F_q,ab = S_ia S_jb F_ij``; computed as the
+        curvature of the restricted connection (the same thing: curvature commutes with pull-back),
+        which needs differences along the m directions only, unless the base has a closed-form
+        derivative or is itself two-dimensional (then its own curvature is pulled back)."""
+        if not self._base_has_closed_form() and self.base_system.n_shape > self.n_shape:
+            return super().constraint_curvature(r)
         F = self.base_system.constraint_curvature(self.full_shape(r))
         S = self.matrix
         if self.base_system.n_shape == 2:        # F is the (1, 2) component: F_ij = F eps_ij

@@ -72,6 +72,6 @@ class BodyPointsPanel(ScenePanel):
 
     def controls_spec(self):
         c = se2_sliders(0.5, 0.3, 0.6, lim=2.0, labels=("g: x", "g: y", "g: θ"))
-        c["px"] = slider(0.6, -0.8, 0.8, description="body pₓᵇ")
-        c["py"] = slider(0.3, -0.4, 0.4, description="body p_yᵇ")
+        c["px"] = slider(0.6, -0.8, 0.8, description="body point pᵇ: x")
+        c["py"] = slider(0.3, -0.4, 0.4, description="body point pᵇ: y")
         return c

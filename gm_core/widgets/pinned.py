@@ -57,7 +57,8 @@ class RelativePosePanel(ScenePanel):
 class BetaVelocityPanel(ScenePanel):
     """The velocity of the centre-of-mass frame: carried by the middle link plus moved by the shape, (2.60)-(2.67)."""
 
-    title = "Velocity of a generalized body frame (fig. 2.9, section 2.5.6): ξ_β = Ad⁻¹_β (ξ₂ + v_β)"
+    title = ("Velocity of a generalized body frame (fig. 2.9, section 2.5.6): <i>ξ</i><sub>β</sub> = "
+             "Ad<sub>β</sub><sup>−1</sup> (<i>ξ</i><sub>2</sub> + <i>v</i><sub>β</sub>)")
     scene_class = BetaVelocityScene
 
     def controls_spec(self):

@@ -36,8 +36,8 @@ class LiftedScalarPanel(ScenePanel):
     scene_class = LiftedScalarScene
 
     def controls_spec(self):
-        return {"hx": slider(1.5, -1.0, 3.0, description="R²: hₓ"),
-                "hy": slider(1.0, -1.0, 2.5, description="R²: h_y"),
+        return {"hx": slider(1.5, -1.0, 3.0, description="R²: h (x part)"),
+                "hy": slider(1.0, -1.0, 2.5, description="R²: h (y part)"),
                 "h": slider(2.5, 0.2, 6.0, description="R⁺: h")}
 
 

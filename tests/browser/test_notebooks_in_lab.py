@@ -17,7 +17,6 @@ loses difference frames with and without key frames, a squeezed slider and a too
 from __future__ import annotations
 
 import time
-import warnings
 
 import browserlab
 import labview
@@ -25,16 +24,7 @@ import nbrun
 import pytest
 import student
 
-#: Panels whose quick drag is known to end on a picture that differs from the slow drag's, with
-#: the reason; each is still reported (as a warning) and is an open point of issue 19. Keyed by
-#: (notebook, "panel #k (cell c)").
-KNOWN_DRAG_DIFFERENCES = {
-    ("book/09-three-link-locomotors.ipynb", "panel #1 (cell 20)"):
-        "GaitPanel on the kinematic snake: about 3 % of the canvas differs after a quick drag of its "
-        "first slider (found in the lead's fresh-clone run; cause not yet found)",
-}
-
-pytestmark = pytest.mark.browser  # (conftest.py also puts every browser test in one xdist group)
+pytestmark = pytest.mark.browser  # (each notebook's test runs in its notebook's xdist group: conftest.py)
 
 NOTEBOOKS = browserlab.interactive_notebooks()
 
@@ -122,10 +112,7 @@ def test_interactive_notebook_as_a_student_uses_it(notebook, lab, record_timing,
         problems += anim_problems
         t0 = nbp.timings.mark("play", t0)
         drag_problems, drags = student.drag_check(nbp)
-        known = [p for p in drag_problems if (relpath, p.split(":")[0]) in KNOWN_DRAG_DIFFERENCES]
-        for p in known:  # reported, not failed: see KNOWN_DRAG_DIFFERENCES (issue 19 stays open for it)
-            warnings.warn(f"{relpath}: known open problem: {p}", stacklevel=1)
-        problems += [p for p in drag_problems if p not in known]
+        problems += drag_problems
         info["panels dragged"] = len(drags["panels"])
         nbp.timings.mark("drag", t0)
         problems += nbp.page_problems

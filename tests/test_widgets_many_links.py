@@ -1,0 +1,71 @@
+"""Notebook 11's panels, headless: ChainSlicePanel, WaveGaitPanel and OptimalGaitPanel (live optimisation)."""
+import os
+
+os.environ.setdefault("MPLBACKEND", "Agg")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+from gm_core.geometry import efficiency, wave_start  # noqa: E402
+from gm_core.systems import shape_slice  # noqa: E402
+from gm_core.widgets.many_links import ChainSlicePanel, OptimalGaitPanel, WaveGaitPanel  # noqa: E402
+
+
+def test_chain_slice_panel_shows_the_slice_of_the_designed_chain():
+    p = ChainSlicePanel(links=5, row=2)
+    p.set(axis1=2, axis2=3)
+    assert p.scene.system.n_links == 5 and p.scene.pair == (1, 2)
+    # the map is the slice's curvature: the (2, 3) component of the chain's 2-form on the slice
+    F = p.scene.map.values()[..., 2]
+    lim = p.scene.limits
+    q = np.array([0.4, -0.7])
+    full = np.zeros(4)
+    full[[1, 2]] = q
+    F_chain = p.scene.system.constraint_curvature(full)[2, 1, 2]
+    sl = shape_slice(p.scene.system, None, (1, 2), limits=lim)
+    np.testing.assert_allclose(sl.constraint_curvature(q)[2], F_chain, atol=1e-6)
+    assert np.isfinite(F).all() and F.shape == (p.scene.n_map, p.scene.n_map)
+    p.set(links=3, axis1=1, axis2=2, row=0)       # the axes clamp to the joints there are
+    assert p.controls["axis1"].max == 2 and p.scene.pair == (0, 1)
+    assert "row ξx" in p.scene.titles[0].text or "row x" in p.scene.titles[0].text
+
+
+def test_wave_gait_panel_moves_only_with_a_lag():
+    p = WaveGaitPanel(links=5, amplitude=0.9)
+    p.set(lag=0.0)
+    assert np.abs(p.scene.g[:2]).max() < 1e-9
+    p.set(lag=1.2)
+    assert np.hypot(*p.scene.g[:2]) > 0.1
+
+
+def test_optimal_gait_panel_runs_the_optimisation_with_progress_and_keeps_it():
+    p = OptimalGaitPanel(links=3)
+    start = efficiency(p.scene.system, wave_start(2), check=False)
+    assert np.isclose(p.scene.start_efficiency, start) and "optimise" in p.scene.text.text
+    assert p.scene.result is None and p.bar.value == 0
+    seen = []
+    p.bar.observe(lambda ch: seen.append(ch["new"]), names="value")
+    res = p.run(animate=False)
+    assert res.efficiency > start and res.nit >= 2
+    assert len(seen) >= 3 and seen[-1] == p.bar.max               # the bar moved step by step
+    assert "done" in p.status.value and f"{res.efficiency:.4f}" in p.status.value
+    assert "best" in p.scene.text.text and not p.button.disabled
+    drawn = p.scene.best_lines[0].get_ydata()
+    np.testing.assert_allclose(drawn, res.gait(np.linspace(0, 2 * np.pi, 121))[:, 0])
+    p.set(links=4)                       # another design: back to its start, nothing stored
+    assert p.scene.result is None and p.bar.value == 0 and len(p.scene.best_lines[0].get_xdata()) == 0
+    p.set(links=3)                       # the first design again: its result is kept
+    assert p.scene.result is res and "optimised" in p.status.value
+
+
+def test_optimal_gait_panel_animation_and_bad_values():
+    p = OptimalGaitPanel(links=3)
+    from gm_core.drawing.primitives import jshtml
+
+    anim, fig, traj = p.scene.animation(n_frames=6, cycles=1)
+    assert traj.r.shape == (6, 2)
+    assert "<img" in jshtml(anim).data          # plays without a kernel
+    with pytest.raises(ValueError, match="links"):
+        p.scene.set(links=9)
+    with pytest.raises(ValueError, match="order"):
+        p.scene.set(order=5)
