@@ -377,14 +377,8 @@ _STATUS_JS = r"""
   window.__gmKernelErrors = window.__gmKernelErrors || [];
   if (k && !k.__gmHooked) {
     k.__gmHooked = true;
-    // when the page last sent the kernel a widget message (a slider's change, a canvas' draw request)
-    k.anyMessage.connect((_, m) => {
-      if (m.direction === 'send' && m.msg.header.msg_type === 'comm_msg') window.__gmLastSent = performance.now();
-    });
     k.iopubMessage.connect((_, msg) => {
       const t = msg.header.msg_type, c = msg.content || {};
-      // when the kernel last sent a picture (a comm message with a binary buffer: ipympl)
-      if (t === 'comm_msg' && msg.buffers && msg.buffers.length) window.__gmLastPicture = performance.now();
       // errors of executed cells are in their outputs already; keep the rest (widget callbacks)
       if (msg.parent_header && msg.parent_header.msg_type === 'execute_request') return;
       if (t === 'error') window.__gmKernelErrors.push({path, text: `${c.ename}: ${c.evalue}\n` + (c.traceback || []).join('\n').replace(/\x1b\[[0-9;]*m/g, '').slice(-1500)});

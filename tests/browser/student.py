@@ -201,11 +201,6 @@ _STATE_JS = r"""
 }
 """
 
-# milliseconds since the kernel last sent a picture, and since the page last sent the kernel a
-# widget message (browserlab's hooks on the kernel connection)
-_PICTURE_AGE_JS = "() => window.__gmLastPicture === undefined ? 1e9 : performance.now() - window.__gmLastPicture"
-_SENT_AGE_JS = "() => window.__gmLastSent === undefined ? 1e9 : performance.now() - window.__gmLastSent"
-
 _PIXELS_JS = r"""
 (keys) => {
   const out = {};
@@ -271,63 +266,24 @@ def _drag(page, x0, y, x1, steps, pause_ms):
     page.mouse.up()
 
 
-#: Run in the kernel (after every slider message the browser sent before it: the kernel handles
-#: its messages in order): wait until no key frame (gm_core.drawing.blit.KeyFrames) is due, i.e.
-#: until a whole key-frame delay passes with none sent; the kernel's event loop runs the key
-#: frames' timers while this waits.
-SETTLE_CODE = r"""
-async def __gm_settle():
-    import asyncio, gc, sys
-    blit = sys.modules.get("gm_core.drawing.blit")
-    def key_frames():
-        return [o for o in gc.get_objects() if blit is not None and isinstance(o, blit.KeyFrames)]
-    window = max([k.delay for k in key_frames()] + [0.25]) + 0.05
-    for _ in range(40):
-        before = sum(k.sent for k in key_frames())
-        await asyncio.sleep(window)
-        if sum(k.sent for k in key_frames()) == before:
-            return
-    print("GM-SETTLE: key frames kept coming")
-await __gm_settle()
-del __gm_settle
-"""
-
-
-#: Seconds without a new picture from the kernel after which a canvas counts as final (longer
-#: than the panels' key-frame delay plus a full draw and its decoding, on a loaded machine).
+#: Seconds a canvas must stay unchanged (with the kernel idle) to count as final: longer than
+#: the panels' key-frame delay plus a full draw and its decoding, on a loaded machine.
 SETTLED = 1.5
 
 
 def _settle(nbp, keys, still: float = SETTLED, timeout: float = 30.0):
-    """Wait until the kernel has handled every slider message and sent every key frame due
-    (:data:`SETTLE_CODE`), then until no picture has come from the kernel for ``still`` s and
-    every listed canvas has been unchanged for min(``still``, 0.3) s, with the kernel idle
-    (the last pictures are decoded and drawn on the canvases)."""
-    import labview
-
+    """Wait until every listed canvas has been unchanged for ``still`` s and the kernel is idle
+    (``still`` is longer than the panels' key-frame delay)."""
     page = nbp.page
-    deadline = time.monotonic() + timeout
-    while True:
-        # The kernel handles the page's messages in order: when the probe returns, everything the
-        # page sent before it has been handled. A message sent meanwhile (a canvas asking for
-        # the full draw the kernel announced) is waited for by probing again.
-        t0 = time.monotonic()
-        out = labview.kernel_exec(nbp, SETTLE_CODE)
-        if "ERROR" in out or "GM-SETTLE" in out:
-            nbp.fail(f"waiting for the kernel to settle after the drags failed: {out[-800:]}")
-        if page.evaluate(_SENT_AGE_JS) / 1000 > time.monotonic() - t0 + 0.05:
-            break
-        if time.monotonic() > deadline:
-            nbp.fail(f"the page kept sending the kernel messages for {timeout:.0f} s after the drags")
     last = page.evaluate(_STATE_JS, keys)
     since = time.monotonic()
+    deadline = since + timeout
     while time.monotonic() < deadline:
-        page.wait_for_timeout(120)   # (hashing every canvas costs the page a few ms: not too often)
+        page.wait_for_timeout(100)
         now = page.evaluate(_STATE_JS, keys)
         if now != last:
             last, since = now, time.monotonic()
-        elif (time.monotonic() - since >= min(still, 0.3) and page.evaluate(_PICTURE_AGE_JS) >= still * 1000
-              and nbp.read_status().get("kernel") == "idle"):
+        elif time.monotonic() - since >= still and nbp.read_status().get("kernel") == "idle":
             return {int(k): v for k, v in last.items()}
     nbp.fail(f"the panels' canvases did not settle within {timeout:.0f} s after the drags")
 
@@ -398,13 +354,8 @@ def drag_check(nbp, shots_dir=None) -> tuple[list[str], dict]:
     for k in keys:  # back (one move), then the hurried drag over the same displacement
         drag(k, -1, 1, 0)
         drag(k, +1, QUICK_STEPS, QUICK_PAUSE_MS)
-    # Half a second without a new picture is usually enough; a panel that differs then is looked
-    # at again after the full SETTLED time (the verdict is on that second look).
-    quick = _settle(nbp, keys, still=0.5)
+    quick = _settle(nbp, keys)
     quick_px = _pixels(page, keys)
-    if any(quick[k]["value"] != slow[k]["value"] or quick_px[k] != slow_px[k] for k in keys):
-        quick = _settle(nbp, keys)
-        quick_px = _pixels(page, keys)
     for p in panels:
         k = p["index"]
         moved = slow[k]["value"] != start[k]["value"]
