@@ -75,7 +75,7 @@ class ChainSliceScene(Scene):
     FIGSIZE = (9.0, 3.3)
     NCOLS = 3
 
-    def __init__(self, total_length=3.0, taper=0.0, limits=((-2.0, 2.0), (-2.0, 2.0)), n_map=25, **options):
+    def __init__(self, total_length=3.0, taper=0.0, limits=((-2.0, 2.0), (-2.0, 2.0)), n_map=21, **options):
         self.total_length, self.taper, self.limits, self.n_map = total_length, taper, limits, n_map
         super().__init__(**options)
 
