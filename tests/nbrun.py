@@ -397,6 +397,9 @@ def wanted_by(session) -> list[str]:
 # -- durations by group (controller side) ----------------------------------------------------------
 
 _BY_FILE: dict[str, dict] = {}
+#: xdist worker -> {"seconds": summed test time, "last": when its last report came (s after start)}
+_WORKERS: dict[str, dict] = {}
+_T0 = time.time()
 
 
 def category(nodeid: str) -> str:
@@ -410,6 +413,10 @@ def logreport(report):
     dt = float(report.duration or 0.0)
     if g is not None:
         _DURATIONS[g] = _DURATIONS.get(g, 0.0) + dt
+    node = getattr(report, "node", None)   # under pytest-xdist, the worker that ran it
+    w = _WORKERS.setdefault(getattr(getattr(node, "gateway", None), "id", "main"), {"seconds": 0.0, "last": 0.0})
+    w["seconds"] += dt
+    w["last"] = time.time() - _T0
     row = _BY_FILE.setdefault(category(report.nodeid), {"tests": 0, "seconds": 0.0, "failed": 0})
     row["seconds"] += dt
     if report.when == "call" or (report.when == "setup" and report.outcome != "passed"):
@@ -425,5 +432,7 @@ def session_finish(config):
     (d / "durations.json").write_text(json.dumps(rounded, indent=1), encoding="utf-8")
     rows = {k: {**v, "seconds": round(v["seconds"], 2)} for k, v in sorted(_BY_FILE.items())}
     (d / "by-file.json").write_text(json.dumps(rows, indent=1), encoding="utf-8")
+    workers = {k: {"seconds": round(v["seconds"], 1), "last": round(v["last"], 1)} for k, v in sorted(_WORKERS.items())}
+    (d / "workers.json").write_text(json.dumps(workers, indent=1), encoding="utf-8")
     merged = {**_previous_durations(), **rounded}
     (BUILD / "durations.json").write_text(json.dumps(merged, indent=1), encoding="utf-8")

@@ -343,14 +343,14 @@ def links_comparison_figure(rows):
     fig, (ax0, ax1) = new_figure(1, 2, figsize=(7.5, 2.9))
     labels = [r[0] for r in rows]
     x = np.arange(len(rows))
-    for ax, k, title in ((ax0, 1, "efficiency (translation / path length)"), (ax1, 2, "translation per cycle")):
+    for ax, k, heading in ((ax0, 1, "efficiency (translation / path length)"), (ax1, 2, "translation per cycle")):
         vals = [r[k] for r in rows]
         ax.bar(x, vals, color=PALETTE["blue"], width=0.6)
         for xi, v in zip(x, vals):
             ax.text(xi, v, f"{v:.3f}", ha="center", va="bottom", fontsize=9)
         ax.set_xticks(x, labels, fontsize=9)
         ax.set_ylim(0, 1.2 * max(vals))
-        ax.set_title(title, fontsize=9)
+        ax.set_title(heading, fontsize=9)
         ax.tick_params(labelsize=8)
     return fig
 
