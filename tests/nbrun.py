@@ -101,7 +101,8 @@ def configure_node(node):
 
 def make_scheduler(config, log):
     """pytest-xdist's scheduler for this suite: xdist's scope scheduling, with our groups as the
-    scopes (a notebook's cells and its readers; all browser tests; else one test file), read from
+    scopes (a notebook's cells and its readers, its browser test included; the browser
+    self-checks; else one test file), read from
     the table the workers write at collection (``groups.json``), in collection order."""
     if config.getvalue("dist") == "each":
         return None
@@ -137,7 +138,7 @@ def group_of(item) -> str:
         return "nb:selfcheck"   # one subprocess for the generated notebooks
     rel = rel_of(item.path)
     if rel.startswith("tests/browser/"):
-        return "browser"   # one JupyterLab server and one Chromium for all of them
+        return "browser"   # the self-checks (a notebook's browser test reads its record: above)
     return rel
 
 
@@ -170,9 +171,9 @@ def modify_items(config, items):
     first = list(groups)
 
     def rank(g):
-        # the browser tests first (the longest group); then the notebooks in the order the browser
-        # tests visit them (so their cell-by-cell references are usually recorded in time, see
-        # wait_for_record); then everything else, longest first
+        # the browser self-checks first; then the notebooks (each with its browser test, which
+        # reads the record nbval has just made on the same worker); then everything else,
+        # longest first
         if g == "browser":
             return (0, 0.0, first.index(g))
         if g.startswith("nb:"):

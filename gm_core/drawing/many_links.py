@@ -75,7 +75,7 @@ class ChainSliceScene(Scene):
     FIGSIZE = (9.0, 3.3)
     NCOLS = 3
 
-    def __init__(self, total_length=3.0, taper=0.0, limits=((-2.0, 2.0), (-2.0, 2.0)), n_map=25, **options):
+    def __init__(self, total_length=3.0, taper=0.0, limits=((-2.0, 2.0), (-2.0, 2.0)), n_map=21, **options):
         self.total_length, self.taper, self.limits, self.n_map = total_length, taper, limits, n_map
         super().__init__(**options)
 
@@ -355,13 +355,25 @@ def links_comparison_figure(rows):
     return fig
 
 
-def continuum_figure(n_links, errors, label="max |A_chain − A_body|"):
-    """Log-log plot of the chain's error against the number of links, with the 1/N² slope for reference."""
+def continuum_figure(n_links, errors, label="largest difference of A, chain − body"):
+    """Log-log plot of the chain's error against the number of links, with the 1/N² slope for reference.
+
+    Tick labels are plain numbers at the data (no mathtext powers, whose superscripts would be
+    smaller than the figure standard's 10 px)."""
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator
+
     fig, ax = new_figure(1, 1, figsize=(4.6, 3.2))
     n_links, errors = np.asarray(n_links, float), np.asarray(errors, float)
     ax.loglog(n_links, errors, "o-", color=PALETTE["blue"], lw=1.8, label=label)
     ref = errors[0] * (n_links[0] / n_links) ** 2
     ax.loglog(n_links, ref, "--", color="0.4", lw=1.2, label="slope −2 (error ∝ 1/N²)")
+    decades = 10.0 ** np.arange(np.floor(np.log10(min(errors.min(), ref.min()))),
+                                np.ceil(np.log10(max(errors.max(), ref.max()))) + 1)
+    plain = FuncFormatter(lambda v, _: f"{v:g}")
+    for axis, ticks in ((ax.xaxis, n_links), (ax.yaxis, decades)):
+        axis.set_major_locator(FixedLocator(ticks))
+        axis.set_major_formatter(plain)
+        axis.set_minor_locator(NullLocator())
     ax.set_xlabel("links N", fontsize=9, labelpad=0)
     ax.set_ylabel("error", fontsize=9, labelpad=0)
     ax.legend(fontsize=8, frameon=False)
