@@ -105,13 +105,14 @@ _MARK_FIGURES_JS = r"""
     o.setAttribute('data-gm-shot', String(k));
     // a panel (a canvas with controls): its height with the controls, its shortest slider track
     const ctl = o.querySelector('.widget-slider, .widget-dropdown, .widget-toggle-buttons, .widget-checkbox');
-    const box = o.querySelector('.jupyter-widgets.widget-container, .jupyter-widgets') || o;
+    const parts = [...o.querySelectorAll('.jupyter-widgets, canvas')].map(e => e.getBoundingClientRect())
+                    .filter(r => r.width > 0 && r.height > 0);
     const tracks = [...o.querySelectorAll('.widget-slider .noUi-target, .widget-slider .slider-container')]
       .map(t => t.getBoundingClientRect().width).filter(w => w > 0);
     out.push({index: k, cell: 'In[' + (inNum.get(o.closest('.jp-Cell')) || '?') + ']',
               kind: o.querySelector('img[id^="_anim_img"]') ? 'animation'
                     : o.querySelector('.jupyter-matplotlib canvas') ? 'interactive figure' : 'image',
-              height: ctl ? Math.round(box.getBoundingClientRect().height) : null,
+              height: ctl && parts.length ? Math.round(Math.max(...parts.map(r => r.bottom)) - Math.min(...parts.map(r => r.top))) : null,
               track: tracks.length ? Math.round(Math.min(...tracks)) : null});
     k++;
   }
