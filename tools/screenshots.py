@@ -133,7 +133,7 @@ def _window_shot(nbp, rel: str, d: Path) -> dict | None:
 
 
 def _played_animations(nbp, rel: str, d: Path, notes: list[str]) -> list[dict]:
-    """Press ▶ on every animation, shoot it 1.5 s later and pause it again (tests/browser/student.py
+    """Press ▶ on every animation, shoot it 1 s after its frame first changes and pause it again (tests/browser/student.py
     checks that the frame changes; here a person sees which frame it reached)."""
     import student
 
@@ -143,7 +143,12 @@ def _played_animations(nbp, rel: str, d: Path, notes: list[str]) -> list[dict]:
         root.scroll_into_view_if_needed()
         try:
             root.locator("button.gm-anim-play").click(timeout=10_000)
-            page.wait_for_timeout(1500)
+            img = root.locator("img").first
+            for _ in range(40):   # a busy page may show the next frame late: up to 10 s
+                page.wait_for_timeout(250)
+                if img.get_attribute("data-frame") != a["frame"]:
+                    break
+            page.wait_for_timeout(1000)
             name = f"{_slug(rel)}-anim{a['index']:02d}-played.png"
             frame = root.locator("img").first.get_attribute("data-frame")
             root.screenshot(path=str(d / name))
@@ -151,7 +156,7 @@ def _played_animations(nbp, rel: str, d: Path, notes: list[str]) -> list[dict]:
         except Exception as e:  # noqa: BLE001 - a failed press is a finding, not a crash
             notes.append(f"animation #{a['index']}: could not press ▶: {e}"[:300])
             continue
-        shots.append({"png": f"browser/{name}", "caption": f"{rel} animation #{a['index']} 1.5 s after ▶ "
+        shots.append({"png": f"browser/{name}", "caption": f"{rel} animation #{a['index']} playing after ▶ "
                       f"(frame {frame} of {a['frames']}; it starts at frame {a['frame']})",
                       "problems": [] if frame != a["frame"] else ["the frame did not change after ▶"]})
     return shots

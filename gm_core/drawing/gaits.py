@@ -14,6 +14,7 @@ from ..gaits import GAIT_FAMILIES, Gait, GaitWarning, as_gait, family_gait
 from ..locomotion import net_displacement, trajectory
 from .connection import (
     ROW_LABELS,
+    WIDE_SHAPES,
     ConnectionFieldArtist,
     FieldGridScene,
     ShapeCursorArtist,
@@ -292,7 +293,9 @@ def animate_gait(system, gait, n_frames=60, row=2, cycles=1, world_lim=None, int
     """
     gait = as_gait(gait)
     traj = trajectory(system, gait, n_frames, cycles=cycles)
-    fig, (axs, axw) = new_figure(1, 2, figsize=(8, 3.8))
+    (lo1, hi1), (lo2, hi2) = system.shape_limits
+    wide = (hi1 - lo1) > WIDE_SHAPES * (hi2 - lo2)   # a wide shape window gets the wider axes
+    fig, (axs, axw) = new_figure(1, 2, figsize=(8, 3.8), gridspec_kw=dict(width_ratios=[1.7, 1] if wide else [1, 1]))
     style_shape_axes(axs, system, f"gait on {ROW_LABELS[row]}")
     ConnectionFieldArtist(axs, system, row, color="0.5")
     draw_singular_set(axs, system)
