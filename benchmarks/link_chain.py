@@ -3,8 +3,15 @@
 Run: .venv/bin/python benchmarks/link_chain.py [--repeat 7] [--no-optimise]
 Prints a table: the local connection of a five-link low-Re chain on 10^4 shapes (goal <= 100 ms),
 its net displacement over one travelling-wave gait (goal <= 50 ms), the same for the continuous
-slender body on 10^3 shapes, and an order-2 optimisation of the five-link swimmer for efficiency
-from a circle (goal <= 60 s), with the efficiency reached against the stored optimum.
+slender body on 10^3 shapes, the three-link systems of chapter 3 (LinkChain with N = 3 since
+issue 22; goal: no slower than their own closed forms were, ``--three-link`` also times one shape
+and 100 shapes), and an order-2 optimisation of the five-link swimmer for efficiency from a circle
+(goal <= 60 s), with the efficiency reached against the stored optimum.
+
+Three-link connections before they became LinkChain (main at ee42752, closed forms), best of 3
+interleaved runs on this shared machine, against the chain kernel (same runs): low Re 10^4 shapes
+8.9 -> 8.5 ms, 1 shape 157 -> 103 us; high Re 9.3 -> 8.9 ms; floating snake 11.2 -> 8.8 ms;
+kinematic snake 2.2 -> 4-8 ms on 10^4 shapes, 53 -> 120 us on one (see the report of issue 22).
 """
 from __future__ import annotations
 
@@ -16,7 +23,7 @@ import numpy as np
 
 from gm_core.geometry import CHAIN_STROKES, chain_swimmer, optimize_gait, travelling_wave
 from gm_core.locomotion import net_displacement
-from gm_core.systems import LinkChain, SlenderBody
+from gm_core.systems import FloatingSnake, HighReSwimmer, KinematicSnake, LinkChain, LowReSwimmer, SlenderBody
 
 
 def _times(f, repeat):
@@ -29,6 +36,7 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--repeat", type=int, default=7, help="timed repetitions (best and median shown)")
     p.add_argument("--no-optimise", action="store_true", help="skip the optimisation (about a minute)")
+    p.add_argument("--three-link", action="store_true", help="also time the three-link systems on 1 and 100 shapes")
     args = p.parse_args(argv)
     rng = np.random.default_rng(0)
     five = LinkChain((1.0,) * 5, "low_re")
@@ -43,6 +51,12 @@ def main(argv=None):
         ("connection, 7 links (high Re), 10^4 shapes",
          lambda: LinkChain((1.0,) * 7, "high_re").connection(rng.uniform(-1, 1, (10_000, 6))), None),
     ]
+    R3 = rng.uniform(-1.5, 1.5, (10_000, 2))
+    for s3 in (LowReSwimmer(), HighReSwimmer(), FloatingSnake(), KinematicSnake()):
+        rows.append((f"connection, {s3.name}, 10^4 shapes", (lambda s3=s3: s3.connection(R3)), None))
+        if args.three_link:
+            rows.append((f"connection, {s3.name}, 100 shapes", (lambda s3=s3: s3.connection(R3[:100])), None))
+            rows.append((f"connection, {s3.name}, 1 shape", (lambda s3=s3: s3.connection(R3[0])), None))
     print(f"{'what':<44} {'best ms':>9} {'median ms':>10} {'goal ms':>8}")
     for name, f, goal in rows:
         best, med = _times(f, args.repeat)

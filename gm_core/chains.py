@@ -521,30 +521,35 @@ def _chain_poses_T(a, L):
     return (px, py, th, c, s), (cc * dx + ss * dy, cc * dy - ss * dx, beyond)
 
 
-def _chain_jacobians_T(P, B, beta, Bb):
+def _chain_jacobians_T(P, B, beta, Bb, rows=(0, 1, 2)):
     """The batch-last kernel of :func:`link_chain_jacobians`: ``P, B`` from :func:`_chain_poses_T`,
     the body frame ``beta = (x, y, theta, cos theta, sin theta)`` (each (M,)) relative to link 1
     and its body Jacobian ``Bb = (Bx, By, Btheta)`` (each (n, M)). Returns ``(Q, J)``: ``Q`` the
     links in the body frame as (x, y, theta, cos theta, sin theta) (each (N, M)), and
-    ``J (3, 3 + n, N, M)``, row and column of each link's Jacobian from (xi, alpha_dot) to its
-    body velocity.
+    ``J (len(rows), 3 + n, N, M)``, the requested rows (0 = x, 1 = y, 2 = theta) and every column
+    of each link's Jacobian from (xi, alpha_dot) to its body velocity.
     """
     (px, py, th, cp, sp), (B0, B1, B2) = P, B
     bx, by, bt, cb, sb = beta
     dx, dy = px - bx, py - by
     x, y, t = cb * dx + sb * dy, cb * dy - sb * dx, th - bt
     c, sn = cp * cb + sp * sb, sp * cb - cp * sb          # cos, sin of theta_i - theta_beta
-    e1, e2 = sn * x - c * y, c * x + sn * y              # Ad_{Q^-1} = [[c, s, e1], [-s, c, e2], [0, 0, 1]]
     n = B0.shape[1]
-    J = np.empty((3, 3 + n) + px.shape)
-    J[0, 0], J[0, 1], J[0, 2] = c, sn, e1
-    J[1, 0], J[1, 1], J[1, 2] = -sn, c, e2
-    J[2, 0], J[2, 1], J[2, 2] = 0.0, 0.0, 1.0
+    J = np.empty((len(rows), 3 + n) + px.shape)
     X, Y, T = (b[None] for b in Bb)                       # Ad_{P_i^-1} Ad_beta = Ad_{Q_i^-1}
-    cc, ss, f1, f2 = c[:, None], sn[:, None], e1[:, None], e2[:, None]
-    J[0, 3:] = np.swapaxes(B0 - (cc * X + ss * Y + f1 * T), 0, 1)
-    J[1, 3:] = np.swapaxes(B1 - (cc * Y - ss * X + f2 * T), 0, 1)
-    J[2, 3:] = np.swapaxes(B2 - T, 0, 1)
+    cc, ss = c[:, None], sn[:, None]
+    for k, row in enumerate(rows):                        # Ad_{Q^-1} = [[c, s, e1], [-s, c, e2], [0, 0, 1]]
+        if row == 0:
+            e1 = sn * x - c * y
+            J[k, 0], J[k, 1], J[k, 2] = c, sn, e1
+            J[k, 3:] = np.swapaxes(B0 - (cc * X + ss * Y + e1[:, None] * T), 0, 1)
+        elif row == 1:
+            e2 = c * x + sn * y
+            J[k, 0], J[k, 1], J[k, 2] = -sn, c, e2
+            J[k, 3:] = np.swapaxes(B1 - (cc * Y - ss * X + e2[:, None] * T), 0, 1)
+        else:
+            J[k, 0], J[k, 1], J[k, 2] = 0.0, 0.0, 1.0
+            J[k, 3:] = np.swapaxes(B2 - T, 0, 1)
     return (x, y, t, c, sn), J
 
 

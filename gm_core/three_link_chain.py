@@ -47,8 +47,8 @@ def _three_link_lengths(lengths):
     return check_lengths(lengths, 3)
 
 
-def middle_frame_T(alpha, lengths):
-    """``(batch, (x, y, theta, cos, sin), J)``: the link poses (each (3, M)) and Jacobians J (3, 5, 3, M) in the
+def middle_frame_T(alpha, lengths, rows=(0, 1, 2)):
+    """``(batch, (x, y, theta, cos, sin), J)``: the link poses (each (3, M)) and Jacobians J (rows, 5, 3, M) in the
     middle link's frame, batch-last (the kernels of :func:`gm_core.chains.link_chain_poses` and
     :func:`~gm_core.chains.link_chain_jacobians`); ``batch`` the shape M was flattened from."""
     alpha = as_array(alpha, "alpha", (2,), what=" (alpha1, alpha2)")
@@ -56,7 +56,7 @@ def middle_frame_T(alpha, lengths):
     a, batch = _flat(alpha)
     P, B = _chain_poses_T(a, L)
     Bm = (B[0][1], B[1][1], np.broadcast_to(B[2][1], B[0][1].shape))
-    return (batch,) + _chain_jacobians_T(P, B, tuple(p[1] for p in P), Bm)
+    return (batch,) + _chain_jacobians_T(P, B, tuple(p[1] for p in P), Bm, rows)
 
 
 def _middle_frame(alpha, lengths):

@@ -540,6 +540,31 @@ def test_the_cell_clock_credits_checks_only_as_long_as_an_honest_one_takes():
     assert clock.credited(1e6) == pytest.approx(CELL_BUDGET * sum(caps.values()))
 
 
+@pytest.mark.skipif(not CGROUPS, reason="no writable pids and memory cgroups here")
+def test_cgroups_of_a_sandbox_end_every_process_and_a_dead_graders_are_removed():
+    from gm_core.checks._isolate import Limits, _Cgroups
+    gone = subprocess.Popen(["true"])
+    gone.wait()
+    stale = [Path(base) / f"gm-grade-{gone.pid}-dead" for _, base in _own_cgroup_dirs().values()]
+    for d in stale:
+        d.mkdir()
+    cg = _Cgroups(Limits(processes=16), f"gm-grade-{os.getpid()}-{uuid.uuid4().hex[:6]}")
+    try:
+        assert sorted(cg.kinds) == ["memory", "pids"] and not any(d.exists() for d in stale)
+        pids = next(d for d in cg.dirs if "pids" in str(d))
+        assert (pids / "pids.max").read_text().strip() == "16"
+        daemon = subprocess.Popen(["sh", "-c", f"echo $$ > {pids}/cgroup.procs; setsid sleep 60 & "
+                                   "sleep 60"])
+        deadline = time.monotonic() + 10
+        while len(cg.pids()) < 2 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert len(cg.pids()) >= 2                       # the shell and its setsid'd sleep
+    finally:
+        cg.close()
+    daemon.wait(timeout=10)
+    assert not any(d.exists() for d in cg.dirs)          # every process ended, the cgroups gone
+
+
 def test_the_report_says_when_no_cgroup_could_be_made():
     from gm_core.checks.grade import _limits_note
     assert _limits_note([{"cgroups": ["memory", "pids"]}], True) is None

@@ -21,8 +21,9 @@ from __future__ import annotations
 CELL_BUDGET = 3.0
 #: Seconds a check may take beyond its probes' limits (fork, encoding, a loaded machine).
 CHECK_OVERHEAD, PROBE_OVERHEAD = 5.0, 0.25
-#: Seconds the grading process allows beyond the runner's own limit and its grace.
-OUTER_MARGIN = 15.0
+#: Seconds the grading process allows beyond the runner's own limit and its grace (by then the
+#: runner has killed a kernel that ignored the interrupt, so nothing more is lost).
+OUTER_MARGIN = 10.0
 #: Seconds from the sandbox's start until the kernel runs (the runner's startup_timeout is 120).
 STARTUP_LIMIT = 240.0
 

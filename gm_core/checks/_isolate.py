@@ -108,6 +108,23 @@ def _own_cgroup_dirs():
     return {c: v for c, v in out.items() if os.access(v[1], os.W_OK)}
 
 
+def _remove_stale(base):
+    """Remove the empty cgroups a grader that died (killed, power cut) left behind: named
+    ``gm-grade-<pid>-...`` after a process that is gone. A cgroup with a process in it cannot be
+    removed, so nothing that still runs loses its limits."""
+    try:
+        names = [p for p in base.iterdir() if p.name.startswith("gm-grade-")]
+    except OSError:
+        return
+    for d in names:
+        pid = d.name.split("-")[2] if d.name.count("-") >= 3 else ""
+        if pid.isdigit() and not Path(f"/proc/{pid}").exists():
+            try:
+                d.rmdir()
+            except OSError:
+                pass
+
+
 class _Cgroups:
     """Child cgroups (memory, pids) for one sandbox, where this process may create them."""
 
@@ -118,6 +135,7 @@ class _Cgroups:
         except Exception:  # noqa: BLE001
             found = {}
         for ctrl, (ver, base) in found.items():
+            _remove_stale(base)
             d = base / tag
             try:
                 d.mkdir(exist_ok=True)

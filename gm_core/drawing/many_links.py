@@ -270,7 +270,7 @@ class OptimalGaitScene(Scene):
         self.trail.set(traj.g[:, :2])
         gT = traj.g[-1]
         if self.result is None:
-            self.start_efficiency = efficiency(self.system, self.start, check=False)
+            self.start_efficiency = efficiency(self.system, self.start, check=False, samples=256, displacement=gT)
             self.axes[1].set_title("one cycle of the start wave", fontsize=9)
             self.text.set_text(f"start: efficiency {self.start_efficiency:.4f}\npress “optimise”")
         else:

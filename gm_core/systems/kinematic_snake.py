@@ -32,8 +32,8 @@ class KinematicSnake(ThreeLinkSystem):
 
     def pfaffian(self, r):
         """Pfaffian (..., 3, 5): the lateral (y) rows of J1, J2, J3, i.e. no link slides sideways."""
-        batch, _, J = middle_frame_T(self._shape(r), self.lengths)     # J (row, column, link, M)
-        return J[1].transpose(2, 1, 0).reshape(batch + (3, 5))
+        batch, _, J = middle_frame_T(self._shape(r), self.lengths, rows=(1,))    # J (row, column, link, M)
+        return J[0].transpose(2, 1, 0).reshape(batch + (3, 5))
 
     def _closed_form_parts(self, r):
         """Numerator N (..., 3, 2), denominator D (...,) of the closed form A = N / D and their

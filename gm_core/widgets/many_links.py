@@ -67,7 +67,6 @@ class OptimalGaitPanel(ScenePanel):
 
     title = "Design a chain and optimise its gait"
     scene_class = OptimalGaitScene
-    blit = False          # the result changes every artist at once
 
     def controls_spec(self):
         o = self.options

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import sys
+import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -186,6 +187,32 @@ def layout_problems(nbp) -> tuple[list[str], dict]:
     """(problems, counts) of the open notebook's outputs as laid out now (see module doc)."""
     res = nbp.page.evaluate(_LAYOUT_JS, nbp.read_status()["panelId"])
     return res["problems"], res["info"]
+
+
+_IMAGES_LOADING_JS = r"""
+(id) => {
+  const root = document.getElementById(id);
+  return root ? [...root.querySelectorAll('.jp-OutputArea-output img')].filter(i => !i.complete).length : 0;
+}
+"""
+
+
+def settled_layout(nbp, still: float = 0.5, timeout: float = 20.0) -> tuple[list[str], dict]:
+    """:func:`layout_problems` once the outputs have finished laying out: every image loaded and
+    the same result for ``still`` s (after Run All the last outputs are still being rendered)."""
+    deadline = time.monotonic() + timeout
+    last, since = None, time.monotonic()
+    while True:
+        panel_id = nbp.read_status()["panelId"]
+        res = layout_problems(nbp)
+        loading = nbp.page.evaluate(_IMAGES_LOADING_JS, panel_id)
+        if res != last or loading:
+            last, since = res, time.monotonic()
+        elif time.monotonic() - since >= still:
+            return res
+        if time.monotonic() > deadline:
+            return res   # still changing: judged as it is now (the problems say what is wrong)
+        nbp.page.wait_for_timeout(100)
 
 
 _NEWS_JS = r"""

@@ -143,7 +143,7 @@ def play_animations(nbp, wait_ms: int = 900) -> tuple[list[str], int]:
         # the picture on screen must change: poll (a busy page may show the next frame late)
         deadline = time.monotonic() + max(wait_ms / 1000, 10.0)
         while True:
-            page.wait_for_timeout(wait_ms // 3)
+            page.wait_for_timeout(100)
             after_frame, after_px = img.get_attribute("data-frame"), img.screenshot()
             playing = root.get_attribute("data-playing")
             if (after_frame != before_frame and after_px != before_px) or time.monotonic() > deadline:

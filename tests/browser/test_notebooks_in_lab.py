@@ -20,10 +20,11 @@ import time
 
 import browserlab
 import labview
+import nbrun
 import pytest
 import student
 
-pytestmark = pytest.mark.browser  # (conftest.py also puts every browser test in one xdist group)
+pytestmark = pytest.mark.browser  # (each notebook's test runs in its notebook's xdist group: conftest.py)
 
 NOTEBOOKS = browserlab.interactive_notebooks()
 
@@ -72,7 +73,7 @@ def test_student_checks_can_fail(lab, record_timing, prestart_next):
     assert not [p for p in controls if "In[4]" not in p], controls
 
 
-@pytest.mark.parametrize("notebook", NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])
+@pytest.mark.parametrize("notebook", nbrun.params(NOTEBOOKS, id_of=lambda p: p.name))
 def test_interactive_notebook_as_a_student_uses_it(notebook, lab, record_timing, prestart_next, cell_by_cell):
     """Run All, then what a student sees and does (1366 x 768 window, file browser open):
 

@@ -20,6 +20,7 @@ import time
 
 import browserlab
 import labview
+import nbrun
 import pytest
 
 pytestmark = pytest.mark.browser
@@ -80,8 +81,7 @@ def test_layout_detector(lab, record_timing):
         nbp.open()
         nbp.run_all()
         nbp.check_no_errors()
-        nbp.page.wait_for_timeout(1500)
-        problems, counts = labview.layout_problems(nbp)
+        problems, counts = labview.settled_layout(nbp)
     record_timing("(layout self-check notebook)", nbp.timings.phases)
     text = "\n".join(problems)
     assert counts["canvases"] >= 2 and counts["animations"] == 1, counts
@@ -93,7 +93,7 @@ def test_layout_detector(lab, record_timing):
     assert 850 <= counts["minWidth"] <= 1000, f"output width at 1366 px with the file browser: {counts}"
 
 
-@pytest.mark.parametrize("notebook", NOTEBOOKS, ids=[p.relative_to(browserlab.ROOT).as_posix() for p in NOTEBOOKS])
+@pytest.mark.parametrize("notebook", nbrun.params(NOTEBOOKS))
 def test_figures_fit(notebook, lab, record_timing, prestart_next):
     relpath = notebook.relative_to(browserlab.ROOT).as_posix()
     with browserlab.NotebookPage(lab, relpath) as nbp:
@@ -101,8 +101,7 @@ def test_figures_fit(notebook, lab, record_timing, prestart_next):
         prestart_next()
         nbp.run_all()
         nbp.check_no_errors()
-        nbp.page.wait_for_timeout(1500)
-        problems, counts = labview.layout_problems(nbp)
+        problems, counts = labview.settled_layout(nbp)
         state = labview.compare_panel_states(labview.kernel_panel_state(nbp),
                                              labview.expected_panel_state(notebook))
         problems += [f"Run All differs from cell by cell: {d}" for d in state]
