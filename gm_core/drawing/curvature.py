@@ -165,7 +165,7 @@ def estimates_table(est: Estimates | None, error: str | None = None) -> str:
     if est is None:
         return f"<p style='color:darkred'>{html.escape(error or '')}</p>"
     head = "".join(f"<th style='padding:0 8px'>{r}</th>" for r in ROWS)
-    rows = "".join(f"<tr><td>{name}</td>" + "".join(f"<td style='padding:0 8px'>{v:+.4f}</td>" for v in vals)
+    rows = "".join(f"<tr><td>{name}</td>" + "".join(f"<td style='padding:0 8px'>{(0.0 if abs(v) < 5e-5 else v):+.4f}</td>" for v in vals)
                    + "</tr>" for name, vals in zip(Estimates.NAMES, est.as_array()))
     return f"<table style='font-family:monospace;font-size:13px'><tr><th></th>{head}</tr>{rows}</table>"
 
