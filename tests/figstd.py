@@ -36,8 +36,8 @@ import re
 import types
 
 import numpy as np
-from matplotlib.animation import AbstractMovieWriter
 from matplotlib import cbook
+from matplotlib.animation import AbstractMovieWriter
 from matplotlib.backends.backend_agg import RendererAgg
 from matplotlib.font_manager import FontProperties
 from matplotlib.mathtext import MathTextParser
