@@ -27,7 +27,7 @@ from .connection import ROW_LABELS, ConnectionFieldArtist, style_shape_axes
 from .curvature import CurvatureMapArtist
 from .motion import SystemArtist, style_world_axes
 from .primitives import TrailArtist, animate
-from .toolkit import PALETTE, Scene, new_figure, readout, title
+from .toolkit import MATH_PT, PALETTE, Scene, new_figure, readout, title
 
 __all__ = ["ChainSliceScene", "WaveGaitScene", "OptimalGaitScene", "animate_chain_gait", "links_comparison_figure",
            "continuum_figure", "design_chain", "PHYSICS_LABELS"]
@@ -355,8 +355,10 @@ def links_comparison_figure(rows):
     return fig
 
 
-def continuum_figure(n_links, errors, label="max |A_chain − A_body|"):
+def continuum_figure(n_links, errors, label=r"max $|A_\mathrm{chain} - A_\mathrm{body}|$"):
     """Log-log plot of the chain's error against the number of links, with the 1/N² slope for reference."""
+    from matplotlib.ticker import FuncFormatter, NullFormatter
+
     fig, ax = new_figure(1, 1, figsize=(4.6, 3.2))
     n_links, errors = np.asarray(n_links, float), np.asarray(errors, float)
     ax.loglog(n_links, errors, "o-", color=PALETTE["blue"], lw=1.8, label=label)
@@ -364,7 +366,13 @@ def continuum_figure(n_links, errors, label="max |A_chain − A_body|"):
     ax.loglog(n_links, ref, "--", color="0.4", lw=1.2, label="slope −2 (error ∝ 1/N²)")
     ax.set_xlabel("links N", fontsize=9, labelpad=0)
     ax.set_ylabel("error", fontsize=9, labelpad=0)
-    ax.legend(fontsize=8, frameon=False)
+    ax.legend(fontsize=MATH_PT, frameon=False)   # its subscripts 10 px (the figure standard)
+    # plain tick labels (N = 4, 8, ...; 0.1, 0.01): log axes' "4×10⁰" has 8 px superscripts
+    ax.set_xticks(n_links, [f"{n:g}" for n in n_links])
+    plain = FuncFormatter(lambda v, _: f"{v:g}")
+    ax.yaxis.set_major_formatter(plain)
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_minor_formatter(NullFormatter())
     ax.tick_params(labelsize=8)
     ax.set_title("a chain sampling the curvature → the continuous body", fontsize=9)
     return fig
