@@ -19,7 +19,7 @@ from __future__ import annotations
 import time
 
 MIN_TRACK = 150            # px, a slider's track at 1366 x 768
-MAX_PANEL_HEIGHT = 660     # px, a panel's controls and figure together (issue 19: "about 650")
+MAX_PANEL_HEIGHT = 650     # px, a panel's controls and figure together (issue 19: "at most about 650")
 QUICK_STEPS = 10
 QUICK_PAUSE_MS = 40
 DRAG_PX = 60
