@@ -80,9 +80,17 @@ def table(run: Path, wall: float | None = None, rc: int | None = None, cpu_all: 
         verdict = "within" if wall <= GOAL_S else "OVER"
         lines.append(f"{'wall time of make test (after set-up)':<48} {'':>6} {'':>6} {wall:>8.1f}  "
                      f"(goal <= {GOAL_S:.0f} s: {verdict}; exit code {rc})")
+    try:   # how evenly the workers were loaded (tests/nbrun.py)
+        workers = json.loads((run / "workers.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        workers = {}
+    if workers:
+        lines.append("workers (summed test seconds; when each reported its last test, s after the start): "
+                     + ", ".join(f"{k} {v['seconds']:.0f} s, last at {v['last']:.0f} s" for k, v in workers.items()))
     cpu = {}
     for f in run.glob("*.json"):
-        if f.name.endswith(".kernel.json") or f.name in ("by-file.json", "durations.json", "groups.json"):
+        if f.name.endswith(".kernel.json") or f.name in ("by-file.json", "durations.json", "groups.json",
+                                                          "workers.json"):
             continue
         try:
             rec = json.loads(f.read_text(encoding="utf-8"))

@@ -31,10 +31,21 @@
       show();
     });
   }
+  /* A picture shown by an ipywidgets Image widget has no alt text of its own (WCAG 1.1.1): it is
+     described by the text its box shows above it (the first HTML widget of the box). */
+  function describeImages(root) {
+    root.querySelectorAll('img.widget-image:not([alt])').forEach(function (img) {
+      var box = img.closest('.widget-box, .jupyter-widgets');
+      var html = box ? box.querySelector('.widget-html, .widget-htmlmath') : null;
+      var text = html ? html.textContent.replace(/\s+/g, ' ').trim() : '';
+      img.setAttribute('alt', text ? text.slice(0, 300) : 'Figure drawn by the exercise');
+    });
+  }
   function start() {
     nameSliders(document);
     sweeps(document);
-    new MutationObserver(function () { nameSliders(document); sweeps(document); })
+    describeImages(document);
+    new MutationObserver(function () { nameSliders(document); sweeps(document); describeImages(document); })
       .observe(document.body, {childList: true, subtree: true});
   }
   if (document.readyState === 'loading') { document.addEventListener('DOMContentLoaded', start); } else { start(); }

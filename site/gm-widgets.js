@@ -5,8 +5,27 @@
 (function () {
   var me = document.currentScript;
   var base = me ? me.src.replace(/[^\/]*$/, '') : '_static/';
-  // The widget manager's bundles find their fonts beside the module they are defined as
-  // (@jupyter-widgets/html-manager/dist/...): that is the site's widgets/ folder.
-  window.require.config({paths: {'jupyter-matplotlib': base + 'ipympl/index',
-                                 '@jupyter-widgets/html-manager/dist': base + 'widgets'}});
+  // The widget manager's bundles find their fonts beside the module each is defined as
+  // (@jupyter-widgets/controls, .../html-manager/dist/libembed-amd, ...): the site's widgets/.
+  var paths = {'jupyter-matplotlib': base + 'ipympl/index', '@jupyter-widgets/html-manager/dist': base + 'widgets'};
+  ['base', 'base7', 'controls', 'controls7', 'output', 'html-manager'].forEach(function (m) {
+    paths['@jupyter-widgets/' + m] = base + 'widgets/' + m;
+  });
+  window.require.config({paths: paths});
+
+  // ipywidgets' controls typeset their labels with MathJax 2's MathJax.Hub.Queue; the site runs
+  // MathJax 3: give every MathJax object the page gets (the configuration first, then MathJax
+  // itself) a Hub.Queue that typesets the element with MathJax 3.
+  function hub(mj) {
+    if (mj && typeof mj === 'object' && !mj.Hub) {
+      mj.Hub = {Queue: function (job) {
+        var el = job && job[2], m = window.MathJax;
+        if (el && m && m.typesetPromise) m.typesetPromise([el]).catch(function () {});
+      }};
+    }
+    return mj;
+  }
+  var current = hub(window.MathJax);
+  Object.defineProperty(window, 'MathJax', {configurable: true, enumerable: true,
+    get: function () { return current; }, set: function (v) { current = hub(v); }});
 })();

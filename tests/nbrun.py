@@ -101,7 +101,8 @@ def configure_node(node):
 
 def make_scheduler(config, log):
     """pytest-xdist's scheduler for this suite: xdist's scope scheduling, with our groups as the
-    scopes (a notebook's cells and its readers; all browser tests; else one test file), read from
+    scopes (a notebook's cells and its readers, its browser test included; the browser
+    self-checks; else one test file), read from
     the table the workers write at collection (``groups.json``), in collection order."""
     if config.getvalue("dist") == "each":
         return None
@@ -137,7 +138,7 @@ def group_of(item) -> str:
         return "nb:selfcheck"   # one subprocess for the generated notebooks
     rel = rel_of(item.path)
     if rel.startswith("tests/browser/"):
-        return "browser"   # one JupyterLab server and one Chromium for all of them
+        return "browser"   # the self-checks (a notebook's browser test reads its record: above)
     return rel
 
 
@@ -170,9 +171,9 @@ def modify_items(config, items):
     first = list(groups)
 
     def rank(g):
-        # the browser tests first (the longest group); then the notebooks in the order the browser
-        # tests visit them (so their cell-by-cell references are usually recorded in time, see
-        # wait_for_record); then everything else, longest first
+        # the browser self-checks first; then the notebooks (each with its browser test, which
+        # reads the record nbval has just made on the same worker); then everything else,
+        # longest first
         if g == "browser":
             return (0, 0.0, first.index(g))
         if g.startswith("nb:"):
@@ -397,6 +398,9 @@ def wanted_by(session) -> list[str]:
 # -- durations by group (controller side) ----------------------------------------------------------
 
 _BY_FILE: dict[str, dict] = {}
+#: xdist worker -> {"seconds": summed test time, "last": when its last report came (s after start)}
+_WORKERS: dict[str, dict] = {}
+_T0 = time.time()
 
 
 def category(nodeid: str) -> str:
@@ -410,6 +414,10 @@ def logreport(report):
     dt = float(report.duration or 0.0)
     if g is not None:
         _DURATIONS[g] = _DURATIONS.get(g, 0.0) + dt
+    node = getattr(report, "node", None)   # under pytest-xdist, the worker that ran it
+    w = _WORKERS.setdefault(getattr(getattr(node, "gateway", None), "id", "main"), {"seconds": 0.0, "last": 0.0})
+    w["seconds"] += dt
+    w["last"] = time.time() - _T0
     row = _BY_FILE.setdefault(category(report.nodeid), {"tests": 0, "seconds": 0.0, "failed": 0})
     row["seconds"] += dt
     if report.when == "call" or (report.when == "setup" and report.outcome != "passed"):
@@ -425,5 +433,7 @@ def session_finish(config):
     (d / "durations.json").write_text(json.dumps(rounded, indent=1), encoding="utf-8")
     rows = {k: {**v, "seconds": round(v["seconds"], 2)} for k, v in sorted(_BY_FILE.items())}
     (d / "by-file.json").write_text(json.dumps(rows, indent=1), encoding="utf-8")
+    workers = {k: {"seconds": round(v["seconds"], 1), "last": round(v["last"], 1)} for k, v in sorted(_WORKERS.items())}
+    (d / "workers.json").write_text(json.dumps(workers, indent=1), encoding="utf-8")
     merged = {**_previous_durations(), **rounded}
     (BUILD / "durations.json").write_text(json.dumps(merged, indent=1), encoding="utf-8")

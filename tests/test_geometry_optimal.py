@@ -153,9 +153,15 @@ def test_optimiser_reaches_sysplotters_strokes(optima):
     assert np.hypot(d[0], d[1]) > 0.09
 
 
+@pytest.fixture(scope="module")
+def sysplotter_mp():
+    """The sysplotter swimmer in minimum-perturbation coordinates (computed once for both strokes)."""
+    return minimum_perturbation_coordinates(sysplotter_swimmer())
+
+
 @pytest.mark.parametrize("which", ["displacement", "efficiency"])
-def test_sysplotter_strokes_are_near_stationary(which):
-    s = minimum_perturbation_coordinates(sysplotter_swimmer())
+def test_sysplotter_strokes_are_near_stationary(which, sysplotter_mp):
+    s = sysplotter_mp
     g = sysplotter_stroke(which)
     val, grad, _ = gait_objective(s, g, which)
     assert np.linalg.norm(grad) < 0.15 * val  # per radian of coefficient

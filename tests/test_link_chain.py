@@ -11,7 +11,6 @@ import pytest
 from gm_core import SE2
 from gm_core.chains import MobileChain
 from gm_core.fluids import drag_wrench
-from gm_core.gaits import circle_gait
 from gm_core.geometry import centre_of_mass_coordinates, fourier_gait
 from gm_core.locomotion import net_displacement, trajectory
 from gm_core.systems import FloatingSnake, HighReSwimmer, LinkChain, LowReSwimmer

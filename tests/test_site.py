@@ -135,6 +135,8 @@ def test_prepare_rewrites_links_and_halves_frames_within_budget():
     assert out.cells[0].source.count('<span class="math notranslate nohighlight">\\(') == 2
 
 
+# ipympl's own Toolbar passes its canvas to HasTraits.__init__ (its code, not ours)
+@pytest.mark.filterwarnings("ignore:Passing unrecognized arguments to super\\(Toolbar\\)")
 def test_ipympl_front_end_served_by_the_site_draws_a_saved_canvas(site):
     """A page with an ipympl canvas (its saved picture, _data_url, in the widget state), loading
     the site's own require.js, module paths and widget manager: jupyter-matplotlib comes from the

@@ -37,6 +37,13 @@ TOOLS = {
 }
 
 
+# Installed as part of an extra but left out again: jsonschema's optional checker of the "iri"
+# string formats (pulled in through jupyter-events' jsonschema[format-nongpl]) builds a Lark
+# grammar at every import of nbformat, 2-3 s of CPU for each otter, nbgrader and Jupyter Book
+# command; nothing these tools validate uses those formats (jsonschema skips the check without it).
+LEAVE_OUT = ["rfc3987-syntax"]
+
+
 class VenvError(RuntimeError):
     """The tools of a publishing venv could not be installed."""
 
@@ -56,7 +63,7 @@ def ensure(name: str, quiet: bool = True) -> Path:
         raise ValueError(f"name: one of {sorted(TOOLS)}, not {name!r}")
     venv = path_of(name)
     reqs = TOOLS[name] + course_requirements()
-    digest = hashlib.sha256("\n".join(reqs).encode()).hexdigest()[:16]
+    digest = hashlib.sha256("\n".join(reqs + ["-"] + LEAVE_OUT).encode()).hexdigest()[:16]
     stamp = venv / ".gm-stamp"
     if stamp.exists() and stamp.read_text().strip() == digest and (venv / "bin" / "python").exists():
         return venv / "bin"
@@ -68,6 +75,8 @@ def ensure(name: str, quiet: bool = True) -> Path:
     res = subprocess.run(pip + reqs, capture_output=True, text=True)
     if res.returncode != 0:
         raise VenvError(f"could not install {name} tools into {venv}: {res.stderr.strip()[-1500:]}")
+    subprocess.run([str(venv / "bin" / "python"), "-m", "pip", "uninstall", "--yes", "--quiet", *LEAVE_OUT],
+                   capture_output=True, text=True)
     stamp.write_text(digest + "\n")
     return venv / "bin"
 

@@ -27,7 +27,7 @@ from .connection import ROW_LABELS, ConnectionFieldArtist, style_shape_axes
 from .curvature import CurvatureMapArtist
 from .motion import SystemArtist, style_world_axes
 from .primitives import TrailArtist, animate
-from .toolkit import MATH_PT, PALETTE, Scene, new_figure, readout, title
+from .toolkit import PALETTE, Scene, new_figure, readout, title
 
 __all__ = ["ChainSliceScene", "WaveGaitScene", "OptimalGaitScene", "animate_chain_gait", "links_comparison_figure",
            "continuum_figure", "design_chain", "PHYSICS_LABELS"]
@@ -75,7 +75,7 @@ class ChainSliceScene(Scene):
     FIGSIZE = (9.0, 3.3)
     NCOLS = 3
 
-    def __init__(self, total_length=3.0, taper=0.0, limits=((-2.0, 2.0), (-2.0, 2.0)), n_map=25, **options):
+    def __init__(self, total_length=3.0, taper=0.0, limits=((-2.0, 2.0), (-2.0, 2.0)), n_map=21, **options):
         self.total_length, self.taper, self.limits, self.n_map = total_length, taper, limits, n_map
         super().__init__(**options)
 
@@ -343,36 +343,40 @@ def links_comparison_figure(rows):
     fig, (ax0, ax1) = new_figure(1, 2, figsize=(7.5, 2.9))
     labels = [r[0] for r in rows]
     x = np.arange(len(rows))
-    for ax, k, title in ((ax0, 1, "efficiency (translation / path length)"), (ax1, 2, "translation per cycle")):
+    for ax, k, heading in ((ax0, 1, "efficiency (translation / path length)"), (ax1, 2, "translation per cycle")):
         vals = [r[k] for r in rows]
         ax.bar(x, vals, color=PALETTE["blue"], width=0.6)
         for xi, v in zip(x, vals):
             ax.text(xi, v, f"{v:.3f}", ha="center", va="bottom", fontsize=9)
         ax.set_xticks(x, labels, fontsize=9)
         ax.set_ylim(0, 1.2 * max(vals))
-        ax.set_title(title, fontsize=9)
+        ax.set_title(heading, fontsize=9)
         ax.tick_params(labelsize=8)
     return fig
 
 
-def continuum_figure(n_links, errors, label=r"max $|A_\mathrm{chain} - A_\mathrm{body}|$"):
-    """Log-log plot of the chain's error against the number of links, with the 1/N² slope for reference."""
-    from matplotlib.ticker import FuncFormatter, NullFormatter
+def continuum_figure(n_links, errors, label="largest difference of A, chain − body"):
+    """Log-log plot of the chain's error against the number of links, with the 1/N² slope for reference.
+
+    Tick labels are plain numbers at the data (no mathtext powers, whose superscripts would be
+    smaller than the figure standard's 10 px)."""
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator
 
     fig, ax = new_figure(1, 1, figsize=(4.6, 3.2))
     n_links, errors = np.asarray(n_links, float), np.asarray(errors, float)
     ax.loglog(n_links, errors, "o-", color=PALETTE["blue"], lw=1.8, label=label)
     ref = errors[0] * (n_links[0] / n_links) ** 2
     ax.loglog(n_links, ref, "--", color="0.4", lw=1.2, label="slope −2 (error ∝ 1/N²)")
+    decades = 10.0 ** np.arange(np.floor(np.log10(min(errors.min(), ref.min()))),
+                                np.ceil(np.log10(max(errors.max(), ref.max()))) + 1)
+    plain = FuncFormatter(lambda v, _: f"{v:g}")
+    for axis, ticks in ((ax.xaxis, n_links), (ax.yaxis, decades)):
+        axis.set_major_locator(FixedLocator(ticks))
+        axis.set_major_formatter(plain)
+        axis.set_minor_locator(NullLocator())
     ax.set_xlabel("links N", fontsize=9, labelpad=0)
     ax.set_ylabel("error", fontsize=9, labelpad=0)
-    ax.legend(fontsize=MATH_PT, frameon=False)   # its subscripts 10 px (the figure standard)
-    # plain tick labels (N = 4, 8, ...; 0.1, 0.01): log axes' "4×10⁰" has 8 px superscripts
-    ax.set_xticks(n_links, [f"{n:g}" for n in n_links])
-    plain = FuncFormatter(lambda v, _: f"{v:g}")
-    ax.yaxis.set_major_formatter(plain)
-    for axis in (ax.xaxis, ax.yaxis):
-        axis.set_minor_formatter(NullFormatter())
+    ax.legend(fontsize=8, frameon=False)
     ax.tick_params(labelsize=8)
     ax.set_title("a chain sampling the curvature → the continuous body", fontsize=9)
     return fig

@@ -35,5 +35,6 @@ __all__ = ["constraint_curvature", "connection_derivative", "connection_curl", "
            "reframe", "centre_of_mass", "drift_and_turn", "centre_of_mass_coordinates", "minimum_perturbation_coordinates",
            "dissipation_metric", "path_length", "efficiency",
            "FourierGait", "OptimalGait", "fourier_gait", "travelling_wave", "gait_objective", "optimize_gait",
-           "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer", "CHAIN_STROKES", "chain_stroke", "chain_swimmer", "wave_start", "optimise_chain_gait",
+           "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer",
+           "CHAIN_STROKES", "chain_stroke", "chain_swimmer", "wave_start", "optimise_chain_gait",
            "FRAMES", "Estimates", "displacement_estimates", "field_rms", "row_scaled", "shaped_gait"]

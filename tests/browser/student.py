@@ -182,43 +182,71 @@ _PANELS_JS = r"""
 }
 """
 
-# a cheap fingerprint of every canvas (FNV-1a over all pixels) and the first slider's value
+# a cheap fingerprint of every listed panel's canvas (FNV-1a over all pixels) and its first
+# slider's value, all panels in one call
 _STATE_JS = r"""
-(k) => {
-  const area = document.querySelector(`[data-gm-drag="${k}"]`);
-  if (!area) return null;
-  const c = area.querySelector('.jupyter-matplotlib canvas');
-  let h = 2166136261 >>> 0;
-  if (c && c.width && c.height) {
-    const d = new Uint32Array(c.getContext('2d').getImageData(0, 0, c.width, c.height).data.buffer);
-    for (let i = 0; i < d.length; i++) { h ^= d[i]; h = Math.imul(h, 16777619) >>> 0; }
+(keys) => {
+  const out = {};
+  for (const k of keys) {
+    const area = document.querySelector(`[data-gm-drag="${k}"]`);
+    if (!area) { out[k] = null; continue; }
+    const c = area.querySelector('.jupyter-matplotlib canvas');
+    let h = 2166136261 >>> 0;
+    if (c && c.width && c.height) {
+      const d = new Uint32Array(c.getContext('2d').getImageData(0, 0, c.width, c.height).data.buffer);
+      for (let i = 0; i < d.length; i++) { h ^= d[i]; h = Math.imul(h, 16777619) >>> 0; }
+    }
+    const s = area.querySelector(`[data-gm-drag-slider="${k}"] .noUi-target`);
+    const v = s && s.noUiSlider ? Number(s.noUiSlider.get()) : null;
+    out[k] = {hash: h, value: v, w: c ? c.width : 0, h: c ? c.height : 0};
   }
-  const s = area.querySelector(`[data-gm-drag-slider="${k}"] .noUi-target`);
-  const v = s && s.noUiSlider ? Number(s.noUiSlider.get()) : null;
-  return {hash: h, value: v, w: c ? c.width : 0, h: c ? c.height : 0};
+  return out;
 }
 """
 
 _PIXELS_JS = r"""
-(k) => {
-  const c = document.querySelector(`[data-gm-drag="${k}"] .jupyter-matplotlib canvas`);
-  return c.toDataURL('image/png');
+(keys) => {
+  const out = {};
+  for (const k of keys) out[k] = document.querySelector(`[data-gm-drag="${k}"] .jupyter-matplotlib canvas`).toDataURL('image/png');
+  return out;
 }
 """
 
 
+def _pixels(page, keys) -> dict:
+    """PNG data URLs of the listed panels' canvases, in one call."""
+    return {int(k): v for k, v in page.evaluate(_PIXELS_JS, keys).items()}
+
+
+# The slider's track, its handle's centre line, range and value, once the handle is on screen
+# and has stood still for 150 ms (after a scroll JupyterLab lays out the cells that came into
+# view, which can move things a few frames later); one round trip.
 _GEOMETRY_JS = r"""
-(k) => {
+async (k) => {
   const s = document.querySelector(`[data-gm-drag-slider="${k}"] .noUi-target`);
-  const r = s.getBoundingClientRect(), h = s.querySelector('.noUi-handle').getBoundingClientRect();
+  const handle = s.querySelector('.noUi-handle');
+  const frame = () => new Promise(ok => requestAnimationFrame(() => ok()));
   const range = s.noUiSlider.options.range;
   const lo = Number(Array.isArray(range.min) ? range.min[0] : range.min);
   const hi = Number(Array.isArray(range.max) ? range.max[0] : range.max);
-  const cx = h.x + h.width / 2, cy = h.y + h.height / 2;
-  const at = document.elementFromPoint(cx, cy);
-  return {x: r.x, width: r.width, y: cy, lo, hi, value: Number(s.noUiSlider.get()),
-          step: Number(s.noUiSlider.options.step) || 0,
-          onHandle: !!(at && s.contains(at))};
+  const read = () => {
+    const r = s.getBoundingClientRect(), h = handle.getBoundingClientRect();
+    const cx = h.x + h.width / 2, cy = h.y + h.height / 2;
+    const at = document.elementFromPoint(cx, cy);
+    return {x: r.x, width: r.width, y: cy, lo, hi, value: Number(s.noUiSlider.get()),
+            step: Number(s.noUiSlider.options.step) || 0, onHandle: !!(at && s.contains(at))};
+  };
+  let last = null, g = null, since = performance.now();
+  const until = since + 3000;
+  while (performance.now() < until) {
+    g = read();
+    if (!(g.onHandle && last !== null && g.x === last.x && g.y === last.y)) since = performance.now();
+    else if (performance.now() - since >= 150) return g;
+    if (!g.onHandle) handle.scrollIntoView({block: 'center', inline: 'nearest'});
+    last = g;
+    await frame();
+  }
+  return g;
 }
 """
 
@@ -226,17 +254,7 @@ _GEOMETRY_JS = r"""
 def _geometry(page, k):
     """The slider's track (x, width), the handle's centre line y, its range and value; the
     handle's centre is at x + width * (value - lo) / (hi - lo) (noUiSlider's own mapping)."""
-    handle = page.locator(f'[data-gm-drag-slider="{k}"] .noUi-handle').first
-    handle.scroll_into_view_if_needed()
-    last = None
-    for _ in range(40):  # JupyterLab may still move things after the scroll: wait until still
-        g = page.evaluate(_GEOMETRY_JS, k)
-        if g["onHandle"] and last is not None and (g["x"], g["y"]) == (last["x"], last["y"]):
-            break
-        if not g["onHandle"]:
-            handle.scroll_into_view_if_needed()
-        last = g
-        page.wait_for_timeout(50)
+    g = page.evaluate(_GEOMETRY_JS, k)
     g["px"] = lambda v, g=g: g["x"] + g["width"] * (v - g["lo"]) / (g["hi"] - g["lo"])
     return g
 
@@ -251,20 +269,25 @@ def _drag(page, x0, y, x1, steps, pause_ms):
     page.mouse.up()
 
 
-def _settle(nbp, keys, still: float = 1.5, timeout: float = 30.0):
+#: Seconds a canvas must stay unchanged (with the kernel idle) to count as final: longer than
+#: the panels' key-frame delay plus a full draw and its decoding, on a loaded machine.
+SETTLED = 1.5
+
+
+def _settle(nbp, keys, still: float = SETTLED, timeout: float = 30.0):
     """Wait until every listed canvas has been unchanged for ``still`` s and the kernel is idle
     (``still`` is longer than the panels' key-frame delay)."""
     page = nbp.page
-    last = {k: page.evaluate(_STATE_JS, k) for k in keys}
+    last = page.evaluate(_STATE_JS, keys)
     since = time.monotonic()
     deadline = since + timeout
     while time.monotonic() < deadline:
         page.wait_for_timeout(100)
-        now = {k: page.evaluate(_STATE_JS, k) for k in keys}
+        now = page.evaluate(_STATE_JS, keys)
         if now != last:
             last, since = now, time.monotonic()
         elif time.monotonic() - since >= still and nbp.read_status().get("kernel") == "idle":
-            return last
+            return {int(k): v for k, v in last.items()}
     nbp.fail(f"the panels' canvases did not settle within {timeout:.0f} s after the drags")
 
 
@@ -297,7 +320,7 @@ def drag_check(nbp, shots_dir=None) -> tuple[list[str], dict]:
     if not keys:
         return problems, {"panels": rows}
     start = _settle(nbp, keys)
-    start_px = {k: page.evaluate(_PIXELS_JS, k) for k in keys}
+    start_px = _pixels(page, keys)
     direction, distance = {}, {}
 
     def whole_steps(g):
@@ -308,11 +331,11 @@ def drag_check(nbp, shots_dir=None) -> tuple[list[str], dict]:
         per_px = (g["hi"] - g["lo"]) / g["width"] / g["step"]
         return min(range(DRAG_PX - 15, DRAG_PX + 16), key=lambda d: abs(d * per_px - round(d * per_px)))
 
-    def drag(k, sign, steps, pause_ms):
+    def drag(k, sign, steps, pause_ms, g=None):
         # Whole pixels (the browser rounds mouse positions) from the handle's centre: noUiSlider
         # moves a handle by the mouse's displacement, so equal values and equal displacements
         # give equal results.
-        g = _geometry(page, k)
+        g = g or _geometry(page, k)
         x = round(g["px"](g["value"]))
         _drag(page, x, round(g["y"]), x + sign * direction[k] * distance[k], steps, pause_ms)
 
@@ -320,18 +343,22 @@ def drag_check(nbp, shots_dir=None) -> tuple[list[str], dict]:
         g = _geometry(page, k)
         direction[k] = 1 if g["value"] <= (g["lo"] + g["hi"]) / 2 else -1
         distance[k] = whole_steps(g)
-        # to the slider's grid first (a value set from code may lie between its steps): there,
-        # back, and there again; the last move is the slow drag (one mouse move)
-        drag(k, +1, 1, 0)
-        drag(k, -1, 1, 0)
-        drag(k, +1, 1, 0)
+        # the slow drag: one mouse move. The slider shows its value on its grid (min + k *
+        # step), so the handle ends on a grid value, a whole number of steps from where the
+        # move back below leaves it, and the quick drag over the same displacement ends there too.
+        # (A drag the page did not take, the handle not moved at all, is made again, twice at most.)
+        for _attempt in range(3):
+            drag(k, +1, 1, 0, g)
+            g = _geometry(page, k)
+            if g["value"] != start[k]["value"]:
+                break
     slow = _settle(nbp, keys)
-    slow_px = {k: page.evaluate(_PIXELS_JS, k) for k in keys}
+    slow_px = _pixels(page, keys)
     for k in keys:  # back (one move), then the hurried drag over the same displacement
         drag(k, -1, 1, 0)
         drag(k, +1, QUICK_STEPS, QUICK_PAUSE_MS)
     quick = _settle(nbp, keys)
-    quick_px = {k: page.evaluate(_PIXELS_JS, k) for k in keys}
+    quick_px = _pixels(page, keys)
     for p in panels:
         k = p["index"]
         moved = slow[k]["value"] != start[k]["value"]
