@@ -420,7 +420,7 @@ class ConnectionFieldScene(FieldGridScene):
         for i, ax in enumerate(self.field_axes):
             style_shape_axes(ax, s, f"row {i + 1}: {ROW_LABELS[i]}")
             draw_singular_set(ax, s)
-        style_world_axes(self.ax, 1.15 * system_extent(s))
+        style_world_axes(self.ax, 1.4 * system_extent(s))   # room below the body for the readout
         self.ax.set_title("body at this shape; arrow: body velocity")
         thin_labels(self.field_axes, self.ax, body_labels=False)
 

@@ -14,6 +14,7 @@ from ..gaits import GAIT_FAMILIES, Gait, GaitWarning, as_gait, family_gait
 from ..locomotion import net_displacement, trajectory
 from .connection import (
     ROW_LABELS,
+    WIDE_SHAPES,
     ConnectionFieldArtist,
     FieldGridScene,
     ShapeCursorArtist,
@@ -168,8 +169,9 @@ class GaitScene(FieldGridScene):
     def _fit_view(self, g):
         """Centre the window on the trail, at least the default size, with room for the body."""
         lo, hi = g[:, :2].min(0), g[:, :2].max(0)
-        half = max(self.lim, 0.5 * float(np.max(hi - lo)) + 0.9 * self.lim)
-        self.view.set((lo + hi) / 2, half)
+        half = 1.2 * max(self.lim, 0.5 * float(np.max(hi - lo)) + 0.9 * self.lim)
+        # the motion in the upper part of the window: the readout's two lines below it stay clear
+        self.view.set((lo + hi) / 2 - [0.0, 0.17 * half], half)
 
     def set(self, family="circle", amplitude=1.0, center1=0.0, center2=0.0, aspect=0.6, angle=0.0, frame=None):
         v = dict(family=family, amplitude=amplitude, center1=center1, center2=center2, aspect=aspect,
@@ -214,7 +216,8 @@ class GaitScene(FieldGridScene):
         self.trail.set(self.traj.g[:, :2])
         self.body.set(self.traj.g[-1], self.traj.r[-1])
         d = self.net
-        self.text.set_text(f"net displacement per cycle\n(x, y, θ) = ({d[0]:+.3f}, {d[1]:+.3f}, {d[2]:+.3f})")
+        d = [0.0 if abs(v) < 5e-4 else v for v in d]   # never "-0.000"
+        self.text.set_text(f"net displacement per cycle\nx, y, θ: {d[0]:+.3f}, {d[1]:+.3f}, {d[2]:+.3f}")
 
     # -- mouse editing of the drawn loop -------------------------------------------------------
     def _nearest(self, event):
@@ -290,7 +293,9 @@ def animate_gait(system, gait, n_frames=60, row=2, cycles=1, world_lim=None, int
     """
     gait = as_gait(gait)
     traj = trajectory(system, gait, n_frames, cycles=cycles)
-    fig, (axs, axw) = new_figure(1, 2, figsize=(8, 3.8))
+    (lo1, hi1), (lo2, hi2) = system.shape_limits
+    wide = (hi1 - lo1) > WIDE_SHAPES * (hi2 - lo2)   # a wide shape window gets the wider axes
+    fig, (axs, axw) = new_figure(1, 2, figsize=(8, 3.8), gridspec_kw=dict(width_ratios=[1.7, 1] if wide else [1, 1]))
     style_shape_axes(axs, system, f"gait on {ROW_LABELS[row]}")
     ConnectionFieldArtist(axs, system, row, color="0.5")
     draw_singular_set(axs, system)

@@ -47,7 +47,7 @@ class JacobianStepScene(Scene):
         super().__init__(**options)
 
     def make_figure(self):
-        fig, self.ax, self.notes = plane_and_notes(figsize=(8.6, 4.4), ratio=(1, 1))
+        fig, self.ax, self.notes = plane_and_notes(figsize=(8.6, 4.2), ratio=(1, 1))
         return fig, [self.ax, self.notes]
 
     def decorate(self):

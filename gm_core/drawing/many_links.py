@@ -5,7 +5,7 @@
 * :class:`WaveGaitScene`: a travelling-wave gait (amplitude, phase lag between joints) and the
   motion it makes over one cycle, with the net displacement and the efficiency;
 * :class:`OptimalGaitScene`: a chain you design (links, taper, physics), a wave to start from
-  and, once :meth:`OptimalGaitScene.optimise` has run, its most efficient gait and one cycle of
+  and, once :meth:`OptimalGaitScene.optimize` has run, its most efficient gait and one cycle of
   the motion;
 * :func:`animate_chain_gait`: a gait of any number of joints as an animation that plays without a
   kernel (joint angles against time, and the body moving in the plane);
@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import check_int, check_option
-from ..geometry import efficiency, optimise_chain_gait, travelling_wave, wave_start
+from ..geometry import efficiency, optimize_chain_gait, travelling_wave, wave_start
 from ..groups import SE2
 from ..locomotion import trajectory
 from ..systems import LinkChain, shape_slice
@@ -211,8 +211,8 @@ class OptimalGaitScene(Scene):
 
     Values: ``links`` (3-6), ``physics``, ``taper`` (0 equal links; up to 0.6, the tail links
     shorter), ``order`` (Fourier harmonics per joint, 1 or 2). Each design starts from a
-    travelling wave (:func:`gm_core.geometry.wave_start`, dashed); :meth:`optimise` runs
-    :func:`gm_core.geometry.optimise_chain_gait` for the design shown (a second or so) and keeps
+    travelling wave (:func:`gm_core.geometry.wave_start`, dashed); :meth:`optimize` runs
+    :func:`gm_core.geometry.optimize_chain_gait` for the design shown (a second or so) and keeps
     the result, which is then drawn solid with the motion of one cycle (body at the start,
     faint, and at the end, with the path of the body frame). Option: ``total_length`` (3).
     """
@@ -281,12 +281,12 @@ class OptimalGaitScene(Scene):
                                + ("no gait translates it: zero momentum\nkeeps its centre of mass still" if still else
                                   f"g(T) = ({gT[0]:+.2f}, {gT[1]:+.2f}, {gT[2]:+.2f})"))
 
-    def optimise(self, callback=None):
-        """Optimise the gait of the design shown (see :func:`gm_core.geometry.optimise_chain_gait`),
+    def optimize(self, callback=None):
+        """Optimise the gait of the design shown (see :func:`gm_core.geometry.optimize_chain_gait`),
         keep the result for this design and draw it; ``callback(iteration, efficiency)`` reports
         progress. Returns the :class:`~gm_core.geometry.optimal.OptimalGait`."""
         links, physics, taper, order = self.key
-        self._results[self.key] = optimise_chain_gait(self.system, order, start=self.start, callback=callback)
+        self._results[self.key] = optimize_chain_gait(self.system, order, start=self.start, callback=callback)
         self.set(links, physics, taper, order)
         return self.result
 

@@ -227,6 +227,7 @@ class MovingView:
 
 # ------------------------------------------------------------------------------ cars
 def _fmt(xi):
+    xi = [0.0 if abs(v) < 5e-4 else v for v in xi]   # never "-0.000"
     return f"ξ = ({xi[0]:+.3f}, {xi[1]:+.3f}, {xi[2]:+.3f})"
 
 

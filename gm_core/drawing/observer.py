@@ -152,8 +152,8 @@ class FramesScene(Scene):
     Values ``t`` (time along a motion of constant body velocity :attr:`XI`) and ``bx, by,
     btheta`` (where the second coordinate frame B sits on the page). The body's nose moves with
     one velocity arrow in the page; frames A (the page's own) and B only write it with different
-    numbers. The dashed frame is the instantaneous body frame: aligned with the body at time t
-    but fixed to the page. The faded body is the body :attr:`DT` later: against the dashed frame
+    numbers. The grey frame (long arrows) is the instantaneous body frame: aligned with the body at time t
+    but fixed to the page. The faded body is the body :attr:`DT` later: against the grey frame
     it has moved by exp(DT xi), so the body velocity is what the body does relative to its
     instantaneous frame, while against its own (moving) body frame it never moves at all.
     """
@@ -223,5 +223,5 @@ class FramesScene(Scene):
         self.readout.set_text(
             f"nose in A: {f(self.in_a[0])} moving {f(self.in_a[1])}\n"
             f"nose in B: {f(self.in_b[0])} moving {f(self.in_b[1])}\n"
-            f"faded body vs dashed frame: log(g⁻¹g')/Δt = {f(self.seen_from_instant)} = ξ\n"
+            f"faded body vs grey frame:  log(g⁻¹g')/Δt = {f(self.seen_from_instant)} = ξ\n"
             "body vs its own body frame: never moves")

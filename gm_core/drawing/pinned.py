@@ -210,7 +210,7 @@ class BetaVelocityScene(_ThreeLinkScene):
     ``alpha1, alpha2, alpha1_dot, alpha2_dot, xi_x, xi_y, xi_theta``.
     """
 
-    figsize = (8.4, 4.4)
+    figsize = (8.4, 4.15)   # with its seven sliders above: 620 px, on one laptop screen
     SCALE = 1.2
     # what the numbers are: fixed mathtext lines (PathText lays each distinct line out once), the
     # changing numbers on lines of their own

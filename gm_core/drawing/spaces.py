@@ -14,6 +14,7 @@ from ..manifolds import chart_speed, cylinder_xyz, polar_chart_velocity, sphere_
 from .axes import plain_3d, wire
 from .primitives import SingularFlag
 from .toolkit import (
+    MATH_PT,
     PALETTE,
     TWO_PI,
     PathText,
@@ -50,7 +51,7 @@ def configuration_space_gallery():
     for i, (name, systems) in enumerate(spaces):
         three_d = i >= 3
         ax = fig.add_subplot(2, 3, i + 1, projection="3d" if three_d else None)
-        ax.set_title(name, fontsize=10)
+        ax.set_title(name, fontsize=MATH_PT)
         if i == 0:
             ax.plot([-3, 3], [0, 0], "k", lw=2)
             for x in range(-3, 4):
@@ -151,7 +152,7 @@ def flattened_views():
     t = np.linspace(0, 1.6 * TWO_PI, 300)
     for seg in wrap_segments(t + 0.4, 0.2 + 0.5 * t / TWO_PI * 2.5, TWO_PI, 0):
         ax.plot(seg[:, 0], seg[:, 1], color=PALETTE["purple"], lw=2)
-    ax.set_title("cylinder $\\mathbb{S}^1\\times\\mathbb{R}^1$\n(left edge = right edge)")
+    ax.set_title("cylinder $\\mathbb{S}^1\\times\\mathbb{R}^1$\n(left edge = right edge)", fontsize=MATH_PT)
     ax.set_xlabel("angle a")
     ax.set_ylabel("height s")
     # torus: both directions identified
@@ -160,7 +161,7 @@ def flattened_views():
     t = np.linspace(0, 3 * TWO_PI, 500)
     for seg in wrap_segments(t + 0.3, 2.0 / 3.0 * t + 1.0):
         ax.plot(seg[:, 0], seg[:, 1], color=PALETTE["purple"], lw=2)
-    ax.set_title("torus $\\mathbb{T}^2$\n(both pairs of edges glued)")
+    ax.set_title("torus $\\mathbb{T}^2$\n(both pairs of edges glued)", fontsize=MATH_PT)
     ax.set_xlabel("joint angle a")
     ax.set_ylabel("joint angle b")
     # sphere: lat/lon chart
@@ -176,7 +177,7 @@ def flattened_views():
         ax.plot([x, x], [0, np.pi], color=PALETTE["vermillion"], lw=3, alpha=0.5, solid_capstyle="butt")
     ax.text(np.pi, np.pi / 2, "left edge = right edge:\nthe seam λ = ±180°", ha="center", va="center",
             fontsize=8.5, color=PALETTE["vermillion"])
-    ax.set_title("sphere, latitude/longitude chart\n(seam glued, edges = the poles)")
+    ax.set_title("sphere, latitude/longitude chart\n(seam glued, edges = the poles)", fontsize=MATH_PT)
     ax.set_xlabel("longitude λ")
     ax.set_ylabel("latitude φ")
     for ax in axes:

@@ -11,7 +11,7 @@ book's (``xi = -A(r) r_dot``, (3.10)).
   :mod:`.chain_strokes`: optimal strokes of 3-, 4- and 5-link chains (``chain_stroke``);
 * :mod:`.estimates`: ``shaped_gait``, ``displacement_estimates``, ``row_scaled``, ``field_rms`` (notebook 10's panels).
 """
-from .chain_strokes import CHAIN_STROKES, chain_stroke, chain_swimmer, optimise_chain_gait, wave_start
+from .chain_strokes import CHAIN_STROKES, chain_stroke, chain_swimmer, optimize_chain_gait, wave_start
 from .coordinates import (
     centre_of_mass,
     centre_of_mass_coordinates,
@@ -36,5 +36,5 @@ __all__ = ["constraint_curvature", "connection_derivative", "connection_curl", "
            "dissipation_metric", "path_length", "efficiency",
            "FourierGait", "OptimalGait", "fourier_gait", "travelling_wave", "gait_objective", "optimize_gait",
            "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer",
-           "CHAIN_STROKES", "chain_stroke", "chain_swimmer", "wave_start", "optimise_chain_gait",
+           "CHAIN_STROKES", "chain_stroke", "chain_swimmer", "wave_start", "optimize_chain_gait",
            "FRAMES", "Estimates", "displacement_estimates", "field_rms", "row_scaled", "shaped_gait"]

@@ -17,7 +17,7 @@ from .._validate import check_int, positive_number
 from ..systems import LinkChain
 from .optimal import fourier_gait, optimize_gait, travelling_wave
 
-__all__ = ["CHAIN_STROKES", "chain_swimmer", "chain_stroke", "wave_start", "optimise_chain_gait"]
+__all__ = ["CHAIN_STROKES", "chain_swimmer", "chain_stroke", "wave_start", "optimize_chain_gait"]
 
 #: Fourier coefficients (a, b: (N - 1, 2); center: (N - 1,)) and the values they give.
 CHAIN_STROKES = {
@@ -72,7 +72,7 @@ def wave_start(n_joints, amplitude=0.6, lag=0.8, *, spread=0.05, seed=0):
                         name=f"start: wave, amplitude {amplitude:g}, lag {lag:g} rad")
 
 
-def optimise_chain_gait(system, order=1, *, start=None, maxiter=40, intervals=64, callback=None):
+def optimize_chain_gait(system, order=1, *, start=None, maxiter=40, intervals=64, callback=None):
     """The most efficient Fourier gait of ``order`` of a chain of any number of links, from
     :func:`wave_start` (or ``start``), measured in the chain's own body frame (use
     ``frame="com"``): :func:`optimize_gait` with ``objective="efficiency"``,

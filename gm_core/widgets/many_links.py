@@ -106,7 +106,7 @@ class OptimalGaitPanel(ScenePanel):
             self.status.value = f"step {it}: efficiency {value:.4f}"
 
         try:
-            res = self.scene.optimise(callback=progress)
+            res = self.scene.optimize(callback=progress)
         finally:
             self.button.disabled = False
         self.bar.value = self.bar.max
