@@ -143,6 +143,18 @@ class ChainSliceScene(Scene):
         return P[:-1, :2] + 0.5 * L[:-1, None] * np.stack([np.cos(P[:-1, 2]), np.sin(P[:-1, 2])], -1)
 
 
+def _gait_and_motion_axes(axes, total_length, gait_title, motion_title):
+    """Style the two axes of a gait scene: joint angles over one period, and the world of one cycle."""
+    ax0, ax1 = axes
+    ax0.set_xlim(0, 2 * np.pi)
+    ax0.set_ylim(-2.2, 2.2)
+    ax0.set_xlabel("t", fontsize=9, labelpad=0)
+    ax0.set_ylabel("joint angles (rad)", fontsize=9, labelpad=0)
+    ax0.set_title(gait_title, fontsize=9)
+    style_world_axes(ax1, 0.7 * total_length, (-0.15 * total_length, 0.0))
+    ax1.set_title(motion_title, fontsize=9)
+
+
 class WaveGaitScene(Scene):
     """A travelling-wave gait of a chain and the motion of one cycle: trail, body at start and end, numbers.
 
@@ -160,14 +172,8 @@ class WaveGaitScene(Scene):
         super().__init__(**options)
 
     def decorate(self):
-        ax0, ax1 = self.axes
-        ax0.set_xlim(0, 2 * np.pi)
-        ax0.set_ylim(-2.2, 2.2)
-        ax0.set_xlabel("t", fontsize=9, labelpad=0)
-        ax0.set_ylabel("joint angles (rad)", fontsize=9, labelpad=0)
-        ax0.set_title("the gait: one wave along the body", fontsize=9)
-        style_world_axes(ax1, 0.7 * self.total_length, (-0.15 * self.total_length, 0.0))
-        ax1.set_title("one cycle: start (faint) and end", fontsize=9)
+        _gait_and_motion_axes(self.axes, self.total_length, "the gait: one wave along the body",
+                              "one cycle: start (faint) and end")
 
     def create(self):
         ax0, ax1 = self.axes
@@ -227,14 +233,8 @@ class OptimalGaitScene(Scene):
         super().__init__(**options)
 
     def decorate(self):
-        ax0, ax1 = self.axes
-        ax0.set_xlim(0, 2 * np.pi)
-        ax0.set_ylim(-2.2, 2.2)
-        ax0.set_xlabel("t", fontsize=9, labelpad=0)
-        ax0.set_ylabel("joint angles (rad)", fontsize=9, labelpad=0)
-        ax0.set_title("the gait: start wave (dashed), best (solid)", fontsize=9)
-        style_world_axes(ax1, 0.7 * self.total_length, (-0.15 * self.total_length, 0.0))
-        ax1.set_title("one cycle of the start wave", fontsize=9)
+        _gait_and_motion_axes(self.axes, self.total_length, "the gait: start wave (dashed), best (solid)",
+                              "one cycle of the start wave")
 
     def create(self):
         ax0, ax1 = self.axes
