@@ -61,6 +61,20 @@ def notebook_record(request):
     return get
 
 
+@pytest.fixture(scope="session")
+def playwright():
+    """The one Playwright (sync API) of this test process, shared by every test that drives
+    Chromium (the JupyterLab tests in tests/browser/, the website tests). The sync API runs an
+    event loop of its own; a second ``sync_playwright()`` in the same process while this one is
+    alive fails ("Sync API inside the asyncio loop"), so nobody starts their own."""
+    pytest.importorskip("playwright.sync_api", reason="the playwright package is missing: pip install -e '.[test]'")
+    from playwright.sync_api import sync_playwright
+
+    pw = sync_playwright().start()
+    yield pw
+    pw.stop()
+
+
 SELFCHECK_NOTEBOOKS = {
     # too wide, and its title too small, in every frame of an animation
     "anim.ipynb": ["%matplotlib widget\nimport matplotlib.pyplot as plt\n"

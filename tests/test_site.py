@@ -35,7 +35,7 @@ pytestmark = pytest.mark.slow
 
 
 @pytest.fixture(scope="module")
-def site(tmp_path_factory):
+def site(tmp_path_factory, playwright):
     if not Path(check_site.CHROMIUM).exists():
         pytest.skip("no /usr/bin/chromium (apt-get install chromium)")
     if shutil.which("npm") is None:
@@ -52,7 +52,7 @@ def site(tmp_path_factory):
     assert res.returncode == 0, res.stdout[-3000:] + res.stderr[-3000:]
     html = out / "_build" / "html"
     report = json.loads((out / "report.json").read_text())
-    results = check_site.check(html, [p + ".html" for p in PAGES])
+    results = check_site.check(html, [p + ".html" for p in PAGES], playwright=playwright)
     return html, report, {r["page"]: r for r in results}
 
 
@@ -137,7 +137,7 @@ def test_prepare_rewrites_links_and_halves_frames_within_budget():
 
 # ipympl's own Toolbar passes its canvas to HasTraits.__init__ (its code, not ours)
 @pytest.mark.filterwarnings("ignore:Passing unrecognized arguments to super\\(Toolbar\\)")
-def test_ipympl_front_end_served_by_the_site_draws_a_saved_canvas(site):
+def test_ipympl_front_end_served_by_the_site_draws_a_saved_canvas(site, playwright):
     """A page with an ipympl canvas (its saved picture, _data_url, in the widget state), loading
     the site's own require.js, module paths and widget manager: jupyter-matplotlib comes from the
     site, the canvas is drawn, nothing fails and nothing leaves the site."""
@@ -162,26 +162,23 @@ def test_ipympl_front_end_served_by_the_site_draws_a_saved_canvas(site):
             f'<div class="cell_output"><script type="application/vnd.jupyter.widget-view+json">'
             f'{json.dumps(data["view_specs"][0])}</script></div></main></body></html>')
     (html / "exercises" / "gm-canvas-test.html").write_text(page)
-    from playwright.sync_api import sync_playwright
-
     srv = check_site.serve(html)
     base = f"http://127.0.0.1:{srv.server_address[1]}/"
     try:
-        with sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=check_site.CHROMIUM, args=["--no-sandbox"])
-            tab = browser.new_page()
-            seen, outside = [], []
-            tab.route("**/*", lambda r: r.continue_() if r.request.url.startswith(base) else (outside.append(r.request.url), r.abort()))
-            tab.on("response", lambda r: seen.append((r.status, r.url)))
-            tab.goto(base + "exercises/gm-canvas-test.html")
-            tab.wait_for_function("() => document.querySelector('.jupyter-matplotlib canvas')", timeout=30000)
-            red = tab.wait_for_function("""() => { const cs = [...document.querySelectorAll('.jupyter-matplotlib canvas')];
-                for (const c of cs) { if (!c.width || !c.height) continue;
-                  const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
-                  let n = 0; for (let i = 0; i < d.length; i += 4) if (d[i] > 150 && d[i + 1] < 90 && d[i + 3] > 0) n++;
-                  if (n > 100) return n; }
-                return false; }""", timeout=30000).json_value()
-            browser.close()
+        browser = playwright.chromium.launch(executable_path=check_site.CHROMIUM, args=["--no-sandbox"])
+        tab = browser.new_page()
+        seen, outside = [], []
+        tab.route("**/*", lambda r: r.continue_() if r.request.url.startswith(base) else (outside.append(r.request.url), r.abort()))
+        tab.on("response", lambda r: seen.append((r.status, r.url)))
+        tab.goto(base + "exercises/gm-canvas-test.html")
+        tab.wait_for_function("() => document.querySelector('.jupyter-matplotlib canvas')", timeout=30000)
+        red = tab.wait_for_function("""() => { const cs = [...document.querySelectorAll('.jupyter-matplotlib canvas')];
+            for (const c of cs) { if (!c.width || !c.height) continue;
+              const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+              let n = 0; for (let i = 0; i < d.length; i += 4) if (d[i] > 150 && d[i + 1] < 90 && d[i + 3] > 0) n++;
+              if (n > 100) return n; }
+            return false; }""", timeout=30000).json_value()
+        browser.close()
     finally:
         srv.shutdown()
     assert red > 100, "the saved picture is drawn on the canvas"

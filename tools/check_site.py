@@ -157,8 +157,11 @@ def check_page(page, base, path):
     return out
 
 
-def check(html_dir, pages=None):
-    """[per-page result] for ``pages`` (paths relative to the site, default every page)."""
+def check(html_dir, pages=None, playwright=None):
+    """[per-page result] for ``pages`` (paths relative to the site, default every page).
+
+    ``playwright``: a started sync Playwright to use (a test process has one; a second could not
+    start beside it); by default the check starts and stops its own."""
     from playwright.sync_api import sync_playwright
 
     html_dir = Path(html_dir)
@@ -168,8 +171,10 @@ def check(html_dir, pages=None):
     srv = serve(html_dir)
     base = f"http://127.0.0.1:{srv.server_address[1]}/"
     results = []
+    own = playwright is None
     try:
-        with sync_playwright() as p:
+        p = sync_playwright().start() if own else playwright
+        try:
             browser = p.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
             for path in pages:
                 page = browser.new_page(viewport={"width": 1366, "height": 768})
@@ -179,6 +184,9 @@ def check(html_dir, pages=None):
                 finally:
                     page.close()
             browser.close()
+        finally:
+            if own:
+                p.stop()
     finally:
         srv.shutdown()
     return results

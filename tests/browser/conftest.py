@@ -96,16 +96,12 @@ def lab_server(chromium, tmp_path_factory, request):
 
 
 @pytest.fixture(scope="session")
-def browser_context(chromium, tmp_path_factory, request):
+def browser_context(chromium, playwright, tmp_path_factory, request):
     """One headless Chromium (fresh empty profile) shared by every page of the session, with a
     laptop's window (labview.STUDENT_WINDOW, 1366 x 768; the file browser is opened beside the
-    notebook on every fresh page load)."""
-    from playwright.sync_api import sync_playwright
-
+    notebook on every fresh page load). Started from the process's one Playwright (tests/conftest.py)."""
     t0 = time.monotonic()
-    pw = sync_playwright().start()
-    _on_cleanup(request, pw.stop)
-    context = browserlab.launch_chromium(pw, tmp_path_factory.mktemp("chromium-profile"),
+    context = browserlab.launch_chromium(playwright, tmp_path_factory.mktemp("chromium-profile"),
                                          viewport=labview.STUDENT_WINDOW)
     _on_cleanup(request, context.close)
     request.config.stash[TIMINGS_KEY]["(browser start)"] = {"total": round(time.monotonic() - t0, 2)}
