@@ -274,36 +274,32 @@ def _ids(exercises):
     return ids
 
 
-def write_otter(out_dir, exercises=None):
-    out_dir = Path(out_dir)
+def _write_converted(exercises, convert, path_of):
+    """Convert each exercise's solution notebook with ``convert(nb, ex_id)``, validate it and write
+    it to ``path_of(stem)``; the paths written."""
     paths = []
     for ex_id in _ids(exercises):
         stem = "ex" + ex_id.replace(".", "_")
         nb = nbformat.read(ROOT / "solutions" / f"{stem}.ipynb", as_version=4)
-        master = otter_master(nb, ex_id)
-        nbformat.validate(master)
-        path = out_dir / stem / f"{stem}.ipynb"
+        out = convert(nb, ex_id)
+        nbformat.validate(out)
+        path = path_of(stem)
         path.parent.mkdir(parents=True, exist_ok=True)
-        nbformat.write(master, path)
+        nbformat.write(out, path)
         paths.append(path)
     return paths
+
+
+def write_otter(out_dir, exercises=None):
+    out_dir = Path(out_dir)
+    return _write_converted(exercises, otter_master, lambda stem: out_dir / stem / f"{stem}.ipynb")
 
 
 def write_nbgrader(course_dir, exercises=None):
     course_dir = Path(course_dir)
     course_dir.mkdir(parents=True, exist_ok=True)
     (course_dir / "nbgrader_config.py").write_text(NBGRADER_CONFIG)
-    paths = []
-    for ex_id in _ids(exercises):
-        stem = "ex" + ex_id.replace(".", "_")
-        nb = nbformat.read(ROOT / "solutions" / f"{stem}.ipynb", as_version=4)
-        source = nbgrader_source(nb, ex_id)
-        nbformat.validate(source)
-        path = course_dir / "source" / stem / f"{stem}.ipynb"
-        path.parent.mkdir(parents=True, exist_ok=True)
-        nbformat.write(source, path)
-        paths.append(path)
-    return paths
+    return _write_converted(exercises, nbgrader_source, lambda stem: course_dir / "source" / stem / f"{stem}.ipynb")
 
 
 def main(argv=None):
