@@ -4,7 +4,14 @@ JupyterLab's public mechanism for site-wide defaults is an overrides file in its
 settings directory, ``{sys.prefix}/share/jupyter/lab/settings/``. Each package may drop its own file
 into ``overrides.d/`` there (merged in name order, below a user's own ``overrides.json``), so the
 course never touches a file someone else owns. Ours turns the "Get notified about official Jupyter
-news?" prompt and the update check off (``@jupyterlab/apputils-extension:notification``).
+news?" prompt and the update check off (``@jupyterlab/apputils-extension:notification``), and
+sends widget messages to the kernel's main shell, not to a subshell
+(``@jupyterlab/apputils-extension:kernels-settings``, ``commsOverSubshells``). ipykernel >= 7
+serves each subshell on its own thread, so with JupyterLab's default (one subshell per comm target)
+ipympl draws a live figure for the browser on that thread while a slider update draws it on the
+main thread; matplotlib is not thread-safe, and under load the browser got half-drawn pictures
+(issue 19; ipympl issue 610, JupyterLab issue 19719). The setting applies to kernels connected
+after JupyterLab starts.
 
     python tools/lab_settings.py                 # into this Python's JupyterLab (make lab, postBuild)
     python tools/lab_settings.py --into DIR      # into another settings dir (the browser tests)

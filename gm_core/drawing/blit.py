@@ -22,6 +22,12 @@ arms, curves and readouts stay on the canvas. So once the changes stop for ``del
 key frame is sent: the figure is drawn in full and sent whole (webagg's own "refresh" request,
 which is what a newly connected browser asks for). A slider burst still gets the fast
 difference frames; its last picture is always complete.
+
+Both assume that one thread draws the figure: the slider updates, the browser's draw requests
+(answered by ipympl) and the key frame's timer all run on the kernel's main thread. JupyterLab's
+``commsOverSubshells`` setting must be off for that (the course's settings turn it off,
+tools/lab_settings.py): with it on, ipykernel >= 7 serves widget messages on a subshell thread
+and two threads draw into one Agg buffer at once (half-drawn pictures, lost frames).
 """
 from __future__ import annotations
 

@@ -13,10 +13,14 @@
   :data:`PIXEL_TOLERANCE` of them. Ghosts (a previous arm still drawn, a readout overprinted)
   are exactly such differences. Every panel is dragged first, then all are waited for
   together, so a notebook with many panels costs a few seconds, not a few per panel.
+* :func:`widget_threads`: the kernel serves the widgets' messages on its main thread only (no
+  kernel subshell), so no figure is drawn from two threads at once.
 """
 from __future__ import annotations
 
 import time
+
+import labview
 
 MIN_TRACK = 150            # px, a slider's track at 1366 x 768
 MAX_PANEL_HEIGHT = 650     # px, a panel's controls and figure together (issue 19: "at most about 650")
@@ -382,6 +386,32 @@ def drag_check(nbp, shots_dir=None) -> tuple[list[str], dict]:
     if rows and not any(r["changed"] for r in rows):
         problems.append("no panel's picture changed when its first slider was dragged")
     return problems, {"panels": rows}
+
+
+# -- one thread draws the figures -------------------------------------------------------------
+
+# ipykernel >= 7 serves each kernel subshell on a thread of its own, named "subshell-<id>".
+_THREADS_CODE = "import threading; print('GM-THREADS', *sorted(t.name for t in threading.enumerate()))"
+
+
+def widget_threads(nbp) -> list[str]:
+    """Problems if the notebook's kernel serves widget messages on a subshell thread.
+
+    JupyterLab >= 4.4 sends widget (comm) messages to a kernel subshell by default (its setting
+    ``commsOverSubshells``), and ipykernel >= 7 serves every subshell on its own thread. Then
+    ipympl draws a canvas for the browser (its "draw" and "refresh" requests) and a panel's key
+    frame fires there, while the main thread updates and blits the same figure for a slider:
+    matplotlib is not thread-safe, and the two threads share one Agg buffer and one "last picture
+    sent". Under load this sent half-drawn pictures and lost others (a quick drag of notebook 11's
+    chain left 68 % of the canvas wrong; a slow drag of 01's torus panel, 11 %). The course's
+    JupyterLab settings (jupyter/overrides.json) turn comms over subshells off."""
+    out = labview.kernel_exec(nbp, _THREADS_CODE)
+    line = next((ln for ln in out.splitlines() if ln.startswith("GM-THREADS")), None)
+    if line is None:
+        return [f"could not list the kernel's threads: {out[-300:]!r}"]
+    sub = [t for t in line.split()[1:] if t.startswith("subshell")]
+    return [f"the kernel serves widget messages on {len(sub)} subshell thread(s) besides the main one "
+            "(JupyterLab's commsOverSubshells is on): figures are drawn from two threads at once"] if sub else []
 
 
 # -- the self-check: the checks above can fail ------------------------------------------------

@@ -87,7 +87,9 @@ def test_interactive_notebook_as_a_student_uses_it(notebook, lab, record_timing,
       with its controls is taller than one laptop screen (student.control_problems);
     * ▶ plays every animation (student.play_animations);
     * the first slider of every panel, dragged quickly, leaves the same picture as a slow drag to
-      the same value, and the picture follows the slider (student.drag_check);
+      the same value, and the picture follows the slider (student.drag_check); the kernel serves
+      the widgets' messages on its main thread only, so no figure is drawn from two threads at
+      once (student.widget_threads);
     * no cell or widget error, no page error, no failed request and no request off the machine;
     * saved, closed and reopened without a kernel, its animations still play (student.replay_saved).
     """
@@ -112,7 +114,7 @@ def test_interactive_notebook_as_a_student_uses_it(notebook, lab, record_timing,
         problems += anim_problems
         t0 = nbp.timings.mark("play", t0)
         drag_problems, drags = student.drag_check(nbp)
-        problems += drag_problems
+        problems += drag_problems + student.widget_threads(nbp)
         info["panels dragged"] = len(drags["panels"])
         nbp.timings.mark("drag", t0)
         problems += nbp.page_problems
