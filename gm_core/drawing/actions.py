@@ -33,6 +33,10 @@ class SlideRuleScene(Scene):
 
     FIGSIZE = (8, 2.6)
     MARGINS = dict(left=0.02, right=0.98, bottom=0.05, top=0.85)
+    #: the cursor hairline crosses both scales' ticks and reaches down to the arrows, with a gap
+    #: (the NaN) around the D labels' row, so it points at the reading and crosses no label; it
+    #: stops below the C labels (their baseline is 0.35)
+    CURSOR_Y = np.array([0.3, -0.32, np.nan, -0.58, -0.8])
 
     @staticmethod
     def _ticks(decades, y0, up):
@@ -67,7 +71,7 @@ class SlideRuleScene(Scene):
                          for v, x, m in zip(self._c_vals, self._c_x, self._c_major) if m]
         self._c_label_x = np.array([x for x, m in zip(self._c_x, self._c_major) if m])
         (self.slide_edge,) = ax.plot([0, 1], [0.02, 0.02], color=PALETTE["blue"], lw=2)
-        (self.cursor,) = ax.plot([0, 0], [-0.8, 0.9], color=PALETTE["vermillion"], lw=1.5)
+        (self.cursor,) = ax.plot([0] * len(self.CURSOR_Y), self.CURSOR_Y, color=PALETTE["vermillion"], lw=1.5)
         self.add_a = arrow(ax, color=PALETTE["orange"], width=0.006)
         self.add_b = arrow(ax, color=PALETTE["green"], width=0.006)
         self.readout = PathText(ax, 1.0, 1.05, "", size=9, ha="center")
@@ -81,7 +85,7 @@ class SlideRuleScene(Scene):
             t.set_position((x + la, 0.35))
         self.slide_edge.set_data([la, la + 1], [0.02, 0.02])
         self.cursor_x = la + lb
-        self.cursor.set_data([self.cursor_x, self.cursor_x], [-0.8, 0.9])
+        self.cursor.set_data(np.full(len(self.CURSOR_Y), self.cursor_x), self.CURSOR_Y)
         set_arrows(self.add_a, [0, -0.85], [la, 0])
         set_arrows(self.add_b, [la, -0.85], [lb, 0])
         self.reading = 10 ** self.cursor_x
