@@ -341,7 +341,8 @@ def animate_chain_gait(system, gait, n_frames=60, cycles=2, interval=60, world_l
 
     update(0)
     freeze_layout(fig)   # lay out once: every frame is drawn with the same axes (faster frames)
-    return animate(fig, update, range(n_frames), interval=interval), fig, traj
+    # line art: frames in 256 colours (a third of the bytes, no visible change)
+    return animate(fig, update, range(n_frames), interval=interval, palette=True), fig, traj
 
 
 def links_comparison_figure(rows):
