@@ -487,8 +487,8 @@ def _chain_args(alpha, lengths):
 
 
 def _flat(alpha):
-    """alpha (..., n) -> (n, M) with the batch flattened last, and the batch shape."""
-    return alpha.reshape(-1, alpha.shape[-1]).T, alpha.shape[:-1]
+    """alpha (..., n) -> (n, M) with the batch flattened last (contiguous rows), and the batch shape."""
+    return np.ascontiguousarray(alpha.reshape(-1, alpha.shape[-1]).T), alpha.shape[:-1]
 
 
 def _chain_poses_T(a, L, base=0):
