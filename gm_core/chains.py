@@ -502,7 +502,8 @@ def _chain_poses_T(a, L, base=0):
     chain is walked out from the base link both ways (headings by the addition formulas, 2 n
     transcendental calls per shape; running sums link by link, as a cumsum over the short first
     axis is ten times slower on batch-last rows). Batch-last arrays keep every operation on long
-    contiguous rows (the fast layout for many shapes at once).
+    contiguous rows (the fast layout for many shapes at once). ``a`` may also be ``(n,)``, one shape
+    without a batch axis: the running sums then go on scalars and every array loses its last axis.
     """
     N, n = L.size, L.size - 1
     th = np.empty((N,) + a.shape[1:])
