@@ -8,10 +8,19 @@ issue 22; goal: no slower than their own closed forms were, ``--three-link`` als
 and 100 shapes), and an order-2 optimisation of the five-link swimmer for efficiency from a circle
 (goal <= 60 s), with the efficiency reached against the stored optimum.
 
-Three-link connections before they became LinkChain (main at ee42752, closed forms), best of 3
-interleaved runs on this shared machine, against the chain kernel (same runs): low Re 10^4 shapes
-8.9 -> 8.5 ms, 1 shape 157 -> 103 us; high Re 9.3 -> 8.9 ms; floating snake 11.2 -> 8.8 ms;
-kinematic snake 2.2 -> 4-8 ms on 10^4 shapes, 53 -> 120 us on one (see the report of issue 22).
+Three-link connections before they became LinkChain (main at ee42752, closed forms) against the
+chain kernels as they are now (walked out from the middle link, running sums link by link, the
+kinematic snake's Pfaffian a batch-last view): process CPU time, best of 6 interleaved runs of
+old and new (each the best of 15 repeats) on this shared, loaded 2-core machine (12/2026):
+
+    system            10^4 shapes        100 shapes       1 shape
+    kinematic snake   3.63 -> 2.11 ms    74 -> 68 us      46 -> 43 us
+    low Re            7.31 -> 5.15 ms    190 -> 93 us     146 -> 64 us
+    high Re           7.77 -> 5.22 ms    230 -> 93 us     178 -> 63 us
+    floating snake    8.09 -> 6.30 ms    235 -> 162 us    168 -> 115 us
+
+(The first chain kernel, before these changes, had made the kinematic snake about twice as slow
+as its closed form: 2.2 -> 4-8 ms on 10^4 shapes, 53 -> 120 us on one; see issue 22.)
 """
 from __future__ import annotations
 

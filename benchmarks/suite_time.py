@@ -105,6 +105,20 @@ def table(run: Path, wall: float | None = None, rc: int | None = None, cpu_all: 
     if cpu_all is not None:
         lines.append(f"CPU seconds of every process of make test: {cpu_all:.1f} "
                      f"(on 2 quiet cores the wall time is at least {cpu_all / 2:.0f} s)")
+    timings = []
+    for f in sorted((run / "browser-timings").glob("*.json")):
+        try:
+            timings.append(json.loads(f.read_text(encoding="utf-8")))
+        except ValueError:
+            continue
+    if timings:   # tests/browser/conftest.py: seconds per phase of each notebook's browser test
+        lines += ["", "browser tests by phase (s):"]
+        for t in sorted(timings, key=lambda t: -float(t["phases"].get("total", sum(
+                v for k, v in t["phases"].items() if k != "total")))):
+            ph = t["phases"]
+            total = ph.get("total", sum(v for k, v in ph.items() if k != "total"))
+            lines.append(f"  {t['name']:<44} {total:7.1f}  "
+                         + ", ".join(f"{k} {v}" for k, v in ph.items() if k != "total"))
     ex = run / "executions.jsonl"
     counts = Counter()
     hosts = Counter()

@@ -2,7 +2,7 @@
 
 The mathematics (this package's top level, ``groups``, ``calculus``, ``fields``, ``chains``,
 ``arms``, ``three_link_chain``, ``holonomic``, ``connection``, ``gaits``, ``locomotion``,
-``systems``, ``fluids``, ``geometry``, ``manifolds``, ``axioms``, ``observers``) uses numpy and
+``systems``, ``fluids``, ``geometry``, ``manifolds``, ``axioms``, ``observers``, ``printing``) uses numpy and
 scipy only. Drawing
 (``gm_core.drawing``) and widgets (``gm_core.widgets``) sit on top and are imported only when
 asked for, so the flow runs one way: math -> drawing -> widgets -> notebooks.
@@ -21,7 +21,7 @@ __all__ = [
 __version__ = "0.1.0"
 
 _SUBMODULES = {"groups", "calculus", "fields", "chains", "arms", "three_link_chain", "holonomic", "connection", "gaits",
-               "locomotion", "systems", "fluids", "geometry", "manifolds", "axioms", "observers",
+               "locomotion", "systems", "fluids", "geometry", "manifolds", "axioms", "observers", "printing",
                "checks", "grade", "drawing", "widgets"}
 
 

@@ -30,6 +30,7 @@ The book's worked examples built on these are in :mod:`gm_core.arms` (fixed-base
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -486,70 +487,131 @@ def _chain_args(alpha, lengths):
 
 
 def _flat(alpha):
-    """alpha (..., n) -> (n, M) with the batch flattened last, and the batch shape."""
-    return alpha.reshape(-1, alpha.shape[-1]).T, alpha.shape[:-1]
+    """alpha (..., n) -> (n, M) with the batch flattened last (contiguous rows), and the batch shape."""
+    return np.ascontiguousarray(alpha.reshape(-1, alpha.shape[-1]).T), alpha.shape[:-1]
 
 
-def _chain_poses_T(a, L):
+def _chain_poses_T(a, L, base=0):
     """The batch-last kernel of :func:`link_chain_poses`: joint angles ``a (n, M)``, lengths ``L (N,)``.
 
     Returns ``(P, B)`` with ``P = (x, y, theta, cos theta, sin theta)``, each ``(N, M)``, the link
-    centres in link 1's frame, and ``B = (Bx, By, Btheta)``, ``Bx, By (N, n, M)``, ``Btheta
-    (N, n, 1)``, their body Jacobians. Batch-last arrays keep every operation on long contiguous
-    rows (the fast layout for many shapes at once); the link headings' cosines and sines come
-    from the joint angles' by the addition formulas (2 n transcendental calls per shape).
+    centres in the centre frame of link ``base + 1`` (0-based ``base``, default link 1), and
+    ``B = (Bx, By, Btheta)``, ``Bx, By (N, n, M)``, ``Btheta (N, n, 1)``, their body Jacobians with
+    that link held still: joint j turns the links beyond it (i > j >= base) by +1 about the
+    joint, and, seen from a later base link, the links before it (i <= j < base) by -1. The
+    chain is walked out from the base link both ways (headings by the addition formulas, 2 n
+    transcendental calls per shape; running sums link by link, as a cumsum over the short first
+    axis is ten times slower on batch-last rows). Batch-last arrays keep every operation on long
+    contiguous rows (the fast layout for many shapes at once). ``a`` may also be ``(n,)``, one shape
+    without a batch axis: the running sums then go on scalars and every array loses its last axis.
     """
     N, n = L.size, L.size - 1
-    th = np.zeros((N,) + a.shape[1:])
-    np.cumsum(a, axis=0, out=th[1:])
+    th = np.empty((N,) + a.shape[1:])
+    c, s, px, py = np.empty_like(th), np.empty_like(th), np.empty_like(th), np.empty_like(th)
+    qx, qy = np.empty_like(a), np.empty_like(a)                # the joints, in the same frame
     ca, sa = np.cos(a), np.sin(a)
-    c, s = np.empty_like(th), np.empty_like(th)
-    c[0], s[0] = 1.0, 0.0
-    for i in range(n):
-        c[i + 1] = c[i] * ca[i] - s[i] * sa[i]
-        s[i + 1] = s[i] * ca[i] + c[i] * sa[i]
-    half = L[:, None] / 2
+    th[base], c[base], s[base], px[base], py[base] = 0.0, 1.0, 0.0, 0.0, 0.0
+    for i in range(base, n):                                   # beyond the base: turn by +alpha_i
+        if i == base:
+            th[i + 1], c[i + 1], s[i + 1] = a[i], ca[i], sa[i]
+        else:
+            th[i + 1] = th[i] + a[i]
+            c[i + 1] = c[i] * ca[i] - s[i] * sa[i]
+            s[i + 1] = s[i] * ca[i] + c[i] * sa[i]
+    for i in range(base - 1, -1, -1):                          # before it: turn by -alpha_i
+        if i == base - 1:
+            th[i], c[i], s[i] = -a[i], ca[i], -sa[i]
+        else:
+            th[i] = th[i + 1] - a[i]
+            c[i] = c[i + 1] * ca[i] + s[i + 1] * sa[i]
+            s[i] = s[i + 1] * ca[i] - c[i + 1] * sa[i]
+    half = (L / 2).reshape((N,) + (1,) * (th.ndim - 1))
     sx, sy = half * c, half * s
-    qx = np.cumsum(2 * sx[:n], axis=0) - sx[:1]          # joint j, between links j and j + 1
-    qy = np.cumsum(2 * sy[:n], axis=0) - sy[:1]
-    px = np.concatenate([np.zeros_like(th[:1]), qx + sx[1:]])
-    py = np.concatenate([np.zeros_like(th[:1]), qy + sy[1:]])
-    beyond = (np.arange(N)[:, None] > np.arange(n)[None, :]).astype(float)[..., None]   # (N, n, 1): i > j
-    dx = (qy[None] - py[:, None]) * beyond                # d p_x,i / d alpha_j = -(p_y,i - q_y,j)
-    dy = (px[:, None] - qx[None]) * beyond
+    for j in range(base, n):                                   # joint j, between links j and j + 1
+        qx[j] = px[j] + sx[j]
+        qy[j] = py[j] + sy[j]
+        px[j + 1] = qx[j] + sx[j + 1]
+        py[j + 1] = qy[j] + sy[j + 1]
+    for j in range(base - 1, -1, -1):
+        qx[j] = px[j + 1] - sx[j + 1]
+        qy[j] = py[j + 1] - sy[j + 1]
+        px[j] = qx[j] - sx[j]
+        py[j] = qy[j] - sy[j]
+    turns = _joint_turns(N, base, th.ndim)                     # (N, n, 1): +1, -1 or 0
+    dx = qy[None] - py[:, None]                                # d p_x,i / d alpha_j = -(p_y,i - q_y,j) turns_ij
+    dy = px[:, None] - qx[None]
+    dx *= turns
+    dy *= turns
     cc, ss = c[:, None], s[:, None]
-    return (px, py, th, c, s), (cc * dx + ss * dy, cc * dy - ss * dx, beyond)
+    Bx, By = cc * dx, cc * dy                                  # in place from here: fewer big temporaries
+    dx *= ss
+    dy *= ss
+    Bx += dy
+    By -= dx
+    return (px, py, th, c, s), (Bx, By, turns)
 
 
-def _chain_jacobians_T(P, B, beta, Bb, rows=(0, 1, 2)):
+@functools.cache
+def _joint_turns(N, base, ndim):
+    """The read-only (N, N - 1) table of d theta_i / d alpha_j with link ``base`` held still: +1 for
+    i > j >= base, -1 for i <= j < base, else 0; with ``ndim - 1`` trailing axes of length 1."""
+    i, j = np.arange(N)[:, None], np.arange(N - 1)[None, :]
+    turns = ((i > j) & (j >= base)).astype(float) - ((i <= j) & (j < base))
+    turns = turns.reshape((N, N - 1) + (1,) * (ndim - 1))
+    turns.flags.writeable = False
+    return turns
+
+
+def _chain_jacobians_T(P, B, beta=None, Bb=None, rows=(0, 1, 2)):
     """The batch-last kernel of :func:`link_chain_jacobians`: ``P, B`` from :func:`_chain_poses_T`,
-    the body frame ``beta = (x, y, theta, cos theta, sin theta)`` (each (M,)) relative to link 1
-    and its body Jacobian ``Bb = (Bx, By, Btheta)`` (each (n, M)). Returns ``(Q, J)``: ``Q`` the
-    links in the body frame as (x, y, theta, cos theta, sin theta) (each (N, M)), and
-    ``J (len(rows), 3 + n, N, M)``, the requested rows (0 = x, 1 = y, 2 = theta) and every column
-    of each link's Jacobian from (xi, alpha_dot) to its body velocity.
+    the body frame ``beta = (x, y, theta, cos theta, sin theta)`` (each (M,)) relative to the
+    kernel's base link and its body Jacobian ``Bb = (Bx, By, Btheta)`` (each (n, M)); ``None``
+    for both when the body frame is the base link itself (nothing to re-express). Returns
+    ``(Q, J)``: ``Q`` the links in the body frame as (x, y, theta, cos theta, sin theta) (each
+    (N, M)), and ``J (len(rows), 3 + n, N, M)``, the requested rows (0 = x, 1 = y, 2 = theta) and
+    every column of each link's Jacobian from (xi, alpha_dot) to its body velocity.
     """
     (px, py, th, cp, sp), (B0, B1, B2) = P, B
-    bx, by, bt, cb, sb = beta
-    dx, dy = px - bx, py - by
-    x, y, t = cb * dx + sb * dy, cb * dy - sb * dx, th - bt
-    c, sn = cp * cb + sp * sb, sp * cb - cp * sb          # cos, sin of theta_i - theta_beta
+    if beta is None:
+        x, y, t, c, sn = P
+    else:
+        bx, by, bt, cb, sb = beta
+        dx, dy = px - bx, py - by
+        x, y, t = cb * dx + sb * dy, cb * dy - sb * dx, th - bt
+        c, sn = cp * cb + sp * sb, sp * cb - cp * sb          # cos, sin of theta_i - theta_beta
     n = B0.shape[1]
     J = np.empty((len(rows), 3 + n) + px.shape)
-    X, Y, T = (b[None] for b in Bb)                       # Ad_{P_i^-1} Ad_beta = Ad_{Q_i^-1}
     cc, ss = c[:, None], sn[:, None]
+    if Bb is not None:
+        X, Y, T = (b[None] for b in Bb)                   # Ad_{P_i^-1} Ad_beta = Ad_{Q_i^-1}
     for k, row in enumerate(rows):                        # Ad_{Q^-1} = [[c, s, e1], [-s, c, e2], [0, 0, 1]]
+        shape_cols = np.swapaxes(J[k, 3:], 0, 1)          # (N, n, M), written in place
         if row == 0:
             e1 = sn * x - c * y
             J[k, 0], J[k, 1], J[k, 2] = c, sn, e1
-            J[k, 3:] = np.swapaxes(B0 - (cc * X + ss * Y + e1[:, None] * T), 0, 1)
+            if Bb is None:
+                shape_cols[...] = B0
+            else:
+                np.multiply(cc, X, out=shape_cols)
+                shape_cols += ss * Y
+                shape_cols += e1[:, None] * T
+                np.subtract(B0, shape_cols, out=shape_cols)
         elif row == 1:
             e2 = c * x + sn * y
             J[k, 0], J[k, 1], J[k, 2] = -sn, c, e2
-            J[k, 3:] = np.swapaxes(B1 - (cc * Y - ss * X + e2[:, None] * T), 0, 1)
+            if Bb is None:
+                shape_cols[...] = B1
+            else:
+                np.multiply(cc, Y, out=shape_cols)
+                shape_cols -= ss * X
+                shape_cols += e2[:, None] * T
+                np.subtract(B1, shape_cols, out=shape_cols)
         else:
             J[k, 0], J[k, 1], J[k, 2] = 0.0, 0.0, 1.0
-            J[k, 3:] = np.swapaxes(B2 - T, 0, 1)
+            if Bb is None:
+                shape_cols[...] = B2
+            else:
+                np.subtract(B2, T, out=shape_cols)
     return (x, y, t, c, sn), J
 
 

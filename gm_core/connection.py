@@ -22,11 +22,12 @@ SINGULAR_TOL = 1e-12
 
 
 def _cofactors3(m):
-    """Adjugate (..., 3, 3) and determinant (...) of 3x3 matrices, elementwise (fast for big batches)."""
+    """Adjugate (..., 3, 3) and determinant (...) of 3x3 matrices, elementwise (fast for big batches;
+    the adjugate keeps the memory layout of ``m``, so batch-last input gives contiguous rows)."""
     a, b, c = m[..., 0, 0], m[..., 0, 1], m[..., 0, 2]
     d, e, f = m[..., 1, 0], m[..., 1, 1], m[..., 1, 2]
     g, h, i = m[..., 2, 0], m[..., 2, 1], m[..., 2, 2]
-    adj = np.empty(m.shape)
+    adj = np.empty_like(m, dtype=float)
     adj[..., 0, 0] = e * i - f * h
     adj[..., 0, 1] = c * h - b * i
     adj[..., 0, 2] = b * f - c * e

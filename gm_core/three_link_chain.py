@@ -52,11 +52,14 @@ def middle_frame_T(alpha, lengths, rows=(0, 1, 2)):
     middle link's frame, batch-last (the kernels of :func:`gm_core.chains.link_chain_poses` and
     :func:`~gm_core.chains.link_chain_jacobians`); ``batch`` the shape M was flattened from."""
     alpha = as_array(alpha, "alpha", (2,), what=" (alpha1, alpha2)")
-    L = np.asarray(_three_link_lengths(lengths))
     a, batch = _flat(alpha)
-    P, B = _chain_poses_T(a, L)
-    Bm = (B[0][1], B[1][1], np.broadcast_to(B[2][1], B[0][1].shape))
-    return (batch,) + _chain_jacobians_T(P, B, tuple(p[1] for p in P), Bm, rows)
+    return (batch,) + _middle_frame_kernel(a, np.asarray(_three_link_lengths(lengths)), rows)
+
+
+def _middle_frame_kernel(a, L, rows):
+    """:func:`middle_frame_T` on validated, flattened joint angles ``a (2, M)`` and lengths ``L (3,)``:
+    the chain kernels walked out from the middle link (their base), so nothing is re-expressed."""
+    return _chain_jacobians_T(*_chain_poses_T(a, L, base=1), rows=rows)
 
 
 def _middle_frame(alpha, lengths):

@@ -666,3 +666,18 @@ def test_a_course_cloned_under_tmp_stays_visible_and_its_notebooks_hidden(monkey
                           f"ls {course}; cat {course}/solutions/ex1_1.ipynb"], capture_output=True, text=True)
     assert "gm_core" in res.stdout and "solutions" in res.stdout
     assert "secret" not in res.stdout
+
+
+def test_the_runner_reads_notebooks_without_compiling_the_iri_grammar():
+    """The runner process of every graded notebook imports nbformat without rfc3987_syntax's Lark
+    grammar (1-2 s of CPU each), and still reads and validates a notebook."""
+    code = ("import sys\n"
+            "from gm_core.checks import _runner\n"
+            "_runner._without_iri_grammar()\n"
+            "import nbformat\n"
+            "nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell('x = 1')])\n"
+            "nbformat.validate(nbformat.reads(nbformat.writes(nb), as_version=4))\n"
+            "print(sorted(m for m in ('lark', 'rfc3987_syntax') if sys.modules.get(m) is not None))\n")
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert res.returncode == 0, res.stderr[-2000:]
+    assert res.stdout.strip() == "[]", res.stdout

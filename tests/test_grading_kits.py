@@ -96,6 +96,21 @@ def test_nbgrader_source_keeps_starters_and_drops_instructor_cells(path):
     assert len(src.cells) == n_plain + n_answer + len(graded), n_instr
 
 
+def test_two_exports_write_the_same_files(tmp_path):
+    """Exporting twice gives byte-identical kits (cell ids come from the content, not chance), so
+    an instructor's repository of kits changes only where the course changed."""
+    runs = []
+    for name in ("a", "b"):
+        written = export_kits.write_otter(tmp_path / name / "otter", ["1.1", "3.2"])
+        written += export_kits.write_nbgrader(tmp_path / name / "nbgrader", ["1.1", "3.2"])
+        runs.append({p.relative_to(tmp_path / name).as_posix(): p.read_bytes() for p in written})
+    assert runs[0].keys() == runs[1].keys() and len(runs[0]) == 4
+    assert runs[0] == runs[1]
+    for blob in runs[0].values():
+        ids = [c["id"] for c in json.loads(blob)["cells"]]
+        assert len(set(ids)) == len(ids), "cell ids are unique within a notebook"
+
+
 def test_bad_input_is_refused_clearly(tmp_path):
     with pytest.raises(ValueError, match="exercises"):
         export_kits.write_otter(tmp_path, ["9.9"])

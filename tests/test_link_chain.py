@@ -11,9 +11,12 @@ import pytest
 from gm_core import SE2
 from gm_core.chains import MobileChain
 from gm_core.fluids import drag_wrench
-from gm_core.geometry import centre_of_mass_coordinates, fourier_gait
+from gm_core.gaits import circle_gait
+from gm_core.geometry import centre_of_mass_coordinates, fourier_gait, stokes_estimate
 from gm_core.locomotion import net_displacement, trajectory
+from gm_core.printing import shown
 from gm_core.systems import FloatingSnake, HighReSwimmer, LinkChain, LowReSwimmer
+from gm_core.systems.base import LocomotionSystem
 
 RNG = np.random.default_rng(22)
 LENGTHS3 = (1.0, 1.3, 0.7)
@@ -80,6 +83,40 @@ def test_high_re_three_links_are_the_books_closed_forms():
     D = sum(np.swapaxes(J[..., i, :, :], -1, -2) @ M @ J[..., i, :, :] for i, M in enumerate(Ms))
     np.testing.assert_allclose(s.mass_matrix(r), D, atol=1e-13)
     assert isinstance(s, LinkChain) and s.n_links == 3 and s.name == "high-Reynolds swimmer"
+
+
+class _BookThreeLinks(LocomotionSystem):
+    """The closed form the three-link systems had before they became LinkChain: the Pfaffian
+    sum J_i^T M_i J_i (3.39) of the book's Jacobians (2.57)-(2.59), middle-link frame."""
+
+    def __init__(self, lengths, matrices):
+        self.lengths, self.matrices = lengths, matrices
+
+    def pfaffian(self, r):
+        J = _book_jacobians(self._shape(r), self.lengths)
+        return sum((np.swapaxes(J[..., i, :, :], -1, -2) @ M @ J[..., i, :, :])[..., :3, :]
+                   for i, M in enumerate(self.matrices))
+
+
+def test_values_printed_by_the_three_link_notebooks_are_the_closed_forms_to_the_digit():
+    """What notebooks 09 and 10 and exercise 4.1 print from LinkChain(N = 3) (body velocity, one
+    loop's net displacement, the Stokes estimate), printed through ``shown`` at their digits,
+    is the closed form's to the last digit: computed by either route, the student sees the same."""
+    L = (1.0, 1.2, 0.8)
+    sw = LowReSwimmer(L, drag_ratio=2.0)
+    book = _BookThreeLinks(L, [np.diag([l, 2 * l, 2 * l ** 3 / 12]) for l in L])
+    r, rd = np.array([0.7, -0.9]), np.array([0.5, 1.0])                    # notebook 09, the drag check
+    assert shown(sw.body_velocity(r, rd), 4).tolist() == shown(book.body_velocity(r, rd), 4).tolist()
+    unit = _BookThreeLinks((1.0,) * 3, [np.diag([1, 2, 2 / 12])] * 3)
+    floating = _BookThreeLinks((1.0,) * 3, [np.diag([1, 1, 1 / 12])] * 3)
+    for s, ref, gait, digits in [
+            (LowReSwimmer(), unit, circle_gait(1.0), 4),                      # notebook 09, g(T)
+            (FloatingSnake(frame="middle"), floating, circle_gait(1.0, (0.5, 0.0)), 5),
+            (LowReSwimmer(), unit, circle_gait(2.2), 4)]:                     # exercise 4.1, ring C
+        assert shown(net_displacement(s, gait), digits).tolist() == shown(net_displacement(ref, gait), digits).tolist()
+    np.testing.assert_array_equal(shown(stokes_estimate(LowReSwimmer(), circle_gait(2.2)), 4),
+                                  shown(stokes_estimate(unit, circle_gait(2.2)), 4))
+    assert shown(net_displacement(LowReSwimmer(), circle_gait(1.0))[2], 12) == 0.0   # centred: no turn
 
 
 def test_centre_of_mass_frame_is_the_reframed_three_link_system():

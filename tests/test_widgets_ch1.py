@@ -96,6 +96,8 @@ def test_every_ch1_panel_is_registered_and_builds():
         p = PANELS[n]()
         p.update(**p.sample_values(rng))
         p.naive_update(**p.sample_values(rng))  # the baseline must also run
+        if p.fig is not None:
+            plt.close(p.fig)   # 22 panels: pyplot would keep every figure open
 
 
 # ---------------------------------------------------------------- 1.1 configuration spaces

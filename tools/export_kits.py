@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import argparse
 import ast
+import hashlib
 import json
 import re
 import sys
@@ -274,6 +275,14 @@ def _ids(exercises):
     return ids
 
 
+def _stable_ids(nb, stem):
+    """Give every cell an id derived from the exercise, its place and its content (nbformat's new
+    cells get random ids), so that exporting the same solutions twice writes the same files."""
+    for i, cell in enumerate(nb.cells):
+        digest = hashlib.sha1(f"{stem}\n{i}\n{cell.cell_type}\n{cell.source}".encode()).hexdigest()
+        cell["id"] = f"{stem.replace('_', '-')}-{i:03d}-{digest[:8]}"
+
+
 def _write_converted(exercises, convert, path_of):
     """Convert each exercise's solution notebook with ``convert(nb, ex_id)``, validate it and write
     it to ``path_of(stem)``; the paths written."""
@@ -282,6 +291,7 @@ def _write_converted(exercises, convert, path_of):
         stem = "ex" + ex_id.replace(".", "_")
         nb = nbformat.read(ROOT / "solutions" / f"{stem}.ipynb", as_version=4)
         out = convert(nb, ex_id)
+        _stable_ids(out, stem)
         nbformat.validate(out)
         path = path_of(stem)
         path.parent.mkdir(parents=True, exist_ok=True)

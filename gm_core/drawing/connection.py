@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.patches import Rectangle
 
+from ..printing import shown
 from .motion import SystemArtist, VelocityArtist, draw_system_naive, style_world_axes, system_extent
 from .primitives import SingularFlag
 from .toolkit import MATH_PT, PALETTE, Scene, new_figure, readout
@@ -398,7 +399,7 @@ def thin_labels(field_axes, body_ax, body_labels=True):
 
 
 def _fmt(xi):
-    xi = [0.0 if abs(v) < 5e-4 else v for v in xi]   # never "-0.000"
+    xi = shown(xi, 3)                                  # never "-0.000"
     return f"ξ = ({xi[0]:+.3f}, {xi[1]:+.3f}, {xi[2]:+.3f})"
 
 

@@ -11,6 +11,7 @@ import numpy as np
 from .._validate import SingularShapeError
 from ..groups import SE2
 from ..locomotion import drive
+from ..printing import shown
 from ..systems import Ackerman, DifferentialDrive
 from .axes import square_axes
 from .primitives import BodyArtist, FrameArtist, SingularFlag, TrailArtist
@@ -227,7 +228,7 @@ class MovingView:
 
 # ------------------------------------------------------------------------------ cars
 def _fmt(xi):
-    xi = [0.0 if abs(v) < 5e-4 else v for v in xi]   # never "-0.000"
+    xi = shown(xi, 3)                                  # never "-0.000"
     return f"ξ = ({xi[0]:+.3f}, {xi[1]:+.3f}, {xi[2]:+.3f})"
 
 

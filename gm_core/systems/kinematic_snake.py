@@ -3,7 +3,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..three_link_chain import middle_frame_T
+from ..chains import _flat
+from ..three_link_chain import _middle_frame_kernel
 from .base import Part, rectangle_outline
 from .three_link import ThreeLinkSystem
 
@@ -31,9 +32,15 @@ class KinematicSnake(ThreeLinkSystem):
                             "lines meet in a point; for equal links this is the line alpha1 = alpha2")
 
     def pfaffian(self, r):
-        """Pfaffian (..., 3, 5): the lateral (y) rows of J1, J2, J3, i.e. no link slides sideways."""
-        batch, _, J = middle_frame_T(self._shape(r), self.lengths, rows=(1,))    # J (row, column, link, M)
-        return J[0].transpose(2, 1, 0).reshape(batch + (3, 5))
+        """Pfaffian (..., 3, 5): the lateral (y) rows of J1, J2, J3, i.e. no link slides sideways.
+
+        Only those rows are computed, and the result is a view of the kernel's batch-last array
+        (shapes on the last axis in memory), the layout in which :func:`connection_from_pfaffian`
+        reads each entry of the many 3 x 3 blocks as one contiguous row."""
+        r = self._shape(r)
+        a, batch = (r, ()) if r.ndim == 1 else _flat(r)       # one shape: the kernel's rows are scalars
+        _, J = _middle_frame_kernel(a, self._L, (1,))          # J (row, column, link[, M])
+        return J[0].T.reshape(batch + (3, 5))
 
     def _closed_form_parts(self, r):
         """Numerator N (..., 3, 2), denominator D (...,) of the closed form A = N / D and their

@@ -101,6 +101,7 @@ class LinkChain(LocomotionSystem):
                          else _per_link(inertias, "inertias", N, " (the links' moments of inertia about their centres)"))
         self._diag = np.array([np.diag(M) for M in self.link_matrices()])          # (N, 3): all diagonal
         self._L = np.array(self.lengths)
+        self._base = (N - 1) // 2                 # the kernels' base: the middle link (odd N), the one before the middle joint
         self.name = f"{N}-link {_PHYSICS_NAMES[self.physics]} chain"
         self._set_frame(frame, bounds, nodes)
 
@@ -188,8 +189,9 @@ class LinkChain(LocomotionSystem):
     # -- kinematics (batch-last arrays, see gm_core.chains._chain_poses_T) ----------------------
     def _frame_pose(self, P, B, a, frame=None):
         """Pose ``(x, y, theta, cos theta, sin theta)`` (each (M,)) of the body frame (or of ``frame``)
-        relative to link 1 and its body Jacobian ``(Bx, By, Btheta)`` (each (n, M)), from the
-        kernel's ``P, B`` (:func:`gm_core.chains._chain_poses_T`); ``a (n, M)`` the joint angles."""
+        relative to the kernels' base link (``self._base``) and its body Jacobian ``(Bx, By, Btheta)``
+        (each (n, M)), from the kernel's ``P, B`` (:func:`gm_core.chains._chain_poses_T`); ``a (n, M)``
+        the joint angles."""
         frame = frame or self.frame
         if frame == "minimum perturbation":
             beta, Bb = self._frame_pose(P, B, a, self._mp_base)
@@ -234,11 +236,15 @@ class LinkChain(LocomotionSystem):
         return beta, (Bx, By, Bt)
 
     def _kinematics_T(self, r):
-        """(r, batch shape, Q, J) in the batch-last layout of :func:`gm_core.chains._chain_jacobians_T`."""
+        """(r, batch shape, Q, J) in the batch-last layout of :func:`gm_core.chains._chain_jacobians_T`.
+
+        The kernels walk the chain out from its middle link (the base of :func:`_chain_poses_T`,
+        held still), so in the middle frame of an odd chain nothing is re-expressed."""
         r = self._shape(r)
         a, batch = _flat(r)
-        P, B = _chain_poses_T(a, self._L)
-        Q, J = _chain_jacobians_T(P, B, *self._frame_pose(P, B, a))
+        P, B = _chain_poses_T(a, self._L, self._base)
+        frame = (None, None) if self.frame == "middle" and self.n_links % 2 else self._frame_pose(P, B, a)
+        Q, J = _chain_jacobians_T(P, B, *frame)
         return r, batch, Q, J
 
     def link_poses(self, r):
@@ -293,7 +299,7 @@ class LinkChain(LocomotionSystem):
         r = self._shape(r)
         F = self._middle_chain().constraint_curvature(r)
         a, batch = _flat(r)
-        P, B = _chain_poses_T(a, self._L)
+        P, B = _chain_poses_T(a, self._L, self._base)
         pose = lambda frame: np.stack(self._frame_pose(P, B, a, frame)[0][:3], -1).reshape(batch + (3,))  # noqa: E731
         Ad = SE2.Ad_inv(SE2.compose(SE2.inverse(pose("middle")), pose(self.frame)))
         F = (Ad @ F[..., None])[..., 0] if self.n_shape == 2 else np.einsum("...ij,...jkl->...ikl", Ad, F)

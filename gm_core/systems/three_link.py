@@ -38,6 +38,7 @@ class ThreeLinkSystem(LocomotionSystem):
 
     def __init__(self, lengths=(1.0, 1.0, 1.0)):
         self.lengths = three_lengths(lengths)
+        self._L = np.array(self.lengths)
 
     # -- kinematics --------------------------------------------------------------------------
     def middle_link_jacobians(self, r):

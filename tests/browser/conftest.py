@@ -172,7 +172,25 @@ def record_timing(request):
     """Store per-notebook phase timings; printed in the terminal summary."""
     def record(name, phases):
         request.config.stash[TIMINGS_KEY][name] = phases
+        _save_timing(name, phases)
     return record
+
+
+def _save_timing(name, phases):
+    """Also keep the phases in this run's folder (tests/nbrun.py), one file per notebook: under
+    pytest-xdist the terminal summary below runs in the workers, whose output is not shown, and
+    benchmarks/suite_time.py --last prints these with the rest of the run's times."""
+    import json
+
+    import nbrun
+
+    d = nbrun.run_dir()
+    if d is None:
+        return
+    out = d / "browser-timings"
+    out.mkdir(exist_ok=True)
+    (out / (nbrun.slug(name).strip("()").replace(" ", "-") + ".json")).write_text(
+        json.dumps({"name": name, "phases": phases}), encoding="utf-8")
 
 
 def pytest_terminal_summary(terminalreporter, exitstatus, config):
