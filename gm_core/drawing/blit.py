@@ -69,12 +69,13 @@ def hold_pictures_until_view(fig):
     ipympl 0.10 treats a picture sent before that message (``syncing_data_url``) as the figure's
     saved state: it stores it in ``_data_url`` without the ``data:`` prefix and sends the browser
     raw pixels for a PNG, so the canvas breaks and later differences are painted on nothing. The
-    kernel only draws when asked, but ipykernel 7 dispatches comm messages that arrive while a
-    cell runs at once and queues the others behind the cells still to run, so the browser's
-    answer ('draw') to a draw request can be handled before its own earlier 'initialized'.
-    Until then every picture is held back (webagg's ``manager.refresh_all``, which ``draw`` and
-    ``blit`` call to send); the one held back goes out whole right after 'initialized'. Other
-    canvases are left as they are. Returns True if ``fig`` is held."""
+    kernel only draws when asked, but the browser's answer ('draw') to a draw request can be
+    handled before its own earlier 'initialized': JupyterLab >= 4.4 sends a new canvas's first
+    messages on the main shell, behind the cells Run All queued, and its later ones on a kernel
+    subshell that ipykernel 7 serves at once (commsOverSubshells, on by default). Until then every
+    picture is held back (webagg's ``manager.refresh_all``, which ``draw`` and ``blit`` call to
+    send); the one held back goes out whole right after 'initialized'. Other canvases are left
+    as they are. Returns True if ``fig`` is held."""
     canvas = fig.canvas
     manager = getattr(canvas, "manager", None)
     if not (_no_view_yet(canvas) and hasattr(canvas, "on_msg") and hasattr(manager, "refresh_all")):
