@@ -279,8 +279,9 @@ def _proper(data_url):
 def test_no_picture_leaves_before_the_browser_view_is_initialised(ipympl):
     """ipympl 0.10 takes a picture sent before its front end's 'initialized' message for the
     saved picture: ``_data_url`` loses its ``data:`` prefix and the browser gets raw pixels for a
-    PNG, so the canvas stays blank (03-velocities under load, where ipykernel 7 handled the
-    browser's answer to a draw request before its 'initialized'). Here the view's messages come
+    PNG, so the canvas stays blank (03-velocities under load: the browser's answer to a draw
+    request, sent on a comm subshell, was handled before its 'initialized', sent on the main
+    shell behind Run All's cells). Here the view's messages come
     in that order, with a cell's update and a key frame falling due in between: nothing is sent
     until 'initialized', then the picture of the panel as it is, whole, then differences again."""
     import io
