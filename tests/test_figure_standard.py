@@ -317,6 +317,10 @@ def test_panel_words_have_no_raw_formula(name, cls):
         words.append((f"control {key!r}", (getattr(c, "description", "") or "") + " " + (getattr(c, "tooltip", "") or "")))
     bad = [f"{what}: {text.strip()!r} holds {figstd.raw_formula(text)!r}" for what, text in words
            if figstd.raw_formula(text) or "$" in text]
+    # a symbol spelled out ("alpha1", "delta rate") where the prose and the other panels write α₁, δ
+    spelled = re.compile(r"\b(alpha|beta|gamma|delta|theta|xi|psi|phi|omega|tau)(\d*|_\w*)\b", re.IGNORECASE)
+    bad += [f"{what}: {text.strip()!r} spells out {m.group(0)!r}" for what, text in words
+            if (m := spelled.search(text))]
     plt.close("all")
     assert not bad, f"{name}: raw formula markup in its words:\n  " + "\n  ".join(bad)
 

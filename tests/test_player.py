@@ -68,3 +68,35 @@ def test_bad_arguments():
         fig, ax = plt.subplots()
         jshtml(FuncAnimation(fig, lambda k: None, frames=2))
     plt.close("all")
+
+
+def test_palette_frames_are_smaller_and_look_the_same(monkeypatch):
+    """``animate(..., palette=True)`` (line art): frames in at most 256 colours, every pixel within a
+    few levels of the full-colour frame (a small marker keeps its colour), and fewer bytes."""
+    import io
+
+    import numpy as np
+    from PIL import Image
+
+    from gm_core.drawing.toolkit import PALETTE
+
+    monkeypatch.delenv("GM_COURSE_TESTING", raising=False)
+
+    def page(palette):
+        fig, ax = plt.subplots(figsize=(6, 3))
+        x = np.linspace(0, 10, 400)
+        for k, c in enumerate(("blue", "orange", "green", "vermillion")):
+            ax.plot(x, np.sin(x + k), color=PALETTE[c], lw=1.8)
+        (dot,) = ax.plot([], [], "o", color="gold", mec="k", ms=8)
+        ax.grid(True, alpha=0.3)
+        anim = animate(fig, lambda k: dot.set_data([k], [0.0]), frames=range(3), palette=palette)
+        html = jshtml(anim).data
+        return [Image.open(io.BytesIO(base64.b64decode(u)))
+                for u in re.findall(r'"data:image/png;base64,([A-Za-z0-9+/=]+)"', html)], len(html)
+
+    (full, n_full), (small, n_small) = page(False), page(True)
+    assert small[0].mode == "P" and full[0].mode != "P"
+    for a, b in zip(full, small):
+        diff = np.abs(np.asarray(a.convert("RGB"), int) - np.asarray(b.convert("RGB"), int))
+        assert diff.max() <= 24, f"a pixel changed by {diff.max()} levels"
+    assert n_small < 0.6 * n_full, (n_small, n_full)

@@ -27,7 +27,13 @@ def test_chain_slice_panel_shows_the_slice_of_the_designed_chain():
     assert np.isfinite(F).all() and F.shape == (p.scene.n_map, p.scene.n_map)
     p.set(links=3, axis1=1, axis2=2, row=0)       # the axes clamp to the joints there are
     assert p.controls["axis1"].max == 2 and p.scene.pair == (0, 1)
-    assert "row ξx" in p.scene.titles[0].text or "row x" in p.scene.titles[0].text
+    # formulas in mathtext, as in notebooks 08-10: the row's title and the slice's joints
+    assert r"row $\xi^x$" in p.scene.titles[0].text and r"row $\xi^x$" in p.scene.titles[1].text
+    p.set(links=5)
+    p.set(axis1=2, axis2=4)
+    ax = p.scene.axes[1]
+    assert (ax.get_xlabel(), ax.get_ylabel()) == (r"$\alpha_2$", r"$\alpha_4$")
+    assert [label for label, _ in p.controls["row"].options] == ["ξˣ (forward)", "ξʸ (sideways)", "ξᶿ (turning)"]
 
 
 def test_wave_gait_panel_moves_only_with_a_lag():

@@ -49,8 +49,10 @@ class PacingSquareScene(Scene):
         super().__init__(**options)
 
     def make_figure(self):
-        fig, axes = new_figure(2, 2, figsize=(6.2, 5.8))
-        fig.get_layout_engine().set(w_pad=0.3, h_pad=0.25, wspace=0.12, hspace=0.12)
+        # h_pad pads the suptitle too (0.25 in left a 50 px band under it): the room between the
+        # rows for the "repace" arrows comes from hspace instead
+        fig, axes = new_figure(2, 2, figsize=(6.2, 5.5))
+        fig.get_layout_engine().set(w_pad=0.3, h_pad=0.05, wspace=0.12, hspace=0.2)
         return fig, list(axes.ravel())
 
     def decorate(self):

@@ -24,6 +24,16 @@ __all__ = [
 
 PI = float(np.pi)
 
+_GREEK = {"alpha": "α", "delta": "δ"}
+_SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def _joint_label(name: str) -> str:
+    """The slider label of a joint value: "alpha2" -> "α₂" (control labels are HTML, where a
+    formula is Unicode, as in the other chapters' panels)."""
+    stem = name.rstrip("0123456789")
+    return _GREEK.get(stem, stem) + name[len(stem):].translate(_SUBSCRIPT)
+
 
 class _ArmPanel(ScenePanel):
     """A fixed-base arm with one slider per joint and per joint speed; the end effector's velocity arrow."""
@@ -45,10 +55,10 @@ class _ArmPanel(ScenePanel):
                     lim=o.get("lim", self.lim))
 
     def controls_spec(self):
-        c = {name: slider(v, lo, hi, description=name)
+        c = {name: slider(v, lo, hi, description=_joint_label(name))
              for name, (lo, hi), v in zip(self.names, self.ranges, self.start)}
         for name in self.names:
-            c[name + "_dot"] = slider(0.5, -2.0, 2.0, description=name + " rate")
+            c[name + "_dot"] = slider(0.5, -2.0, 2.0, description=_joint_label(name) + " rate")
         return c
 
 
@@ -76,7 +86,7 @@ class RRArmPanel(_ArmPanel):
 class RPArmPanel(_ArmPanel):
     """The rotary-prismatic arm of fig. 2.4: link 2 slides out by delta along link 1, (2.10)-(2.11), (2.45)."""
 
-    title = "Rotary-prismatic arm (fig. 2.4): the dashed gap is the slide delta"
+    title = "Rotary-prismatic arm (fig. 2.4): the dashed gap is the slide δ"
     joints = "RP"
     lengths = (1.0, 0.6)
     names = ("alpha", "delta")
@@ -116,7 +126,7 @@ class MobileChainPanel(ScenePanel):
         c = {"x": slider(0.0, -1.0, 1.0, description="x"), "y": slider(0.0, -1.0, 1.0, description="y"),
              "theta": slider(0.0, -PI, PI, description="θ")}
         for j in range(n - 1):
-            c[f"alpha{j + 1}"] = slider([0.6, -0.6, 0.4][j % 3], -2.5, 2.5, description=f"α{j + 1}")
+            c[f"alpha{j + 1}"] = slider([0.6, -0.6, 0.4][j % 3], -2.5, 2.5, description=_joint_label(f"alpha{j + 1}"))
         c["base_link"] = W.IntSlider(value=(n - 1) // 2, min=0, max=n - 1, description="base link")
         if n == 3:
             c["shape"] = W.Dropdown(options=["free", "even", "odd"], value="free", description="shape")
@@ -147,18 +157,18 @@ class ThreeLinkMobilePanel(MobileChainPanel):
 class BetaFramePanel(ScenePanel):
     """A body frame g = g_2 beta placed by sliders (fig. 2.7) or at the centre of mass (fig. 2.9, ex. 2.3)."""
 
-    title = "Generalized body frame beta (figs. 2.7, 2.9)"
+    title = "Generalized body frame β (figs. 2.7, 2.9)"
     scene_class = BetaFrameScene
 
     def controls_spec(self):
         return {
-            "alpha1": slider(0.8, -2.5, 2.5, description="α1"),
-            "alpha2": slider(0.8, -2.5, 2.5, description="α2"),
+            "alpha1": slider(0.8, -2.5, 2.5, description="α₁"),
+            "alpha2": slider(0.8, -2.5, 2.5, description="α₂"),
             "frame": W.Dropdown(options=["sliders", "centre of mass"], value="centre of mass",
                                 description="β"),
-            "beta_x": slider(0.3, -1.0, 1.0, description="β x"),
-            "beta_y": slider(0.2, -1.0, 1.0, description="β y"),
-            "beta_theta": slider(0.0, -PI, PI, description="β θ"),
+            "beta_x": slider(0.3, -1.0, 1.0, description="βˣ"),
+            "beta_y": slider(0.2, -1.0, 1.0, description="βʸ"),
+            "beta_theta": slider(0.0, -PI, PI, description="βᶿ"),
         }
 
     def after_update(self, values):
@@ -190,16 +200,16 @@ class JacobianMethodsPanel(ScenePanel):
 class ThreeLinkVelocityPanel(ScenePanel):
     """Body velocities of the three links from (xi, alpha_dot) through the corrected (2.57)-(2.59)."""
 
-    title = "Three-link system: link body velocities from xi and the joint speeds (2.57)-(2.59)"
+    title = "Three-link system: link body velocities from ξ and the joint speeds (2.57)-(2.59)"
     scene_class = ThreeLinkVelocityScene
 
     def controls_spec(self):
         return {
-            "alpha1": slider(0.6, -2.5, 2.5, description="α1"),
-            "alpha2": slider(-0.4, -2.5, 2.5, description="α2"),
-            "xi_x": slider(0.5, -1.0, 1.0, description="ξ x"),
-            "xi_y": slider(0.0, -1.0, 1.0, description="ξ y"),
-            "xi_theta": slider(0.0, -1.0, 1.0, description="ξ θ"),
-            "alpha1_dot": slider(0.0, -1.0, 1.0, description="α1 rate"),
-            "alpha2_dot": slider(1.0, -1.0, 1.0, description="α2 rate"),
+            "alpha1": slider(0.6, -2.5, 2.5, description="α₁"),
+            "alpha2": slider(-0.4, -2.5, 2.5, description="α₂"),
+            "xi_x": slider(0.5, -1.0, 1.0, description="ξˣ"),
+            "xi_y": slider(0.0, -1.0, 1.0, description="ξʸ"),
+            "xi_theta": slider(0.0, -1.0, 1.0, description="ξᶿ"),
+            "alpha1_dot": slider(0.0, -1.0, 1.0, description="α₁ rate"),
+            "alpha2_dot": slider(1.0, -1.0, 1.0, description="α₂ rate"),
         }

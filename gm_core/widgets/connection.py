@@ -32,8 +32,8 @@ class ConnectionFieldPanel(ScenePanel):
     def controls_spec(self):
         (lo1, hi1), (lo2, hi2) = self.system.shape_limits
         return {
-            "alpha1": slider(self.options.get("alpha1", 0.8), lo1, hi1, description="α1"),
-            "alpha2": slider(self.options.get("alpha2", -0.6), lo2, hi2, description="α2"),
-            "alpha1_dot": slider(1.0, -1.0, 1.0, description="α1 rate"),
-            "alpha2_dot": slider(0.0, -1.0, 1.0, description="α2 rate"),
+            "alpha1": slider(self.options.get("alpha1", 0.8), lo1, hi1, description="α₁"),
+            "alpha2": slider(self.options.get("alpha2", -0.6), lo2, hi2, description="α₂"),
+            "alpha1_dot": slider(1.0, -1.0, 1.0, description="α₁ rate"),
+            "alpha2_dot": slider(0.0, -1.0, 1.0, description="α₂ rate"),
         }

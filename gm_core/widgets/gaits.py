@@ -50,8 +50,8 @@ class GaitPanel(ScenePanel):
         spec = {
             "family": W.Dropdown(options=list(GAIT_SHAPES), value=o.get("family", "circle"), description="shape"),
             "amplitude": slider(o.get("amplitude", min(1.0, big)), 0.05, big, description="size"),
-            "center1": slider(c[0], lo1 / 2, hi1 / 2, description="centre α1"),
-            "center2": slider(c[1], lo2 / 2, hi2 / 2, description="centre α2"),
+            "center1": slider(c[0], lo1 / 2, hi1 / 2, description="centre α₁"),
+            "center2": slider(c[1], lo2 / 2, hi2 / 2, description="centre α₂"),
             "aspect": slider(o.get("aspect", 0.6), 0.1, 1.5, description="aspect"),
             "angle": slider(o.get("angle", 0.0), -PI, PI, description="tilt / phase"),
         }

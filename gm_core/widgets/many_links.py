@@ -13,6 +13,11 @@ from .base import ScenePanel, int_slider, register, slider
 __all__ = ["ChainSlicePanel", "WaveGaitPanel", "OptimalGaitPanel"]
 
 
+#: the connection rows as a dropdown shows them (HTML: Unicode superscripts, as the other panels' ξˣ)
+_ROW_OPTIONS = [(label.replace("ξx", "ξˣ").replace("ξy", "ξʸ").replace("ξθ", "ξᶿ"), i)
+                for i, label in enumerate(ROW_LABELS)]
+
+
 def _physics_dropdown(value="low_re"):
     label = {v: k for k, v in PHYSICS_LABELS.items()}.get(value, value)
     return W.Dropdown(options=list(PHYSICS_LABELS), value=label, description="physics")
@@ -31,7 +36,7 @@ class ChainSlicePanel(ScenePanel):
         return {
             "links": int_slider(o.get("links", 4), 3, 7, description="links"),
             "physics": _physics_dropdown(o.get("physics", "low_re")),
-            "row": W.Dropdown(options=[(ROW_LABELS[i], i) for i in range(3)], value=o.get("row", 2), description="row"),
+            "row": W.Dropdown(options=_ROW_OPTIONS, value=o.get("row", 2), description="row"),
             "axis1": int_slider(o.get("axis1", 1), 1, 6, description="slice joint 1"),
             "axis2": int_slider(o.get("axis2", 2), 1, 6, description="slice joint 2"),
         }
