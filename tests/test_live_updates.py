@@ -9,6 +9,8 @@
 * A quick drag (a burst of changes) and a slow one (one change) to the same value leave the same
   picture, for every registered panel and for 09's gait panel on the kinematic snake, whose drag
   crosses into singular gaits.
+* On a real ipympl canvas no picture leaves before the browser's view has said 'initialized',
+  whatever the order in which the kernel handles the view's messages.
 """
 import json
 
@@ -238,3 +240,85 @@ def test_the_drag_comparison_sees_a_path_dependent_picture(blitting):
 
     quick, slow, _, _ = _quick_and_slow(Counting, {})
     assert (quick != slow).any(-1).mean() > 0
+
+
+# -- ipympl: no picture before the browser's view is ready --------------------------------------
+
+@pytest.fixture
+def ipympl():
+    backend = matplotlib.get_backend()
+    plt.switch_backend("module://ipympl.backend_nbagg")
+    yield
+    plt.switch_backend(backend)
+
+
+def _browser_says(canvas, kind):
+    """A message from ipympl's front end, dispatched as ipywidgets does (to every on_msg callback)."""
+    canvas._handle_msg({"content": {"data": {"method": "custom", "content": {"type": kind}}}, "buffers": []})
+
+
+def _pictures(canvas):
+    """The list of pictures (binary messages) ``canvas`` sends to the browser from now on."""
+    sent, send = [], canvas.send
+
+    def record(content, buffers=None):
+        if buffers:
+            sent.append(bytes(memoryview(buffers[0])))
+        return send(content, buffers)
+
+    canvas.send = record
+    return sent
+
+
+def _proper(data_url):
+    return data_url is None or data_url.startswith("data:image/png;base64,")
+
+
+# ipympl's own Toolbar passes its canvas to HasTraits.__init__ (its code, not ours)
+@pytest.mark.filterwarnings("ignore:Passing unrecognized arguments to super\\(Toolbar\\)")
+def test_no_picture_leaves_before_the_browser_view_is_initialised(ipympl):
+    """ipympl 0.10 takes a picture sent before its front end's 'initialized' message for the
+    saved picture: ``_data_url`` loses its ``data:`` prefix and the browser gets raw pixels for a
+    PNG, so the canvas stays blank (03-velocities under load: the browser's answer to a draw
+    request, sent on a comm subshell, was handled before its 'initialized', sent on the main
+    shell behind Run All's cells). Here the view's messages come
+    in that order, with a cell's update and a key frame falling due in between: nothing is sent
+    until 'initialized', then the picture of the panel as it is, whole, then differences again."""
+    import io
+
+    from PIL import Image
+
+    from gm_core.drawing.toolkit import new_figure
+    from gm_core.widgets.observer import FramesPanel
+
+    panel = FramesPanel()
+    canvas = panel.fig.canvas
+    sent = _pictures(canvas)
+    panel._repr_mimebundle_()                      # the cell displays it
+    _browser_says(canvas, "refresh")               # the view's first message,
+    _browser_says(canvas, "draw")                  # its answer to a draw request, handled early,
+    panel.set(t=2.5)                               # a later cell moves the panel,
+    assert panel.keyframes is not None
+    panel.keyframes.send()                         # a key frame falls due,
+    _browser_says(canvas, "draw")                  # the view answers again
+    assert _proper(canvas._data_url), f"picture stored as {canvas._data_url[:30]!r}..."
+    assert sent == [], "a picture was sent before the browser's view was initialised"
+    _browser_says(canvas, "send_image_mode")
+    _browser_says(canvas, "initialized")
+    assert len(sent) == 1 and sent[0].startswith(b"\x89PNG"), "the picture held back goes out as a PNG"
+    assert canvas._current_image_mode == "full" and _proper(canvas._data_url)
+    shown = np.asarray(Image.open(io.BytesIO(sent[0])).convert("RGBA"))
+    assert (shown == np.asarray(canvas.buffer_rgba())).all(), "the picture sent is not the panel as it is"
+    panel.set(t=3.0)
+    _browser_says(canvas, "draw")                  # from now on, pictures flow as before
+    assert len(sent) == 2 and canvas._current_image_mode == "diff"
+
+    # a static figure of the course (shown with widgets.base.show or as fig.canvas) likewise
+    fig, ax = new_figure()
+    ax.plot([0, 1], [0, 1])
+    sent = _pictures(fig.canvas)
+    for kind in ("refresh", "draw"):
+        _browser_says(fig.canvas, kind)
+    assert sent == [] and _proper(fig.canvas._data_url)
+    _browser_says(fig.canvas, "initialized")
+    assert len(sent) == 1 and sent[0].startswith(b"\x89PNG")

@@ -75,3 +75,15 @@ def test_optimal_gait_panel_animation_and_bad_values():
         p.scene.set(links=9)
     with pytest.raises(ValueError, match="order"):
         p.scene.set(order=5)
+
+
+def test_wave_readout_never_prints_negative_zero():
+    """A travelling wave of an odd chain ends on a y and θ that are zero up to round-off; the
+    readout shows them as +0.000 (rounded as shown), never -0.000."""
+    from gm_core.drawing.toolkit import signed
+
+    assert signed([-1e-17, -0.0004, 0.0005, -1.25]) == "+0.000, +0.000, +0.001, -1.250"
+    for links in (3, 4, 5):
+        p = WaveGaitPanel(links=links, lag=0.0)
+        text = p.scene.text.get_text()
+        assert text.startswith("g(T) = (") and "-0.000" not in text, text

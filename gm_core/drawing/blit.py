@@ -39,7 +39,7 @@ from matplotlib.spines import Spine
 from matplotlib.text import Text
 from matplotlib.transforms import Bbox
 
-__all__ = ["Blitter", "KeyFrames", "can_blit", "sends_differences"]
+__all__ = ["Blitter", "KeyFrames", "can_blit", "hold_pictures_until_view", "sends_differences"]
 
 
 def can_blit(fig) -> bool:
@@ -67,6 +67,45 @@ def _no_view_yet(canvas) -> bool:
     the browser's image breaks). Until the view asks for its first picture, only draw requests
     (``draw_idle``, answered by the browser) are made."""
     return bool(getattr(canvas, "syncing_data_url", False))
+
+
+def hold_pictures_until_view(fig):
+    """Under ipympl, send no picture of ``fig`` before its browser view has said 'initialized'.
+
+    ipympl 0.10 treats a picture sent before that message (``syncing_data_url``) as the figure's
+    saved state: it stores it in ``_data_url`` without the ``data:`` prefix and sends the browser
+    raw pixels for a PNG, so the canvas breaks and later differences are painted on nothing. The
+    kernel only draws when asked, but the browser's answer ('draw') to a draw request can be
+    handled before its own earlier 'initialized': JupyterLab >= 4.4 sends a new canvas's first
+    messages on the main shell, behind the cells Run All queued, and its later ones on a kernel
+    subshell that ipykernel 7 serves at once (commsOverSubshells, on by default). Until then every
+    picture is held back (webagg's ``manager.refresh_all``, which ``draw`` and ``blit`` call to
+    send); the one held back goes out whole right after 'initialized'. Other canvases are left
+    as they are. Returns True if ``fig`` is held."""
+    canvas = fig.canvas
+    manager = getattr(canvas, "manager", None)
+    if not (_no_view_yet(canvas) and hasattr(canvas, "on_msg") and hasattr(manager, "refresh_all")):
+        return False
+    send = manager.refresh_all
+    held = False
+
+    def refresh_all():
+        nonlocal held
+        if _no_view_yet(canvas):
+            held = True   # webagg's picture stays due (_png_is_old); nothing is diffed or sent
+        else:
+            send()
+
+    def on_msg(widget, content, buffers):
+        # runs after ipympl's own handler (registered first), which ends syncing_data_url
+        nonlocal held
+        if content.get("type") == "initialized" and held and not _no_view_yet(canvas):
+            held = False
+            send()
+
+    manager.refresh_all = refresh_all
+    canvas.on_msg(on_msg)
+    return True
 
 
 def _view(ax):

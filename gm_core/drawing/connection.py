@@ -11,10 +11,9 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.patches import Rectangle
 
-from ..printing import shown
 from .motion import SystemArtist, VelocityArtist, draw_system_naive, style_world_axes, system_extent
 from .primitives import SingularFlag
-from .toolkit import MATH_PT, PALETTE, Scene, new_figure, readout
+from .toolkit import MATH_PT, PALETTE, Scene, new_figure, readout, signed
 
 __all__ = ["ROW_LABELS", "math_title", "shape_grid", "connection_field", "ConnectionFieldArtist", "draw_singular_set",
            "ShapeCursorArtist", "style_shape_axes", "singular_contour_grid", "SHAPE_PAD", "connection_fields_figure", "regimes_figure",
@@ -399,8 +398,7 @@ def thin_labels(field_axes, body_ax, body_labels=True):
 
 
 def _fmt(xi):
-    xi = shown(xi, 3)                                  # never "-0.000"
-    return f"ξ = ({xi[0]:+.3f}, {xi[1]:+.3f}, {xi[2]:+.3f})"
+    return f"ξ = ({signed(xi)})"
 
 
 class ConnectionFieldScene(FieldGridScene):

@@ -24,7 +24,7 @@ from .connection import (
 )
 from .motion import MovingView, SystemArtist, draw_system_naive, style_world_axes, system_extent
 from .primitives import SingularFlag, TrailArtist, animate
-from .toolkit import PALETTE, freeze_layout, new_figure, readout
+from .toolkit import PALETTE, freeze_layout, new_figure, readout, signed
 
 __all__ = ["GaitScene", "GAIT_SHAPES", "animate_gait"]
 
@@ -215,9 +215,7 @@ class GaitScene(FieldGridScene):
         self.start.set(self.traj.g[0], self.traj.r[0])
         self.trail.set(self.traj.g[:, :2])
         self.body.set(self.traj.g[-1], self.traj.r[-1])
-        d = self.net
-        d = [0.0 if abs(v) < 5e-4 else v for v in d]   # never "-0.000"
-        self.text.set_text(f"net displacement per cycle\nx, y, θ: {d[0]:+.3f}, {d[1]:+.3f}, {d[2]:+.3f}")
+        self.text.set_text(f"net displacement per cycle\nx, y, θ: {signed(self.net)}")
 
     # -- mouse editing of the drawn loop -------------------------------------------------------
     def _nearest(self, event):

@@ -27,7 +27,7 @@ from .connection import ROW_LABELS, ConnectionFieldArtist, math_title, style_sha
 from .curvature import CurvatureMapArtist
 from .motion import SystemArtist, style_world_axes
 from .primitives import TrailArtist, animate
-from .toolkit import MATH_PT, PALETTE, Scene, freeze_layout, new_figure, readout, title
+from .toolkit import MATH_PT, PALETTE, Scene, freeze_layout, new_figure, readout, signed, title
 
 __all__ = ["ChainSliceScene", "WaveGaitScene", "OptimalGaitScene", "animate_chain_gait", "links_comparison_figure",
            "continuum_figure", "design_chain", "PHYSICS_LABELS"]
@@ -215,7 +215,7 @@ class WaveGaitScene(Scene):
         self.end.set(self.system, self.g, self.traj.r[-1])
         self.trail.set(self.traj.g[:, :2])
         eff = "" if self.efficiency is None else f"\nefficiency {self.efficiency:.4f}"
-        self.text.set_text(f"g(T) = ({self.g[0]:+.3f}, {self.g[1]:+.3f}, {self.g[2]:+.3f}){eff}")
+        self.text.set_text(f"g(T) = ({signed(self.g)}){eff}")
 
 
 class OptimalGaitScene(Scene):

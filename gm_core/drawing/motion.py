@@ -11,11 +11,10 @@ import numpy as np
 from .._validate import SingularShapeError
 from ..groups import SE2
 from ..locomotion import drive
-from ..printing import shown
 from ..systems import Ackerman, DifferentialDrive
 from .axes import square_axes
 from .primitives import BodyArtist, FrameArtist, SingularFlag, TrailArtist
-from .toolkit import PALETTE, PathText, Scene, readout
+from .toolkit import PALETTE, PathText, Scene, readout, signed
 
 __all__ = ["PART_STYLES", "SystemArtist", "system_extent", "draw_system_naive", "VelocityArtist",
            "style_world_axes", "MovingView", "CarScene", "DiffDriveScene", "AckermanScene"]
@@ -228,8 +227,7 @@ class MovingView:
 
 # ------------------------------------------------------------------------------ cars
 def _fmt(xi):
-    xi = shown(xi, 3)                                  # never "-0.000"
-    return f"ξ = ({xi[0]:+.3f}, {xi[1]:+.3f}, {xi[2]:+.3f})"
+    return f"ξ = ({signed(xi)})"
 
 
 class CarScene(Scene):

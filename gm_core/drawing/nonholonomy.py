@@ -18,7 +18,7 @@ from ..systems.rolling_disk import (
 )
 from .axes import plane
 from .primitives import BodyArtist, FrameArtist, TrailArtist
-from .toolkit import PALETTE, ArrowSet, Scene, new_figure, readout
+from .toolkit import PALETTE, ArrowSet, Scene, new_figure, readout, signed
 
 __all__ = ["ParallelParkScene", "DISK_OUTLINE"]
 
@@ -84,8 +84,7 @@ class ParallelParkScene(Scene):
         self.g_end = g[-1]
         self.net_arrow.set(g[0, :2], g[-1, :2] - g[0, :2])
         n, e = self.net, self.estimate
-        self.text.set_text(f"net   (x, y, θ) = ({n[0]:+.3f}, {n[1]:+.3f}, {n[2]:+.3f})\n"
-                           f"d·φ·[drive, turn] = ({e[0]:+.3f}, {e[1]:+.3f}, {e[2]:+.3f})")
+        self.text.set_text(f"net   (x, y, θ) = ({signed(n)})\nd·φ·[drive, turn] = ({signed(e)})")
         q = radial_point_path(radial_loop_moves(phi, d), q0=(0.0, -1.0), n_per_move=30)
         self.q = q
         self.trail2.set(q)

@@ -37,7 +37,11 @@ from matplotlib.path import Path
 from matplotlib.textpath import TextPath
 from matplotlib.transforms import blended_transform_factory as _blend
 
+from ..printing import shown
+from .blit import hold_pictures_until_view
+
 __all__ = [
+    "signed",
     "DPI", "MAX_WIDTH_IN", "MIN_TEXT_PX", "MIN_TEXT_PT", "MATH_PT", "PALETTE", "STYLE", "apply_style",
     "new_figure", "figure", "margins", "freeze_layout", "PathText", "readout", "ArrowSet", "arrow", "set_arrows",
     "title",
@@ -120,7 +124,8 @@ def new_figure(nrows=1, ncols=1, *, figsize=(6, 4), subplot_kw=None, layout="con
 
     The width is capped at :data:`MAX_WIDTH_IN` (the height shrinks with it), the resolution is
     :data:`DPI`, and the layout is constrained unless ``layout=None`` (then give explicit margins
-    with :func:`margins`). Under ipympl (``%matplotlib widget``) the toolbar header is hidden.
+    with :func:`margins`). Under ipympl (``%matplotlib widget``) the toolbar header is hidden and
+    no picture is sent before the browser's view is ready (:func:`.blit.hold_pictures_until_view`).
     """
     with plt.ioff():
         fig, ax = plt.subplots(nrows, ncols, figsize=_fit(figsize), subplot_kw=subplot_kw, dpi=dpi,
@@ -130,6 +135,7 @@ def new_figure(nrows=1, ncols=1, *, figsize=(6, 4), subplot_kw=None, layout="con
         canvas.header_visible = False
         canvas.footer_visible = False
         canvas.resizable = False
+    hold_pictures_until_view(fig)   # ipympl: no picture before the browser's view is ready
     return fig, ax
 
 
@@ -357,6 +363,12 @@ def readout(ax, x, y, s="", size=8, **kw):
     kw.setdefault("va", "bottom")
     kw.pop("fontsize", None)
     return PathText(ax, x, y, s, size=size, **kw)
+
+
+def signed(values, decimals: int = 3) -> str:
+    """Numbers as a readout prints them, with their signs: ``"+0.125, -1.000, +0.000"``; rounded
+    as shown (gm_core.printing.shown), so a value that is zero up to round-off never reads -0.000."""
+    return ", ".join(f"{v:+.{decimals}f}" for v in np.atleast_1d(shown(values, decimals)).tolist())
 
 
 def title(ax, text="", size=9):

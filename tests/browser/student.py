@@ -186,8 +186,38 @@ _PANELS_JS = r"""
 }
 """
 
-# a cheap fingerprint of every listed panel's canvas (FNV-1a over all pixels) and its first
-# slider's value, all panels in one call
+# Every ipympl canvas of the page, watched: how many pictures it has shown and whether the last
+# one was whole (image mode 'full', which ipympl reads when the picture has loaded; a panel's
+# key frame is whole, a blit is a difference). Its view's element gets data-gm-pictures="<model
+# id>". The widget manager is reached through a widget renderer of the notebook's outputs.
+_WATCH_PICTURES_JS = r"""
+async () => {
+  const nb = window.jupyterapp.shell.currentWidget;
+  let manager = null;
+  for (const cell of nb.content.widgets) {
+    for (const child of (cell.outputArea ? cell.outputArea.widgets : [])) {
+      for (const w of (child.widgets || [])) if (w._manager && w._manager.promise) manager = await w._manager.promise;
+      if (manager) break;
+    }
+    if (manager) break;
+  }
+  if (!manager) return 'no widget manager found in the notebook outputs';
+  const seen = window.__gmPictures = window.__gmPictures || {};
+  for (const id of Object.keys(manager._models)) {
+    const m = await manager._models[id];
+    if (m.get('_model_name') !== 'MPLCanvasModel' || !m.image) continue;
+    if (!seen[id]) {
+      const rec = seen[id] = {shown: 0, whole: true};
+      m.image.addEventListener('load', () => { rec.shown++; rec.whole = m.get('_image_mode') === 'full'; });
+    }
+    for (const v of Object.values(m.views || {})) (await v).el.setAttribute('data-gm-pictures', id);
+  }
+  return '';
+}
+"""
+
+# a cheap fingerprint of every listed panel's canvas (FNV-1a over all pixels), its first
+# slider's value and its pictures (shown, last one whole), all panels in one call
 _STATE_JS = r"""
 (keys) => {
   const out = {};
@@ -202,7 +232,10 @@ _STATE_JS = r"""
     }
     const s = area.querySelector(`[data-gm-drag-slider="${k}"] .noUi-target`);
     const v = s && s.noUiSlider ? Number(s.noUiSlider.get()) : null;
-    out[k] = {hash: h, value: v, w: c ? c.width : 0, h: c ? c.height : 0};
+    const view = area.querySelector('[data-gm-pictures]');
+    const pics = view && window.__gmPictures ? window.__gmPictures[view.getAttribute('data-gm-pictures')] : null;
+    out[k] = {hash: h, value: v, w: c ? c.width : 0, h: c ? c.height : 0,
+              shown: pics ? pics.shown : null, whole: pics ? pics.whole : null};
   }
   return out;
 }
@@ -273,26 +306,39 @@ def _drag(page, x0, y, x1, steps, pause_ms):
     page.mouse.up()
 
 
-#: Seconds a canvas must stay unchanged (with the kernel idle) to count as final: longer than
-#: the panels' key-frame delay plus a full draw and its decoding, on a loaded machine.
+#: Seconds a canvas must stay unchanged (with the kernel idle and its last picture whole) to
+#: count as final.
 SETTLED = 1.5
+#: ... and with its last picture a difference: only a panel without key frames (the self-check's
+#: broken one) ends on one for good; a course panel's key frame is on its way.
+SETTLED_ON_A_DIFFERENCE = 8.0
 
 
-def _settle(nbp, keys, still: float = SETTLED, timeout: float = 30.0):
-    """Wait until every listed canvas has been unchanged for ``still`` s and the kernel is idle
-    (``still`` is longer than the panels' key-frame delay)."""
+def _settle(nbp, keys, still: float = SETTLED, timeout: float = 30.0, moved=None):
+    """Wait until every listed canvas has been unchanged for ``still`` s, the kernel is idle and
+    each canvas's last picture was whole: a panel ends every burst of changes with a whole key
+    frame, which on a loaded machine can come later than ``still`` after the last difference
+    (and a difference lost in the browser leaves a ghost until then). ``moved``: {key: pictures
+    shown before the drags} of the panels whose slider the drags moved; each must show a new one."""
     page = nbp.page
     last = page.evaluate(_STATE_JS, keys)
     since = time.monotonic()
     deadline = since + timeout
+
+    def enough(state, for_s):
+        whole = all(v is None or v["whole"] is not False for v in state.values())
+        shown = all(state[str(k)]["shown"] > n for k, n in (moved or {}).items())
+        return shown and for_s >= (still if whole else max(still, SETTLED_ON_A_DIFFERENCE))
+
     while time.monotonic() < deadline:
         page.wait_for_timeout(100)
         now = page.evaluate(_STATE_JS, keys)
         if now != last:
             last, since = now, time.monotonic()
-        elif time.monotonic() - since >= still and nbp.read_status().get("kernel") == "idle":
+        elif enough(now, time.monotonic() - since) and nbp.read_status().get("kernel") == "idle":
             return {int(k): v for k, v in last.items()}
-    nbp.fail(f"the panels' canvases did not settle within {timeout:.0f} s after the drags")
+    nbp.fail(f"the panels' canvases did not settle within {timeout:.0f} s after the drags "
+             "(still, kernel idle, last picture whole)")
 
 
 def _differing(a_url: str, b_url: str, page) -> float:
@@ -323,7 +369,13 @@ def drag_check(nbp, shots_dir=None) -> tuple[list[str], dict]:
     problems, rows = [], []
     if not keys:
         return problems, {"panels": rows}
+    missing = page.evaluate(_WATCH_PICTURES_JS)
+    if missing:
+        nbp.fail(f"cannot watch the canvases' pictures: {missing}")
     start = _settle(nbp, keys)
+    unwatched = [k for k in keys if start[k]["shown"] is None]
+    if unwatched:
+        nbp.fail(f"the pictures of panel(s) {unwatched} are not watched (no ipympl canvas model found)")
     start_px = _pixels(page, keys)
     direction, distance = {}, {}
 
@@ -356,12 +408,13 @@ def drag_check(nbp, shots_dir=None) -> tuple[list[str], dict]:
             g = _geometry(page, k)
             if g["value"] != start[k]["value"]:
                 break
-    slow = _settle(nbp, keys)
+    moved = {k: start[k]["shown"] for k in keys if page.evaluate(_STATE_JS, [k])[str(k)]["value"] != start[k]["value"]}
+    slow = _settle(nbp, keys, moved=moved)
     slow_px = _pixels(page, keys)
     for k in keys:  # back (one move), then the hurried drag over the same displacement
         drag(k, -1, 1, 0)
         drag(k, +1, QUICK_STEPS, QUICK_PAUSE_MS)
-    quick = _settle(nbp, keys)
+    quick = _settle(nbp, keys, moved={k: slow[k]["shown"] for k in moved})
     quick_px = _pixels(page, keys)
     for p in panels:
         k = p["index"]
