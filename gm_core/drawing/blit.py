@@ -78,7 +78,8 @@ def hold_pictures_until_view(fig):
     kernel only draws when asked, but the browser's answer ('draw') to a draw request can be
     handled before its own earlier 'initialized': JupyterLab >= 4.4 sends a new canvas's first
     messages on the main shell, behind the cells Run All queued, and its later ones on a kernel
-    subshell that ipykernel 7 serves at once (commsOverSubshells, on by default). Until then every
+    subshell that ipykernel 7 serves at once (commsOverSubshells, on by default; the course's
+    settings turn it off, see the module doc, but a student's JupyterLab may not). Until then every
     picture is held back (webagg's ``manager.refresh_all``, which ``draw`` and ``blit`` call to
     send); the one held back goes out whole right after 'initialized'. Other canvases are left
     as they are. Returns True if ``fig`` is held."""
