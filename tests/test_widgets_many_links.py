@@ -87,3 +87,14 @@ def test_wave_readout_never_prints_negative_zero():
         p = WaveGaitPanel(links=links, lag=0.0)
         text = p.scene.text.get_text()
         assert text.startswith("g(T) = (") and "-0.000" not in text, text
+
+
+def test_gait_curves_have_a_key_naming_each_joint_in_its_colour():
+    for panel, links in ((WaveGaitPanel(links=3), (3, 7, 5)), (OptimalGaitPanel(links=3), (6, 4))):
+        for n in links:
+            panel.set(links=n)
+            curves = [ln for ln in (getattr(panel.scene, "lines", None) or panel.scene.start_lines)
+                      if len(ln.get_xdata())]
+            shown_names = [t for t in panel.scene.names if t.get_visible()]
+            assert [t.get_text() for t in shown_names] == [rf"$\alpha_{k + 1}$" for k in range(n - 1)]
+            assert [t.get_color() for t in shown_names] == [c.get_color() for c in curves]

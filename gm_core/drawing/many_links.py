@@ -149,6 +149,18 @@ class ChainSliceScene(Scene):
         return P[:-1, :2] + 0.5 * L[:-1, None] * np.stack([np.cos(P[:-1, 2]), np.sin(P[:-1, 2])], -1)
 
 
+def _joint_names(ax, n_max):
+    """The key of the joint curves: each joint's name, in its curve's colour, along the top of the
+    gait axes (curves stay below 1.5 rad there); :func:`_show_joint_names` shows the chain's."""
+    return [ax.text(0.04 + 0.16 * k, 0.97, _joint_math(k), color=c, fontsize=MATH_PT, ha="left", va="top",
+                    transform=ax.transAxes) for k, c in enumerate(JOINT_COLOURS[:n_max])]
+
+
+def _show_joint_names(names, n):
+    for k, name in enumerate(names):
+        name.set_visible(k < n)
+
+
 def _gait_and_motion_axes(axes, total_length, gait_title, motion_title):
     """Style the two axes of a gait scene: joint angles over one period, and the world of one cycle."""
     ax0, ax1 = axes
@@ -184,6 +196,7 @@ class WaveGaitScene(Scene):
     def create(self):
         ax0, ax1 = self.axes
         self.lines = [ax0.plot([], [], color=c, lw=1.8)[0] for c in JOINT_COLOURS[:6]]
+        self.names = _joint_names(ax0, 6)
         self.start = PartsArtist(ax1, facecolor=PALETTE["orange"], alpha=0.2, edgecolor="0.5")
         self.end = PartsArtist(ax1)
         self.trail = TrailArtist(ax1, color=PALETTE["green"])
@@ -194,12 +207,10 @@ class WaveGaitScene(Scene):
         self.gait = travelling_wave(self.system.n_shape, amplitude, lag)
         self.traj = trajectory(self.system, self.gait, n_frames=61, substeps=8)
         self.g = self.traj.g[-1]
-        try:
-            # g(T) of the trajectory drawn (within ~1e-9 of net_displacement's); 1024 samples of
-            # the wave's path length agree with 4096 to ~1e-7 (the readout shows 4 decimals)
-            self.efficiency = efficiency(self.system, self.gait, check=False, samples=1024, displacement=self.g)
-        except TypeError:
-            self.efficiency = None
+        # g(T) of the trajectory drawn (within ~1e-9 of net_displacement's); 1024 samples of the
+        # wave's path length agree with 4096 to ~1e-7 (the readout shows 4 decimals). Every
+        # physics of design_chain has a cost metric (drag or kinetic energy).
+        self.efficiency = efficiency(self.system, self.gait, check=False, samples=1024, displacement=self.g)
 
     def set(self, links=4, physics="low_re", amplitude=0.8, lag=1.2):
         links = check_int(links, "links", minimum=2, maximum=7)
@@ -211,11 +222,11 @@ class WaveGaitScene(Scene):
                 line.set_data(t, self.traj.r[:, k])
             else:
                 line.set_data([], [])
+        _show_joint_names(self.names, self.system.n_shape)
         self.start.set(self.system, self.traj.g[0], self.traj.r[0])
         self.end.set(self.system, self.g, self.traj.r[-1])
         self.trail.set(self.traj.g[:, :2])
-        eff = "" if self.efficiency is None else f"\nefficiency {self.efficiency:.4f}"
-        self.text.set_text(f"g(T) = ({signed(self.g)}){eff}")
+        self.text.set_text(f"g(T) = ({signed(self.g)})\nefficiency {self.efficiency:.4f}")
 
 
 class OptimalGaitScene(Scene):
@@ -247,6 +258,7 @@ class OptimalGaitScene(Scene):
         colours = JOINT_COLOURS[:self.MAX_JOINTS]
         self.start_lines = [ax0.plot([], [], color=c, lw=1.0, ls="--", alpha=0.7)[0] for c in colours]
         self.best_lines = [ax0.plot([], [], color=c, lw=2.0)[0] for c in colours]
+        self.names = _joint_names(ax0, self.MAX_JOINTS)
         self.first = PartsArtist(ax1, facecolor=PALETTE["orange"], alpha=0.2, edgecolor="0.5")
         self.last = PartsArtist(ax1)
         self.trail = TrailArtist(ax1, color=PALETTE["green"])
@@ -270,6 +282,7 @@ class OptimalGaitScene(Scene):
             r = None if g is None else g(t)
             for k, line in enumerate(lines):
                 line.set_data(*((t, r[:, k]) if r is not None and k < self.system.n_shape else ([], [])))
+        _show_joint_names(self.names, self.system.n_shape)
         traj = trajectory(self.system, gait, n_frames=41, substeps=4)
         self.first.set(self.system, traj.g[0], traj.r[0])
         self.last.set(self.system, traj.g[-1], traj.r[-1])
@@ -285,7 +298,7 @@ class OptimalGaitScene(Scene):
             still = res.efficiency < 1e-9
             self.text.set_text(f"best: efficiency {res.efficiency:.4f} ({res.nit} steps)\n"
                                + ("no gait translates it: zero momentum\nkeeps its centre of mass still" if still else
-                                  f"g(T) = ({gT[0]:+.2f}, {gT[1]:+.2f}, {gT[2]:+.2f})"))
+                                  f"g(T) = ({signed(gT, 2)})"))
 
     def optimize(self, callback=None):
         """Optimise the gait of the design shown (see :func:`gm_core.geometry.optimize_chain_gait`),
