@@ -192,7 +192,10 @@ def test_the_stop_button_interrupts_the_check_and_ends_the_student_processes(tmp
     """Jupyter's Stop button sends SIGINT to the kernel: the check stops at once with the usual
     KeyboardInterrupt, and the student's processes end with it."""
     code = f"""
-import os, sys, time
+import os, signal, sys, time
+# as ipykernel runs a cell (Kernel.pre_handler_hook): SIGINT raises KeyboardInterrupt, whatever
+# disposition this process inherited from the test run (an ignored SIGINT is inherited)
+signal.signal(signal.SIGINT, signal.default_int_handler)
 sys.path.insert(0, {str(ROOT)!r})
 from pathlib import Path
 from gm_core import checks
