@@ -56,8 +56,10 @@ lab: setup workspace lab-settings
 test-tools: setup
 	$(if $(CI),,-)$(PY) tools/venvs.py site kits gradescope
 
+# Python may cache compiled modules here even where the machine sets PYTHONDONTWRITEBYTECODE:
+# else each of the run's ~150 kernels and helper processes compiles the course from source.
 test: setup test-tools
-	$(PY) -m pytest -n $(TEST_WORKERS) $(PYTEST_ARGS)
+	env -u PYTHONDONTWRITEBYTECODE $(PY) -m pytest -n $(TEST_WORKERS) $(PYTEST_ARGS)
 
 exercises: setup
 	$(PY) tools/make_exercises.py

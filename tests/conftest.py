@@ -17,6 +17,32 @@ def _close_figures():
                 plt.close(fig)
 
 
+@pytest.fixture(autouse=True)
+def _close_widgets():
+    """Close every ipywidget a test made (a panel's sliders and its ipympl canvas), except those
+    of a fixture shared by several tests (made before this one starts). ipywidgets keeps each
+    widget registered until it is closed, and with it a panel's whole figure: unclosed, they
+    piled up in a worker of `make test` (about 10^6 objects, every garbage collection walking
+    them, and some seconds of collecting at exit)."""
+    try:
+        from ipywidgets import Widget
+    except ImportError:
+        yield
+        return
+    import weakref
+
+    made = []
+    Widget.on_widget_constructed(lambda w: made.append(weakref.ref(w)))
+    try:
+        yield
+    finally:
+        Widget.on_widget_constructed(None)
+        for ref in made:
+            w = ref()
+            if w is not None and w.comm is not None:
+                w.close()
+
+
 @pytest.fixture
 def clean(monkeypatch, tmp_path):
     """A fresh, in-memory checker progress record for one test (no workspace in sight).

@@ -284,15 +284,22 @@ def _write(record):
     tmp.write_text(json.dumps(record), encoding="utf-8")
     os.replace(tmp, d / f"{slug(rel)}.json")
     try:   # the executed form of the notebook, for people (and any later tool) to read
-        nb = json.loads((ROOT / rel).read_text(encoding="utf-8"))
-        k = 0
-        for cell in nb.get("cells", []):
-            if cell.get("cell_type") == "code":
-                k += 1
-                cell["outputs"] = record["outputs"].get(str(k), [])
-        (d / f"{slug(rel)}.ipynb").write_text(json.dumps(nb, indent=1), encoding="utf-8")
+        (d / f"{slug(rel)}.ipynb").write_text(json.dumps(executed_notebook(record), indent=1), encoding="utf-8")
     except (OSError, ValueError):
         pass
+
+
+def executed_notebook(record: dict) -> dict:
+    """The notebook of ``record`` as its execution left it: every code cell with the outputs nbval
+    read from the kernel and its execution count (cells counted from 1, as Run All numbers them)."""
+    nb = json.loads((ROOT / record["path"]).read_text(encoding="utf-8"))
+    k = 0
+    for cell in nb.get("cells", []):
+        if cell.get("cell_type") == "code":
+            k += 1
+            cell["outputs"] = record["outputs"].get(str(k), [])
+            cell["execution_count"] = k
+    return nb
 
 
 def panel_state_code() -> str | None:

@@ -44,3 +44,23 @@ def test_waiting_is_bounded(tmp_path, monkeypatch):
     t = time.monotonic()
     assert nbrun.wait_for_record(path, timeout=1.0) is None
     assert 0.9 < time.monotonic() - t < 5
+
+
+def test_the_executed_form_holds_each_code_cells_outputs_and_run_all_counts(tmp_path):
+    """What the figure-fit test shows in JupyterLab for a notebook without live parts."""
+    src = {"cells": [{"cell_type": "markdown", "metadata": {}, "source": "# t"},
+                     {"cell_type": "code", "execution_count": None, "metadata": {}, "outputs": [], "source": "1"},
+                     {"cell_type": "markdown", "metadata": {}, "source": "x"},
+                     {"cell_type": "code", "execution_count": None, "metadata": {}, "outputs": [], "source": "2"},
+                     {"cell_type": "code", "execution_count": None, "metadata": {}, "outputs": [], "source": "pass"}],
+           "metadata": {}, "nbformat": 4, "nbformat_minor": 5}
+    path = tmp_path / "nb.ipynb"
+    path.write_text(json.dumps(src))
+    shown = {"output_type": "execute_result", "data": {"text/plain": "2"}, "metadata": {}, "execution_count": 2}
+    record = dict(_record(nbrun.rel_of(path)), outputs={"2": [shown]})
+    nb = nbrun.executed_notebook(record)
+    code = [c for c in nb["cells"] if c["cell_type"] == "code"]
+    assert [c["execution_count"] for c in code] == [1, 2, 3]
+    assert [c["outputs"] for c in code] == [[], [shown], []]
+    assert [c["source"] for c in nb["cells"]] == [c["source"] for c in src["cells"]]
+    assert json.loads(path.read_text()) == src   # the notebook on disk is untouched

@@ -520,6 +520,23 @@ def _local_url(url: str, server_url: str) -> bool:
     return url.startswith((server_url, "ws://127.0.0.1", "data:", "blob:", "about:", "chrome", "devtools"))
 
 
+# Open a document in the running app. Without a kernel, as a saved notebook is read: JupyterLab
+# starts the notebook's kernel on opening (its widget factory prefers one), so the session is
+# shut down as soon as it exists.
+_OPEN_JS = r"""
+async ([path, kernel]) => {
+  const app = window.jupyterapp;
+  const w = await app.commands.execute('docmanager:open', {path});
+  if (!kernel) {
+    await w.context.ready;
+    try { await w.sessionContext.ready; } catch (e) {}
+    if (w.sessionContext.session) await w.sessionContext.shutdown();
+  }
+  return w.id;
+}
+"""
+
+
 class LabBrowser:
     """One browser page running the JupyterLab app, reused for one notebook after another.
 
@@ -545,12 +562,12 @@ class LabBrowser:
             return
         self.request_problems.append(f"request failed: {request.method} {_short_url(url)} ({why})")
 
-    def open(self, relpath: str, timeout: float) -> tuple:
-        """Show ``relpath`` in the app; returns (page, fresh_page_load)."""
+    def open(self, relpath: str, timeout: float, kernel: bool = True) -> tuple:
+        """Show ``relpath`` in the app; returns (page, fresh_page_load). ``kernel=False``: as a
+        saved notebook is read, with no kernel (none is started)."""
         if self.page is not None and not self.page.is_closed():
             try:
-                self.page.evaluate("""async (p) => { const app = window.jupyterapp;
-                    await app.commands.execute('docmanager:open', {path: p}); return true; }""", relpath)
+                self.page.evaluate(_OPEN_JS, [relpath, kernel])
                 return self.page, False
             except Exception:
                 self.discard()
@@ -566,7 +583,12 @@ class LabBrowser:
         page.on("dialog", lambda d: d.accept())  # beforeunload etc.
         page.set_default_timeout(30_000)
         self.page = page
-        page.goto(self.server.lab_url(relpath), wait_until="domcontentloaded", timeout=timeout * 1000)
+        page.goto(self.server.lab_url(relpath if kernel else ""), wait_until="domcontentloaded",
+                  timeout=timeout * 1000)
+        if not kernel:
+            page.wait_for_function("() => window.jupyterapp && window.jupyterapp.started", timeout=timeout * 1000)
+            page.evaluate("() => window.jupyterapp.started")
+            page.evaluate(_OPEN_JS, [relpath, kernel])
         return page, True
 
     def close_notebook(self, relpath: str):
@@ -692,9 +714,11 @@ class NotebookPage:
             self.page.wait_for_timeout(self.poll * 1000)
 
     # -- steps ---------------------------------------------------------------------------
-    def open(self, timeout: float = 90.0):
+    def open(self, timeout: float = 90.0, kernel: bool = True):
+        """Show the notebook with the file browser open and wait for its kernel to be idle;
+        ``kernel=False``: as a saved notebook is read, with no kernel."""
         t0 = time.monotonic()
-        self.page, fresh = self.lab.open(self.relpath, timeout)
+        self.page, fresh = self.lab.open(self.relpath, timeout, kernel=kernel)
         if fresh:
             t0 = self.timings.mark("load page", t0)
         self.wait_until(lambda s: s["phase"] == "panel", "JupyterLab to show the notebook", timeout)
@@ -703,6 +727,10 @@ class NotebookPage:
             if not labview.show_file_browser(self.page):
                 self.fail("could not open the file browser in the left sidebar")
         t0 = self.timings.mark("lab ready", t0)
+        if not kernel:
+            self.wait_until(lambda s: s["phase"] == "panel" and s.get("ready") and s.get("kernel") is None,
+                            "the notebook to open with no kernel", timeout)
+            return self
         self.wait_until(lambda s: s["phase"] == "panel" and s.get("ready") and s.get("kernel") == "idle"
                         and s.get("connection") == "connected",
                         "the notebook to open with an idle kernel", timeout)

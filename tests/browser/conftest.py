@@ -77,8 +77,12 @@ def _release_after_last_browser_test(request):
         i = items.index(request.node)
     except ValueError:
         return
-    if not any("lab" in getattr(it, "fixturenames", ()) for it in items[i + 1:]):
+    if not any(_BROWSER_FIXTURES & set(getattr(it, "fixturenames", ())) for it in items[i + 1:]):
         _release(request)
+
+
+#: the session resources that _release ends (a test asking for any of them needs them alive)
+_BROWSER_FIXTURES = {"lab", "lab_server", "browser_context", "chromium"}
 
 
 @pytest.fixture(scope="session")

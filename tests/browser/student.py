@@ -256,13 +256,19 @@ def _pixels(page, keys) -> dict:
 
 
 # The slider's track, its handle's centre line, range and value, once the handle is on screen
-# and has stood still for 150 ms (after a scroll JupyterLab lays out the cells that came into
-# view, which can move things a few frames later); one round trip.
+# and stands still: after a scroll JupyterLab lays out the cells that came into view, which can
+# move things a few frames later, so then the handle must keep its place for 150 ms. When the
+# handle is on screen where an earlier reading (``prev``) saw it, nothing has moved and one
+# reading suffices: at once (nothing scrolled since), or after putting the notebook's scroll
+# position back to where that reading was taken (``prev.scrollTop``). One round trip.
 _GEOMETRY_JS = r"""
-async (k) => {
+async ([k, prev]) => {
   const s = document.querySelector(`[data-gm-drag-slider="${k}"] .noUi-target`);
   const handle = s.querySelector('.noUi-handle');
   const frame = () => new Promise(ok => requestAnimationFrame(() => ok()));
+  let scroller = s.parentElement;
+  while (scroller && !(scroller.scrollHeight > scroller.clientHeight &&
+                       /(auto|scroll)/.test(getComputedStyle(scroller).overflowY))) scroller = scroller.parentElement;
   const range = s.noUiSlider.options.range;
   const lo = Number(Array.isArray(range.min) ? range.min[0] : range.min);
   const hi = Number(Array.isArray(range.max) ? range.max[0] : range.max);
@@ -271,9 +277,19 @@ async (k) => {
     const cx = h.x + h.width / 2, cy = h.y + h.height / 2;
     const at = document.elementFromPoint(cx, cy);
     return {x: r.x, width: r.width, y: cy, lo, hi, value: Number(s.noUiSlider.get()),
-            step: Number(s.noUiSlider.options.step) || 0, onHandle: !!(at && s.contains(at))};
+            step: Number(s.noUiSlider.options.step) || 0, onHandle: !!(at && s.contains(at)),
+            scrollTop: scroller ? scroller.scrollTop : null};
   };
-  let last = null, g = null, since = performance.now();
+  const same = (g) => g.onHandle && g.x === prev.x && g.y === prev.y && g.width === prev.width;
+  let g = read();
+  if (prev && same(g)) return g;
+  if (prev && prev.scrollTop !== null && scroller) {
+    scroller.scrollTop = prev.scrollTop;
+    await frame(); await frame();
+    g = read();
+    if (same(g)) return g;
+  }
+  let last = null, since = performance.now();
   const until = since + 3000;
   while (performance.now() < until) {
     g = read();
@@ -288,30 +304,43 @@ async (k) => {
 """
 
 
-def _geometry(page, k):
+def _geometry(page, k, prev=None, scrolled=False):
     """The slider's track (x, width), the handle's centre line y, its range and value; the
-    handle's centre is at x + width * (value - lo) / (hi - lo) (noUiSlider's own mapping)."""
-    g = page.evaluate(_GEOMETRY_JS, k)
+    handle's centre is at x + width * (value - lo) / (hi - lo) (noUiSlider's own mapping).
+    ``prev``: an earlier reading of this slider; ``scrolled``: the page has been scrolled since
+    (its scroll position is then put back to that reading's before looking)."""
+    seen = None if prev is None else {"x": prev["x"], "y": prev["y"], "width": prev["width"],
+                                      "scrollTop": prev["scrollTop"] if scrolled else None}
+    g = page.evaluate(_GEOMETRY_JS, [k, seen])
     g["px"] = lambda v, g=g: g["x"] + g["width"] * (v - g["lo"]) / (g["hi"] - g["lo"])
     return g
 
 
 def _drag(page, x0, y, x1, steps, pause_ms):
+    """Press at x0, move to x1 in ``steps`` moves that start ``pause_ms`` ms apart, release."""
     page.mouse.move(x0, y)
     page.mouse.down()
+    t0 = time.monotonic()
     for i in range(1, steps + 1):
+        if pause_ms and i > 1:
+            wait = t0 + (i - 1) * pause_ms / 1000 - time.monotonic()
+            if wait > 0:
+                page.wait_for_timeout(wait * 1000)
         page.mouse.move(x0 + (x1 - x0) * i / steps, y)
-        if pause_ms and i < steps:
-            page.wait_for_timeout(pause_ms)
     page.mouse.up()
 
 
 #: Seconds a canvas must stay unchanged (with the kernel idle and its last picture whole) to
-#: count as final.
-SETTLED = 1.5
+#: count as final. A panel ends every burst of updates with a whole key frame (its timer fires
+#: 0.25 s after the last update: gm_core.drawing.blit.KeyFrames), and the browser sends a slider's
+#: last value as soon as the kernel reports the previous one done, so once the key frame is on
+#: the canvas and the kernel is idle nothing more is on its way; the stillness only bridges the
+#: kernel's idle moments between queued messages.
+SETTLED = 0.75
 #: ... and with its last picture a difference: only a panel without key frames (the self-check's
-#: broken one) ends on one for good; a course panel's key frame is on its way.
-SETTLED_ON_A_DIFFERENCE = 8.0
+#: broken one) ends on one for good; a course panel's key frame is on its way (at 0.25 s; this
+#: leaves a loaded machine sixteen times that).
+SETTLED_ON_A_DIFFERENCE = 4.0
 
 
 def _settle(nbp, keys, still: float = SETTLED, timeout: float = 30.0, moved=None):
@@ -356,23 +385,52 @@ def _differing(a_url: str, b_url: str, page) -> float:
     }""", [a_url, b_url])
 
 
-def drag_check(nbp, shots_dir=None) -> tuple[list[str], dict]:
+def settle_panels(nbp) -> dict:
+    """Wait until every interactive panel's canvas has settled after Run All (the pictures of
+    the last cells and of the widgets' first messages from the browser have arrived: each
+    canvas still, its last picture whole, the kernel idle). Returns the panels and their state,
+    which :func:`drag_check` takes as its starting point while nothing has changed since."""
+    page = nbp.page
+    panels = page.evaluate(_PANELS_JS, nbp.read_status()["panelId"])
+    keys = [p["index"] for p in panels]
+    if not keys:
+        return {"panels": panels, "state": {}}
+    missing = page.evaluate(_WATCH_PICTURES_JS)
+    if missing:
+        nbp.fail(f"cannot watch the canvases' pictures: {missing}")
+    return {"panels": panels, "state": _settle(nbp, keys)}
+
+
+def drag_check(nbp, shots_dir=None, settled=None) -> tuple[list[str], dict]:
     """Slow drag, back, quick drag to the same place, on the first slider of every panel.
 
-    Returns (problems, info); ``info['panels']`` lists per panel the value reached, whether the
+    ``settled``: :func:`settle_panels`'s result, when it was called before (and the canvases are
+    still as it left them, checked here). Returns (problems, info); ``info['panels']`` lists per
+    panel the value reached, whether the
     picture changed with the drag, and the fraction of pixels that differ between the quick and
     the slow drag's final pictures. ``shots_dir``: PNGs of the canvas after each drag are saved
     there (tools/screenshots.py)."""
     page = nbp.page
-    panels = page.evaluate(_PANELS_JS, nbp.read_status()["panelId"])
+    phases = nbp.timings.phases
+
+    def clock(phase, t0):  # time spent per part of the check, summed (benchmarks/suite_time.py)
+        now = time.monotonic()
+        phases[phase] = round(phases.get(phase, 0.0) + now - t0, 2)
+        return now
+
+    t0 = time.monotonic()
+    if settled is None:
+        settled = settle_panels(nbp)
+    panels = settled["panels"]
     keys = [p["index"] for p in panels]
     problems, rows = [], []
     if not keys:
         return problems, {"panels": rows}
-    missing = page.evaluate(_WATCH_PICTURES_JS)
-    if missing:
-        nbp.fail(f"cannot watch the canvases' pictures: {missing}")
-    start = _settle(nbp, keys)
+    start = settled["state"]
+    now = page.evaluate(_STATE_JS, keys)
+    if any(now[str(k)] != start[k] for k in keys) or nbp.read_status().get("kernel") != "idle":
+        start = _settle(nbp, keys)   # something changed since: settle again
+    t0 = clock("drag: settle", t0)
     unwatched = [k for k in keys if start[k]["shown"] is None]
     if unwatched:
         nbp.fail(f"the pictures of panel(s) {unwatched} are not watched (no ipympl canvas model found)")
@@ -395,8 +453,9 @@ def drag_check(nbp, shots_dir=None) -> tuple[list[str], dict]:
         x = round(g["px"](g["value"]))
         _drag(page, x, round(g["y"]), x + sign * direction[k] * distance[k], steps, pause_ms)
 
+    seen = {}
     for k in keys:
-        g = _geometry(page, k)
+        g = seen[k] = _geometry(page, k)
         direction[k] = 1 if g["value"] <= (g["lo"] + g["hi"]) / 2 else -1
         distance[k] = whole_steps(g)
         # the slow drag: one mouse move. The slider shows its value on its grid (min + k *
@@ -405,17 +464,23 @@ def drag_check(nbp, shots_dir=None) -> tuple[list[str], dict]:
         # (A drag the page did not take, the handle not moved at all, is made again, twice at most.)
         for _attempt in range(3):
             drag(k, +1, 1, 0, g)
-            g = _geometry(page, k)
+            g = _geometry(page, k, prev=g)
             if g["value"] != start[k]["value"]:
                 break
-    moved = {k: start[k]["shown"] for k in keys if page.evaluate(_STATE_JS, [k])[str(k)]["value"] != start[k]["value"]}
+    t0 = clock("drag: moves", t0)
+    after = page.evaluate(_STATE_JS, keys)
+    moved = {k: start[k]["shown"] for k in keys if after[str(k)]["value"] != start[k]["value"]}
     slow = _settle(nbp, keys, moved=moved)
     slow_px = _pixels(page, keys)
+    t0 = clock("drag: settle", t0)
     for k in keys:  # back (one move), then the hurried drag over the same displacement
-        drag(k, -1, 1, 0)
-        drag(k, +1, QUICK_STEPS, QUICK_PAUSE_MS)
+        g = _geometry(page, k, prev=seen[k], scrolled=True)
+        drag(k, -1, 1, 0, g)
+        drag(k, +1, QUICK_STEPS, QUICK_PAUSE_MS, _geometry(page, k, prev=g))
+    t0 = clock("drag: moves", t0)
     quick = _settle(nbp, keys, moved={k: slow[k]["shown"] for k in moved})
     quick_px = _pixels(page, keys)
+    t0 = clock("drag: settle", t0)
     for p in panels:
         k = p["index"]
         moved = slow[k]["value"] != start[k]["value"]
@@ -438,6 +503,7 @@ def drag_check(nbp, shots_dir=None) -> tuple[list[str], dict]:
                 (shots_dir / f"panel{k:02d}-{tag}.png").write_bytes(base64.b64decode(url.split(",", 1)[1]))
     if rows and not any(r["changed"] for r in rows):
         problems.append("no panel's picture changed when its first slider was dragged")
+    clock("drag: compare", t0)
     return problems, {"panels": rows}
 
 
@@ -548,17 +614,6 @@ async (path) => {
 }
 """
 
-_REOPEN_WITHOUT_KERNEL_JS = r"""
-async (path) => {
-  const app = window.jupyterapp;
-  const w = await app.commands.execute('docmanager:open', {path, kernel: {name: null}});
-  await w.context.ready;
-  try { await w.sessionContext.ready; } catch (e) {}
-  if (w.sessionContext.session) await w.sessionContext.shutdown();
-  return w.id;
-}
-"""
-
 
 def replay_saved(nbp, timeout: float = 60.0) -> tuple[list[str], int]:
     """Save the executed notebook, close it, shut its kernel down and open it again with no
@@ -567,7 +622,7 @@ def replay_saved(nbp, timeout: float = 60.0) -> tuple[list[str], int]:
     page = nbp.page
     page.evaluate(_SAVE_AND_CLOSE_JS, nbp.relpath)
     nbp.server.delete_sessions(nbp.relpath)
-    page.evaluate(_REOPEN_WITHOUT_KERNEL_JS, nbp.relpath)
+    nbp.lab.open(nbp.relpath, timeout, kernel=False)
     deadline = time.monotonic() + timeout
     while True:
         st = nbp.read_status()

@@ -8,10 +8,13 @@
   an overflowing block and a scaled-down image, plus a good canvas: labview.layout_problems names
   exactly the four.
 * ``test_figures_fit``: every notebook that draws and is not covered by
-  test_notebooks_in_lab.py (exercises and solutions with ``%matplotlib inline``, static chapters):
-  Run All at 1366 x 768 with the file browser open, then no output overflows its area, no image or
-  canvas is wider than its area, every animation shows a picture, and named panels hold what a
-  cell-by-cell run gives.
+  test_notebooks_in_lab.py (exercises and solutions with ``%matplotlib inline``, static chapters),
+  at 1366 x 768 with the file browser open: no output overflows its area, no image or canvas is
+  wider than its area, every animation shows a picture. A notebook whose outputs hold no live
+  part (no widget, no named panel) is shown as this run's one execution of it left it (nbval's,
+  tests/nbrun.py: the outputs Run All gives, opened in JupyterLab as the student's notebook);
+  one with live parts is run with Run All, and its named panels must hold what a cell-by-cell
+  run gives.
 """
 from __future__ import annotations
 
@@ -93,18 +96,49 @@ def test_layout_detector(lab, record_timing):
     assert 850 <= counts["minWidth"] <= 1000, f"output width at 1366 px with the file browser: {counts}"
 
 
+def _executed_form(notebook) -> dict | None:
+    """This run's executed form of ``notebook`` (tests/nbrun.py: nbval's one execution), when
+    Run All in JupyterLab shows exactly that: its outputs are pictures, text and HTML, with no
+    widget, which would need its kernel, and no named panel (its state after the run is
+    empty). None otherwise, or when this run has not executed it."""
+    record = nbrun.recorded(notebook, epilogue=labview.PANEL_STATE_CODE)
+    if record is None or record.get("errors") or labview.parse_panel_state(record["epilogue"]["stdout"]):
+        return None
+    if any("application/vnd.jupyter.widget-view+json" in out.get("data", {})
+           for outs in record["outputs"].values() for out in outs):
+        return None
+    return nbrun.executed_notebook(record)
+
+
 @pytest.mark.parametrize("notebook", nbrun.params(NOTEBOOKS))
 def test_figures_fit(notebook, lab, record_timing, prestart_next):
+    """Run All's pictures at 1366 x 768 with the file browser open. A notebook whose outputs
+    hold no live part is shown as this run executed it (the same kernel code that Run All runs,
+    nbval's one execution, written where the student's notebook is and opened in JupyterLab);
+    one with widgets or named panels is run in JupyterLab, and its panels' state must match the
+    cell-by-cell run."""
     relpath = notebook.relative_to(browserlab.ROOT).as_posix()
+    executed = _executed_form(notebook)
     with browserlab.NotebookPage(lab, relpath) as nbp:
-        nbp.open()
-        prestart_next()
-        nbp.run_all()
-        nbp.check_no_errors()
-        problems, counts = labview.settled_layout(nbp)
-        state = labview.compare_panel_states(labview.kernel_panel_state(nbp),
-                                             labview.expected_panel_state(notebook))
-        problems += [f"Run All differs from cell by cell: {d}" for d in state]
+        if executed is not None:
+            (lab.server.course / relpath).write_text(json.dumps(executed), encoding="utf-8")
+            nbp.open(kernel=False)
+            nbp.check_no_errors()
+            t0 = time.monotonic()
+            problems, counts = labview.settled_layout(nbp)
+            nbp.timings.mark("look", t0)
+            st = nbp.read_status()
+            if st["executed"] != st["ncode"]:
+                problems.append(f"{st['ncode'] - st['executed']} code cells show no execution")
+        else:
+            nbp.open()
+            prestart_next()
+            nbp.run_all()
+            nbp.check_no_errors()
+            problems, counts = labview.settled_layout(nbp)
+            state = labview.compare_panel_states(labview.kernel_panel_state(nbp),
+                                                 labview.expected_panel_state(notebook))
+            problems += [f"Run All differs from cell by cell: {d}" for d in state]
         shot = nbp.screenshot() if problems else None
     record_timing(relpath, nbp.timings.phases)
     assert not problems, (f"{relpath} as the student sees it ({counts}; screenshot {shot}):\n  "
