@@ -526,6 +526,7 @@ def _local_url(url: str, server_url: str) -> bool:
 _OPEN_JS = r"""
 async ([path, kernel]) => {
   const app = window.jupyterapp;
+  await app.started;
   const w = await app.commands.execute('docmanager:open', {path});
   if (!kernel) {
     await w.context.ready;
@@ -564,7 +565,8 @@ class LabBrowser:
 
     def open(self, relpath: str, timeout: float, kernel: bool = True) -> tuple:
         """Show ``relpath`` in the app; returns (page, fresh_page_load). ``kernel=False``: as a
-        saved notebook is read, with no kernel (none is started)."""
+        saved notebook is read, with no kernel (the one JupyterLab starts on opening it is shut
+        down at once)."""
         if self.page is not None and not self.page.is_closed():
             try:
                 self.page.evaluate(_OPEN_JS, [relpath, kernel])
@@ -585,9 +587,8 @@ class LabBrowser:
         self.page = page
         page.goto(self.server.lab_url(relpath if kernel else ""), wait_until="domcontentloaded",
                   timeout=timeout * 1000)
-        if not kernel:
-            page.wait_for_function("() => window.jupyterapp && window.jupyterapp.started", timeout=timeout * 1000)
-            page.evaluate("() => window.jupyterapp.started")
+        if not kernel:   # the app alone was loaded: open the notebook in it
+            page.wait_for_function("() => window.jupyterapp", timeout=timeout * 1000)
             page.evaluate(_OPEN_JS, [relpath, kernel])
         return page, True
 

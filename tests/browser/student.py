@@ -406,9 +406,8 @@ def drag_check(nbp, shots_dir=None, settled=None) -> tuple[list[str], dict]:
 
     ``settled``: :func:`settle_panels`'s result, when it was called before (and the canvases are
     still as it left them, checked here). Returns (problems, info); ``info['panels']`` lists per
-    panel the value reached, whether the
-    picture changed with the drag, and the fraction of pixels that differ between the quick and
-    the slow drag's final pictures. ``shots_dir``: PNGs of the canvas after each drag are saved
+    panel the value reached, whether the picture changed with the drag, and the fraction of
+    pixels that differ between the quick and the slow drag's final pictures. ``shots_dir``: PNGs of the canvas after each drag are saved
     there (tools/screenshots.py)."""
     page = nbp.page
     phases = nbp.timings.phases
