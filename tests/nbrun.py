@@ -119,7 +119,27 @@ def make_scheduler(config, log):
                     self._groups = {}
             return self._groups.get(nodeid) or nodeid.rsplit("::", 1)[0]
 
+        def _assign_work_unit(self, node):
+            nodes = self.nodes
+            group = next_group(list(self.workqueue), unit_worker=len(nodes) >= 3 and node is nodes[-1])
+            self.workqueue.move_to_end(group, last=False)   # xdist hands out the queue's first
+            super()._assign_work_unit(node)
+
     return NotebookGroups(config, log)
+
+
+def next_group(queue: list[str], unit_worker: bool) -> str:
+    """The group a worker takes next from ``queue`` (the waiting groups, in order): the first,
+    except for the unit worker, which takes the first group with no notebook in it (no nbval
+    kernel, JupyterLab or Chromium) while there is one. With three workers on two cores the
+    other two run the notebooks and their browser tests, which wait for the page and the kernel
+    between their steps; the unit worker's tests fill those pauses (a third browser worker
+    would only add waits of its own)."""
+    if unit_worker:
+        for g in queue:
+            if not g.startswith("nb:") and g != "browser":
+                return g
+    return queue[0]
 
 
 # -- collection: groups and their order -------------------------------------------------------------

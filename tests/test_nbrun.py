@@ -1,6 +1,7 @@
 """The plumbing that shares nbval's one execution of each notebook (tests/nbrun.py): reading a
 record that another worker is still writing, and never waiting for one nobody is making."""
 import json
+import os
 import threading
 import time
 
@@ -24,9 +25,11 @@ def test_a_record_being_written_elsewhere_is_waited_for(tmp_path, monkeypatch):
     rel = nbrun.rel_of(path)
     (tmp_path / "executions.jsonl").write_text(json.dumps({"path": rel, "host": "kernel"}) + "\n")
 
-    def finish_later():
+    def finish_later():   # as nbrun._write does: the whole record appears at once (os.replace)
         time.sleep(1.0)
-        (tmp_path / f"{nbrun.slug(rel)}.json").write_text(json.dumps(_record(rel, epilogue={"code": "E"})))
+        tmp = tmp_path / "record.tmp"
+        tmp.write_text(json.dumps(_record(rel, epilogue={"code": "E"})))
+        os.replace(tmp, tmp_path / f"{nbrun.slug(rel)}.json")
 
     threading.Thread(target=finish_later).start()
     rec = nbrun.wait_for_record(path, epilogue="E", timeout=30)
@@ -64,3 +67,13 @@ def test_the_executed_form_holds_each_code_cells_outputs_and_run_all_counts(tmp_
     assert [c["outputs"] for c in code] == [[], [shown], []]
     assert [c["source"] for c in nb["cells"]] == [c["source"] for c in src["cells"]]
     assert json.loads(path.read_text()) == src   # the notebook on disk is untouched
+
+
+def test_the_unit_worker_takes_the_first_group_without_a_notebook_while_there_is_one():
+    queue = ["browser", "nb:book/01.ipynb", "tests/test_grade.py", "nb:exercises/ex1_1.ipynb", "tests/test_blit.py"]
+    assert nbrun.next_group(queue, unit_worker=False) == "browser"
+    assert nbrun.next_group(queue, unit_worker=True) == "tests/test_grade.py"
+    assert nbrun.next_group(queue[3:], unit_worker=True) == "tests/test_blit.py"
+    # only notebook groups left: it takes them too, rather than stop early
+    assert nbrun.next_group(["nb:book/01.ipynb", "browser"], unit_worker=True) == "nb:book/01.ipynb"
+    assert nbrun.next_group(["nb:book/01.ipynb", "browser"], unit_worker=False) == "nb:book/01.ipynb"
