@@ -11,6 +11,7 @@
   (or a package that lists it in ``__all__``).
 """
 import ast
+import functools
 import json
 import re
 from pathlib import Path
@@ -233,14 +234,21 @@ def _all_of(tree):
     return None
 
 
-TREES = {name: ast.parse(path.read_text(encoding="utf-8")) for name, (path, _) in MODULES.items()}
-DEFINED = {name: _defined(tree) for name, tree in TREES.items()}
+@functools.cache
+def _tree(name):
+    """Module ``name``'s syntax tree, parsed when a test first asks (not at collection, on every worker)."""
+    return ast.parse(MODULES[name][0].read_text(encoding="utf-8"))
+
+
+@functools.cache
+def _defined_in(name):
+    return _defined(_tree(name))
 
 
 @pytest.mark.parametrize("name", [m for m, (_, pkg) in MODULES.items() if not pkg and m not in REEXPORTS_KEPT])
 def test_a_module_exports_only_what_it_defines(name):
-    exported = _all_of(TREES[name]) or []
-    foreign = [n for n in exported if n not in DEFINED[name]]
+    exported = _all_of(_tree(name)) or []
+    foreign = [n for n in exported if n not in _defined_in(name)]
     assert not foreign, f"{name}.__all__ re-exports {foreign}: import them from their home instead"
 
 
@@ -255,7 +263,7 @@ def test_no_compatibility_modules():
 
 def _package_all(pkg):
     """A package's public names: its literal ``__all__``, or (computed, gm_core.checks) its import."""
-    names = _all_of(TREES[pkg])
+    names = _all_of(_tree(pkg))
     if names is None:
         import importlib
 
@@ -278,7 +286,7 @@ def wrong_homes(source, importer=None, is_package=False):
         for a in node.names:
             if f"{mod}.{a.name}" in MODULES or a.name == "*":
                 continue            # a submodule
-            home = a.name in DEFINED[mod] or (MODULES[mod][1] and a.name in _package_all(mod))
+            home = a.name in _defined_in(mod) or (MODULES[mod][1] and a.name in _package_all(mod))
             if not home and mod not in REEXPORTS_KEPT:
                 bad.append((node.lineno, mod, a.name))
     return bad
