@@ -1,6 +1,6 @@
 """Widget layer (ipywidgets): panels that pair controls with a drawing.
 
-A panel's ``update(**values)`` only moves artists and calls ``canvas.draw_idle()``. Every panel
+A panel's ``update(**values)`` only moves artists and calls ``self.redraw()``. Every panel
 class registers itself with :func:`register` so ``benchmarks/widget_latency.py`` and the
 headless tests can find all interactive figures of the course.
 """

@@ -4,7 +4,7 @@ A subclass implements
 
 * ``build()``: create the figure (``gm_core.drawing.new_figure``), its artists and
   ``self.controls`` (an ordered dict of ipywidgets value widgets, e.g. FloatSlider);
-* ``update(**values)``: recompute and move artists in place, then ``self.fig.canvas.draw_idle()``;
+* ``update(**values)``: recompute and move artists in place, then ``self.redraw()``;
 * ``naive_update(**values)``: the baseline a beginner would write (clear the axes and re-plot
   everything); used only by ``benchmarks/widget_latency.py`` to show what in-place updates save;
 * optionally ``sample_values(rng)``: random control values for the benchmark (defaults to a
@@ -82,6 +82,7 @@ class Panel:
         self._exact: dict[str, Any] = {}
         self.controls: dict[str, W.ValueWidget] = {}
         self.fig: Figure | None = None
+        self._constructing = True   # redraw() waits until the layout is fixed (see redraw)
         self.build()
         # The browser shows each slider on its grid (min + k * step) and may echo that rounded
         # position when it first renders: the exact starting values are kept (see set()).
@@ -96,10 +97,13 @@ class Panel:
             freeze_layout(self.fig)   # constrained layout once, then fixed (blitting needs still axes)
         self.blitter = None
         self.keyframes = None
+        self._constructing = False
         if self.fig is not None:
             from ..drawing.blit import Blitter, KeyFrames, can_blit, sends_differences
 
             live = isinstance(self.fig.canvas, W.DOMWidget)
+            if live:
+                self.redraw()   # the request the first update made (a live canvas answers it later)
             if self.blit and (live or self.blit_everywhere) and can_blit(self.fig):
                 self.blitter = Blitter(self.fig)
             if self.key_frames and live and sends_differences(self.fig):
@@ -213,8 +217,14 @@ class Panel:
                 out[k] = c.value
         return out
 
+    _constructing = False
+
     def redraw(self) -> None:
-        if self.fig is not None:
+        """Ask the canvas for a new picture: every ``update`` ends here. Not while the panel is
+        being built: its layout is fixed after the first update, and a non-widget canvas (Agg,
+        inline) draws at once, so the whole figure would be laid out and drawn twice (about a
+        third of the time it takes to build a panel); it draws when shown instead."""
+        if self.fig is not None and not self._constructing:
             self.fig.canvas.draw_idle()
 
     #: Width of the controls column in CSS px: a slider's track gets this minus its readout
@@ -320,14 +330,14 @@ class ScenePanel(Panel):
     def update(self, **values: Any) -> None:
         self.scene.set(**values)
         self.after_update(values)
-        self.fig.canvas.draw_idle()
+        self.redraw()
 
     def after_update(self, values: dict[str, Any]) -> None:
         """Hook for control-side effects of a change (e.g. disabling sliders); nothing by default."""
 
     def naive_update(self, **values: Any) -> None:
         self.scene.replot(**values)
-        self.fig.canvas.draw_idle()
+        self.redraw()
 
     def __getattr__(self, name: str) -> Any:
         # only called for attributes the panel lacks; never recurse before the scene exists

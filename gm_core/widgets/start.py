@@ -52,4 +52,4 @@ class FrameDemo(Panel):
         BodyArtist(ax, BodyArtist.triangle(0.5), g)
         FrameArtist(ax, g, length=0.6)
         ax.set_title(f"g = ({x:.2f}, {y:.2f}, {theta:.2f})")
-        self.fig.canvas.draw_idle()
+        self.redraw()
