@@ -2,6 +2,7 @@
 package the code imports is declared, the core installs without the lab or test tools, Binder
 gets an exact Python pin and no test tools, and the licences and citation are in place."""
 import ast
+import functools
 import importlib.metadata as md
 import json
 import re
@@ -232,8 +233,15 @@ def _third_party(names):
     return {n for n in names if n not in stdlib and n not in local and not n.startswith("_")}
 
 
+@functools.cache
+def _packages_distributions():
+    """Top-level module -> distributions: read from every installed distribution's file list,
+    once per test process (not once per module looked up)."""
+    return md.packages_distributions()
+
+
 def _distributions(module):
-    dists = md.packages_distributions().get(module, [])
+    dists = _packages_distributions().get(module, [])
     return {d.lower().replace("_", "-") for d in dists}
 
 
