@@ -17,6 +17,7 @@
 """
 from __future__ import annotations
 
+import functools
 import sys
 from pathlib import Path
 
@@ -297,9 +298,22 @@ def _panels():
 PANELS = _panels()
 
 
+@pytest.fixture(scope="module", autouse=True)
+def _forget_fresh_panels():
+    yield
+    _fresh.cache_clear()
+
+
+@functools.cache
+def _fresh(cls):
+    """One panel of ``cls`` as built, for the two tests below that only look at it (its figure
+    as first drawn, its words): built once per test process, not once per test."""
+    return cls()
+
+
 @pytest.mark.parametrize("name,cls", PANELS, ids=[n for n, _ in PANELS])
 def test_panel_initial_state(name, cls):
-    panel = cls()
+    panel = _fresh(cls)
     assert panel.fig is not None, f"{name} has no figure"
     msgs = figstd.check_figure(panel.fig, f"panel {name}")
     assert not msgs, f"{len(msgs)} breaches of the figure standard:\n  " + "\n  ".join(msgs)
@@ -311,7 +325,7 @@ def test_panel_words_have_no_raw_formula(name, cls):
     formula there is Unicode or <sub>/<sup>, never ``ξ_β`` or ``p_y`` (issue 19 point 5)."""
     import re
 
-    panel = cls()
+    panel = _fresh(cls)
     words = [("title", re.sub(r"<[^>]+>", "", panel.title or ""))]
     for key, c in panel.controls.items():
         words.append((f"control {key!r}", (getattr(c, "description", "") or "") + " " + (getattr(c, "tooltip", "") or "")))
