@@ -13,6 +13,9 @@ and prints the table by test group from that record:
     .venv/bin/python benchmarks/suite_time.py --args "-m 'not browser'"   # PYTEST_ARGS
     .venv/bin/python benchmarks/suite_time.py --direct   # pytest -n 3 without make (shared venv)
 
+Before and after the run it times 10^7 Python additions: this machine's speed varies by more than
+half from hour to hour (0.68 s to 1.2 s), so compare runs made at similar speeds.
+
 "seconds" are summed over the workers (setup + call + teardown of every test in the group); three
 workers share two cores (tests/nbrun.py: next_group), so a test's seconds include its waits for
 the CPU and the wall time is about a third of the sum when the groups balance. Figure checks run
@@ -50,6 +53,18 @@ GROUPS = [
     ("widgets (tests/test_widgets*, geometry_widgets)", lambda c: "widgets" in c),
     ("other unit tests", lambda c: True),
 ]
+
+
+def loop_seconds(n: int = 10_000_000) -> float:
+    """Wall seconds of ``n`` Python additions, the best of three: the machine's speed now (this
+    machine's speed varies from hour to hour; 0.68 s on a quiet day, 1.2 s on a busy one)."""
+    best = float("inf")
+    for _ in range(3):
+        t0, s = time.perf_counter(), 0
+        for i in range(n):
+            s += i
+        best = min(best, time.perf_counter() - t0)
+    return best
 
 
 def latest_run() -> Path | None:
@@ -165,11 +180,13 @@ def main(argv=None):
             subprocess.run(["make", "setup"], cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
             cmd = ["make", "test"] + ([f"PYTEST_ARGS={args.args}"] if args.args else [])
         before = latest_run()
+        speed = [loop_seconds()]
         print(f"  running {shlex.join(cmd)} ...", file=sys.stderr, flush=True)
         t0, r0 = time.monotonic(), resource.getrusage(resource.RUSAGE_CHILDREN)
         p = subprocess.run(cmd, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
         wall, r1 = time.monotonic() - t0, resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu_all = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+        speed.append(loop_seconds())
     # the run this command made: the fullest run folder begun after it started (other pytest runs
     # in the same tree may have left smaller ones meanwhile)
     begun = [r for r in RUNS.glob("run-*") if (r / "by-file.json").exists() and r != before
@@ -179,7 +196,10 @@ def main(argv=None):
     if run is None:
         print(f"make test left no record in build/nbrun/ (exit code {p.returncode}); see {args.log}")
         return 1
-    print(f"\n{table(run, wall, p.returncode, cpu_all)}\n\n(pytest output in {args.log}; command: {shlex.join(cmd)})")
+    print(f"\n{table(run, wall, p.returncode, cpu_all)}\n"
+          f"machine speed: 10^7 Python additions took {speed[0]:.2f} s before the run and {speed[1]:.2f} s after "
+          "(0.68 s on a quiet day here; compare runs made at similar speeds)"
+          f"\n\n(pytest output in {args.log}; command: {shlex.join(cmd)})")
     return 0 if p.returncode == 0 else 1
 
 
