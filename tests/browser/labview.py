@@ -30,11 +30,13 @@ STUDENT_WINDOW = (1366, 768)
 # Printed by the kernel (after Run All) and by the cell-by-cell run: JSON of every named Panel.
 PANEL_STATE_CODE = r'''
 def __gm_panel_state():
-    import json, numbers
-    from gm_core.widgets.base import Panel
+    import json, numbers, sys
+    # a notebook that never imported the widget layer holds no panel (and an exercise's kernel
+    # need not import ipywidgets just to find that out)
+    base = sys.modules.get("gm_core.widgets.base")
     out = {}
     for name, obj in list(globals().items()):
-        if name.startswith("_") or not isinstance(obj, Panel):
+        if base is None or name.startswith("_") or not isinstance(obj, base.Panel):
             continue
         vals = {}
         for k, v in obj.values().items():
