@@ -42,6 +42,10 @@ COURSE_DIRS = ("book", "exercises", "solutions")
 KEEP_RUNS = 3
 MARK = "nbrecord"
 ENV = "GM_NBRUN_DIR"
+#: scheduling groups (group_of): "nb:<notebook>" holds a notebook's nbval cells and the tests that
+#: read its record (its browser test among them); BROWSER holds the browser self-checks
+NOTEBOOK_GROUP = "nb:"
+BROWSER_GROUP = "browser"
 
 #: rel -> merged record of this process (this worker's notebooks)
 _RECORDS: dict[str, dict] = {}
@@ -137,7 +141,7 @@ def next_group(queue: list[str], unit_worker: bool) -> str:
     would only add waits of its own)."""
     if unit_worker:
         for g in queue:
-            if not g.startswith("nb:") and g != "browser":
+            if not g.startswith(NOTEBOOK_GROUP) and g != BROWSER_GROUP:
                 return g
     return queue[0]
 
@@ -150,15 +154,15 @@ def _is_cell(item) -> bool:
 
 def group_of(item) -> str:
     if _is_cell(item):
-        return "nb:" + rel_of(item.path)
+        return NOTEBOOK_GROUP + rel_of(item.path)
     m = item.get_closest_marker(MARK)
     if m is not None:
-        return "nb:" + m.args[0]
+        return NOTEBOOK_GROUP + m.args[0]
     if "selfcheck_records" in getattr(item, "fixturenames", ()):
-        return "nb:selfcheck"   # one subprocess for the generated notebooks
+        return NOTEBOOK_GROUP + "selfcheck"   # one subprocess for the generated notebooks
     rel = rel_of(item.path)
     if rel.startswith("tests/browser/"):
-        return "browser"   # the self-checks (a notebook's browser test reads its record: above)
+        return BROWSER_GROUP   # the self-checks (a notebook's browser test reads its record: above)
     return rel
 
 
@@ -185,7 +189,7 @@ def modify_items(config, items):
         groups.setdefault(g, []).append(item)
         item.user_properties.append(("gm_group", g))
     for g, its in groups.items():
-        if g.startswith("nb:"):
+        if g.startswith(NOTEBOOK_GROUP):
             its.sort(key=lambda it: 0 if _is_cell(it) else 1)   # stable: cells in order, then readers
     before = _previous_durations()
     first = list(groups)
@@ -194,9 +198,9 @@ def modify_items(config, items):
         # the browser self-checks first; then the notebooks (each with its browser test, which
         # reads the record nbval has just made on the same worker); then everything else,
         # longest first
-        if g == "browser":
+        if g == BROWSER_GROUP:
             return (0, 0.0, first.index(g))
-        if g.startswith("nb:"):
+        if g.startswith(NOTEBOOK_GROUP):
             return (1, 0.0, first.index(g))
         return (2, -before.get(g, 1.0), first.index(g))
 
