@@ -18,11 +18,19 @@ Animations are caught where their frames are rendered: while the recorder is ins
 ``matplotlib.animation.Animation.save`` (which ``to_jshtml`` and the course's own player both use)
 first renders every frame through :class:`figstd.FrameChecker` (a movie writer, public API).
 
+The recorder loads nothing a notebook does not: a notebook that never imports matplotlib (most
+exercises) runs without it, as it does for the student. Figures are looked for only once the
+notebook has imported pyplot, and ``Animation.save`` is wrapped as soon as
+``matplotlib.animation`` is imported, by whom and in whichever cell (:class:`_AfterImport`, an
+import-system finder: public importlib API), before any code can use it.
+
 :meth:`Recorder.finish` returns the record as plain data (JSON-able), see :func:`empty_record`.
 """
 from __future__ import annotations
 
 import contextlib
+import importlib.abc
+import importlib.util
 import io
 import json
 import os
@@ -30,8 +38,6 @@ import re
 import sys
 import time
 from pathlib import Path
-
-import figstd
 
 _MAGIC = re.compile(r"^\s*%matplotlib\b.*$", re.M)
 
@@ -84,9 +90,6 @@ class Recorder:
     otherwise the host calls :meth:`begin_cell` before each cell."""
 
     def __init__(self, shell, path: Path, rel: str, host: str, match_cells: bool, visit=None):
-        import matplotlib.pyplot as plt
-
-        self.plt = plt
         self.shell = shell
         self.path = Path(path)
         self.cells = code_cells(self.path)
@@ -101,12 +104,28 @@ class Recorder:
         self._t0 = time.monotonic()
         self._cpu0 = _cpu()
         self._original_save = None
+        self._waiting_for_animation: _AfterImport | None = None
         self._finished = False
         self._install()
 
+    @staticmethod
+    def _pyplot():
+        """matplotlib.pyplot when the notebook has imported it (else no figure of it can be open)."""
+        return sys.modules.get("matplotlib.pyplot")
+
     # -- hooks ----------------------------------------------------------------------------------
     def _install(self):
-        from matplotlib import animation
+        animation = sys.modules.get("matplotlib.animation")
+        if animation is not None:
+            self._wrap_save(animation)
+        else:   # wrapped the moment it is imported (and not loaded before the notebook needs it)
+            self._waiting_for_animation = _AfterImport("matplotlib.animation", self._wrap_save)
+            sys.meta_path.insert(0, self._waiting_for_animation)
+        self.shell.events.register("pre_run_cell", self.pre_run_cell)
+        self.shell.events.register("post_run_cell", self.post_run_cell)
+
+    def _wrap_save(self, animation):
+        import figstd
 
         original = animation.Animation.save
         recorder = self
@@ -120,14 +139,14 @@ class Recorder:
 
         self._original_save = original
         animation.Animation.save = save
-        self.shell.events.register("pre_run_cell", self.pre_run_cell)
-        self.shell.events.register("post_run_cell", self.post_run_cell)
 
     def uninstall(self):
-        from matplotlib import animation
-
+        if self._waiting_for_animation is not None:
+            with contextlib.suppress(ValueError):
+                sys.meta_path.remove(self._waiting_for_animation)
+            self._waiting_for_animation = None
         if self._original_save is not None:
-            animation.Animation.save = self._original_save
+            sys.modules["matplotlib.animation"].Animation.save = self._original_save
             self._original_save = None
         for name, fn in (("pre_run_cell", self.pre_run_cell), ("post_run_cell", self.post_run_cell)):
             with contextlib.suppress(ValueError):
@@ -155,13 +174,18 @@ class Recorder:
         err = result.error_before_exec or result.error_in_exec
         if err is not None and not self.cells[k - 1][2]:
             self.record["errors"].append(f"{self.rel} In[{k}] raised {type(err).__name__}: {err}")
-        for num in self.plt.get_fignums():
+        plt = self._pyplot()
+        for num in plt.get_fignums() if plt is not None else ():
             if num not in self._seen:
+                import figstd
+
                 self._seen[num] = f"{self.rel} In[{k}]"
                 self.record["figures"] += 1
-                self._add(figstd.check_figure(self.plt.figure(num), self._seen[num], tight=self.tight))
+                self._add(figstd.check_figure(plt.figure(num), self._seen[num], tight=self.tight))
 
     def on_animation(self, anim):
+        import figstd
+
         self.record["animations"] += 1
         where = f"{self.rel} In[{self.current}] animation"
         checker = figstd.FrameChecker(where)
@@ -197,8 +221,11 @@ class Recorder:
                 except Exception as e:  # noqa: BLE001
                     self.record["errors"].append(f"{self.rel} epilogue raised {type(e).__name__}: {e}")
                 self.record["epilogue"] = {"code": epilogue, "stdout": buf.getvalue()}
-            for num in self.plt.get_fignums():
-                fig = self.plt.figure(num)
+            plt = self._pyplot()
+            for num in plt.get_fignums() if plt is not None else ():
+                import figstd
+
+                fig = plt.figure(num)
                 where = self._seen.get(num, self.rel)
                 self._add(figstd.check_figure(fig, where, tight=self.tight))  # duplicates dropped
                 if self.visit is not None:
@@ -212,6 +239,42 @@ class Recorder:
             self.record["cpu_seconds"] = round(_cpu() - self._cpu0, 2)
             self.uninstall()
         return self.record
+
+
+class _AfterImport(importlib.abc.MetaPathFinder):
+    """Calls ``then(module)`` right after the module ``name`` is first imported (before the
+    importer gets it), then leaves the import system. A finder placed first in ``sys.meta_path``
+    that finds the module's spec with the finders after it and wraps the spec's loader."""
+
+    def __init__(self, name: str, then):
+        self.name, self.then = name, then
+
+    def find_spec(self, fullname, path=None, target=None):
+        if fullname != self.name:
+            return None
+        with contextlib.suppress(ValueError):
+            sys.meta_path.remove(self)            # once; and not asked again by the line below
+        spec = importlib.util.find_spec(fullname)
+        if spec is not None and spec.loader is not None:
+            spec.loader = _ThenLoader(spec.loader, self.then)
+        return spec
+
+
+class _ThenLoader(importlib.abc.Loader):
+    """A module's own loader, then ``then(module)``; anything else is the loader's."""
+
+    def __init__(self, loader, then):
+        self._loader, self._then = loader, then
+
+    def create_module(self, spec):
+        return self._loader.create_module(spec)
+
+    def exec_module(self, module):
+        self._loader.exec_module(module)
+        self._then(module)
+
+    def __getattr__(self, name):      # get_source, get_data, is_package, ... (tracebacks, inspect)
+        return getattr(self._loader, name)
 
 
 def _cpu() -> float:

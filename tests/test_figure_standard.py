@@ -287,6 +287,59 @@ def test_kernel_recorder_catches_animation_frames(selfcheck_records):
     assert "title 'tiny' is 6.9 px" in text
 
 
+_FRESH_SHELL = r"""
+import json, sys
+sys.path.insert(0, {tests!r})
+from pathlib import Path
+from IPython.core.interactiveshell import InteractiveShell
+import nbrecord
+shell = InteractiveShell.instance()
+out = {{}}
+for name, cells in (("quiet", ["x = 1 + 1\n", "print(x)\n"]),
+                    ("anim", ["import matplotlib\nmatplotlib.use('Agg')\n"
+                              "from matplotlib.animation import FuncAnimation\n"
+                              "import matplotlib.pyplot as plt\n"
+                              "fig, ax = plt.subplots(figsize=(10, 3))\n"
+                              "t = ax.set_title('tiny', fontsize=5)\n"
+                              "html = FuncAnimation(fig, lambda k: None, frames=3).to_jshtml()\n",
+                              "fig2, ax2 = plt.subplots(figsize=(4, 3))\n"])):
+    nb = {{"cells": [{{"cell_type": "code", "source": c, "metadata": {{}}}} for c in cells]}}
+    path = Path({tmp!r}) / (name + ".ipynb")
+    path.write_text(json.dumps(nb))
+    rec = nbrecord.Recorder(shell, path, name, "in-process", match_cells=False)
+    loaded = "matplotlib" in sys.modules
+    for k, src, _ in rec.cells:
+        rec.begin_cell(k)
+        shell.run_cell(src, store_history=False)   # (silent=True would skip the cell events)
+    r = rec.finish()
+    out[name] = {{"loaded_by_recorder": loaded, "loaded_after": "matplotlib" in sys.modules,
+                  "figures": r["figures"], "animations": r["animations"], "breaches": r["breaches"],
+                  "errors": r["errors"], "finders": sum(type(f).__name__ == "_AfterImport" for f in sys.meta_path)}}
+print(json.dumps(out))
+"""
+
+
+def test_recorder_loads_matplotlib_only_with_the_notebook_and_still_sees_every_animation(tmp_path):
+    """In a fresh process, as in nbval's kernel: recording a notebook that never uses matplotlib
+    does not import it, and an animation saved in the very cell that first imports
+    matplotlib.animation is still caught frame by frame (the save is wrapped on import)."""
+    import json
+    import subprocess
+
+    code = _FRESH_SHELL.format(tests=str(ROOT / "tests"), tmp=str(tmp_path))
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, cwd=tmp_path)
+    assert res.returncode == 0, res.stderr[-3000:]
+    out = json.loads(res.stdout.strip().splitlines()[-1])
+    quiet, anim = out["quiet"], out["anim"]
+    assert not quiet["loaded_by_recorder"] and not quiet["loaded_after"], quiet
+    assert quiet["figures"] == quiet["animations"] == 0 and quiet["errors"] == [] and quiet["finders"] == 0
+    assert not anim["loaded_by_recorder"] and anim["errors"] == [] and anim["finders"] == 0, anim
+    assert anim["animations"] == 1 and anim["figures"] == 2, anim
+    text = _kinds(anim["breaches"])
+    assert "anim In[1] animation frame 0: figure 'tiny': 1000 px wide" in text, text
+    assert "title 'tiny' is 6.9 px" in text
+
+
 # -- the course -------------------------------------------------------------------------------
 
 def _panels():

@@ -57,11 +57,21 @@ def _type_checking_only(tree):
     return skip
 
 
+@functools.cache
+def _tree(name):
+    """Module ``name``'s syntax tree, parsed once, when a test first asks (not at collection, on
+    every worker); the tests only read it."""
+    path = MODULES[name][0]
+    return ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+
+
+@functools.cache
 def imports_of(name):
     """Every ``(imported module, line)`` that module ``name`` runs, at any depth of the syntax tree
-    (imports under ``if TYPE_CHECKING:`` are only read by the type checker and do not count)."""
-    path, is_package = MODULES[name]
-    tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+    (imports under ``if TYPE_CHECKING:`` are only read by the type checker and do not count).
+    Computed once per module (the callers only read the list)."""
+    is_package = MODULES[name][1]
+    tree = _tree(name)
     skip = _type_checking_only(tree)
     found = []
     for node in ast.walk(tree):
@@ -232,12 +242,6 @@ def _all_of(tree):
             except ValueError:      # computed (gm_core.checks): a package, checked at import
                 return None
     return None
-
-
-@functools.cache
-def _tree(name):
-    """Module ``name``'s syntax tree, parsed when a test first asks (not at collection, on every worker)."""
-    return ast.parse(MODULES[name][0].read_text(encoding="utf-8"))
 
 
 @functools.cache
