@@ -175,10 +175,12 @@ class Recorder:
         if err is not None and not self.cells[k - 1][2]:
             self.record["errors"].append(f"{self.rel} In[{k}] raised {type(err).__name__}: {err}")
         plt = self._pyplot()
-        for num in plt.get_fignums() if plt is not None else ():
-            if num not in self._seen:
-                import figstd
+        if plt is None:     # the notebook has not imported pyplot: none of its figures exists
+            return
+        import figstd
 
+        for num in plt.get_fignums():
+            if num not in self._seen:
                 self._seen[num] = f"{self.rel} In[{k}]"
                 self.record["figures"] += 1
                 self._add(figstd.check_figure(plt.figure(num), self._seen[num], tight=self.tight))
@@ -221,15 +223,7 @@ class Recorder:
                 except Exception as e:  # noqa: BLE001
                     self.record["errors"].append(f"{self.rel} epilogue raised {type(e).__name__}: {e}")
                 self.record["epilogue"] = {"code": epilogue, "stdout": buf.getvalue()}
-            plt = self._pyplot()
-            for num in plt.get_fignums() if plt is not None else ():
-                import figstd
-
-                fig = plt.figure(num)
-                where = self._seen.get(num, self.rel)
-                self._add(figstd.check_figure(fig, where, tight=self.tight))  # duplicates dropped
-                if self.visit is not None:
-                    self.visit(where, fig, "figure")
+            self._check_open_figures()
             checks = sys.modules.get("gm_core.checks")
             if checks is not None and hasattr(checks, "progress"):
                 self.record["progress"] = dict(checks.progress())
@@ -239,6 +233,20 @@ class Recorder:
             self.record["cpu_seconds"] = round(_cpu() - self._cpu0, 2)
             self.uninstall()
         return self.record
+
+    def _check_open_figures(self):
+        """Every figure still open, in its final state (messages already recorded are dropped)."""
+        plt = self._pyplot()
+        if plt is None:
+            return
+        import figstd
+
+        for num in plt.get_fignums():
+            fig = plt.figure(num)
+            where = self._seen.get(num, self.rel)
+            self._add(figstd.check_figure(fig, where, tight=self.tight))
+            if self.visit is not None:
+                self.visit(where, fig, "figure")
 
 
 class _AfterImport(importlib.abc.MetaPathFinder):
