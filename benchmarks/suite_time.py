@@ -14,7 +14,7 @@ and prints the table by test group from that record:
     .venv/bin/python benchmarks/suite_time.py --direct   # pytest -n 3 without make (shared venv)
 
 Before and after the run it times 10^7 Python additions: this machine's speed varies by more than
-half from hour to hour (0.68 s to 1.2 s), so compare runs made at similar speeds.
+half from hour to hour (:data:`LOOP_SECONDS_HERE`), so compare runs made at similar speeds.
 
 "seconds" are summed over the workers (setup + call + teardown of every test in the group); three
 workers share two cores (tests/nbrun.py: next_group), so a test's seconds include its waits for
@@ -55,9 +55,12 @@ GROUPS = [
 ]
 
 
+#: 10^7 Python additions on this 2-core machine, quiet hour .. busy hour (2026-12-04)
+LOOP_SECONDS_HERE = "0.65 s in a quiet hour, up to 1.2 s in a busy one"
+
+
 def loop_seconds(n: int = 10_000_000) -> float:
-    """Wall seconds of ``n`` Python additions, the best of three: the machine's speed now (this
-    machine's speed varies from hour to hour; 0.68 s on a quiet day, 1.2 s on a busy one)."""
+    """Wall seconds of ``n`` Python additions, the best of three: the machine's speed now."""
     best = float("inf")
     for _ in range(3):
         t0, s = time.perf_counter(), 0
@@ -198,7 +201,7 @@ def main(argv=None):
         return 1
     print(f"\n{table(run, wall, p.returncode, cpu_all)}\n"
           f"machine speed: 10^7 Python additions took {speed[0]:.2f} s before the run and {speed[1]:.2f} s after "
-          "(0.68 s on a quiet day here; compare runs made at similar speeds)"
+          f"({LOOP_SECONDS_HERE} here; compare runs made at similar speeds)"
           f"\n\n(pytest output in {args.log}; command: {shlex.join(cmd)})")
     return 0 if p.returncode == 0 else 1
 
