@@ -1,7 +1,7 @@
 """The course's figure standard (CONTRIBUTING.md, issue #12 point 1), measured on a matplotlib figure.
 
-:func:`check_figure` draws a figure once with a recording Agg renderer (so it sees exactly the
-texts that are drawn: tick labels outside the view limits, empty and hidden texts are not) and
+:func:`check_figure` draws a figure once with a recording Agg renderer that measures and does
+not rasterise (so it sees exactly the texts that are drawn: tick labels outside the view limits, empty and hidden texts are not) and
 returns one line per breach, naming the figure (``where``) and the text:
 
 * the figure is at most ``MAX_WIDTH_PX`` (900) CSS px wide: width in inches x dpi (an ipympl canvas
@@ -57,14 +57,36 @@ TIGHT_PAD_IN = 0.1
 __all__ = ["check_figure", "breaches", "raw_formula", "FrameChecker", "figure_name", "MAX_WIDTH_PX", "MIN_TEXT_PX", "MIN_ARROW_PX"]
 
 
+def _draws_nothing(*args, **kwargs):
+    return None
+
+
+class _DrawsNothing:
+    """A renderer's drawing method that puts no pixel down. A data descriptor, so it stays in
+    place where RendererAgg binds its C++ drawing methods to each instance (``draw_markers``,
+    ``draw_image``, ...): assigning to it is ignored."""
+
+    def __get__(self, obj, objtype=None):
+        return _draws_nothing
+
+    def __set__(self, obj, value):
+        pass
+
+
 class _RecordingRenderer(RendererAgg):
-    """An Agg renderer that remembers every Text artist it draws, with its extent at that moment.
+    """An Agg renderer that remembers every Text artist it draws, with its extent at that moment,
+    and rasterises nothing.
 
     matplotlib hands ``draw_text`` the artist only for one-line texts, so each Text gets a
     temporary gid (public ``set_gid``) that ``Text.draw`` passes to ``open_group``: the renderer
-    then knows which text it is drawing, one line or several, mathtext included."""
+    then knows which text it is drawing, one line or several, mathtext included. Texts are
+    measured with Agg's own font metrics (``get_text_width_height_descent``, inherited), as the
+    figure is shown; no pixel is ever read, so the drawing methods draw nothing (half of a
+    check's time went into rasterising lines, images and glyphs nobody looked at)."""
 
     PREFIX = "gm-figstd-text-"
+    draw_path = draw_markers = draw_path_collection = draw_image = _DrawsNothing()
+    draw_gouraud_triangles = draw_quad_mesh = _DrawsNothing()
 
     def __init__(self, width, height, dpi, by_gid):
         super().__init__(width, height, dpi)
@@ -88,7 +110,6 @@ class _RecordingRenderer(RendererAgg):
             self._seen.add(id(t))
             # the extent is taken now: a 3D text is at its projected position only while drawn
             self.texts.append((t, t.get_window_extent(self).frozen()))
-        return super().draw_text(gc, x, y, s, prop, angle, ismath=ismath, mtext=mtext)
 
 
 def _label(t, limit: int = 40) -> str:

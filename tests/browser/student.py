@@ -144,12 +144,16 @@ def play_animations(nbp, wait_ms: int = 900) -> tuple[list[str], int]:
             continue
         before_frame, before_px = img.get_attribute("data-frame"), img.screenshot()
         root.locator("button.gm-anim-play").click()
-        # the picture on screen must change: poll (a busy page may show the next frame late)
+        # the picture on screen must change: poll (a busy page may show the next frame late).
+        # The player's frame number is read first; the screen is looked at (an element
+        # screenshot, ~0.1 s of the browser's CPU) once the player says it has moved on.
         deadline = time.monotonic() + max(wait_ms / 1000, 10.0)
+        after_px = before_px
         while True:
             page.wait_for_timeout(100)
-            after_frame, after_px = img.get_attribute("data-frame"), img.screenshot()
-            playing = root.get_attribute("data-playing")
+            after_frame, playing = img.get_attribute("data-frame"), root.get_attribute("data-playing")
+            if after_frame != before_frame:
+                after_px = img.screenshot()
             if (after_frame != before_frame and after_px != before_px) or time.monotonic() > deadline:
                 break
         root.locator("button.gm-anim-play").click()  # pause again
