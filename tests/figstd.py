@@ -1,8 +1,9 @@
 """The course's figure standard (CONTRIBUTING.md, issue #12 point 1), measured on a matplotlib figure.
 
-:func:`check_figure` draws a figure once with a recording Agg renderer that measures and does
-not rasterise (so it sees exactly the texts that are drawn: tick labels outside the view limits, empty and hidden texts are not) and
-returns one line per breach, naming the figure (``where``) and the text:
+:func:`check_figure` draws a figure once with a recording Agg renderer that measures and does not
+rasterise (so it sees exactly the texts that are drawn: tick labels outside the view limits,
+empty and hidden texts are not) and returns one line per breach, naming the figure (``where``)
+and the text:
 
 * the figure is at most ``MAX_WIDTH_PX`` (900) CSS px wide: width in inches x dpi (an ipympl canvas
   is laid out at ``fig.dpi`` CSS px per inch; a jshtml frame is an image of that many pixels);
@@ -81,8 +82,9 @@ class _RecordingRenderer(RendererAgg):
     temporary gid (public ``set_gid``) that ``Text.draw`` passes to ``open_group``: the renderer
     then knows which text it is drawing, one line or several, mathtext included. Texts are
     measured with Agg's own font metrics (``get_text_width_height_descent``, inherited), as the
-    figure is shown; no pixel is ever read, so the drawing methods draw nothing (half of a
-    check's time went into rasterising lines, images and glyphs nobody looked at)."""
+    figure is shown; no pixel is ever read, so the drawing methods draw nothing (a fifth of the
+    checks' time over the book and the solutions went into rasterising lines, images and glyphs
+    nobody looked at)."""
 
     PREFIX = "gm-figstd-text-"
     draw_path = draw_markers = draw_path_collection = draw_image = _DrawsNothing()

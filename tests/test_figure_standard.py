@@ -54,6 +54,35 @@ def _kinds(messages):
 
 
 # -- the checker ------------------------------------------------------------------------------
+def test_checker_measures_texts_where_a_real_draw_puts_them_and_draws_no_pixel():
+    """The checker's renderer rasterises nothing, yet it sees the texts a real Agg draw draws,
+    at the same places (one-line, several-line, mathtext, rotated, 3D and tick labels)."""
+    fig = plt.figure(figsize=(7, 4), dpi=100, layout="constrained")
+    ax = fig.add_subplot(1, 2, 1)
+    ax.plot([0, 1], [0, 2])
+    ax.imshow(np.random.default_rng(0).random((4, 4)), extent=(0, 1, 0, 2), aspect="auto")
+    ax.set(title=r"$\dot g = g\,\xi$", xlabel="time t\nin seconds", ylabel="angle θ")
+    ax.text(0.1, 1.5, "rotated", rotation=30)
+    ax3 = fig.add_subplot(1, 2, 2, projection="3d")
+    ax3.text(0.2, 0.3, 0.4, "in 3D")
+    renderer = figstd._draw(fig)
+    assert not np.asarray(renderer.buffer_rgba())[..., 3].any(), "the checker's renderer put pixels down"
+    fig.canvas.draw()    # a real draw: Agg rasterises, and each text is where this draw puts it
+    real = fig.canvas.get_renderer()
+    seen = {id(t): bb for t, bb in renderer.texts}
+    drawn = [t for t in fig.findobj(plt.Text) if t.get_visible() and t.get_text().strip()
+             and t.get_window_extent(real).width > 0 and id(t) in seen
+             and (t.axes is not ax3 or t.get_text() == "in 3D")]   # (not the 3D axes' tick labels)
+    assert {"rotated", "in 3D", "angle θ", "time t\nin seconds", r"$\dot g = g\,\xi$"} <= {t.get_text() for t in drawn}
+    for t in drawn:
+        if t.axes is ax3:   # a 3D text is at its projected place only while drawn: in its axes
+            box, where = seen[id(t)], ax3.get_window_extent(real)
+            assert where.x0 <= box.x0 and box.x1 <= where.x1 and where.y0 <= box.y0 and box.y1 <= where.y1, t
+        else:
+            np.testing.assert_allclose(seen[id(t)].bounds, t.get_window_extent(real).bounds, atol=0.5,
+                                       err_msg=repr(t.get_text()))
+    plt.close(fig)
+
 
 def test_checker_passes_a_good_figure():
     fig, _ = _good()

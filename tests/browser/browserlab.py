@@ -94,12 +94,16 @@ def interactive_notebooks(root: Path = ROOT) -> list[Path]:
 # --------------------------------------------------------------------------------------------
 
 # Per-user settings for the test server (JupyterLab reads <user_settings_dir>/<ext>/<plugin>.jupyterlab-settings).
-# Empty on purpose: the server gets exactly the student's settings, JupyterLab's defaults plus the
-# course's own (jupyter/overrides.json, installed by tools/lab_settings.py as `make lab` does), so
-# the tests see what a student sees (notebook windowing included: JupyterLab 4's default
-# "contentVisibility" lays off-screen outputs out differently, e.g. a jshtml animation's image)
-# and test_student_view.py proves the course's file silences the news prompt.
-LAB_SETTINGS: dict = {}
+# The server otherwise gets exactly the student's settings, JupyterLab's defaults plus the course's
+# own (jupyter/overrides.json, installed by tools/lab_settings.py as `make lab` does), so the tests
+# see what a student sees (notebook windowing included: JupyterLab 4's default "contentVisibility"
+# lays off-screen outputs out differently, e.g. a jshtml animation's image) and
+# test_student_view.py proves the course's file silences the news prompt. One exception, which
+# changes no picture, size or place: the editors' text cursors do not blink. CodeMirror restarts
+# its blink (a CSS animation) in every cell's editor whenever the active cell changes (each
+# click on a slider, each cell of Run All), and the running animations kept the page drawing
+# frames at 60 per second: ~10 % of the browser's CPU in notebook 03's test (Run All and drags).
+LAB_SETTINGS: dict = {("@jupyterlab/codemirror-extension", "plugin"): {"defaultConfig": {"cursorBlinkRate": 0}}}
 
 
 def free_port() -> int:
