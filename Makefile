@@ -40,6 +40,10 @@ $(STAMP): pyproject.toml | $(PY)
 	@# imported (about 1 s of CPU for every JupyterLab server, test worker and grading command);
 	@# nothing the course validates uses that format, so it is left out (as tools/venvs.py does).
 	$(PY) -m pip uninstall --yes --quiet rfc3987-syntax
+	@# The course is installed editable, so pip compiles none of it: compile it here, once (as pip
+	@# does for installed packages), rather than in each of the first kernels and test processes
+	@# that import it at the same moment.
+	$(PY) -m compileall -q gm_core tools tests
 	@touch $(STAMP)
 
 setup: $(STAMP)
