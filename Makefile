@@ -11,10 +11,11 @@ LAB_ARGS ?=
 ROOT_FLAG := $(if $(filter 0,$(shell id -u)),--ServerApp.allow_root=True,)
 PYTEST_ARGS ?=
 # make test runs on this many pytest-xdist workers (a notebook's cells and the tests reading its
-# record stay on one worker: tests/nbrun.py); TEST_WORKERS=0 runs in one process. Three on two
+# record stay on one worker: tests/nbrun.py); TEST_WORKERS=0 runs in one process. Four on two
 # cores: two run the notebooks and their browser tests, whose waits for the page and the kernel
-# the third worker's unit tests fill (tests/nbrun.py: next_group).
-TEST_WORKERS ?= 3
+# the other two workers' unit tests fill; two, so that one's waits (the grader's time limits,
+# the site's and kits' subprocesses) are filled by the other (tests/nbrun.py: next_group).
+TEST_WORKERS ?= 4
 
 .PHONY: setup test-tools lab lab-settings test exercises workspace bench screenshots gradescope kits site clean help
 

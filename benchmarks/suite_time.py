@@ -1,7 +1,7 @@
 """How long does `make test` take, and where does the time go? (goal: <= 300 s after set-up)
 
 `make test` is one pytest run over tests/, book/, exercises/ and solutions/ on pytest-xdist
-workers (Makefile: TEST_WORKERS, default 3). Every notebook is executed once, by nbval; the tests
+workers (Makefile: TEST_WORKERS, default 4). Every notebook is executed once, by nbval; the tests
 that look at a notebook (figure standard, exercises, quiet outputs) read the record of that
 execution (tests/nbrun.py). Each run leaves its record in build/nbrun/run-*/: seconds and tests
 per test file (by-file.json), per scheduling group (durations.json) and one line per execution
@@ -11,14 +11,14 @@ and prints the table by test group from that record:
     .venv/bin/python benchmarks/suite_time.py               # make test, then the table
     .venv/bin/python benchmarks/suite_time.py --last        # the table of the latest run only
     .venv/bin/python benchmarks/suite_time.py --args "-m 'not browser'"   # PYTEST_ARGS
-    .venv/bin/python benchmarks/suite_time.py --direct   # pytest -n 3 without make (shared venv)
+    .venv/bin/python benchmarks/suite_time.py --direct   # pytest -n 4 without make (shared venv)
 
 Before and after the run it times 10^7 Python additions: this machine's speed varies by more than
 half from hour to hour (:data:`LOOP_SECONDS_HERE`), so compare runs made at similar speeds.
 
-"seconds" are summed over the workers (setup + call + teardown of every test in the group); three
+"seconds" are summed over the workers (setup + call + teardown of every test in the group); four
 workers share two cores (tests/nbrun.py: next_group), so a test's seconds include its waits for
-the CPU and the wall time is about a third of the sum when the groups balance. Figure checks run
+the CPU and the wall time is about a quarter of the sum when the groups balance. Figure checks run
 in nbval's kernels, so they count in the "nbval ..." rows.
 """
 from __future__ import annotations
@@ -163,7 +163,7 @@ def main(argv=None):
     ap.add_argument("--last", action="store_true", help="print the table of the latest run, run nothing")
     ap.add_argument("--args", default="", help="PYTEST_ARGS for make test (e.g. \"-m 'not browser'\")")
     ap.add_argument("--direct", action="store_true",
-                    help="run `python -m pytest -n 3` with this interpreter instead of `make setup` + `make test` "
+                    help="run `python -m pytest -n 4` with this interpreter instead of `make setup` + `make test` "
                          "(for a shared venv that make must not re-install)")
     ap.add_argument("--log", default=str(ROOT / "benchmarks" / "results" / "suite_time.log"),
                     help="where make's output goes (default benchmarks/results/, git-ignored)")
@@ -178,7 +178,7 @@ def main(argv=None):
     env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
     with open(args.log, "w") as log:
         if args.direct:
-            cmd = [sys.executable, "-m", "pytest", "-n", "3", *shlex.split(args.args)]
+            cmd = [sys.executable, "-m", "pytest", "-n", "4", *shlex.split(args.args)]
         else:
             subprocess.run(["make", "setup"], cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
             cmd = ["make", "test"] + ([f"PYTEST_ARGS={args.args}"] if args.args else [])

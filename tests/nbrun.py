@@ -124,8 +124,8 @@ def make_scheduler(config, log):
             return self._groups.get(nodeid) or nodeid.rsplit("::", 1)[0]
 
         def _assign_work_unit(self, node):
-            nodes = self.nodes
-            group = next_group(list(self.workqueue), unit_worker=len(nodes) >= 3 and node is nodes[-1])
+            nodes = self.nodes   # the first two run the notebooks; with three or more, the rest the unit tests
+            group = next_group(list(self.workqueue), unit_worker=len(nodes) >= 3 and node in nodes[2:])
             self.workqueue.move_to_end(group, last=False)   # xdist hands out the queue's first
             super()._assign_work_unit(node)
 
@@ -134,11 +134,13 @@ def make_scheduler(config, log):
 
 def next_group(queue: list[str], unit_worker: bool) -> str:
     """The group a worker takes next from ``queue`` (the waiting groups, in order): the first,
-    except for the unit worker, which takes the first group with no notebook in it (no nbval
-    kernel, JupyterLab or Chromium) while there is one. With three workers on two cores the
-    other two run the notebooks and their browser tests, which wait for the page and the kernel
-    between their steps; the unit worker's tests fill those pauses (a third browser worker
-    would only add waits of its own)."""
+    except for a unit worker, which takes the first group with no notebook in it (no nbval
+    kernel, JupyterLab or Chromium) while there is one. With four workers on two cores (`make
+    test`) two run the notebooks and their browser tests, which wait for the page and the kernel
+    between their steps; the two unit workers' tests fill those pauses (a third browser worker
+    would only add waits of its own). Two, because the longest unit groups wait too (the
+    grader's time limits, the site's and kits' subprocesses): with one unit worker the two
+    cores stood idle for about 25 CPU-s of a run, with two for about 6."""
     if unit_worker:
         for g in queue:
             if not g.startswith(NOTEBOOK_GROUP) and g != BROWSER_GROUP:

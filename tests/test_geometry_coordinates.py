@@ -31,6 +31,33 @@ def test_theta_row_is_discretely_divergence_free_with_no_boundary_flux(low_re):
     assert np.abs(div).max() < 1e-12 * max(1.0, np.abs(div0).max())
 
 
+def test_frame_interpolates_its_nodes_and_its_jacobian_is_the_derivative_of_its_pose(low_re):
+    """The frame's spline passes through the finite-element solution, agrees with FITPACK's own
+    evaluation of the same fit (scipy's RectBivariateSpline, one component at a time), and its
+    body Jacobian is the central difference of its pose, converted to the body frame."""
+    from scipy.interpolate import RectBivariateSpline
+
+    from gm_core.systems.reframed import body_jacobian
+
+    s, mp = low_re
+    frame = mp.frame
+    nodes = np.stack(np.meshgrid(*frame.nodes, indexing="ij"), -1)
+    np.testing.assert_allclose(frame.pose(nodes), frame.beta_nodes, atol=1e-12)
+    r = np.random.default_rng(3).uniform(-2.4, 2.4, (4, 5, 2))
+    fits = [RectBivariateSpline(*frame.nodes, frame.beta_nodes[..., c], kx=5, ky=5, s=0) for c in range(3)]
+    fitpack = [np.stack([f.ev(r[..., 0], r[..., 1], dx=dx, dy=dy) for f in fits], -1)
+               for dx, dy in ((0, 0), (1, 0), (0, 1))]
+    beta, B = frame.pose_and_jacobian(r)
+    assert B.shape == (4, 5, 3, 2)
+    np.testing.assert_allclose(beta, fitpack[0], rtol=0, atol=1e-11)
+    np.testing.assert_allclose(B, body_jacobian(fitpack[0], np.stack(fitpack[1:], -1)), rtol=0, atol=1e-10)
+    np.testing.assert_allclose(beta, frame.pose(r), rtol=0, atol=0)
+    np.testing.assert_allclose(B, frame.jacobian(r), rtol=0, atol=0)
+    h = 1e-5
+    dbeta = np.stack([(frame.pose(r + h * e) - frame.pose(r - h * e)) / (2 * h) for e in np.eye(2)], -1)
+    np.testing.assert_allclose(B, body_jacobian(beta, dbeta), atol=1e-8)
+
+
 def test_divergence_and_normal_flux_by_differences(low_re):
     """Independent route: central differences of the new theta row through the spline connection."""
     s, mp = low_re

@@ -32,7 +32,7 @@ from matplotlib.axes import Axes
 from matplotlib.collections import LineCollection, PathCollection, PolyCollection
 from matplotlib.figure import Figure
 from matplotlib.font_manager import FontProperties, findfont, get_font
-from matplotlib.layout_engine import ConstrainedLayoutEngine
+from matplotlib.layout_engine import ConstrainedLayoutEngine, PlaceHolderLayoutEngine
 from matplotlib.path import Path
 from matplotlib.textpath import TextPath
 from matplotlib.transforms import blended_transform_factory as _blend
@@ -108,15 +108,34 @@ def _fit(figsize):
 
 
 class CourseFigure(Figure):
-    """The figures :func:`new_figure` makes: a matplotlib ``Figure`` whose ``tight_layout()`` may
-    also be called on a figure made with the toolkit's constrained layout. It then lays the figure
-    out tightly, once, exactly as matplotlib does; the constrained engine is released first, so
-    that asking for the tight layout is not reported as an unexpected change of layout."""
+    """The figures :func:`new_figure` makes: a matplotlib ``Figure`` with two differences.
+
+    * ``tight_layout()`` may also be called on a figure made with the toolkit's constrained
+      layout. It then lays the figure out tightly, once, exactly as matplotlib does; the
+      constrained engine is released first, so that asking for the tight layout is not reported
+      as an unexpected change of layout.
+    * ``savefig`` of a figure whose layout is frozen (:func:`freeze_layout`) skips the extra
+      draw matplotlib makes before saving a figure that has a layout engine (for the engine to
+      lay it out): a frozen layout lays out nothing. The file is the same, byte for byte, at
+      about three quarters of the cost; every animation frame and every panel's picture is such
+      a save.
+    """
 
     def tight_layout(self, *, pad=1.08, h_pad=None, w_pad=None, rect=None):
         if isinstance(self.get_layout_engine(), ConstrainedLayoutEngine):
             self.set_layout_engine("none")   # a placeholder: positions kept until the tight layout runs
         super().tight_layout(pad=pad, h_pad=h_pad, w_pad=w_pad, rect=rect)
+
+    def savefig(self, fname, *, transparent=None, **kwargs):
+        engine = self.get_layout_engine()
+        if (not isinstance(engine, PlaceHolderLayoutEngine) or mpl.rcParams["figure.autolayout"]
+                or mpl.rcParams["figure.constrained_layout.use"]):   # there None would mean an engine
+            return super().savefig(fname, transparent=transparent, **kwargs)
+        self.set_layout_engine(None)
+        try:
+            return super().savefig(fname, transparent=transparent, **kwargs)
+        finally:
+            self.set_layout_engine(engine)
 
 
 def new_figure(nrows=1, ncols=1, *, figsize=(6, 4), subplot_kw=None, layout="constrained", dpi=DPI, **kw):

@@ -83,11 +83,16 @@ class _TensorSpline:
     """Interpolating tensor-product spline through values (n_1, ..., n_d, 3) on a grid: value and gradient."""
 
     def __init__(self, axes, values):
-        from scipy.interpolate import BSpline, RectBivariateSpline, make_interp_spline
+        from scipy.interpolate import BSpline, NdBSpline, RectBivariateSpline, make_interp_spline
 
         self.d = len(axes)
         if self.d == 2:        # biquintic, as before the n-D solver (the notebooks' numbers)
-            self._rbs = [RectBivariateSpline(axes[0], axes[1], values[..., c], kx=5, ky=5, s=0) for c in range(3)]
+            # FITPACK's interpolating fit, one per component (its knots depend on the grid only),
+            # evaluated as one vector-valued B-spline: the basis is computed once for all three.
+            fits = [RectBivariateSpline(axes[0], axes[1], values[..., c], kx=5, ky=5, s=0) for c in range(3)]
+            tx, ty = fits[0].get_knots()
+            coef = np.stack([f.get_coeffs().reshape(len(tx) - 6, len(ty) - 6) for f in fits], -1)
+            self._nd = NdBSpline((tx, ty), coef, 5)
             return
         k = min(3, min(len(x) for x in axes) - 1)
         coef, self._basis = values, []
@@ -101,8 +106,7 @@ class _TensorSpline:
     def __call__(self, r, derivative=None):
         """Values (P, 3) at points r (P, d), or d/dr_k of them when ``derivative=k``."""
         if self.d == 2:
-            dx, dy = (0, 0) if derivative is None else ((1, 0) if derivative == 0 else (0, 1))
-            return np.stack([s.ev(r[:, 0], r[:, 1], dx=dx, dy=dy) for s in self._rbs], -1)
+            return self._nd(r, nu=(0, 0) if derivative is None else ((1, 0) if derivative == 0 else (0, 1)))
         out = None
         for ax, (b, db) in enumerate(self._basis):
             B = (db if ax == derivative else b)(r[:, ax])      # (P, n_ax)
@@ -202,9 +206,13 @@ class MinimumPerturbationFrame(BodyFrame):
         return self._eval(np.asarray(r, dtype=float))
 
     def jacobian(self, r):
+        return self.pose_and_jacobian(r)[1]
+
+    def pose_and_jacobian(self, r):
         r = np.asarray(r, dtype=float)
+        beta = self._eval(r)
         d = np.stack([self._eval(r, k) for k in range(r.shape[-1])], -1)
-        return body_jacobian(self.pose(r), d)
+        return beta, body_jacobian(beta, d)
 
     def contains(self, r):
         r = np.asarray(r, dtype=float)

@@ -55,6 +55,11 @@ class BodyFrame:
         """Body-velocity Jacobian B_beta (..., 3, n): beta^-1 beta_dot = B_beta r_dot."""
         raise NotImplementedError
 
+    def pose_and_jacobian(self, r):
+        """``(pose(r), jacobian(r))``: what a connection needs; a frame whose Jacobian is built
+        from its pose overrides this to compute the pose once."""
+        return self.pose(r), self.jacobian(r)
+
     def contains(self, r):
         """Boolean (...,): where the frame is defined (everywhere unless a subclass says otherwise)."""
         return np.ones(np.shape(r)[:-1], dtype=bool)
@@ -82,7 +87,11 @@ class PoseFrame(BodyFrame):
         return np.stack(cols, -1)
 
     def jacobian(self, r):
-        return body_jacobian(self.pose(r), self.derivative(r))
+        return self.pose_and_jacobian(r)[1]
+
+    def pose_and_jacobian(self, r):
+        beta = self.pose(r)
+        return beta, body_jacobian(beta, self.derivative(r))
 
 
 class CentreOfMassFrame(PoseFrame):
@@ -131,7 +140,8 @@ class Reframed(LocomotionSystem):
     def connection(self, r):
         """A~ = Ad_{beta^-1} A - B_beta, (..., 3, n); NaN where the frame is undefined."""
         r = self._shape(r)
-        A = SE2.Ad_inv(self.frame.pose(r)) @ self.base_system.connection(r) - self.frame.jacobian(r)
+        beta, B = self.frame.pose_and_jacobian(r)
+        A = SE2.Ad_inv(beta) @ self.base_system.connection(r) - B
         return self._mask(r, A, 2)
 
     def connection_derivative(self, r):
@@ -158,11 +168,11 @@ class Reframed(LocomotionSystem):
         """Pfaffian (..., 3, 3 + n) in the new frame: ``omega [xi; r_dot]`` with xi = Ad_beta (xi~ + B_beta r_dot)."""
         r = self._shape(r)
         om = self.base_system.pfaffian(r)
-        b = self.frame.pose(r)
+        b, B = self.frame.pose_and_jacobian(r)
         Ad = SE2.Ad(b)
         out = np.empty(np.broadcast_shapes(om.shape, Ad.shape[:-2] + om.shape[-2:]))
         out[..., :3] = om[..., :3] @ Ad
-        out[..., 3:] = om[..., 3:] + om[..., :3] @ Ad @ self.frame.jacobian(r)
+        out[..., 3:] = om[..., 3:] + om[..., :3] @ Ad @ B
         return self._mask(r, out, 2)
 
     def shape_metric(self, r):
