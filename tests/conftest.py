@@ -1,5 +1,7 @@
 """Shared fixtures for the unit tests."""
+import contextlib
 import sys
+import weakref
 
 import pytest
 
@@ -17,30 +19,83 @@ def _close_figures():
                 plt.close(fig)
 
 
-@pytest.fixture(autouse=True)
-def _close_widgets():
-    """Close every ipywidget a test made (a panel's sliders and its ipympl canvas), except those
-    of a fixture shared by several tests (made before this one starts). ipywidgets keeps each
-    widget registered until it is closed, and with it a panel's whole figure: unclosed, they
-    piled up in a worker of `make test` (about 10^6 objects, every garbage collection walking
-    them, and some seconds of collecting at exit)."""
-    try:
-        from ipywidgets import Widget
-    except ImportError:
+#: The scopes collecting the ipywidgets made while they are open: a test's, a fixture's setup.
+_WIDGET_SCOPES: list = []
+
+
+def _widget_made(widget):
+    for made in _WIDGET_SCOPES:
+        made.append(weakref.ref(widget))
+
+
+@contextlib.contextmanager
+def _widgets_closed_at_the_end(into=None):
+    """Close, at the end, every ipywidget made meanwhile and still open; with ``into`` (a list),
+    hand them over there instead (weak references), to be closed later. ipywidgets keeps each
+    widget registered until it is closed, and with it a panel's whole figure: unclosed, they piled
+    up in a worker of `make test` (about 10^6 objects, every garbage collection walking them, some
+    seconds of collecting at exit, and every later fork of the worker -- each checker's sandbox --
+    copying their memory)."""
+    Widget = getattr(sys.modules.get("ipywidgets"), "Widget", None)
+    if Widget is None:              # no widget can be made without importing ipywidgets first
+        Widget = _import_widget()
+    if Widget is None:
         yield
         return
-    import weakref
-
-    made = []
-    Widget.on_widget_constructed(lambda w: made.append(weakref.ref(w)))
+    made: list = []
+    _WIDGET_SCOPES.append(made)
+    Widget.on_widget_constructed(_widget_made)
     try:
         yield
     finally:
-        Widget.on_widget_constructed(None)
-        for ref in made:
-            w = ref()
-            if w is not None and w.comm is not None:
-                w.close()
+        del _WIDGET_SCOPES[next(i for i, m in enumerate(_WIDGET_SCOPES) if m is made)]   # (==: any empty list)
+        if not _WIDGET_SCOPES:
+            Widget.on_widget_constructed(None)
+        if into is not None:
+            into.extend(made)
+        else:
+            for ref in made:
+                w = ref()
+                if w is not None and w.comm is not None:
+                    w.close()
+
+
+def _import_widget():
+    try:
+        from ipywidgets import Widget
+    except ImportError:
+        return None
+    return Widget
+
+
+_FIXTURE_WIDGETS: dict = {}   # id(fixturedef) -> the widgets its setup made (closed when it is finalized)
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_fixture_setup(fixturedef, request):
+    """The ipywidgets a fixture makes are closed when pytest finalizes it (for a fixture shared by
+    a module's tests, tests/test_blit.py's panels, after the last of them; for a parametrized
+    one, before its next parameter), not left open for the rest of the worker's run."""
+    made: list = []
+    with _widgets_closed_at_the_end(into=made):
+        result = yield
+    _FIXTURE_WIDGETS.setdefault(id(fixturedef), []).extend(made)
+    return result
+
+
+def pytest_fixture_post_finalizer(fixturedef, request):
+    for ref in _FIXTURE_WIDGETS.pop(id(fixturedef), ()):
+        w = ref()
+        if w is not None and w.comm is not None:
+            w.close()
+
+
+@pytest.fixture(autouse=True)
+def _close_widgets():
+    """Close every ipywidget a test made (a panel's sliders and its ipympl canvas), except those
+    of a fixture shared by several tests (made before this one starts; closed with the fixture)."""
+    with _widgets_closed_at_the_end():
+        yield
 
 
 @pytest.fixture

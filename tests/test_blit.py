@@ -51,6 +51,23 @@ def test_full_draw_leaves_figure_clean(panel):
         assert not p.fig.stale, f"{name}: figure is stale right after a full draw"
 
 
+_LAST = {}   # the panel the fixture gave before this one (one kept: each holds a whole figure)
+
+
+def test_the_panel_before_has_its_widgets_closed(panel):
+    """A shared panel's widgets are closed when the fixture moves on to the next name
+    (tests/conftest.py: pytest_fixture_post_finalizer): ipywidgets keeps a widget, and with it
+    its panel's figure, until it is closed, and a worker would keep every panel of this file."""
+    name, p = panel
+    widgets = [c for c in p.controls.values() if hasattr(c, "comm")]
+    assert widgets and all(c.comm is not None for c in widgets), f"{name}: its own widgets are open while in use"
+    before = _LAST.get("panel")
+    if before is not None and before[1] is not p:
+        assert all(c.comm is None for c in before[1].controls.values() if hasattr(c, "comm")), \
+            f"{before[0]}: its widgets are still open after the fixture moved on to {name}"
+    _LAST["panel"] = (name, p)
+
+
 def test_blitted_frames_match_full_redraws(panel):
     name, p = panel
     try:

@@ -127,6 +127,18 @@ _ANIMS_JS = r"""
 """
 
 
+# One player's state as the page holds it: (ready, frame number shown, playing). One evaluate
+# reads all three (a locator's get_attribute resolves its selector again on every call).
+_PLAYER_JS = r"""
+(k) => {
+  const a = document.querySelector(`[data-gm-anim="${k}"]`);
+  const img = a && a.querySelector('img');
+  return [a && a.getAttribute('data-gm-ready'), img && img.getAttribute('data-frame'),
+          a && a.getAttribute('data-playing')];
+}
+"""
+
+
 def play_animations(nbp, wait_ms: int = 900) -> tuple[list[str], int]:
     """Press ▶ on every animation; (problems, number of animations)."""
     page = nbp.page
@@ -137,12 +149,13 @@ def play_animations(nbp, wait_ms: int = 900) -> tuple[list[str], int]:
         root.scroll_into_view_if_needed()
         img = root.locator("img").first
         deadline = time.monotonic() + 10
-        while root.get_attribute("data-gm-ready") != "1" and time.monotonic() < deadline:
+        while page.evaluate(_PLAYER_JS, a["index"])[0] != "1" and time.monotonic() < deadline:
             page.wait_for_timeout(100)
-        if root.get_attribute("data-gm-ready") != "1":
+        ready, before_frame, _ = page.evaluate(_PLAYER_JS, a["index"])
+        if ready != "1":
             problems.append(f"animation #{a['index']}: its player never started (no script ran)")
             continue
-        before_frame, before_px = img.get_attribute("data-frame"), img.screenshot()
+        before_px = img.screenshot()
         root.locator("button.gm-anim-play").click()
         # the picture on screen must change: poll (a busy page may show the next frame late).
         # The player's frame number is read first; the screen is looked at (an element
@@ -151,7 +164,7 @@ def play_animations(nbp, wait_ms: int = 900) -> tuple[list[str], int]:
         after_px = before_px
         while True:
             page.wait_for_timeout(100)
-            after_frame, playing = img.get_attribute("data-frame"), root.get_attribute("data-playing")
+            _, after_frame, playing = page.evaluate(_PLAYER_JS, a["index"])
             if after_frame != before_frame:
                 after_px = img.screenshot()
             if (after_frame != before_frame and after_px != before_px) or time.monotonic() > deadline:
