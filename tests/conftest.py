@@ -36,10 +36,8 @@ def _widgets_closed_at_the_end(into=None):
     up in a worker of `make test` (about 10^6 objects, every garbage collection walking them, some
     seconds of collecting at exit, and every later fork of the worker -- each checker's sandbox --
     copying their memory)."""
-    Widget = getattr(sys.modules.get("ipywidgets"), "Widget", None)
-    if Widget is None:              # no widget can be made without importing ipywidgets first
-        Widget = _import_widget()
-    if Widget is None:
+    Widget = _widget_class()
+    if Widget is None:              # ipywidgets is not installed: there is nothing to close
         yield
         return
     made: list = []
@@ -60,7 +58,7 @@ def _widgets_closed_at_the_end(into=None):
                     w.close()
 
 
-def _import_widget():
+def _widget_class():
     try:
         from ipywidgets import Widget
     except ImportError:

@@ -89,10 +89,11 @@ class _TensorSpline:
         if self.d == 2:        # biquintic, as before the n-D solver (the notebooks' numbers)
             # FITPACK's interpolating fit, one per component (its knots depend on the grid only),
             # evaluated as one vector-valued B-spline: the basis is computed once for all three.
-            fits = [RectBivariateSpline(axes[0], axes[1], values[..., c], kx=5, ky=5, s=0) for c in range(3)]
+            k = 5
+            fits = [RectBivariateSpline(axes[0], axes[1], values[..., c], kx=k, ky=k, s=0) for c in range(3)]
             tx, ty = fits[0].get_knots()
-            coef = np.stack([f.get_coeffs().reshape(len(tx) - 6, len(ty) - 6) for f in fits], -1)
-            self._nd = NdBSpline((tx, ty), coef, 5)
+            coef = np.stack([f.get_coeffs().reshape(len(tx) - k - 1, len(ty) - k - 1) for f in fits], -1)
+            self._nd = NdBSpline((tx, ty), coef, k)
             return
         k = min(3, min(len(x) for x in axes) - 1)
         coef, self._basis = values, []
