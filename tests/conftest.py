@@ -52,10 +52,15 @@ def _widgets_closed_at_the_end(into=None):
         if into is not None:
             into.extend(made)
         else:
-            for ref in made:
-                w = ref()
-                if w is not None and w.comm is not None:
-                    w.close()
+            _close(made)
+
+
+def _close(refs):
+    """Close the widgets (weak references) that are still alive and open."""
+    for ref in refs:
+        w = ref()
+        if w is not None and w.comm is not None:
+            w.close()
 
 
 def _widget_class():
@@ -82,10 +87,7 @@ def pytest_fixture_setup(fixturedef, request):
 
 
 def pytest_fixture_post_finalizer(fixturedef, request):
-    for ref in _FIXTURE_WIDGETS.pop(id(fixturedef), ()):
-        w = ref()
-        if w is not None and w.comm is not None:
-            w.close()
+    _close(_FIXTURE_WIDGETS.pop(id(fixturedef), ()))
 
 
 @pytest.fixture(autouse=True)
