@@ -44,7 +44,7 @@ $(STAMP): pyproject.toml | $(PY)
 	@# The course is installed editable, so pip compiles none of it: compile it here, once (as pip
 	@# does for installed packages), rather than in each of the first kernels and test processes
 	@# that import it at the same moment.
-	$(PY) -m compileall -q gm_core tools tests
+	$(PY) -m compileall -q gm_core gm_grader tools tests
 	@touch $(STAMP)
 
 setup: $(STAMP)

@@ -36,8 +36,8 @@ def median_ms(fn, repeat):
 
 
 def concurrent_updates(root, ws, n=3, per=100):
-    code = ("import sys\nfrom gm_core.checks import _progress\n"
-            f"for i in range({per}): _progress.record('9.%s' % sys.argv[1], 'p%d' % i, 'passed')\n")
+    code = ("import sys\nfrom gm_core.checks import store\n"
+            f"for i in range({per}): store.record('9.%s' % sys.argv[1], 'p%d' % i, 'passed')\n")
     env = dict(os.environ, PYTHONPATH=str(root), GM_COURSE_WORKSPACE=str(ws))
     t = time.perf_counter()
     procs = [subprocess.Popen([sys.executable, "-c", code, str(w)], env=env) for w in range(n)]
@@ -58,8 +58,8 @@ def main(argv=None):
     import sympy  # noqa: F401
 
     from gm_core import checks
-    from gm_core.checks import _progress
-    from gm_core.checks._sandbox import collect
+    from gm_core.checks import store
+    from gm_core.checks.sandbox import collect
     print(f"gm_core from {Path(checks.__file__).parents[2]}")
     r = args.repeat
     a, f = checks.ex1_1.a, checks.ex1_4.a
@@ -71,12 +71,12 @@ def main(argv=None):
                  ("check() 1.4a, progress in memory", median_ms(lambda: f.check(f.reference, quiet=True), r))]
         ws = Path(tmp) / "workspace"
         ws.mkdir()
-        (ws / _progress.MANIFEST).write_text("{}")
+        (ws / store.MANIFEST).write_text("{}")
         os.environ["GM_COURSE_WORKSPACE"] = str(ws)
         rows += [("check() 1.1a, progress in a workspace", median_ms(lambda: a.check("b", quiet=True), r)),
                  ("check() 1.4a, progress in a workspace", median_ms(lambda: f.check(f.reference, quiet=True), r)),
                  ("one progress update (lock, read, fsync, rename)",
-                  median_ms(lambda: _progress.record("9.9", "a", "passed"), r))]
+                  median_ms(lambda: store.record("9.9", "a", "passed"), r))]
         rate = concurrent_updates(root, ws)
         os.environ.pop("GM_COURSE_WORKSPACE")
         os.chdir(ROOT)

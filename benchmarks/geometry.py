@@ -14,7 +14,6 @@ import timeit
 
 import numpy as np
 
-from gm_core.gaits import circle_gait
 from gm_core.geometry import (
     SYSPLOTTER_STROKES,
     constraint_curvature,
@@ -24,6 +23,7 @@ from gm_core.geometry import (
     sysplotter_swimmer,
 )
 from gm_core.systems import ALL_SYSTEMS
+from gm_core.systems.gaits import circle_gait
 
 
 def main(argv=None):

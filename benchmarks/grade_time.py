@@ -18,11 +18,11 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from gm_core.checks import _grading  # noqa: E402
-from gm_core.checks._evidence import summarise  # noqa: E402
-from gm_core.checks._exercise import REGISTRY  # noqa: E402
-from gm_core.checks._isolate import Limits, run_submission, sandbox_problem  # noqa: E402
-from gm_core.checks.grade import identify  # noqa: E402
+from gm_core.checks import channel  # noqa: E402
+from gm_core.checks.exercise import REGISTRY  # noqa: E402
+from gm_grader.batch import identify  # noqa: E402
+from gm_grader.evidence import summarise  # noqa: E402
+from gm_grader.isolate import Limits, run_submission, sandbox_problem  # noqa: E402
 
 
 def main(argv=None):
@@ -40,9 +40,9 @@ def main(argv=None):
             run = run_submission(nb, limits=Limits(), sandbox=sandbox)
             total = time.monotonic() - t
             at = {r["t"]: r.get("at", 0.0) for r in run["records"]}
-            _grading.set_probe_salt(run["salt"])
+            channel.set_probe_salt(run["salt"])
             verdicts, _, _, _ = summarise(run, ex, {})
-            _grading.set_probe_salt(None)
+            channel.set_probe_salt(None)
             got = sum(v.passed for v, _ in verdicts.values())
             kernel = at.get("kernel", float("nan"))
             cells = at.get("done", float("nan")) - kernel

@@ -31,8 +31,8 @@ import timeit
 import numpy as np
 
 from gm_core.geometry import CHAIN_STROKES, chain_swimmer, optimize_gait, travelling_wave
-from gm_core.locomotion import net_displacement
 from gm_core.systems import FloatingSnake, HighReSwimmer, KinematicSnake, LinkChain, LowReSwimmer, SlenderBody
+from gm_core.systems.motion import net_displacement
 
 
 def _times(f, repeat):

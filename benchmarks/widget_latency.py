@@ -8,7 +8,7 @@ so panels added later are picked up automatically) this script
    ``sample_values(rng)`` with a seeded generator, so both instances see the same values;
 3. times *compute + draw* for each change. The course path is ``panel.refresh(**values)``,
    exactly what a slider change runs in a live notebook: ``update`` moves the artists, then the
-   figure is refreshed by blitting (gm_core.drawing.blit: cached background, only the moved
+   figure is refreshed by blitting (gm_core.drawing.toolkit.blit: cached background, only the moved
    artists redrawn; a full draw when limits change or new artists start moving). The baseline
    is ``naive_update(**values)`` (clear and re-plot everything) then ``fig.canvas.draw()``.
    ``--no-blit`` times ``update`` + a full ``canvas.draw()`` instead, to show what blitting adds.

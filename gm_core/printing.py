@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from ._validate import as_array, check_int
+from gm_core.validation import as_array, check_int
 
 __all__ = ["shown"]
 

@@ -1,10 +1,10 @@
 """Many answers to one checker part, judged in ONE probe sandbox (a test helper).
 
-``Part.check(answer)`` forks a fresh sandbox for every answer (gm_core/checks/_sandbox.py: a keeper
+``Part.check(answer)`` forks a fresh sandbox for every answer (gm_core/checks/sandbox.py: a keeper
 and a worker, each a fork of the whole test process, 30-80 ms together in a test process that has
 sympy and matplotlib loaded). The junk test of tests/test_checks.py judges 20 inputs for each of
 about 40 parts; :func:`check_each` runs every input's probes in turn in one sandboxed worker (the
-public :func:`~gm_core.checks._sandbox.collect`, unchanged) and then judges each input's own
+public :func:`~gm_core.checks.sandbox.collect`, unchanged) and then judges each input's own
 outcomes with the part's own ``verdict()``, which is exactly what ``check()`` does with them.
 
 For answers that leave the process as they found them (plain values, pure functions: the junk of
@@ -18,7 +18,7 @@ from __future__ import annotations
 import contextlib
 import io
 
-from gm_core.checks._sandbox import collect
+from gm_core.checks.sandbox import collect
 
 #: outcome kinds after which the rest of a batch says nothing about its inputs
 _STOPPED = ("timeout", "crash", "skipped")

@@ -105,7 +105,7 @@ def clean(monkeypatch, tmp_path):
     The kernel's working directory is moved to an empty temporary folder and
     GM_COURSE_WORKSPACE is cleared, so nothing reads or writes a real workspace/.progress.json.
     """
-    from gm_core.checks import reset_progress
+    from gm_core.checks.exercise import reset_progress
 
     monkeypatch.delenv("GM_COURSE_WORKSPACE", raising=False)
     monkeypatch.chdir(tmp_path)

@@ -1,10 +1,10 @@
-"""gm_core.axioms: the axiom residuals and membership test, over every group, checked against
+"""gm_core.groups.axioms: the axiom residuals and membership test, over every group, checked against
 direct computations (matrix products for associativity, known non-elements)."""
 import numpy as np
 import pytest
 
 from gm_core import ALL_GROUPS, SE2, RPlus
-from gm_core.axioms import AXIOMS, axiom_residuals, powers
+from gm_core.groups.axioms import AXIOMS, axiom_residuals, powers
 
 
 @pytest.mark.parametrize("name", list(ALL_GROUPS))
@@ -51,7 +51,15 @@ def test_powers_match_matrix_powers():
 # ------------------------------------------------------------------ group or not? (Structure)
 from fractions import Fraction  # noqa: E402
 
-from gm_core.axioms import GROUP_AXIOMS, STRUCTURES, check_axioms, group_structure, is_group, structure, try_elements  # noqa: E402
+from gm_core.groups.axioms import (  # noqa: E402
+    GROUP_AXIOMS,
+    STRUCTURES,
+    check_axioms,
+    group_structure,
+    is_group,
+    structure,
+    try_elements,
+)
 
 
 def test_the_real_groups_pass_every_axiom():

@@ -1,6 +1,6 @@
 """Blitted frames must look exactly like full redraws, for every registered panel.
 
-A live panel renders slider changes by blitting (gm_core.drawing.blit). Here each panel is built
+A live panel renders slider changes by blitting (gm_core.drawing.toolkit.blit). Here each panel is built
 on Agg with blitting on and receives a sequence of changes; its last blitted picture is compared
 pixel by pixel with a full redraw of the same figure in the same state (the blitter disconnected,
 so every artist is drawn from scratch). One panel per comparison, not two, and one panel per name

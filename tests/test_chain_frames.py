@@ -8,8 +8,8 @@ from hypothesis import strategies as st
 
 from gm_core import SE2, SO2, RPlus
 from gm_core import chains as C
-from gm_core.holonomic import pin_constraints, pinned_pair
-from gm_core.three_link_chain import beta_frame_velocity, com_frame
+from gm_core.chains.holonomic import pin_constraints, pinned_pair
+from gm_core.chains.three_link import beta_frame_velocity, com_frame
 
 EPS = 1e-6
 seeds = st.integers(0, 2**31 - 1)

@@ -6,20 +6,20 @@ from hypothesis import strategies as st
 
 from gm_core import SE2
 from gm_core import chains as C
-from gm_core.arms import (
+from gm_core.chains.arms import (
     rp_arm_body_jacobians,
     rp_arm_frames,
     rr_arm_frames,
     rr_arm_jacobian,
     single_link_frames,
 )
-from gm_core.holonomic import (
+from gm_core.chains.holonomic import (
     accessible_circle,
     circle_constraints,
     sample_accessible_manifold,
     sphere_plane_constraints,
 )
-from gm_core.three_link_chain import (
+from gm_core.chains.three_link import (
     com_frame,
     com_frame_jacobians,
     three_link_chain,
@@ -377,16 +377,3 @@ def test_three_link_poses_and_sampling_bad_input():
         sample_accessible_manifold(circle_constraints, box=-1)
     with pytest.raises(TypeError, match="rng"):
         sample_accessible_manifold(circle_constraints, rng=3)
-
-
-def test_a_previous_workspace_still_finds_three_link_frames_in_chains():
-    """Exercise 2.3's notebook of the previous version called ``chains.three_link_frames``: it
-    warns, names the new home and returns the same function; any other unknown name is an
-    AttributeError."""
-    import importlib
-
-    chains = importlib.import_module("gm_core.chains")
-    with pytest.warns(FutureWarning, match="gm_core.three_link_chain"):
-        old = chains.three_link_frames
-    assert old is three_link_frames
-    assert not hasattr(chains, "no_such_name")

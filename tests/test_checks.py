@@ -9,14 +9,9 @@ import pytest
 from checkbatch import check_each
 
 from gm_core import checks
-from gm_core.checks import (
-    EXERCISE_IDS,
-    FAILED,
-    PASSED,
-    UNATTEMPTED,
-    progress,
-)
-from gm_core.checks._exercise import REGISTRY
+from gm_core.checks import EXERCISE_IDS
+from gm_core.checks.exercise import REGISTRY, progress
+from gm_core.checks.store import FAILED, PASSED, UNATTEMPTED
 
 PARTS = [(ex_id, name) for ex_id in EXERCISE_IDS for name in REGISTRY[ex_id].parts]
 
@@ -200,7 +195,7 @@ def test_widgets_headless():
 
 def test_slide_rule_reads_products():
     """ex1_5.slide_rule is the course's one slide rule drawing (SlideRuleScene), re-rendered."""
-    from gm_core.drawing.actions import SlideRuleScene
+    from gm_core.drawing.groups import SlideRuleScene
 
     box = checks.ex1_5.slide_rule(2.0, 3.0)
     assert isinstance(box.scene, SlideRuleScene) and "slide_rule" in type(checks.ex1_5).__dict__

@@ -7,8 +7,8 @@ from scipy.integrate import solve_ivp
 from scipy.linalg import expm
 
 from gm_core import SE2
-from gm_core.checks import ex1_2, ex1_3, ex1_4, ex1_5
-from gm_core.checks._ch1_exp import EXP_METHODS, _exp_ref, _helix_ref
+from gm_core.checks.ex1 import ex1_2, ex1_3, ex1_4, ex1_5
+from gm_core.checks.exp_routes import EXP_METHODS, _exp_ref, _helix_ref
 
 pytestmark = pytest.mark.usefixtures("clean")
 

@@ -1,13 +1,14 @@
-"""Chapter 3 checkers: references against Pfaffians, gm_core.locomotion and gm_core.systems."""
+"""Chapter 3 checkers: references against Pfaffians, gm_core.systems.motion and gm_core.systems."""
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
 from gm_core import SE2
-from gm_core.checks import ch3, ex3_1, ex3_3, ex3_4
-from gm_core.connection import connection_from_pfaffian
-from gm_core.fluids import ellipse_added_mass
+from gm_core.checks import ex3
+from gm_core.checks.ex3 import ex3_1, ex3_3, ex3_4
 from gm_core.systems import Ackerman, DifferentialDrive, HighReSwimmer, LowReSwimmer
+from gm_core.systems.connection import connection_from_pfaffian
+from gm_core.systems.fluids import ellipse_added_mass
 
 pytestmark = pytest.mark.usefixtures("clean")
 
@@ -22,14 +23,14 @@ def test_differential_drive_heading_by_integration():
                     rtol=1e-10, atol=1e-12, dense_output=True)
     for t in np.linspace(0, 2, 9):
         a1, a2 = shape(t)
-        assert np.isclose(sol.sol(t)[2], ch3._theta_dd(a1, a2, R, w), atol=1e-7)
+        assert np.isclose(sol.sol(t)[2], ex3._theta_dd(a1, a2, R, w), atol=1e-7)
 
 
 @pytest.mark.parametrize("drive", ["rear", "front"])
 def test_ackerman_connection_satisfies_its_pfaffian(drive):
-    ref = ch3.ackerman_rear if drive == "rear" else ch3.ackerman_front
+    ref = ex3.ackerman_rear if drive == "rear" else ex3.ackerman_front
     for alpha, R, L in ex3_3.a.inputs():
-        om = ch3.ackerman_pfaffian(alpha, R, L, drive)
+        om = ex3.ackerman_pfaffian(alpha, R, L, drive)
         A = ref(alpha, R, L)
         assert np.linalg.matrix_rank(om) == 3
         assert np.allclose(om @ np.vstack([-A, np.eye(2)]), 0)
@@ -38,13 +39,13 @@ def test_ackerman_connection_satisfies_its_pfaffian(drive):
 
 def test_rear_drive_matches_the_library_and_the_book():
     for alpha, R, L in ex3_3.a.inputs():
-        assert np.allclose(ch3.ackerman_rear(alpha, R, L), Ackerman(R, L).connection(alpha))
+        assert np.allclose(ex3.ackerman_rear(alpha, R, L), Ackerman(R, L).connection(alpha))
     a2 = 0.4
-    assert np.allclose(-ch3.ackerman_rear([0, a2], 1, 1), [[1, 0], [0, 0], [np.tan(a2), 0]])  # (3.9)
+    assert np.allclose(-ex3.ackerman_rear([0, a2], 1, 1), [[1, 0], [0, 0], [np.tan(a2), 0]])  # (3.9)
 
 
 def test_front_drive_moves_forward_and_pivots_without_singularity():
-    xi = -ch3.ackerman_front([0.0, np.pi / 2], 1.0, 2.0) @ np.array([1.0, 0.0])
+    xi = -ex3.ackerman_front([0.0, np.pi / 2], 1.0, 2.0) @ np.array([1.0, 0.0])
     assert np.allclose(xi, [0.0, 0.0, 0.5], atol=1e-12)
 
 
@@ -52,10 +53,10 @@ def test_two_link_jacobians_by_finite_differences():
     rng = np.random.default_rng(7)
     for _ in range(4):
         alpha, adot, xi = rng.uniform(-2, 2), rng.normal(), rng.normal(size=3)
-        J = ch3.two_link_jacobians(alpha)
+        J = ex3.two_link_jacobians(alpha)
 
         def link_world(t, i):
-            return SE2.compose(SE2.exp(t * xi), ch3.two_link_geometry(alpha + t * adot)[0][i])
+            return SE2.compose(SE2.exp(t * xi), ex3.two_link_geometry(alpha + t * adot)[0][i])
         eps = 1e-6
         for i in range(2):
             g_dot = (link_world(eps, i) - link_world(-eps, i)) / (2 * eps)
@@ -74,16 +75,16 @@ def test_swimmer_physics_matches_the_three_link_library():
                                       for p, dp in zip(poses, d)])
         return np.linalg.solve(M[:3, :3], M[:3, 3:])
     r = np.array([0.9, -0.4])
-    assert np.allclose(three_link(ch3.low_re_resistance(), r), LowReSwimmer().connection(r))
-    assert np.allclose(three_link(ch3.high_re_inertia(), r), HighReSwimmer(body_density=1.0).connection(r))
+    assert np.allclose(three_link(ex3.low_re_resistance(), r), LowReSwimmer().connection(r))
+    assert np.allclose(three_link(ex3.high_re_inertia(), r), HighReSwimmer(body_density=1.0).connection(r))
     a, b = 0.5, 0.05
-    assert np.allclose(ch3.high_re_inertia() - np.diag([np.pi * a * b] * 2 + [np.pi * a * b * (a * a + b * b) / 4]),
+    assert np.allclose(ex3.high_re_inertia() - np.diag([np.pi * a * b] * 2 + [np.pi * a * b * (a * a + b * b) / 4]),
                        ellipse_added_mass(a, b))
 
 
 @pytest.mark.parametrize("regime", ["low", "high"])
 def test_two_link_swimmer_symmetry_and_scallop(regime):
-    A = ch3.low_re_connection if regime == "low" else ch3.high_re_connection
+    A = ex3.low_re_connection if regime == "low" else ex3.high_re_connection
     for alpha in np.linspace(-2.5, 2.5, 11):
         assert np.allclose(A(alpha)[[0, 2]], 0, atol=1e-12)
     assert np.isclose(A(0.0)[1, 0], 0.25)
@@ -96,5 +97,5 @@ def test_two_link_swimmer_symmetry_and_scallop(regime):
 
 
 def test_swimmer_accepts_flat_vectors():
-    assert ex3_4.a.check(lambda a: ch3.low_re_connection(a).ravel(), quiet=True).passed
+    assert ex3_4.a.check(lambda a: ex3.low_re_connection(a).ravel(), quiet=True).passed
     assert ex3_1.a.check(lambda a1, a2, R, w: R * (a2 - a1) / (2 * w), quiet=True).passed

@@ -6,8 +6,7 @@ import nbformat
 import pytest
 
 from gm_core import checks
-from gm_core.checks import exercise_ids
-from gm_core.checks._exercise import REGISTRY
+from gm_core.checks.exercise import REGISTRY, exercise_ids
 
 ROOT = Path(__file__).resolve().parent.parent
 CHOICES = [(ex_id, name, p) for ex_id in exercise_ids() for name, p in REGISTRY[ex_id].parts.items()
@@ -34,7 +33,7 @@ def test_option_order_is_stable():
     # the same letters and texts for every student and every run: the notebooks print the table
     again = {(e, n): dict(p.options) for e, n, p in CHOICES}
     import importlib
-    for mod in ("gm_core.checks.ch1", "gm_core.checks.ch3"):
+    for mod in ("gm_core.checks.ex1", "gm_core.checks.ex3"):
         importlib.reload(importlib.import_module(mod))
     try:
         assert {(e, n): dict(REGISTRY[e].parts[n].options) for e, n, _ in CHOICES} == again

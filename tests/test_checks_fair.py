@@ -7,10 +7,10 @@ import pytest
 import sympy as sp
 
 from gm_core import SE2, checks
-from gm_core.checks import FAILED, PASSED, UNATTEMPTED, exercise_ids
-from gm_core.checks._ch1_exp import EXP_METHODS, _euler, _taylor
-from gm_core.checks._core import FunctionPart
-from gm_core.checks._exercise import REGISTRY
+from gm_core.checks.exercise import REGISTRY, exercise_ids
+from gm_core.checks.exp_routes import EXP_METHODS, _euler, _taylor
+from gm_core.checks.parts import FunctionPart
+from gm_core.checks.store import FAILED, PASSED, UNATTEMPTED
 
 pytestmark = pytest.mark.usefixtures("clean")
 
@@ -125,7 +125,7 @@ def test_arc_bends_the_wrong_way_fires():
 
 
 def test_missing_wheel_radius_is_named():
-    from gm_core.checks.ch3 import ackerman_rear
+    from gm_core.checks.ex3 import ackerman_rear
     assert "wheel radius R" in failed(checks.ex3_3.a, lambda al, R, L: ackerman_rear(al, 1.0, L))
 
 

@@ -6,10 +6,10 @@ import time
 import numpy as np
 
 from gm_core import checks
-from gm_core.checks import FAILED, PASSED, UNATTEMPTED
-from gm_core.checks import many_links as ml
+from gm_core.checks import ex5 as ml
+from gm_core.checks.store import FAILED, PASSED, UNATTEMPTED
 from gm_core.geometry import chain_swimmer, travelling_wave
-from gm_core.locomotion import trajectory
+from gm_core.systems.motion import trajectory
 
 
 def test_reference_moves_far_enough_by_an_independent_route():
@@ -64,7 +64,7 @@ def test_adversarial_answers_give_a_verdict_quickly_and_cannot_change_the_judge(
 
     def cheat(t):
         # tries to make the judge's reference move further; the probe runs in a sandbox
-        import gm_core.locomotion as lo
+        import gm_core.systems.motion as lo
 
         lo.net_displacement = lambda *a, **k: np.array([9.0, 0.0, 0.0])
         return travelling_wave(3, 0.6, 1.0, period=1.0)(t)

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from gm_core import SE2, checks
-from gm_core.checks import FAILED, PASSED, set_time_limit
-from gm_core.checks._sandbox import TIME_LIMIT
+from gm_core.checks.sandbox import TIME_LIMIT, set_time_limit
+from gm_core.checks.store import FAILED, PASSED
 
 pytestmark = pytest.mark.usefixtures("clean")
 
@@ -99,7 +99,7 @@ def test_inputs_are_copied_for_every_call():
 
 def test_monkeypatching_inside_an_answer_cannot_change_the_judge():
     def sneaky(xi):
-        import gm_core.checks._core as core
+        import gm_core.checks.parts as core
         core.FunctionPart.close = lambda self, a, b: True
         return np.zeros(3)
     assert checks.ex1_4.a.check(sneaky, quiet=True).status == FAILED

@@ -1,6 +1,6 @@
 """The small formulas the pictures need, each against an independent route: the example fields
-(gm_core.fields.FIELDS), rigid-body point velocities (gm_core.observers), the binomial table
-(gm_core.calculus) and the constant-rate drive (gm_core.locomotion)."""
+(gm_core.fields.FIELDS), rigid-body point velocities (gm_core.manifolds.observers), the binomial table
+(gm_core.calculus) and the constant-rate drive (gm_core.systems.motion)."""
 import math
 
 import numpy as np
@@ -9,9 +9,9 @@ import pytest
 from gm_core import SE2
 from gm_core.calculus import binomial_table
 from gm_core.fields import FIELDS
-from gm_core.gaits import constant_rate_path
-from gm_core.locomotion import drive
-from gm_core.observers import icr, point_velocities
+from gm_core.manifolds.observers import icr, point_velocities
+from gm_core.systems.motion import drive
+from gm_core.systems.pacing import constant_rate_path
 
 
 def test_fields_are_the_book_examples():

@@ -157,8 +157,7 @@ def test_everything_the_notebook_advertises_is_imported(path):
 
 
 def test_solution_links_resolve_from_the_workspace_and_exercises():
-    from gm_core.checks import exercise_ids
-    from gm_core.checks._exercise import REGISTRY
+    from gm_core.checks.exercise import REGISTRY, exercise_ids
     for ex_id in exercise_ids():
         part = next(iter(REGISTRY[ex_id].parts.values()))
         for folder in ("workspace", "exercises"):

@@ -1,9 +1,9 @@
-"""gm_core._files.atomic_write: the one atomic write (progress record, grader results, workspace sync)."""
+"""gm_core.checks.files.atomic_write: the one atomic write (progress record, grader results, workspace sync)."""
 import os
 
 import pytest
 
-from gm_core._files import atomic_write
+from gm_core.checks.files import atomic_write
 
 
 @pytest.mark.parametrize("data, expected", [("é\n", "é\n".encode()), (b"\x00\xff", b"\x00\xff")])

@@ -1,4 +1,4 @@
-"""gm_core.fluids: added mass (closed form and boundary method) and resistive-force drag.
+"""gm_core.systems.fluids: added mass (closed form and boundary method) and resistive-force drag.
 
 Independent routes: the published closed forms for an ellipse (Lamb section 72, Newman table 4.2)
 and their circle and flat-plate limits; sympy integration of the resistive-force law along a link.
@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gm_core import SE2
-from gm_core.fluids import added_mass_bem, drag_wrench, ellipse_added_mass, slender_link_drag
+from gm_core.systems.fluids import added_mass_bem, drag_wrench, ellipse_added_mass, slender_link_drag
 
 
 # ------------------------------------------------------------------ added mass

@@ -15,24 +15,18 @@ from fuzzkit import Case, baseline, cases_table, check_each, chunks, fuzz_each
 from hypothesis import HealthCheck, settings
 
 from gm_core import SE2, RPlus
-from gm_core import axioms as AX
 from gm_core import chains as CH
-from gm_core import connection as CO
-from gm_core import fluids as FL
-from gm_core import gaits as GA
 from gm_core import geometry as GE
-from gm_core import locomotion as LO
 from gm_core import manifolds as MA
-from gm_core import observers as FR
 from gm_core import systems as SY
-from gm_core.arms import (
+from gm_core.chains.arms import (
     rp_arm_body_jacobians,
     rp_arm_frames,
     rr_arm_frames,
     rr_arm_jacobian,
     single_link_frames,
 )
-from gm_core.holonomic import (
+from gm_core.chains.holonomic import (
     accessible_circle,
     circle_constraints,
     pin_constraints,
@@ -40,7 +34,7 @@ from gm_core.holonomic import (
     sample_accessible_manifold,
     sphere_plane_constraints,
 )
-from gm_core.three_link_chain import (
+from gm_core.chains.three_link import (
     beta_frame_jacobian,
     beta_frame_velocity,
     com_frame,
@@ -51,6 +45,13 @@ from gm_core.three_link_chain import (
     three_link_jacobians,
     three_link_poses,
 )
+from gm_core.groups import axioms as AX
+from gm_core.manifolds import observers as FR
+from gm_core.systems import connection as CO
+from gm_core.systems import fluids as FL
+from gm_core.systems import gaits as GA
+from gm_core.systems import motion as LO
+from gm_core.systems import pacing as PA
 
 N = int(os.environ.get("FUZZ_EXAMPLES", 25))
 FAST = settings(max_examples=N, deadline=None, derandomize=not os.environ.get("FUZZ_RANDOM"),
@@ -149,8 +150,8 @@ GAIT_CASES = [
          GA.family_gait(family, size, center, aspect, angle, period)(0.2),
          {"family": "ellipse", "size": 0.5, "center": np.array([0.1, 0.2]), "aspect": 0.6, "angle": 0.3,
           "period": 1.0}, options={"family"}, out_tail=(2,)),
-    Case("sine_pacing", lambda a, period: GA.sine_pacing(a, period)[0](0.3), {"a": 0.2, "period": 1.0}),
-    Case("constant_rate_path", lambda r0, r_dot, duration: GA.constant_rate_path(r0, r_dot, duration)(0.5),
+    Case("sine_pacing", lambda a, period: PA.sine_pacing(a, period)[0](0.3), {"a": 0.2, "period": 1.0}),
+    Case("constant_rate_path", lambda r0, r_dot, duration: PA.constant_rate_path(r0, r_dot, duration)(0.5),
          {"r0": np.array([0.0, 0.1]), "r_dot": np.array([1.0, 0.5]), "duration": 2.0}, out_tail=(2,)),
     Case("as_gait", lambda gait, period: GA.as_gait(gait, period)(0.25),
          {"gait": np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]), "period": 1.0},

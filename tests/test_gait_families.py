@@ -1,10 +1,11 @@
-"""Gait families (gm_core.gaits): closed loops, exact velocities against finite differences, pacing."""
+"""Gait families (gm_core.systems.gaits): closed loops, exact velocities against finite differences, pacing."""
 import numpy as np
 import pytest
 
-from gm_core.gaits import GAIT_FAMILIES, ellipse_gait, family_gait, serpenoid_gait, sine_pacing
-from gm_core.locomotion import net_displacement
 from gm_core.systems import LowReSwimmer
+from gm_core.systems.gaits import GAIT_FAMILIES, ellipse_gait, family_gait, serpenoid_gait
+from gm_core.systems.motion import net_displacement
+from gm_core.systems.pacing import sine_pacing
 
 T = 1.7
 GAITS = [ellipse_gait(0.9, 0.4, 0.6, (0.2, -0.3), T), serpenoid_gait((0.8, 0.5), 0.9, 1, (0.1, 0.0), T),

@@ -5,7 +5,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gm_core import SingularShapeError
-from gm_core.gaits import Gait, circle_gait
 from gm_core.geometry import (
     body_velocity_integral,
     connection_derivative,
@@ -13,8 +12,9 @@ from gm_core.geometry import (
     fourier_gait,
     stokes_estimate,
 )
-from gm_core.locomotion import net_displacement
 from gm_core.systems import Ackerman, DifferentialDrive, FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
+from gm_core.systems.gaits import Gait, circle_gait
+from gm_core.systems.motion import net_displacement
 
 REGULAR = [LowReSwimmer(), HighReSwimmer(), FloatingSnake(), FloatingSnake(frame="middle"),
            LowReSwimmer(lengths=(0.5, 1.0, 1.5), drag_ratio=3.0)]

@@ -1,4 +1,4 @@
-"""The checkers of exercises 4.1 and 4.2 (gm_core.checks.curvature), registered with the checking engine.
+"""The checkers of exercises 4.1 and 4.2 (gm_core.checks.ex4), registered with the checking engine.
 
 The registry-driven tests (test_checks*.py, test_grade.py, test_exercises.py) already run the
 reference, the plausible wrong answers, junk and the starter through every part; here: the
@@ -11,11 +11,12 @@ import numpy as np
 import pytest
 
 from gm_core import checks
-from gm_core.checks import FAILED, PASSED, UNATTEMPTED, progress
-from gm_core.checks import curvature as curv
-from gm_core.gaits import circle_gait
+from gm_core.checks import ex4 as curv
+from gm_core.checks.exercise import progress
+from gm_core.checks.store import FAILED, PASSED, UNATTEMPTED
 from gm_core.geometry import constraint_curvature, drift_and_turn, stokes_estimate
-from gm_core.locomotion import net_displacement
+from gm_core.systems.gaits import circle_gait
+from gm_core.systems.motion import net_displacement
 
 pytestmark = pytest.mark.usefixtures("clean")
 
@@ -135,7 +136,7 @@ def test_adversarial_answers_give_a_verdict_quickly():
 
 def test_a_tampered_gait_cannot_forge_the_judge():
     """The probe only samples the gait; drift and turn are computed in the checking process."""
-    import gm_core.locomotion as loc
+    import gm_core.systems.motion as loc
 
     def vandal(t):
         loc.net_displacement = lambda *a, **k: np.array([0.0, 0.0, 1.0])   # in the child only
@@ -147,7 +148,7 @@ def test_a_tampered_gait_cannot_forge_the_judge():
 def test_drift_is_frame_independent():
     """Independent route: the centre of mass computed from the link poses moved by g(T)."""
     from gm_core import SE2
-    from gm_core.locomotion import trajectory
+    from gm_core.systems.motion import trajectory
 
     s = curv.swimmer()
     g = circle_gait(0.5, (1.5, 1.5))
@@ -158,7 +159,7 @@ def test_drift_is_frame_independent():
 
 def test_sampled_gait_gives_the_same_verdict_numbers():
     g = circle_gait(0.5, (1.5, 1.5))
-    from gm_core.gaits import Gait
+    from gm_core.systems.gaits import Gait
     sampled = Gait.from_samples(g(np.arange(256) / 256))
     s = curv.swimmer()
     assert np.allclose(drift_and_turn(s, sampled), drift_and_turn(s, g), atol=1e-6)
@@ -167,17 +168,3 @@ def test_sampled_gait_gives_the_same_verdict_numbers():
 def test_hint_and_solution_text():
     assert "theta map" in curv.ex4_2.a.hint_text(1)
     assert "solutions/ex4_2.ipynb" in curv.ex4_2.a.solution_text_full()
-
-
-def test_a_previous_workspace_still_imports_drift_and_turn_from_the_old_module():
-    """Student notebooks of the previous version ran ``from gm_core.checks.ch4 import drift_and_turn``
-    and called ``drift_and_turn(gait)``: it still works, with a friendly note on the new home."""
-    import importlib
-
-    old_module = importlib.import_module("gm_core.checks.ch4")
-    g = circle_gait(0.5, (1.5, 1.5))
-    with pytest.warns(FutureWarning, match="gm_core.geometry"):
-        old = old_module.drift_and_turn
-    assert old(g) == drift_and_turn(curv.swimmer(), g)
-    with pytest.raises(AttributeError, match="curvature"):
-        old_module.ex4_1  # noqa: B018  (the old module holds nothing else)

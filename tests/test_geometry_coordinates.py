@@ -3,7 +3,6 @@ import numpy as np
 import pytest
 
 from gm_core import SE2, SingularShapeError
-from gm_core.gaits import circle_gait
 from gm_core.geometry import (
     centre_of_mass_coordinates,
     constraint_curvature,
@@ -12,8 +11,9 @@ from gm_core.geometry import (
     reframe,
     stokes_estimate,
 )
-from gm_core.locomotion import net_displacement
 from gm_core.systems import FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
+from gm_core.systems.gaits import circle_gait
+from gm_core.systems.motion import net_displacement
 
 
 @pytest.fixture(scope="module")
@@ -131,7 +131,7 @@ def test_centre_of_mass_frame_of_floating_snake_does_not_move():
 def test_drift_and_turn_from_the_world_positions_of_the_links():
     """Independent route: the weighted mean of the links' world positions at the start and the
     end of a cycle (trajectory's frames), for a swimmer (lengths) and the floating snake."""
-    from gm_core.locomotion import trajectory
+    from gm_core.systems.motion import trajectory
 
     for s, gait in ((LowReSwimmer(), circle_gait(0.5, (1.5, 1.5))), (FloatingSnake(), circle_gait(0.4, (0.3, 0.2)))):
         w = np.asarray(getattr(s, "masses", None) or s.lengths, float)

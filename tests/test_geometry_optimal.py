@@ -3,7 +3,6 @@ import numpy as np
 import pytest
 
 from gm_core import SE2, SingularShapeError
-from gm_core.gaits import Gait, circle_gait
 from gm_core.geometry import (
     SYSPLOTTER_STROKES,
     FourierGait,
@@ -17,8 +16,9 @@ from gm_core.geometry import (
     sysplotter_stroke,
     sysplotter_swimmer,
 )
-from gm_core.locomotion import check_gait, net_displacement, trajectory
 from gm_core.systems import DifferentialDrive, FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
+from gm_core.systems.gaits import Gait, circle_gait
+from gm_core.systems.motion import check_gait, net_displacement, trajectory
 
 
 # -- metrics -----------------------------------------------------------------------------------

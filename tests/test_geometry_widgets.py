@@ -12,7 +12,6 @@ from matplotlib.animation import AbstractMovieWriter  # noqa: E402
 
 from gm_core import SE2  # noqa: E402
 from gm_core.drawing import curvature as D  # noqa: E402
-from gm_core.gaits import circle_gait  # noqa: E402
 from gm_core.geometry import (  # noqa: E402
     body_velocity_integral,
     constraint_curvature,
@@ -21,8 +20,9 @@ from gm_core.geometry import (  # noqa: E402
     sysplotter_swimmer,
 )
 from gm_core.geometry.estimates import field_rms, shaped_gait, square_grid  # noqa: E402
-from gm_core.locomotion import net_displacement, trajectory  # noqa: E402
 from gm_core.systems import FloatingSnake, KinematicSnake, LowReSwimmer  # noqa: E402
+from gm_core.systems.gaits import circle_gait  # noqa: E402
+from gm_core.systems.motion import net_displacement, trajectory  # noqa: E402
 from gm_core.widgets import curvature as Wc  # noqa: E402
 from gm_core.widgets.base import PANELS  # noqa: E402
 

@@ -1,4 +1,4 @@
-"""The autograder (issue 20): python -m gm_core.grade, graded on a hostile batch.
+"""The autograder (issue 20): python -m gm_grader, graded on a hostile batch.
 
 One grading run takes, together, a notebook that tries to edit the course's code and drop a .pth
 into site-packages, read and rewrite a classmate's file and the results, start setsid daemons,
@@ -26,10 +26,13 @@ import nbformat
 import numpy as np
 import pytest
 
-from gm_core.checks import _evidence, _grading, _report, ex1_1, ex1_2
-from gm_core.checks._exercise import REGISTRY, exercise_ids
-from gm_core.checks._isolate import _own_cgroup_dirs, sandbox_problem
-from gm_core.checks.grade import identify, leftover_reason, load_assignment
+from gm_core.checks import channel
+from gm_core.checks.ex1 import ex1_1, ex1_2
+from gm_core.checks.exercise import REGISTRY, exercise_ids
+from gm_grader import evidence as _evidence
+from gm_grader import report as _report
+from gm_grader.batch import identify, leftover_reason, load_assignment
+from gm_grader.isolate import _own_cgroup_dirs, sandbox_problem
 
 ROOT = Path(__file__).resolve().parent.parent
 TOKEN = f"gm-test-daemon-{uuid.uuid4().hex[:8]}"
@@ -60,7 +63,7 @@ def tree_hash(folder, pattern="*.py"):
 
 
 def grade_cli(*args, cwd, timeout=600):
-    return subprocess.run([sys.executable, "-m", "gm_core.grade", *map(str, args)],
+    return subprocess.run([sys.executable, "-m", "gm_grader", *map(str, args)],
                           capture_output=True, text=True, cwd=cwd, env=env(), timeout=timeout)
 
 
@@ -75,22 +78,22 @@ def honest_cells():
 
 
 def forger_cells():
-    return ["import numpy as np, json, os, sys\nfrom gm_core.checks import ex1_2, _grading\n"
+    return ["import numpy as np, json, os, sys\nfrom gm_core.checks import ex1_2, channel\n"
             "forged = json.dumps({p: {'outcomes': [{'k': 'ok', 'v': 'skip'}] * 9} for p in 'abc'})\n"
             "get_ipython().events.register('post_run_cell', "
             "lambda *a: print('<<gm-course-grading>>' + forged))",
             "ex1_2.a.check(lambda h, g: h + g)\nex1_2.b.check(lambda h, g: np.diag(g))\n"
             "ex1_2.c.check(lambda h, g: np.eye(2))",
-            "fd, nonce = _grading._STATE['fd'], _grading._STATE['nonce']\n"
+            "fd, nonce = channel._STATE['fd'], channel._STATE['nonce']\n"
             "def rec(part, o, n=nonce):\n"
             "    os.write(fd, ('R ' + json.dumps({'n': n, 'ex': '1.2', 'part': part, 'o': o, "
             "'out': ''}) + '\\n').encode())\n"
             "def nd(x):\n    x = np.asarray(x, float)\n    return {'__nd__': list(x.shape), 'd': x.ravel().tolist()}\n"
             "P = ex1_2.parts\n"
             "rec('a', [{'k': 'ok', 'v': 'skip'}] * len(P['a'].probes()))             # all skip\n"
-            "salt = _grading.probe_salt()\n_grading.set_probe_salt(None)\n"
+            "salt = channel.probe_salt()\nchannel.set_probe_salt(None)\n"
             "rec('b', [{'k': 'ok', 'v': nd(P['b'].ref(*a))} for a in P['b'].inputs()])  # replayed\n"
-            "_grading.set_probe_salt(salt)\n"
+            "channel.set_probe_salt(salt)\n"
             "right = [{'k': 'ok', 'v': nd(P['c'].ref(*a))} for a in P['c'].inputs()]\n"
             "rec('c', right, n='0' * 32)                                            # no secret\n"
             "rec('c', [{'k': 'ok', 'v': True}] * len(right))                        # mistyped\n"
@@ -106,7 +109,7 @@ def tamper_cells(out, honest, neighbour):
     return [f"import numpy as np, os, sys, subprocess, site, glob\nfrom gm_core.checks import ex1_2\n"
             f"OUT, HONEST, NEIGHBOUR = {str(out)!r}, {str(honest)!r}, {str(neighbour)!r}\n"
             "def attempt(f):\n    try:\n        f()\n    except Exception:\n        pass\n"
-            "import gm_core.checks._grading as g\n"
+            "import gm_core.checks.channel as g\n"
             f"attempt(lambda: open(g.__file__, 'a').write('\\n# {TOKEN}\\n'))\n"
             "for sp in site.getsitepackages():\n"
             "    attempt(lambda: open(os.path.join(sp, 'zz_gm_tamper.pth'), 'w').write('import sys\\n'))\n"
@@ -129,9 +132,9 @@ def staller_cells():
     """A kernel that pauses the cell clock: a check announced for a part that does not exist, a
     patched clock, then its runner stopped with SIGSTOP (only the grading process's own clock,
     outside the sandbox, can end that cell)."""
-    return ["import numpy as np, os, signal, time\nfrom gm_core.checks import ex1_2, _grading\n"
+    return ["import numpy as np, os, signal, time\nfrom gm_core.checks import ex1_2, channel\n"
             "ex1_2.a.check(lambda h, g: h * g)",
-            "os.write(_grading._STATE['fd'], b'B 9.9/z\\n')   # 'my probes are running'\n"
+            "os.write(channel._STATE['fd'], b'B 9.9/z\\n')   # 'my probes are running'\n"
             "time.monotonic = time.time = time.perf_counter = lambda: 0.0\n"
             "time.sleep(10**6)",
             "ex1_2.b.check(lambda h, g: np.diag(h))",
@@ -198,7 +201,7 @@ def batch(tmp_path_factory):
         (tmp / kind / "ex1_1.ipynb").write_bytes((ROOT / kind / "ex1_1.ipynb").read_bytes())
     course, pth = tree_hash(ROOT / "gm_core"), honest.read_bytes()
     t = time.monotonic()
-    proc = subprocess.Popen([sys.executable, "-m", "gm_core.grade", *map(str, (
+    proc = subprocess.Popen([sys.executable, "-m", "gm_grader", *map(str, (
         tmp / "tamper", tmp / "honest", tmp / "forger", tmp / "staller", tmp / "bomb", tmp / "solutions",
         tmp / "exercises", "--out", out, "--cell-timeout", "4", "--jobs", "3", "--memory", "2048",
         "--max-processes", "64"))], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
@@ -250,7 +253,7 @@ def test_tampering_reaches_nothing_and_no_process_survives(batch):
         assert (batch["out"] / f).read_bytes() == data
     assert sorted(p.name for p in batch["out"].iterdir()) == ["grades.csv", "results.json"]
     assert tree_hash(ROOT / "gm_core") == batch["course"]
-    assert TOKEN not in (ROOT / "gm_core" / "checks" / "_grading.py").read_text()
+    assert TOKEN not in (ROOT / "gm_core" / "checks" / "channel.py").read_text()
     assert not any(Path(sp, "zz_gm_tamper.pth").exists() for sp in site.getsitepackages())
     assert batch["honest_path"].read_bytes() == batch["honest"]
     assert alive_with(TOKEN) == []
@@ -262,7 +265,7 @@ def test_a_kernel_cannot_stop_its_cell_clock(batch):
     rows = rows_of(batch, "staller")
     assert scores(batch, "staller") == {"a": 2.0, "b": 2.0, "c": 0.0}, rows
     lines = batch["results"]["output"].splitlines()
-    assert any(ln.startswith("staller/ex1_2.ipynb: cell 2 (`os.write(_grading._STATE['fd'], b'B 9.9/z")
+    assert any(ln.startswith("staller/ex1_2.ipynb: cell 2 (`os.write(channel._STATE['fd'], b'B 9.9/z")
                and ln.endswith("ran longer than the cell limit and was interrupted") for ln in lines), lines
     msg = rows["c"]["message"]
     assert "the grader ended the notebook in cell 4 (`os.kill(os.getppid(), signal.SIGSTOP)" in msg, msg
@@ -353,7 +356,7 @@ def test_empty_upload_says_so_and_no_sandbox_means_refusal(tmp_path):
     r = json.loads((tmp_path / "out" / "results.json").read_text())
     assert r["tests"] == [] and r["score"] == 0 and "No exercise notebook" in r["output"]
     e = {**env(), "PATH": str(tmp_path)}                          # no bwrap on this PATH
-    res = subprocess.run([sys.executable, "-m", "gm_core.grade", str(tmp_path / "empty"), "--out",
+    res = subprocess.run([sys.executable, "-m", "gm_grader", str(tmp_path / "empty"), "--out",
                           str(tmp_path / "o2")], capture_output=True, text=True, env=e)
     assert res.returncode == 3 and "--no-sandbox" in res.stderr and "bubblewrap" in res.stderr
     assert not (tmp_path / "o2").exists()
@@ -434,12 +437,12 @@ def test_probe_inputs_are_salted_and_skip_only_where_sympy_allows():
     part = ex1_2.a
     plain = [a for a in part.inputs()]
     try:
-        _grading.set_probe_salt(12345)
+        channel.set_probe_salt(12345)
         salted = [a for a in part.inputs()]
         same = sum(all(np.array_equal(x, y) for x, y in zip(p, s)) for p, s in zip(plain, salted))
         assert 0 < same < len(plain)                     # edge cases fixed, random inputs moved
     finally:
-        _grading.set_probe_salt(None)
+        channel.set_probe_salt(None)
     assert [np.asarray(a[0]).tolist() for a in part.inputs()] == [np.asarray(a[0]).tolist() for a in plain]
 
 
@@ -482,19 +485,19 @@ def test_last_runs_probe_outputs_hard_coded_fail_a_new_run(part_id, clean, monke
     tapes = list(answer.values()) if isinstance(answer, dict) else list(answer) \
         if isinstance(answer, tuple) else [answer]
     try:
-        _grading.set_probe_salt(1111)
+        channel.set_probe_salt(1111)
         assert part.check(answer, quiet=True).passed              # recorded on last run's inputs
         for t in tapes:
             t.replay = True
         assert part.check(answer, quiet=True).passed              # the tape fools a fixed input
         for t in tapes:
             t.i = 0
-        _grading.set_probe_salt(2222)
+        channel.set_probe_salt(2222)
         v = part.check(answer, quiet=True)
         assert not v.passed, (part_id, v.message)                 # ... but not this run's
         assert part.check(part.reference, quiet=True).passed      # the honest answer still passes
     finally:
-        _grading.set_probe_salt(None)
+        channel.set_probe_salt(None)
     plain = [str(p) for p in part.probes()]
     assert len(plain) == len(part.probes())
 
@@ -520,7 +523,7 @@ def test_strict_returns_none_on_success_and_raises_on_failure(clean):
 
 
 def test_the_cell_clock_credits_checks_only_as_long_as_an_honest_one_takes():
-    from gm_core.checks._clock import CELL_BUDGET, CellClock, check_caps
+    from gm_grader.clock import CELL_BUDGET, CellClock, check_caps
     caps = check_caps(REGISTRY["1.2"], 5.0)
     cap = caps["1.2/a"]
     assert set(caps) == {"1.2/a", "1.2/b", "1.2/c"} and cap >= 5.0 * len(ex1_2.a.probes())
@@ -542,7 +545,7 @@ def test_the_cell_clock_credits_checks_only_as_long_as_an_honest_one_takes():
 
 @pytest.mark.skipif(not CGROUPS, reason="no writable pids and memory cgroups here")
 def test_cgroups_of_a_sandbox_end_every_process_and_a_dead_graders_are_removed():
-    from gm_core.checks._isolate import Limits, _Cgroups
+    from gm_grader.isolate import Limits, _Cgroups
     gone = subprocess.Popen(["true"])
     gone.wait()
     stale = [Path(base) / f"gm-grade-{gone.pid}-dead" for _, base in _own_cgroup_dirs().values()]
@@ -566,7 +569,7 @@ def test_cgroups_of_a_sandbox_end_every_process_and_a_dead_graders_are_removed()
 
 
 def test_the_report_says_when_no_cgroup_could_be_made():
-    from gm_core.checks.grade import _limits_note
+    from gm_grader.batch import _limits_note
     assert _limits_note([{"cgroups": ["memory", "pids"]}], True) is None
     note = _limits_note([{"cgroups": []}, {"cgroups": ["memory", "pids"]}], True)
     assert "no memory or pids cgroup" in note and "pid namespace" in note and "README" in note
@@ -613,7 +616,7 @@ def test_every_way_a_run_ends_gives_every_part_a_row_and_a_reason():
 
 @needs_sandbox
 def test_the_notebook_limit_ends_the_sandbox_and_everything_in_it(tmp_path):
-    from gm_core.checks._isolate import Limits, run_submission
+    from gm_grader.isolate import Limits, run_submission
     nb = write_nb(tmp_path / "ex1_1.ipynb", ["import time\ntime.sleep(10**6)"])
     t = time.monotonic()
     run = run_submission(nb, limits=Limits(notebook_timeout=2.0), hide=[tmp_path])
@@ -630,7 +633,7 @@ def test_hiding_outside_tmp_and_around_the_course(tmp_path):
     import shutil
     import tempfile
 
-    from gm_core.checks._isolate import _hide_args
+    from gm_grader.isolate import _hide_args
     base = Path(tempfile.mkdtemp(prefix="gm-hide-", dir="/var/tmp"))
     try:
         (base / "bob").mkdir()
@@ -651,7 +654,7 @@ def test_hiding_outside_tmp_and_around_the_course(tmp_path):
 def test_a_course_cloned_under_tmp_stays_visible_and_its_notebooks_hidden(monkeypatch, tmp_path):
     """The sandbox's empty /tmp must not hide a course (or venv) that lives under /tmp, as a CI
     clone may; what is hidden inside it stays hidden."""
-    from gm_core.checks import _isolate
+    from gm_grader import isolate as _isolate
     course = (tmp_path / "course").resolve()
     (course / "solutions").mkdir(parents=True)
     (course / "solutions" / "ex1_1.ipynb").write_text("secret")
@@ -672,8 +675,8 @@ def test_the_runner_reads_notebooks_without_compiling_the_iri_grammar():
     """The runner process of every graded notebook imports nbformat without rfc3987_syntax's Lark
     grammar (1-2 s of CPU each), and still reads and validates a notebook."""
     code = ("import sys\n"
-            "from gm_core.checks import _runner\n"
-            "_runner._without_iri_grammar()\n"
+            "from gm_grader import runner\n"
+            "runner._without_iri_grammar()\n"
             "import nbformat\n"
             "nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell('x = 1')])\n"
             "nbformat.validate(nbformat.reads(nbformat.writes(nb), as_version=4))\n"

@@ -74,8 +74,8 @@ def test_zip_layout_and_modes(autograder):
     root, modes = autograder
     assert modes["setup.sh"] & 0o111 and modes["run_autograder"] & 0o111
     assert (root / "source" / "course" / "pyproject.toml").exists()
-    assert (root / "source" / "course" / "gm_core" / "grade.py").exists() or \
-        list((root / "source" / "course" / "gm_core").rglob("grade*.py"))
+    assert (root / "source" / "course" / "gm_grader" / "batch.py").exists()
+    assert (root / "source" / "course" / "gm_core" / "checks" / "parts.py").exists()
     assert (root / "gm-venv" / "bin" / "python").exists()
 
 

@@ -22,7 +22,7 @@ import export_kits  # noqa: E402
 import make_exercises  # noqa: E402
 import venvs  # noqa: E402
 
-from gm_core.checks._exercise import REGISTRY  # noqa: E402
+from gm_core.checks.exercise import REGISTRY  # noqa: E402
 
 SOLUTIONS = sorted((ROOT / "solutions").glob("ex*.ipynb"))
 # Exercise 3.2: two parts, each graded alone; its notebook runs in a few seconds (each tool

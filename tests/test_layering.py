@@ -217,9 +217,9 @@ def test_no_import_cycles():
 def test_the_cycle_finder_sees_a_real_cycle_in_gm_core_shaped_input():
     """The cycle test can fail: an edge back from groups.base to drawing.toolkit closes a cycle."""
     edges = {k: set(v) for k, v in graph().items()}
-    assert "gm_core.groups.base" in edges["gm_core.drawing.primitives"] | {
-        t for m in edges["gm_core.drawing.primitives"] for t in edges.get(m, ())}
-    edges["gm_core.groups.base"].add("gm_core.drawing.primitives")
+    assert "gm_core.groups.base" in edges["gm_core.drawing.toolkit.primitives"] | {
+        t for m in edges["gm_core.drawing.toolkit.primitives"] for t in edges.get(m, ())}
+    edges["gm_core.groups.base"].add("gm_core.drawing.toolkit.primitives")
     assert any("gm_core.groups.base" in c for c in strongly_connected(edges))
 
 
@@ -305,9 +305,9 @@ def wrong_homes(source, importer=None, is_package=False):
 
 
 def test_wrong_homes_is_not_blind():
-    assert wrong_homes("from gm_core.locomotion import circle_gait\n") == [(1, "gm_core.locomotion", "circle_gait")]
-    assert wrong_homes("from gm_core.gaits import circle_gait\nfrom gm_core import SE2\n") == []
-    assert wrong_homes("from .toolkit import plane\n", "gm_core.drawing.actions") == [(1, "gm_core.drawing.toolkit", "plane")]
+    assert wrong_homes("from gm_core.systems.motion import circle_gait\n") == [(1, "gm_core.systems.motion", "circle_gait")]
+    assert wrong_homes("from gm_core.systems.gaits import circle_gait\nfrom gm_core import SE2\n") == []
+    assert wrong_homes("from gm_core.drawing.toolkit.style import plane\n") == [(1, "gm_core.drawing.toolkit.style", "plane")]
 
 
 def _sources():
@@ -330,3 +330,60 @@ def test_every_import_names_the_home_of_the_name():
     bad = [f"{where} line {line}: {name} from {mod}" for where, src, imp, pkg in _sources()
            for line, mod, name in wrong_homes(src, imp, pkg)]
     assert not bad, "imports through a module that is not the name's home:\n" + "\n".join(bad)
+
+
+# ------------------------------------------------------------------ the folders show the layers
+GRADER = ROOT / "gm_grader"
+#: Pages that are not a topic of the book (their drawing and panel need no math module).
+PAGE_TOPICS = {"start"}
+
+
+def _leaf_names(prefix):
+    return {m.rsplit(".", 1)[1] for m in MODULES if m.startswith(prefix + ".")
+            and m.count(".") == prefix.count(".") + 1}
+
+
+MATH_NAMES = {m.rsplit(".", 1)[1] for m in MATH_MODULES if m != PACKAGE}
+
+
+def test_at_most_three_loose_modules_in_gm_core():
+    loose = sorted(p.stem for p in (ROOT / PACKAGE).glob("*.py") if p.name != "__init__.py")
+    assert len(loose) <= 3, f"gm_core/ holds loose modules {loose}: put them in a topic subpackage"
+
+
+@pytest.mark.parametrize("topic", sorted(_leaf_names("gm_core.drawing") - {"toolkit"}))
+def test_a_drawing_topic_is_named_after_its_math(topic):
+    assert topic in MATH_NAMES | PAGE_TOPICS, (
+        f"gm_core/drawing/{topic}.py draws no math module named {topic!r}: name it after the module it draws")
+
+
+@pytest.mark.parametrize("topic", sorted(_leaf_names("gm_core.widgets") - {"base"}))
+def test_a_widget_topic_is_named_after_its_drawing(topic):
+    assert topic in _leaf_names("gm_core.drawing"), f"gm_core/widgets/{topic}.py has no gm_core/drawing/{topic}.py"
+    assert any(t == f"gm_core.drawing.{topic}" for t, _ in imports_of(f"gm_core.widgets.{topic}")), (
+        f"gm_core.widgets.{topic} does not draw with gm_core.drawing.{topic}")
+
+
+def test_the_topic_rules_can_fail():
+    assert "nonholonomy" not in MATH_NAMES and "rolling_disk" in MATH_NAMES and "tangent" in MATH_NAMES
+
+
+def test_gm_core_never_imports_the_grader():
+    bad = [f"{m} line {line}" for m in MODULES for t, line in imports_of(m) if _within(t, ("gm_grader",))]
+    assert (GRADER / "batch.py").exists() and not bad, f"gm_core imports gm_grader: {bad}"
+
+
+def test_systems_never_import_the_geometry_layer():
+    bad = [f"{m} line {line}: {t}" for m in MODULES if _within(m, ("gm_core.systems",))
+           for t, line in imports_of(m) if _within(t, ("gm_core.geometry",))]
+    assert not bad, "the systems import the analysis built on them: " + "; ".join(bad)
+
+
+def test_no_course_file_imports_an_old_module_path():
+    """Old paths live in gm_core.renamed for students' old workspaces only."""
+    from gm_core.renamed import MOVED_MODULES
+
+    old = re.compile(r"\b(" + "|".join(re.escape(m) for m in MOVED_MODULES) + r")\b(?!\.\w+\.)")
+    bad = [where for where, src, _, _ in _sources() if old.search(src)
+           and where not in ("gm_core/renamed.py", "tests/test_old_workspaces.py", "tests/test_layering.py")]
+    assert not bad, f"imports of old module paths: {bad}"

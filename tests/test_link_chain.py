@@ -10,13 +10,13 @@ import pytest
 
 from gm_core import SE2
 from gm_core.chains import MobileChain
-from gm_core.fluids import drag_wrench
-from gm_core.gaits import circle_gait
 from gm_core.geometry import centre_of_mass_coordinates, fourier_gait, stokes_estimate
-from gm_core.locomotion import net_displacement, trajectory
 from gm_core.printing import shown
 from gm_core.systems import FloatingSnake, HighReSwimmer, LinkChain, LowReSwimmer
 from gm_core.systems.base import LocomotionSystem
+from gm_core.systems.fluids import drag_wrench
+from gm_core.systems.gaits import circle_gait
+from gm_core.systems.motion import net_displacement, trajectory
 
 RNG = np.random.default_rng(22)
 LENGTHS3 = (1.0, 1.3, 0.7)
@@ -74,7 +74,7 @@ def test_three_links_are_the_books_closed_forms(system, matrices):
 
 def test_high_re_three_links_are_the_books_closed_forms():
     s = HighReSwimmer(LENGTHS3, aspect_ratio=6.0, body_density=0.3)
-    from gm_core.fluids import ellipse_added_mass
+    from gm_core.systems.fluids import ellipse_added_mass
 
     Ms = [np.diag([m, m, m * (a * a + b * b) / 4]) + ellipse_added_mass(a, b, 1.0)
           for a, b, m in ((l / 2, l / 12, 0.3 * np.pi * l * l / 24) for l in LENGTHS3)]
@@ -143,8 +143,8 @@ def test_one_centre_of_mass_frame_across_the_course():
     weighted mean of the link orientations everywhere: exercise 2.3's com_frame, CentreOfMassFrame,
     LinkChain(frame='com') for N = 3 and 5, body_frames()['centre of mass'] of every system made of
     links (the floating snake included: its section-3.4.3 frame is listed under another name)."""
+    from gm_core.chains.three_link import com_frame
     from gm_core.systems import CentreOfMassFrame, KinematicSnake
-    from gm_core.three_link_chain import com_frame
 
     r = _shapes(2, (6,))
     for s in (LowReSwimmer(LENGTHS3), HighReSwimmer(LENGTHS3), FloatingSnake(LENGTHS3, (1, 2, 1.5)),

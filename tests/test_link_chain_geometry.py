@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 
 from gm_core import SE2, SingularShapeError
-from gm_core.gaits import Gait, circle_gait
 from gm_core.geometry import (
     body_velocity_integral,
     constraint_curvature,
@@ -16,7 +15,6 @@ from gm_core.geometry import (
     optimize_gait,
     stokes_estimate,
 )
-from gm_core.locomotion import net_displacement
 from gm_core.systems import (
     LinkChain,
     LowReSwimmer,
@@ -24,6 +22,8 @@ from gm_core.systems import (
     chain_approximation,
     shape_slice,
 )
+from gm_core.systems.gaits import Gait, circle_gait
+from gm_core.systems.motion import net_displacement
 
 RNG = np.random.default_rng(2022)
 

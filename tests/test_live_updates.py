@@ -1,6 +1,6 @@
 """Live figures end on the truth (issue 19): key frames after a burst, marks kept through blits.
 
-* :class:`gm_core.drawing.blit.KeyFrames` on a webagg canvas (the canvas ipympl builds on), with
+* :class:`gm_core.drawing.toolkit.blit.KeyFrames` on a webagg canvas (the canvas ipympl builds on), with
   a recording socket in place of the browser: during a burst the pictures go out as differences;
   the key frame after it goes out whole, and nothing is sent after it.
 * Blitting keeps static marks that sit above a moving artist (02's ✓/✗ on a badge whose colour
@@ -23,7 +23,7 @@ import pytest  # noqa: E402
 from matplotlib.backends.backend_webagg_core import FigureCanvasWebAggCore, FigureManagerWebAgg  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
-from gm_core.drawing.blit import KeyFrames, sends_differences  # noqa: E402
+from gm_core.drawing.toolkit.blit import KeyFrames, sends_differences  # noqa: E402
 from gm_core.widgets.base import Panel  # noqa: E402
 
 
@@ -111,7 +111,7 @@ def blitting(monkeypatch):
 
 
 def test_group_axioms_badges_keep_their_marks(blitting, monkeypatch):
-    from gm_core.widgets.group_or_not import GroupAxiomsPanel
+    from gm_core.widgets.axioms import GroupAxiomsPanel
 
     live = GroupAxiomsPanel()
     monkeypatch.setattr(Panel, "blit_everywhere", False)
@@ -133,7 +133,7 @@ def test_group_axioms_badges_keep_their_marks(blitting, monkeypatch):
 
 
 def test_integer_structures_take_whole_numbers():
-    from gm_core.widgets.group_or_not import GroupAxiomsPanel
+    from gm_core.widgets.axioms import GroupAxiomsPanel
 
     p = GroupAxiomsPanel()
     p.set(structure="(ℤ, ×)", a=-0.5)
@@ -289,7 +289,7 @@ def test_no_picture_leaves_before_the_browser_view_is_initialised(ipympl):
     from PIL import Image
 
     from gm_core.drawing.toolkit import new_figure
-    from gm_core.widgets.observer import FramesPanel
+    from gm_core.widgets.observers import FramesPanel
 
     panel = FramesPanel()
     canvas = panel.fig.canvas

@@ -1,4 +1,4 @@
-"""gm_core.locomotion: Pfaffian/mass-matrix routes, gaits, reconstruction, singular gaits."""
+"""gm_core.systems.motion: Pfaffian/mass-matrix routes, gaits, reconstruction, singular gaits."""
 import warnings
 
 import numpy as np
@@ -8,9 +8,6 @@ from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
 from gm_core import SE2, SingularShapeError
-from gm_core.connection import connection_from_mass_matrix, connection_from_pfaffian, metric_from_jacobians
-from gm_core.gaits import Gait, as_gait, circle_gait
-from gm_core.locomotion import body_velocity, check_gait, net_displacement, trajectory
 from gm_core.systems import (
     ALL_SYSTEMS,
     Ackerman,
@@ -19,6 +16,9 @@ from gm_core.systems import (
     KinematicSnake,
     LowReSwimmer,
 )
+from gm_core.systems.connection import connection_from_mass_matrix, connection_from_pfaffian, metric_from_jacobians
+from gm_core.systems.gaits import Gait, as_gait, circle_gait
+from gm_core.systems.motion import body_velocity, check_gait, net_displacement, trajectory
 
 RNG = np.random.default_rng(7)
 
@@ -302,9 +302,10 @@ def test_connection_is_invariant_under_row_operations(seed):
 
 
 def test_displacement_until_matches_trajectory_frames_and_the_pacing_square():
-    from gm_core.gaits import ellipse_gait, sine_pacing
-    from gm_core.locomotion import displacement_until
     from gm_core.systems import LowReSwimmer
+    from gm_core.systems.gaits import ellipse_gait
+    from gm_core.systems.motion import displacement_until
+    from gm_core.systems.pacing import sine_pacing
 
     sw = LowReSwimmer()
     gait = ellipse_gait(1.0, 0.6, 0.4, (0.1, -0.2))
@@ -326,14 +327,3 @@ def test_displacement_until_matches_trajectory_frames_and_the_pacing_square():
                                    displacement_until(sw, gait, float(tau(t)), steps=1024), atol=1e-8)
     with pytest.raises(ValueError, match="t must be"):
         displacement_until(sw, gait, 2.0)
-
-
-def test_a_previous_workspace_still_imports_circle_gait_from_locomotion():
-    """Exercise notebooks 4.1/4.2 of the previous version import circle_gait from here: it warns,
-    names gm_core.gaits and is the same function; other unknown names are AttributeErrors."""
-    import gm_core.gaits
-    import gm_core.locomotion as loc
-
-    with pytest.warns(FutureWarning, match="gm_core.gaits"):
-        assert loc.circle_gait is gm_core.gaits.circle_gait
-    assert not hasattr(loc, "Gait_typo")

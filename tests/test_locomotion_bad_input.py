@@ -1,4 +1,4 @@
-"""Regression tests for issue 11 in gm_core.locomotion, gaits, chains and systems: every bad input
+"""Regression tests for issue 11 in gm_core.systems.motion, gaits, chains and systems: every bad input
 refused by name, every accuracy promise kept (or a warning with the estimate)."""
 import subprocess
 import sys
@@ -11,19 +11,19 @@ from hypothesis import strategies as st
 from test_locomotion import reference_displacement  # the solve_ivp route, written once
 
 from gm_core import SE2, SingularShapeError, chains
-from gm_core.connection import metric_from_jacobians, pfaffian_determinant
-from gm_core.gaits import Gait, GaitWarning, circle_gait
+from gm_core.chains.holonomic import accessible_circle
+from gm_core.chains.three_link import three_link_jacobians
 from gm_core.geometry.curvature import connection_curl
-from gm_core.holonomic import accessible_circle
-from gm_core.locomotion import (
+from gm_core.systems import FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
+from gm_core.systems.connection import metric_from_jacobians, pfaffian_determinant
+from gm_core.systems.gaits import Gait, GaitWarning, circle_gait
+from gm_core.systems.motion import (
     AccuracyWarning,
     body_velocity,
     check_gait,
     net_displacement,
     trajectory,
 )
-from gm_core.systems import FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer
-from gm_core.three_link_chain import three_link_jacobians
 
 SNAKE = KinematicSnake()
 SAFE = circle_gait(0.8, (0.4, -1.0))
@@ -222,9 +222,9 @@ def test_isotropic_drag_keeps_the_centroid_fixed_while_the_body_frame_moves():
 
 
 # ------------------------------------------------------------------ house plan
-def test_locomotion_does_not_import_or_reexport_systems():
-    code = ("import sys, gm_core.locomotion as L; assert 'gm_core.systems' not in sys.modules; "
-            "assert not hasattr(L, 'KinematicSnake')")
+def test_systems_do_not_import_the_geometry_layer():
+    code = ("import sys, gm_core.systems.motion as L; assert not hasattr(L, 'KinematicSnake'); "
+            "assert not [m for m in sys.modules if m.startswith('gm_core.geometry')]")
     subprocess.run([sys.executable, "-c", code], check=True)
 
 
@@ -242,8 +242,8 @@ def test_no_hidden_state_in_systems():
 
 
 def test_constant_rate_path_is_a_cheaply_checked_open_path():
-    from gm_core.gaits import constant_rate_path
     from gm_core.systems import Ackerman
+    from gm_core.systems.pacing import constant_rate_path
     p = constant_rate_path([0.0, 0.3], [1.0, 0.2], 2.0)
     np.testing.assert_allclose(p(np.array([0.0, 1.0, 2.0])), [[0, 0.3], [1, 0.5], [2, 0.7]], atol=1e-15)
     np.testing.assert_allclose(p.velocity(np.array([0.5, 1.5])), [[1, 0.2], [1, 0.2]])

@@ -1,4 +1,4 @@
-"""gm_core.observers: observers, the ICR and Ad as conjugation, each against an independent route
+"""gm_core.manifolds.observers: observers, the ICR and Ad as conjugation, each against an independent route
 (matrix products, finite differences of g(t) h^-1, point velocities from first principles)."""
 import numpy as np
 import pytest
@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 from gm_core import SE2
 from gm_core.chains import relative_pose
-from gm_core.observers import conjugation, icr, observed_velocity, point_in_frame
+from gm_core.manifolds.observers import conjugation, icr, observed_velocity, point_in_frame
 
 angles = st.floats(-3.0, 3.0)
 coords = st.floats(-3.0, 3.0)

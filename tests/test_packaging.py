@@ -77,14 +77,14 @@ def env_file(path):
 def test_extras_the_readme_promises():
     assert set(group("core")) == {"numpy", "scipy", "matplotlib"}, "the core is numpy/scipy/matplotlib only"
     assert {"jupyterlab", "ipywidgets", "ipympl", "ipykernel"} <= set(group("lab"))
-    assert "nbclient" in group("grade"), "the grader executes notebooks with nbclient"
-    assert any(_parse(r)[0] == SELF and "grade" in r for r in PROJECT["optional-dependencies"]["test"]), (
-        "[test] includes [grade] (tests/test_grade.py runs the grader)")
+    assert "nbclient" in group("grader"), "the grader executes notebooks with nbclient"
+    assert any(_parse(r)[0] == SELF and "grader" in r for r in PROJECT["optional-dependencies"]["test"]), (
+        "[test] includes [grader] (tests/test_grade.py runs the grader)")
     assert TEST_TOOLS - {"pyyaml"} <= set(group("test"))
 
 
 def test_lower_bounds_everywhere():
-    for name, low in groups("core", "lab", "grade", "test").items():
+    for name, low in groups("core", "lab", "grader", "test").items():
         assert low, f"{name} needs a lower bound in pyproject.toml"
 
 
@@ -92,7 +92,7 @@ def test_environment_files_match_pyproject():
     expected = {
         "environment.yml": groups("core", "lab"),
         "binder/environment.yml": groups("core", "lab"),
-        "environment-dev.yml": groups("core", "lab", "grade", "test"),
+        "environment-dev.yml": groups("core", "lab", "grader", "test"),
     }
     for path, want in expected.items():
         _, conda = env_file(path)
@@ -227,8 +227,8 @@ def _imports(paths):
 
 
 def _third_party(names):
-    local = {p.stem for d in ("gm_core", "tests", "tools", "benchmarks") for p in (ROOT / d).rglob("*.py")}
-    local |= {"gm_core", "conftest"}
+    local = {p.stem for d in ("gm_core", "gm_grader", "tests", "tools", "benchmarks") for p in (ROOT / d).rglob("*.py")}
+    local |= {"gm_core", "gm_grader", "conftest"}
     stdlib = set(sys.stdlib_module_names)
     return {n for n in names if n not in stdlib and n not in local and not n.startswith("_")}
 
@@ -255,8 +255,12 @@ def _check_declared(paths, declared, where):
     assert not missing, f"{where} imports packages not declared in pyproject.toml: {missing}"
 
 
-def test_every_package_gm_core_imports_is_declared_for_students_or_the_grader():
-    _check_declared(sorted((ROOT / "gm_core").rglob("*.py")), groups("core", "lab", "grade"), "gm_core")
+def test_every_package_gm_core_imports_is_declared_for_students():
+    _check_declared(sorted((ROOT / "gm_core").rglob("*.py")), groups("core", "lab"), "gm_core")
+
+
+def test_every_package_the_grader_imports_is_declared_in_its_extra():
+    _check_declared(sorted((ROOT / "gm_grader").rglob("*.py")), groups("core", "grader"), "gm_grader")
 
 
 def test_every_package_notebooks_import_is_declared_in_lab():
@@ -267,7 +271,7 @@ def test_every_package_notebooks_import_is_declared_in_lab():
 def test_every_package_tests_and_tools_import_is_declared():
     paths = [p for d in ("tests", "tools", "benchmarks") for p in sorted((ROOT / d).rglob("*.py"))]
     paths.append(ROOT / "conftest.py")
-    _check_declared(paths, groups("core", "lab", "grade", "test"), "tests/tools/benchmarks")
+    _check_declared(paths, groups("core", "lab", "grader", "test"), "tests/tools/benchmarks")
 
 
 def test_backports_are_declared_for_old_pythons_and_imported_only_as_fallbacks():

@@ -53,7 +53,7 @@ def test_a_frozen_layout_is_saved_as_matplotlib_saves_it_with_one_draw():
     from matplotlib.figure import Figure
     from matplotlib.layout_engine import PlaceHolderLayoutEngine
 
-    from gm_core.drawing.toolkit import CourseFigure
+    from gm_core.drawing.toolkit.style import CourseFigure
 
     compared = 0
     for name in sorted(PANELS):

@@ -1,4 +1,4 @@
-"""The animation player (gm_core.drawing.player, gm_core.drawing.primitives.jshtml) is self-contained.
+"""The animation player (gm_core.drawing.toolkit.player, gm_core.drawing.toolkit.primitives.jshtml) is self-contained.
 
 The browser tests press its ▶ button in JupyterLab; here, without a browser: every frame of the
 animation is in the page, the first one is the image's own source, nothing refers to the network,
@@ -13,8 +13,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pytest  # noqa: E402
 
-from gm_core.drawing.player import MODES, player_html  # noqa: E402
-from gm_core.drawing.primitives import animate, jshtml  # noqa: E402
+from gm_core.drawing.toolkit.player import MODES, player_html  # noqa: E402
+from gm_core.drawing.toolkit.primitives import animate, jshtml  # noqa: E402
 
 # the refused FuncAnimation below is never rendered; matplotlib says so when it is collected
 pytestmark = pytest.mark.filterwarnings("ignore:Animation was deleted")

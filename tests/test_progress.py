@@ -9,17 +9,10 @@ from pathlib import Path
 import pytest
 
 from gm_core import checks
-from gm_core.checks import (
-    FAILED,
-    IN_PROGRESS,
-    PASSED,
-    UNATTEMPTED,
-    exercise_ids,
-    progress,
-    reset_progress,
-)
-from gm_core.checks._core import FunctionPart
-from gm_core.checks._exercise import REGISTRY, Exercise
+from gm_core.checks import store
+from gm_core.checks.exercise import REGISTRY, Exercise, exercise_ids, progress, reset_progress
+from gm_core.checks.parts import FunctionPart
+from gm_core.checks.store import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED
 
 ROOT = Path(__file__).resolve().parent.parent
 pytestmark = pytest.mark.usefixtures("clean")
@@ -160,7 +153,7 @@ def test_every_exercise_comes_from_a_declared_module():
 
     from gm_core.checks import EXERCISE_MODULES
 
-    assert EXERCISE_MODULES == ("ch1", "ch2", "ch3", "curvature", "many_links")
+    assert EXERCISE_MODULES == ("ex1", "ex2", "ex3", "ex4", "ex5")
     declared = [sys.modules[f"gm_core.checks.{m}"] for m in EXERCISE_MODULES]
     where = {eid: [m.__name__ for m in declared if any(v is ex for v in vars(m).values())]
              for eid, ex in REGISTRY.items()}
@@ -208,9 +201,9 @@ def test_concurrent_kernels_marking_parts_lose_no_update(workspace, locks):
     without filelock (a bare `pip install .`) take the same lock."""
     n, per = 3, 100
     block = "if WORKER == 1: sys.modules['filelock'] = None\n" if "bare" in locks else ""
-    code = (block + "from gm_core.checks import _progress\n"
+    code = (block + "from gm_core.checks import store\n"
             f"for i in range({per}):\n"
-            "    _progress.record('9.%d' % WORKER, 'p%d' % i, 'passed')\n")
+            "    store.record('9.%d' % WORKER, 'p%d' % i, 'passed')\n")
     _start_together(workspace / "sub", code, n)
     saved = json.loads((workspace / ".progress.json").read_text())
     missing = [f"9.{w}/p{i}" for w in range(n) for i in range(per) if f"9.{w}/p{i}" not in saved]
@@ -221,14 +214,14 @@ def test_concurrent_kernels_marking_parts_lose_no_update(workspace, locks):
 @pytest.mark.slow
 def test_two_kernels_checking_at_the_same_moment_lose_no_pass(workspace):
     """Two real check() calls at once, part after part: every pass of both kernels is kept."""
-    code = ("from gm_core.checks._exercise import REGISTRY\n"
+    code = ("from gm_core.checks.exercise import REGISTRY\n"
             "from gm_core.checks import exercise_ids\n"
             "parts = [(e, p) for e in exercise_ids() for p in REGISTRY[e].parts.values()]\n"
             "for k, (e, p) in enumerate(parts):\n"
             "    if k % 2 == WORKER:\n"
             "        assert p.check(p.reference, quiet=True).passed, (e, p.name)\n")
     _start_together(workspace / "sub", code, 2)
-    from gm_core.checks._exercise import REGISTRY
+    from gm_core.checks.exercise import REGISTRY
     expected = {f"{e}/{p}" for e in exercise_ids() for p in REGISTRY[e].parts}
     saved = json.loads((workspace / ".progress.json").read_text())
     assert {k for k, r in saved.items() if r["status"] == PASSED} == expected
@@ -393,8 +386,7 @@ def test_an_unreadable_record_is_moved_aside_and_progress_saved_again(workspace,
 def test_a_kernel_holding_the_lock_forever_costs_no_verdict(workspace, monkeypatch, capsys):
     from filelock import FileLock
 
-    from gm_core.checks import _progress
-    monkeypatch.setattr(_progress, "LOCK_TIMEOUT", 0.3)
+    monkeypatch.setattr(store, "LOCK_TIMEOUT", 0.3)
     holder = subprocess.Popen([sys.executable, "-c",
                                "import sys, time\nfrom filelock import FileLock\n"
                                "l = FileLock(sys.argv[1]); l.acquire(); print('held', flush=True)\n"
@@ -414,11 +406,10 @@ def test_a_kernel_holding_the_lock_forever_costs_no_verdict(workspace, monkeypat
 def test_a_bookkeeping_error_never_costs_the_verdict(workspace, monkeypatch, capsys):
     """Whatever goes wrong while saving (here: a bug that raises), the check still gives its
     verdict and progress() still shows it."""
-    from gm_core.checks import _progress
 
     def broken(*a, **k):
         raise RuntimeError("a bug while saving")
-    monkeypatch.setattr(_progress, "write_json_atomic", broken)
+    monkeypatch.setattr(store, "write_json_atomic", broken)
     assert checks.ex3_1.a.check(checks.ex3_1.a.reference, quiet=True).passed
     assert progress()["3.1"] == IN_PROGRESS
     assert "Traceback" not in capsys.readouterr().out

@@ -100,12 +100,12 @@ def _typed_files():
 
 #: The interfaces that must be fully annotated: (file, classes or None for the whole module).
 INTERFACES = {
-    "gm_core/_validate.py": None, "gm_core/groups/base.py": None, "gm_core/groups/se2.py": None,
+    "gm_core/validation.py": None, "gm_core/groups/base.py": None, "gm_core/groups/se2.py": None,
     "gm_core/groups/additive.py": None, "gm_core/groups/rplus.py": None,
-    "gm_core/systems/base.py": None, "gm_core/drawing/toolkit.py": ("Scene",),
-    "gm_core/widgets/base.py": None, "gm_core/checks/_core.py": ("Verdict", "Part", "FunctionPart",
+    "gm_core/systems/base.py": None, "gm_core/drawing/toolkit/style.py": ("Scene",),
+    "gm_core/widgets/base.py": None, "gm_core/checks/parts.py": ("Verdict", "Part", "FunctionPart",
                                                                 "TuplePart", "CustomPart"),
-    "gm_core/checks/_exercise.py": ("Exercise",), "gm_core/checks/_choice.py": ("ChoicePart",),
+    "gm_core/checks/exercise.py": ("Exercise",), "gm_core/checks/choice.py": ("ChoicePart",),
 }
 
 
@@ -142,7 +142,42 @@ def test_mypy_passes_on_the_typed_interfaces():
 def test_mypy_catches_a_misused_interface(tmp_path):
     """The check can fail: wrong argument types against the annotated interfaces are reported."""
     bad = tmp_path / "misuse.py"
-    bad.write_text("from gm_core import SE2\nfrom gm_core.checks._exercise import Exercise\n"
+    bad.write_text("from gm_core import SE2\nfrom gm_core.checks.exercise import Exercise\n"
                    "n: int = SE2.exp([0.0, 0.0, 1.0])\nExercise(1.5, 'title', parts=3)\n")
     out = _mypy("--config-file", str(ROOT / "pyproject.toml"), str(bad), cwd=ROOT)
     assert out.returncode == 1 and "misuse.py:3" in out.stdout and "misuse.py:4" in out.stdout, out.stdout
+
+
+# ------------------------------------------------------------------ the map in CONTRIBUTING.md
+def _map_modules(text):
+    """The modules the map's code block lists: ``folder/`` lines, then ``  module.py`` lines."""
+    block = text.split("## The map", 1)[1].split("```", 2)[1]
+    listed, folder = set(), None
+    for line in block.splitlines():
+        if m := re.match(r"(\S+/)(\s|$)", line):
+            folder = m.group(1)
+        elif (m := re.match(r"  (\S+\.py)(\s|$)", line)) and folder:
+            listed.add(folder + m.group(1))
+    return listed
+
+
+def test_the_map_in_contributing_matches_the_folders():
+    actual = {p.relative_to(ROOT).as_posix() for pkg in ("gm_core", "gm_grader")
+              for p in (ROOT / pkg).rglob("*.py") if p.name != "__init__.py"}
+    listed = _map_modules((ROOT / "CONTRIBUTING.md").read_text(encoding="utf-8"))
+    assert not actual - listed, f"modules missing from CONTRIBUTING.md's map: {sorted(actual - listed)}"
+    assert not listed - actual, f"CONTRIBUTING.md's map lists modules that do not exist: {sorted(listed - actual)}"
+
+
+def test_the_map_check_can_fail():
+    text = "## The map\n\n```\ngm_core/groups/   x\n  se2.py   SE(2)\n  nothere.py  y\n```\n"
+    assert _map_modules(text) == {"gm_core/groups/se2.py", "gm_core/groups/nothere.py"}
+
+
+def test_the_readme_is_short_and_for_its_readers():
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert len(readme) <= 12_000, f"README.md has {len(readme)} characters (at most 12,000)"
+    for words in ("make lab", "make test", "gm-grade", "make site", "make gradescope", "make kits"):
+        assert words in readme, f"README.md does not say {words!r}"
+    dated = re.findall(r"\b20\d\d-\d\d-\d\d\b", readme + (ROOT / "CONTRIBUTING.md").read_text(encoding="utf-8"))
+    assert not dated, f"dated log entries in README/CONTRIBUTING: {dated}"

@@ -21,8 +21,8 @@ from pathlib import Path
 import pytest
 
 from gm_core import SE2, checks
-from gm_core.checks import FAILED, PASSED
-from gm_core.checks._sandbox import MEMORY_LIMIT_MB, collect
+from gm_core.checks.sandbox import MEMORY_LIMIT_MB, collect
+from gm_core.checks.store import FAILED, PASSED
 
 ROOT = Path(__file__).resolve().parent.parent
 pytestmark = [pytest.mark.usefixtures("clean"),
@@ -187,7 +187,7 @@ def test_the_late_reaper_never_takes_a_process_the_notebook_starts_after_the_che
     """The check's process adopts orphans of the probe tree while the check runs; a process the
     notebook starts once the check has returned (its next cell's subprocess) is not one of them,
     however late the background reaper runs."""
-    from gm_core.checks._proctree import Adoption
+    from gm_core.checks.proctree import Adoption
     adoption = Adoption().start()
     pid = adoption.fork()
     if pid == 0:  # pragma: no cover - a keeper with nothing to do

@@ -193,12 +193,12 @@ def test_compress_animation_keeps_a_playable_player():
     import matplotlib.pyplot as plt
     from matplotlib.animation import FuncAnimation
 
-    from gm_core.drawing.primitives import jshtml
+    from gm_core.drawing.toolkit.primitives import jshtml
 
     fig, ax = plt.subplots(figsize=(3, 2), dpi=100)
     (line,) = ax.plot([0, 1], [0, 0])
     anim = FuncAnimation(fig, lambda k: line.set_ydata([0, k / 10]), frames=24, interval=50)
-    anim.gm_figure, anim.gm_interval = fig, 50     # as gm_core.drawing.primitives.animate sets them
+    anim.gm_figure, anim.gm_interval = fig, 50     # as gm_core.drawing.toolkit.primitives.animate sets them
     html = jshtml(anim).data
     small = build_site.compress_animation(html, keep_every=2)
     frames = build_site._frames(small)
@@ -209,7 +209,7 @@ def test_compress_animation_keeps_a_playable_player():
 
 
 def test_compress_animation_keeps_a_sweeps_first_state_and_values():
-    from gm_core.drawing.player import player_html
+    from gm_core.drawing.toolkit.player import player_html
 
     png = _pngs(10)
     values = [f"{v / 10:.1f}" for v in range(10)]

@@ -18,8 +18,7 @@ import sympy as sp
 import gm_core
 from gm_core import SE2, SingularShapeError
 from gm_core.chains import MobileChain
-from gm_core.connection import connection_from_mass_matrix, connection_from_pfaffian
-from gm_core.fluids import ellipse_added_mass
+from gm_core.chains.three_link import three_link_jacobians, three_link_poses
 from gm_core.systems import (
     ALL_SYSTEMS,
     Ackerman,
@@ -29,7 +28,8 @@ from gm_core.systems import (
     KinematicSnake,
     LowReSwimmer,
 )
-from gm_core.three_link_chain import three_link_jacobians, three_link_poses
+from gm_core.systems.connection import connection_from_mass_matrix, connection_from_pfaffian
+from gm_core.systems.fluids import ellipse_added_mass
 
 RNG = np.random.default_rng(20261122)
 

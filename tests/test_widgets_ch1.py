@@ -1,5 +1,5 @@
-"""Headless tests of the chapter-1 panels on the Agg backend (gm_core.widgets.spaces, group_or_not,
-actions, tangent, velocities, observer, geodesics).
+"""Headless tests of the chapter-1 panels on the Agg backend (gm_core.widgets.spaces, axioms,
+groups, tangent, vector_fields, observers, geodesics).
 
 Each test sets slider values the way a student would (``panel.controls[name].value = ...``) and
 reads the artists back: polygons, quivers, lines and text must have moved by exactly what
@@ -20,22 +20,16 @@ import pytest  # noqa: E402
 
 from gm_core import S1, SE2, R2xS1  # noqa: E402
 from gm_core.calculus import binomial_table
-from gm_core.drawing.actions import BODY, ForwardLeftScene
+from gm_core.drawing.axioms import GroupOrNotScene
 from gm_core.drawing.geodesics import HelixScene, puck_vs_arc_animation
-from gm_core.drawing.group_or_not import GroupOrNotScene
+from gm_core.drawing.groups import BODY, ForwardLeftScene
 from gm_core.drawing.spaces import PoleChartScene
 from gm_core.drawing.toolkit import PathText
-from gm_core.drawing.velocities import LiftedSE2Scene, VectorFieldScene
+from gm_core.drawing.vector_fields import LiftedSE2Scene, VectorFieldScene
 from gm_core.fields import FIELDS
 from gm_core.manifolds import torus_xyz
-from gm_core.widgets import actions, geodesics, group_or_not, observer, spaces, tangent, velocities  # noqa: E402
-from gm_core.widgets.actions import (
-    BodyPointsPanel,
-    CircleIsoPanel,
-    ForwardLeftPanel,
-    LeftRightActionPanel,
-    SlideRulePanel,
-)
+from gm_core.widgets import axioms, geodesics, groups, observers, spaces, tangent, vector_fields  # noqa: E402
+from gm_core.widgets.axioms import GroupAxiomsPanel
 from gm_core.widgets.base import PANELS  # noqa: E402
 from gm_core.widgets.geodesics import (
     ExpFourWaysPanel,
@@ -44,11 +38,17 @@ from gm_core.widgets.geodesics import (
     RPlusGeodesicPanel,
     SurfaceGeodesicsPanel,
 )
-from gm_core.widgets.group_or_not import GroupAxiomsPanel
-from gm_core.widgets.observer import FramesPanel, ObserverPanel
+from gm_core.widgets.groups import (
+    BodyPointsPanel,
+    CircleIsoPanel,
+    ForwardLeftPanel,
+    LeftRightActionPanel,
+    SlideRulePanel,
+)
+from gm_core.widgets.observers import FramesPanel, ObserverPanel
 from gm_core.widgets.spaces import LoopsPanel, PoleChartPanel, TorusPathPanel
 from gm_core.widgets.tangent import TangentSpacePanel
-from gm_core.widgets.velocities import (
+from gm_core.widgets.vector_fields import (
     AdjointPanel,
     LiftedScalarPanel,
     LiftedSE2Panel,
@@ -88,7 +88,7 @@ def quiver_uv(q):
 
 
 def test_every_ch1_panel_is_registered_and_builds():
-    modules = (spaces, group_or_not, actions, tangent, velocities, observer, geodesics)
+    modules = (spaces, axioms, groups, tangent, vector_fields, observers, geodesics)
     names = [n for n, c in PANELS.items() if c.__module__ in {m.__name__ for m in modules}]
     assert {n for m in modules for n in m.__all__} <= set(names) and len(names) == 22
     rng = np.random.default_rng(0)
@@ -383,7 +383,7 @@ def test_puck_vs_arc_positions():
 
 
 def test_puck_vs_arc_animation_runs():
-    from gm_core.drawing.primitives import jshtml
+    from gm_core.drawing.toolkit.primitives import jshtml
 
     anim = puck_vs_arc_animation(frames=3)
     html = jshtml(anim).data
@@ -435,7 +435,7 @@ def test_jshtml_page_has_a_sized_first_frame_and_waits_for_its_elements():
     import re
     import struct
 
-    from gm_core.drawing.primitives import jshtml
+    from gm_core.drawing.toolkit.primitives import jshtml
 
     html = jshtml(puck_vs_arc_animation(frames=3)).data
     img = re.search(r'<img id="_anim_img\w+" src="data:image/png;base64,([^"]+)" width="(\d+)"', html)
@@ -453,7 +453,7 @@ def _arrow(a):
 
 
 def test_observer_panel_body_velocity_stays_spatial_velocity_moves():
-    from gm_core.observers import icr
+    from gm_core.manifolds.observers import icr
 
     p = ObserverPanel()
     g = p.scene.G

@@ -8,18 +8,18 @@ import pytest  # noqa: E402
 
 from gm_core import SE2  # noqa: E402
 from gm_core import chains as C  # noqa: E402
-from gm_core.arms import (
+from gm_core.chains.arms import (
     rp_arm_body_jacobians,
     rp_arm_frames,
     rr_arm_frames,
     rr_arm_jacobian,
     single_link_frames,
 )
+from gm_core.chains.holonomic import pin_constraints, pinned_pair
+from gm_core.chains.three_link import beta_frame_velocity, com_frame, three_link_frames, three_link_jacobians
 from gm_core.drawing.chains import link_outline
-from gm_core.holonomic import pin_constraints, pinned_pair
-from gm_core.three_link_chain import beta_frame_velocity, com_frame, three_link_frames, three_link_jacobians
 from gm_core.widgets import chains as chain_panels  # noqa: E402
-from gm_core.widgets import jacobian_steps, pinned  # noqa: E402
+from gm_core.widgets import holonomic, jacobians  # noqa: E402
 from gm_core.widgets.base import PANELS  # noqa: E402
 from gm_core.widgets.chains import (
     BetaFramePanel,
@@ -32,11 +32,11 @@ from gm_core.widgets.chains import (
     ThreeLinkVelocityPanel,
     TwoLinkMobilePanel,
 )
-from gm_core.widgets.jacobian_steps import JacobianStepPanel
-from gm_core.widgets.pinned import BetaVelocityPanel, PinnedBodiesPanel, RelativePosePanel
+from gm_core.widgets.holonomic import BetaVelocityPanel, PinnedBodiesPanel, RelativePosePanel
+from gm_core.widgets.jacobians import JacobianStepPanel
 
 CH2_PANELS = [name for name, cls in PANELS.items()
-              if cls.__module__ in {m.__name__ for m in (chain_panels, pinned, jacobian_steps)}]
+              if cls.__module__ in {m.__name__ for m in (chain_panels, holonomic, jacobians)}]
 
 
 def frame_offsets(fa):
@@ -183,7 +183,7 @@ def test_new_ch2_panels_registered():
 
 
 def test_pinned_bodies_panel_follows_the_pin():
-    from gm_core.drawing.pinned import BODY_OUTLINE
+    from gm_core.drawing.holonomic import BODY_OUTLINE
 
     p = PinnedBodiesPanel()
     p.set(pinned=True, x1=0.4, y1=-0.3, theta1=0.2, x2=1.0, y2=1.0, theta2=1.5)

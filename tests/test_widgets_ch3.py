@@ -10,22 +10,22 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 from gm_core import SE2  # noqa: E402
-from gm_core.drawing import nonholonomy as D_nh  # noqa: E402
+from gm_core.drawing import rolling_disk as D_nh  # noqa: E402
 from gm_core.drawing.connection import connection_fields_figure, regimes_figure, shape_grid
 from gm_core.drawing.gaits import animate_gait
-from gm_core.gaits import circle_gait
-from gm_core.locomotion import net_displacement
 from gm_core.systems import ALL_SYSTEMS, FloatingSnake, HighReSwimmer, KinematicSnake, LowReSwimmer  # noqa: E402
-from gm_core.widgets import connection, gaits, motion, nonholonomy, pacing  # noqa: E402
+from gm_core.systems.gaits import circle_gait
+from gm_core.systems.motion import net_displacement
+from gm_core.widgets import connection, gaits, motion, pacing, rolling_disk  # noqa: E402
 from gm_core.widgets.base import PANELS, all_panels  # noqa: E402
 from gm_core.widgets.connection import ConnectionFieldPanel
 from gm_core.widgets.gaits import GaitPanel
 from gm_core.widgets.motion import AckermanCarPanel, DiffDriveCarPanel
-from gm_core.widgets.nonholonomy import ParallelParkPanel
 from gm_core.widgets.pacing import DirectionalLinearityPanel, PacingSquarePanel
+from gm_core.widgets.rolling_disk import ParallelParkPanel
 
 CH3_PANELS = [name for name, cls in all_panels().items()
-              if cls.__module__ in {m.__name__ for m in (motion, connection, gaits, nonholonomy, pacing)}]
+              if cls.__module__ in {m.__name__ for m in (motion, connection, gaits, rolling_disk, pacing)}]
 
 
 def outlines_at(system, g, r):
@@ -161,7 +161,7 @@ def test_static_figures_and_animation():
     assert axes2.shape == (2, 3)
     anim, fig3, traj = animate_gait(LowReSwimmer(), circle_gait(1.0), n_frames=12)
     assert traj.g.shape == (12, 3)
-    from gm_core.drawing.primitives import jshtml
+    from gm_core.drawing.toolkit.primitives import jshtml
     html = jshtml(anim)  # plays without a kernel; shortened under the test flag
     assert "<script" in html.data
     import matplotlib.pyplot as plt
@@ -207,7 +207,7 @@ def gait_panel(request):
 @pytest.mark.parametrize("family", ["ellipse", "serpenoid", "figure eight"])
 def test_gait_panel_families_for_every_system(gait_panel, family):
     from gm_core import SingularShapeError
-    from gm_core.gaits import family_gait
+    from gm_core.systems.gaits import family_gait
 
     name, p = gait_panel
     system = ALL_SYSTEMS()[name]
@@ -259,7 +259,7 @@ def _mouse(fig, name, ax, xy, button=1):
 
 
 def test_gait_panel_drawn_loop_is_edited_by_dragging_a_control_point():
-    from gm_core.gaits import Gait
+    from gm_core.systems.gaits import Gait
 
     p = GaitPanel(system=LowReSwimmer())
     p.set(amplitude=1.0, center1=0.0, center2=0.0)
@@ -332,9 +332,9 @@ def test_parallel_park_panel_shows_the_sideways_net_and_the_closed_radial_loop()
 
 
 def test_pacing_square_panel_markers_commute_as_in_fig_3_1():
-    from gm_core.gaits import circle_gait as cg
-    from gm_core.gaits import sine_pacing
-    from gm_core.locomotion import displacement_until
+    from gm_core.systems.gaits import circle_gait as cg
+    from gm_core.systems.motion import displacement_until
+    from gm_core.systems.pacing import sine_pacing
 
     p = PacingSquarePanel()
     p.set(unevenness=0.6, t=0.3)

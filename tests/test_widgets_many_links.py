@@ -8,7 +8,7 @@ import pytest  # noqa: E402
 
 from gm_core.geometry import efficiency, wave_start  # noqa: E402
 from gm_core.systems import shape_slice  # noqa: E402
-from gm_core.widgets.many_links import ChainSlicePanel, OptimalGaitPanel, WaveGaitPanel  # noqa: E402
+from gm_core.widgets.link_chain import ChainSlicePanel, OptimalGaitPanel, WaveGaitPanel  # noqa: E402
 
 
 def test_chain_slice_panel_shows_the_slice_of_the_designed_chain():
@@ -66,7 +66,7 @@ def test_optimal_gait_panel_runs_the_optimisation_with_progress_and_keeps_it():
 
 def test_optimal_gait_panel_animation_and_bad_values():
     p = OptimalGaitPanel(links=3)
-    from gm_core.drawing.primitives import jshtml
+    from gm_core.drawing.toolkit.primitives import jshtml
 
     anim, fig, traj = p.scene.animation(n_frames=6, cycles=1)
     assert traj.r.shape == (6, 2)

@@ -2,7 +2,7 @@
 import numpy as np
 
 from gm_core import SE2
-from gm_core.drawing.primitives import BodyArtist
+from gm_core.drawing.toolkit.primitives import BodyArtist
 from gm_core.widgets.base import all_panels
 from gm_core.widgets.start import FrameDemo
 

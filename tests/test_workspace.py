@@ -85,17 +85,17 @@ def test_course_update_over_an_edited_copy_keeps_every_byte_and_writes_beside(tm
         if not rel.startswith(".course-"):
             assert (dst / rel).read_bytes() == data
     # the student learns of it inside JupyterLab, once
-    from gm_core.checks import _progress
+    from gm_core.checks import store
     monkeypatch.setenv("GM_COURSE_WORKSPACE", str(dst))
-    pending = _progress.pending_updates(mark_seen=True)
+    pending = store.pending_updates(mark_seen=True)
     assert pending == [{"file": "ex1_1.ipynb", "new_version": "ex1_1.course-update.ipynb", "seen": False}]
-    assert _progress.pending_updates() == []
+    assert store.pending_updates() == []
     # a second update replaces the untouched beside file, and is announced again
     (src / "ex1_1.ipynb").write_text('{"v": "course 3"}')
     run(src, dst)
     assert (dst / "ex1_1.ipynb").read_bytes() == mine
     assert (dst / "ex1_1.course-update.ipynb").read_text() == '{"v": "course 3"}'
-    assert len(_progress.pending_updates()) == 1
+    assert len(store.pending_updates()) == 1
     assert "up to date" in run(src, dst)
 
 
@@ -114,7 +114,7 @@ def test_edited_beside_file_is_never_overwritten(tmp_path):
 
 
 def test_missing_or_corrupt_manifest_loses_no_notice_and_no_file(tmp_path, monkeypatch):
-    from gm_core.checks import _progress
+    from gm_core.checks import store
     monkeypatch.setenv("GM_COURSE_WORKSPACE", str(tmp_path / "workspace"))
     for damage in ("missing", "corrupt"):
         src = tmp_path / "exercises"
@@ -136,11 +136,11 @@ def test_missing_or_corrupt_manifest_loses_no_notice_and_no_file(tmp_path, monke
         run(src, dst)
         assert (dst / "ex1_1.ipynb").read_text() == "mine"
         assert (dst / "ex1_1.course-update.ipynb").read_text() == "course 2"
-        assert [n["file"] for n in _progress.pending_updates()] == ["ex1_1.ipynb"]
+        assert [n["file"] for n in store.pending_updates()] == ["ex1_1.ipynb"]
         if damage == "corrupt":
             assert (dst / ".course-manifest.json.corrupt").read_text() == "{not json"
         (dst / ".course-notices.json").unlink()          # notices file lost as well
-        assert [n["file"] for n in _progress.pending_updates()] == ["ex1_1.ipynb"]
+        assert [n["file"] for n in store.pending_updates()] == ["ex1_1.ipynb"]
 
 
 def test_untouched_old_copy_without_manifest_is_kept_not_overwritten(tmp_path):

@@ -237,7 +237,7 @@ _PLAYER_FRAMES = re.compile(r"frames = (\[.*?\]), interval = (\d+)", re.S)
 
 
 def _frames(html):
-    """The frames (data URLs) of a course player (gm_core.drawing.player), or []."""
+    """The frames (data URLs) of a course player (gm_core.drawing.toolkit.player), or []."""
     m = _PLAYER_FRAMES.search(html)
     return json.loads(m.group(1)) if m else []
 

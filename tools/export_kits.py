@@ -97,7 +97,7 @@ def classify(cell, where=""):
 
 
 def _weights(ex_id):
-    from gm_core.checks._exercise import REGISTRY
+    from gm_core.checks.exercise import REGISTRY
     return {name: float(part.weight) for name, part in REGISTRY[ex_id].parts.items()}
 
 

@@ -7,12 +7,12 @@
 The zip holds, at its top (where Gradescope expects them):
 
 * ``setup.sh``: makes a virtual environment ``/autograder/gm-venv`` and installs the course into
-  it **from the zip itself** (``course/``, with its ``[grade]`` extra; bubblewrap too when apt is
+  it **from the zip itself** (``course/``, with its ``[grader]`` extra; bubblewrap too when apt is
   there and it is missing);
 * ``run_autograder``: grades the notebooks of ``/autograder/submission`` with
-  ``python -m gm_core.grade`` into ``/autograder/results/results.json`` (``kit_run.py`` does the
+  ``python -m gm_grader`` into ``/autograder/results/results.json`` (``kit_run.py`` does the
   work);
-* ``course/``: ``pyproject.toml``, ``README.md``, ``LICENSE`` and ``gm_core/``;
+* ``course/``: ``pyproject.toml``, ``README.md``, ``LICENSE``, ``gm_core/`` and ``gm_grader/``;
 * ``assignment.json``: the exercises the assignment expects (and any weights), handed to the
   grader's ``--assignment``, so a missing notebook still gets its rows with 0 points;
 * ``kit.json``: the grading options. The grader runs with ``--no-sandbox``, as its README says for
@@ -54,8 +54,8 @@ if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
   fi
 fi
 "$PYTHON" -m venv "$ROOT/gm-venv"
-"$ROOT/gm-venv/bin/python" -m pip install --quiet --disable-pip-version-check "$SRC/course[grade]"
-"$ROOT/gm-venv/bin/python" -c "import gm_core, gm_core.grade, nbclient; print('gm-course installed:', gm_core.__file__)"
+"$ROOT/gm-venv/bin/python" -m pip install --quiet --disable-pip-version-check "$SRC/course[grader]"
+"$ROOT/gm-venv/bin/python" -c "import gm_core, gm_grader, nbclient; print('gm-course installed:', gm_core.__file__)"
 """
 
 RUN_AUTOGRADER = r"""#!/usr/bin/env bash
@@ -84,7 +84,7 @@ def main():
     RES.mkdir(parents=True, exist_ok=True)
     sub = ROOT / "submission"
     sub.mkdir(parents=True, exist_ok=True)
-    cmd = [sys.executable, "-m", "gm_core.grade", str(sub), "--out", str(RES),
+    cmd = [sys.executable, "-m", "gm_grader", str(sub), "--out", str(RES),
            "--assignment", str(SRC / "assignment.json"),
            "--cell-timeout", str(KIT["cell_timeout"]), "--time-limit", str(KIT["time_limit"])]
     if not KIT["sandbox"]:
@@ -138,7 +138,7 @@ def build_kit(out: Path = DEFAULT_OUT, exercises=None, weights=None, cell_timeou
         _add(zf, "assignment.json", json.dumps(assignment, indent=1) + "\n")
         for name in COURSE_FILES:
             _add(zf, f"course/{name}", (ROOT / name).read_bytes())
-        for path in sorted(p for p in (ROOT / "gm_core").rglob("*")
+        for path in sorted(p for pkg in ("gm_core", "gm_grader") for p in (ROOT / pkg).rglob("*")
                            if p.is_file() and "__pycache__" not in p.parts and p.suffix != ".pyc"):
             _add(zf, f"course/{path.relative_to(ROOT).as_posix()}", path.read_bytes())
     return out
@@ -148,7 +148,7 @@ def main(argv=None):
     ap = argparse.ArgumentParser(prog="python tools/gradescope_kit.py", description=__doc__.splitlines()[0])
     ap.add_argument("--out", type=Path, default=DEFAULT_OUT, help="the zip to write")
     ap.add_argument("--exercises", nargs="+", help="exercise ids the assignment expects, e.g. 1.4 2.1 (default all)")
-    ap.add_argument("--weights", type=Path, help="JSON {part id: points}, as for python -m gm_core.grade")
+    ap.add_argument("--weights", type=Path, help="JSON {part id: points}, as for python -m gm_grader")
     ap.add_argument("--cell-timeout", type=float, default=120.0)
     ap.add_argument("--time-limit", type=float, default=5.0)
     ap.add_argument("--sandbox", action="store_true", help="grade inside bubblewrap on the autograder too")

@@ -4,7 +4,7 @@ The panels listed in ``site/sweeps.toml`` are the ones where one slider tells th
 site executes a page, :func:`kernel_code` runs first in its kernel and registers an IPython
 display formatter for ``gm_core.widgets.base.Panel`` (IPython's public ``for_type``): a listed
 panel is displayed as usual (live view, PNG of its first state) plus a ``text/html`` sweep, the
-course's own player (:func:`gm_core.drawing.player.player_html`) with one picture per value of
+course's own player (:func:`gm_core.drawing.toolkit.player.player_html`) with one picture per value of
 that control, made with the panel's public ``refresh(**values)`` (the control widgets themselves
 are not touched, and the panel is put back to its first state afterwards). The output's metadata
 ``gm_sweep`` marks it; :func:`prefer_sweep` makes the site show the sweep instead of the single
@@ -48,7 +48,7 @@ def __gm_site_sweeps(config):
     import base64, html, io, json
     import numpy as np
     from IPython import get_ipython
-    from gm_core.drawing.player import player_html
+    from gm_core.drawing.toolkit.player import player_html
     from gm_core.widgets.base import Panel
 
     def fmt(v):

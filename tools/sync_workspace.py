@@ -40,7 +40,7 @@ import shutil
 import sys
 from pathlib import Path
 
-from gm_core._files import atomic_write
+from gm_core.checks.files import atomic_write
 
 ROOT = Path(__file__).resolve().parent.parent
 MANIFEST = ".course-manifest.json"
@@ -64,7 +64,7 @@ def _atomic_write(path: Path, data: bytes):
 
 
 def _lock(path: Path, timeout: float = 15.0):
-    """The lock the course's kernels take on ``path`` (gm_core.checks._progress: filelock on
+    """The lock the course's kernels take on ``path`` (gm_core.checks.store: filelock on
     ``<path>.lock``). filelock comes with the [lab] extra that `make lab` installs; without it the
     write is still atomic, only not serialised with a kernel marking notices as shown."""
     try:

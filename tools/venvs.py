@@ -114,7 +114,7 @@ def gradescope() -> Path:
     import gradescope_kit
 
     project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
-    reqs = list(project["dependencies"]) + list(project["optional-dependencies"]["grade"]) + [gradescope_kit.SETUP_SH]
+    reqs = list(project["dependencies"]) + list(project["optional-dependencies"]["grader"]) + [gradescope_kit.SETUP_SH]
     digest = hashlib.sha256("\n".join(reqs).encode()).hexdigest()[:16]
     stamp = GRADESCOPE / ".gm-stamp"
     if stamp.exists() and stamp.read_text().strip() == digest and (GRADESCOPE / "gm-venv" / "bin" / "python").exists():

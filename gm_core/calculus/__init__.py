@@ -39,8 +39,8 @@ terms) and :mod:`.exp` (the exponential four ways); import everything from here.
 """
 from __future__ import annotations
 
-from ._checks import MAX_STEPS
-from .exp import (
+from gm_core.calculus.arguments import MAX_STEPS
+from gm_core.calculus.exp import (
                   DEFAULT_N,
                   EXP_METHODS,
                   ExpHistory,
@@ -54,7 +54,7 @@ from .exp import (
                   exp_taylor,
                   se2_exp_study,
 )
-from .products import (
+from gm_core.calculus.products import (
                   RunningProduct,
                   binomial_table,
                   binomial_terms,

@@ -10,9 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import as_array, check_option
-from ..groups import SE2, LieGroup, check_group
-from ._checks import (
+from gm_core.calculus.arguments import (
     _SIDES,
     _check_int,
     _check_n_list,
@@ -20,7 +18,9 @@ from ._checks import (
     _check_side,
     _check_xi,
 )
-from .products import element_from_matrix
+from gm_core.calculus.products import element_from_matrix
+from gm_core.groups import SE2, LieGroup, check_group
+from gm_core.validation import as_array, check_option
 
 __all__ = ["ExpHistory", "ExpPath", "exp_closed_form", "exp_taylor", "exp_product", "exp_euler",
            "exp_four_ways", "exp_history", "convergence_order", "se2_exp_study", "EXP_METHODS",

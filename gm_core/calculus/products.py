@@ -7,9 +7,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import SingularShapeError, as_array, check_option
-from ..groups import check_group
-from ._checks import _check_int, _check_scalar, _check_side, _matrix_value
+from gm_core.calculus.arguments import _check_int, _check_scalar, _check_side, _matrix_value
+from gm_core.groups import check_group
+from gm_core.validation import SingularShapeError, as_array, check_option
 
 __all__ = ["product_integral", "RunningProduct", "quotient_derivative", "element_from_matrix",
            "binomial_terms", "binomial_table"]

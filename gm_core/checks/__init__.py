@@ -11,7 +11,7 @@ Usage in an exercise notebook::
 
 Every exercise is an object ``exN_M`` whose parts are attributes (``ex2_3.a``, ``ex2_3.b``, ...).
 A check never raises into the notebook and never hangs: your code runs in a separate process
-under a time limit (``set_time_limit(seconds)``; see ``_sandbox``). ``check(answer, strict=True)``
+under a time limit (``set_time_limit(seconds)``; see :mod:`gm_core.checks.sandbox`). ``check(answer, strict=True)``
 returns None when right and raises AssertionError when wrong, for nbgrader / otter-grader test
 cells. Inside a student workspace
 progress is saved in ``workspace/.progress.json``; ``reset_progress()`` forgets it.
@@ -27,9 +27,8 @@ from __future__ import annotations
 import importlib
 import re
 
-from ._choice import ChoicePart
-from ._core import CustomPart, FunctionPart, Part, TuplePart, Verdict
-from ._exercise import (
+from gm_core.checks.choice import ChoicePart
+from gm_core.checks.exercise import (
     REGISTRY,
     Exercise,
     exercise_ids,
@@ -38,11 +37,12 @@ from ._exercise import (
     reset_progress,
     solutions_viewed,
 )
-from ._progress import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED, pending_updates
-from ._sandbox import set_time_limit
+from gm_core.checks.parts import CustomPart, FunctionPart, Part, TuplePart, Verdict
+from gm_core.checks.sandbox import set_time_limit
+from gm_core.checks.store import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED, pending_updates
 
 #: The modules that declare exercises (each ``Exercise(...)`` registers itself on import).
-EXERCISE_MODULES = ("ch1", "ch2", "ch3", "curvature", "many_links")
+EXERCISE_MODULES = ("ex1", "ex2", "ex3", "ex4", "ex5")
 
 for _name in EXERCISE_MODULES:
     importlib.import_module(f".{_name}", __name__)
@@ -72,7 +72,7 @@ def exercise(ex_id):
 
 def progress_widget():
     """A small table of progress() (all exercises, saved record), with pending course updates."""
-    from ._widgets import progress_widget as _pw
+    from gm_core.checks.views import progress_widget as _pw
     return _pw()
 
 
@@ -83,8 +83,8 @@ def course_updates():
     the new version sits beside it. Returns None (the list is displayed); ``pending_updates()``
     returns it as data.
     """
-    from ._display import in_notebook
-    from ._widgets import updates_html
+    from gm_core.checks.display import in_notebook
+    from gm_core.checks.views import updates_html
     pending = pending_updates(mark_seen=True)
     if not pending:
         text = "No course updates are waiting in your workspace."

@@ -3,8 +3,17 @@
 Imports gm_core's mathematics; the mathematics never imports this package. Importing it applies
 the course's figure standard to matplotlib (see :mod:`gm_core.drawing.toolkit`).
 """
-from .primitives import BodyArtist, FrameArtist, SingularFlag, TrailArtist, animate, jshtml, n_frames, testing
-from .toolkit import PALETTE, PathText, Scene, figure, new_figure
+from gm_core.drawing.toolkit.primitives import (
+           BodyArtist,
+           FrameArtist,
+           SingularFlag,
+           TrailArtist,
+           animate,
+           jshtml,
+           n_frames,
+           testing,
+)
+from gm_core.drawing.toolkit.style import PALETTE, PathText, Scene, figure, new_figure
 
 __all__ = ["BodyArtist", "FrameArtist", "TrailArtist", "SingularFlag", "animate", "jshtml",
            "n_frames", "new_figure", "testing", "PALETTE", "PathText", "Scene", "figure"]

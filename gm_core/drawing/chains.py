@@ -10,14 +10,14 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.patches import Polygon
 
-from .. import chains as C
-from ..arms import rp_arm_body_jacobians
-from ..groups import SE2
-from ..holonomic import accessible_circle, circle_constraints, sample_accessible_manifold
-from ..three_link_chain import com_frame, three_link_chain, three_link_jacobians
-from .axes import square_axes
-from .primitives import FrameArtist
-from .toolkit import PALETTE, Scene, new_figure, readout
+from gm_core.chains import chain as C
+from gm_core.chains.arms import rp_arm_body_jacobians
+from gm_core.chains.holonomic import accessible_circle, circle_constraints, sample_accessible_manifold
+from gm_core.chains.three_link import com_frame, three_link_chain, three_link_jacobians
+from gm_core.drawing.toolkit.axes import square_axes
+from gm_core.drawing.toolkit.primitives import FrameArtist
+from gm_core.drawing.toolkit.style import PALETTE, Scene, new_figure, readout
+from gm_core.groups import SE2
 
 __all__ = ["link_outline", "ChainArtist", "ArrowsArtist", "draw_chain_naive", "draw_accessible_manifold",
            "ArmScene", "OffsetRPArmScene", "MobileChainScene", "BetaFrameScene",

@@ -11,9 +11,9 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.patches import Rectangle
 
-from .motion import SystemArtist, VelocityArtist, draw_system_naive, style_world_axes, system_extent
-from .primitives import SingularFlag
-from .toolkit import MATH_PT, PALETTE, Scene, new_figure, readout, signed
+from gm_core.drawing.motion import SystemArtist, VelocityArtist, draw_system_naive, style_world_axes, system_extent
+from gm_core.drawing.toolkit.primitives import SingularFlag
+from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, Scene, new_figure, readout, signed
 
 __all__ = ["ROW_LABELS", "math_title", "shape_grid", "connection_field", "ConnectionFieldArtist", "draw_singular_set",
            "ShapeCursorArtist", "style_shape_axes", "singular_contour_grid", "SHAPE_PAD", "connection_fields_figure", "regimes_figure",

@@ -14,8 +14,11 @@ import matplotlib
 import numpy as np
 from matplotlib.patches import Patch
 
-from .._validate import SingularShapeError
-from ..geometry.estimates import (
+from gm_core.drawing.connection import ConnectionFieldArtist, shape_grid, style_shape_axes
+from gm_core.drawing.motion import SystemArtist
+from gm_core.drawing.toolkit.primitives import SingularFlag, TrailArtist, animate
+from gm_core.drawing.toolkit.style import PALETTE, Scene, freeze_layout, new_figure
+from gm_core.geometry.estimates import (
     Estimates,
     curvature_grid,
     displacement_estimates,
@@ -24,11 +27,8 @@ from ..geometry.estimates import (
     row_scaled,
     shaped_gait,
 )
-from ..systems import LowReSwimmer
-from .connection import ConnectionFieldArtist, shape_grid, style_shape_axes
-from .motion import SystemArtist
-from .primitives import SingularFlag, TrailArtist, animate
-from .toolkit import PALETTE, Scene, freeze_layout, new_figure
+from gm_core.systems import LowReSwimmer
+from gm_core.validation import SingularShapeError
 
 __all__ = ["ROWS", "LIMITS", "CurvatureMapArtist", "GaitArtist", "curvature_maps_figure", "animate_swimmer",
            "GaitStokesScene", "FrameFieldsScene", "estimates_table"]

@@ -1,7 +1,7 @@
 """Gaits (book chapter 3): a gait drawn on the three connection fields with the motion it makes
 (a live scene), and the same as an animation that plays without a kernel.
 
-Trajectories come from :func:`gm_core.locomotion.trajectory` (fourth-order Magnus steps).
+Trajectories come from :func:`gm_core.systems.motion.trajectory` (fourth-order Magnus steps).
 """
 from __future__ import annotations
 
@@ -9,10 +9,7 @@ import warnings
 
 import numpy as np
 
-from .._validate import SingularShapeError
-from ..gaits import GAIT_FAMILIES, Gait, GaitWarning, as_gait, family_gait
-from ..locomotion import net_displacement, trajectory
-from .connection import (
+from gm_core.drawing.connection import (
     ROW_LABELS,
     WIDE_SHAPES,
     ConnectionFieldArtist,
@@ -22,14 +19,17 @@ from .connection import (
     style_shape_axes,
     thin_labels,
 )
-from .motion import MovingView, SystemArtist, draw_system_naive, style_world_axes, system_extent
-from .primitives import SingularFlag, TrailArtist, animate
-from .toolkit import PALETTE, freeze_layout, new_figure, readout, signed
+from gm_core.drawing.motion import MovingView, SystemArtist, draw_system_naive, style_world_axes, system_extent
+from gm_core.drawing.toolkit.primitives import SingularFlag, TrailArtist, animate
+from gm_core.drawing.toolkit.style import PALETTE, freeze_layout, new_figure, readout, signed
+from gm_core.systems.gaits import GAIT_FAMILIES, Gait, GaitWarning, as_gait, family_gait
+from gm_core.systems.motion import net_displacement, trajectory
+from gm_core.validation import SingularShapeError
 
 __all__ = ["GaitScene", "GAIT_SHAPES", "animate_gait"]
 
 
-#: The gait shapes of :class:`GaitScene`: the families of :mod:`gm_core.gaits` and a loop drawn
+#: The gait shapes of :class:`GaitScene`: the families of :mod:`gm_core.systems.gaits` and a loop drawn
 #: with the mouse ("drawn": drag the dots on any shape-space axes).
 GAIT_SHAPES = GAIT_FAMILIES + ("drawn",)
 
@@ -119,7 +119,7 @@ class GaitScene(FieldGridScene):
         return self.points
 
     def gait(self, v):
-        """The :class:`~gm_core.gaits.Gait` for the values ``v`` (see the class docstring)."""
+        """The :class:`~gm_core.systems.gaits.Gait` for the values ``v`` (see the class docstring)."""
         fam = v.get("family", "circle")
         if fam == "drawn":
             if self.points is None:

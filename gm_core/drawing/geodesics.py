@@ -9,14 +9,11 @@ import numpy as np
 from matplotlib.collections import LineCollection
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
-from ..calculus import exp_history
-from ..fields import puck_vs_arc, rplus_geodesics, se2_helices, se2_helix
-from ..groups import SE2, RPlus
-from ..manifolds import cylinder_geodesic, cylinder_xyz, great_circle, sphere_tangent_basis, sphere_xyz, wrap_segments
-from .actions import BODY
-from .axes import plain_3d, plane, wire
-from .primitives import BodyArtist, FrameArtist, TrailArtist, animate
-from .toolkit import (
+from gm_core.calculus import exp_history
+from gm_core.drawing.groups import BODY
+from gm_core.drawing.toolkit.axes import plain_3d, plane, wire
+from gm_core.drawing.toolkit.primitives import BodyArtist, FrameArtist, TrailArtist, animate
+from gm_core.drawing.toolkit.style import (
     MATH_PT,
     PALETTE,
     TWO_PI,
@@ -33,6 +30,10 @@ from .toolkit import (
     xticks,
     yticks,
 )
+from gm_core.fields import puck_vs_arc, rplus_geodesics, se2_helices, se2_helix
+from gm_core.groups import SE2, RPlus
+from gm_core.manifolds.spaces import cylinder_xyz, sphere_xyz, wrap_segments
+from gm_core.manifolds.tangent import cylinder_geodesic, great_circle, sphere_tangent_basis
 
 __all__ = ["SurfaceGeodesicsScene", "helix_geometry", "HelixScene", "PuckArcScene", "puck_vs_arc_animation", "RPlusGeodesicScene",
            "ExpFourWaysScene"]
@@ -248,7 +249,7 @@ class PuckArcScene(Scene):
 
 
 def puck_vs_arc_animation(w=1.0, frames=48, interval=80):
-    """FuncAnimation of fig. 1.19 (play it with ``gm_core.drawing.primitives.jshtml``; no kernel needed)."""
+    """FuncAnimation of fig. 1.19 (play it with ``gm_core.drawing.toolkit.primitives.jshtml``; no kernel needed)."""
     scene = PuckArcScene()
     ts = np.linspace(0.0, PuckArcScene.T_MAX, frames)
 

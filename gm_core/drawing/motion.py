@@ -2,19 +2,19 @@
 velocity, and a world view that follows the motion without changing axis limits.
 
 The physics (poses of the parts, trajectories) lives in :mod:`gm_core.systems` and
-:mod:`gm_core.locomotion`; every artist here is built once and moved in place.
+:mod:`gm_core.systems.motion`; every artist here is built once and moved in place.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .._validate import SingularShapeError
-from ..groups import SE2
-from ..locomotion import drive
-from ..systems import Ackerman, DifferentialDrive
-from .axes import square_axes
-from .primitives import BodyArtist, FrameArtist, SingularFlag, TrailArtist
-from .toolkit import PALETTE, PathText, Scene, readout, signed
+from gm_core.drawing.toolkit.axes import square_axes
+from gm_core.drawing.toolkit.primitives import BodyArtist, FrameArtist, SingularFlag, TrailArtist
+from gm_core.drawing.toolkit.style import PALETTE, PathText, Scene, readout, signed
+from gm_core.groups import SE2
+from gm_core.systems import Ackerman, DifferentialDrive
+from gm_core.systems.motion import drive
+from gm_core.validation import SingularShapeError
 
 __all__ = ["PART_STYLES", "SystemArtist", "system_extent", "draw_system_naive", "VelocityArtist",
            "style_world_axes", "MovingView", "CarScene", "DiffDriveScene", "AckermanScene"]
@@ -121,7 +121,7 @@ def style_world_axes(ax, half, center=(0.0, 0.0)):
 class MovingView:
     """World axes whose visible window follows the motion without changing the axes limits.
 
-    A live panel is redrawn by blitting (gm_core.drawing.blit); a new axis limit forces a full
+    A live panel is redrawn by blitting (gm_core.drawing.toolkit.blit); a new axis limit forces a full
     redraw of the whole figure (~80 ms for a 2 x 2 figure). Here the axes keep fixed limits
     ``(-half0, half0)``; the artists attached with :meth:`attach` keep their *world* data and
     are drawn through ``view + transData``, where ``view`` maps the window ``center +- half`` onto

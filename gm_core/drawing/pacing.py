@@ -1,7 +1,7 @@
 """Pacing (book section 3.1): the commuting square of fig. 3.1 (shape path -> position path, with a
 change of pace on both sides) and the four examples of the directional-linearity box (3.i)-(3.iv).
 
-Math: :func:`gm_core.locomotion.displacement_until`, :func:`gm_core.gaits.sine_pacing`,
+Math: :func:`gm_core.systems.motion.displacement_until`, :func:`gm_core.systems.pacing.sine_pacing`,
 :mod:`gm_core.systems.directional`.
 """
 from __future__ import annotations
@@ -9,11 +9,12 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.patches import ConnectionPatch
 
-from ..gaits import circle_gait, sine_pacing
-from ..locomotion import displacement_until, trajectory
-from ..systems.directional import RATE_MAPS, rate_map, replay
-from .primitives import FrameArtist
-from .toolkit import MATH_PT, PALETTE, Scene, new_figure, readout
+from gm_core.drawing.toolkit.primitives import FrameArtist
+from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, Scene, new_figure, readout
+from gm_core.systems.directional import RATE_MAPS, rate_map, replay
+from gm_core.systems.gaits import circle_gait
+from gm_core.systems.motion import displacement_until, trajectory
+from gm_core.systems.pacing import sine_pacing
 
 __all__ = ["PacingSquareScene", "DirectionalScene"]
 
@@ -40,7 +41,7 @@ class PacingSquareScene(Scene):
     """
 
     def __init__(self, system=None, gait=None, **options):
-        from ..systems import LowReSwimmer
+        from gm_core.systems import LowReSwimmer
 
         self.system = system or LowReSwimmer()
         self.loop = gait or circle_gait(1.0)

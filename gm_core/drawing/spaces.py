@@ -10,10 +10,9 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.collections import LineCollection
 
-from ..manifolds import chart_speed, cylinder_xyz, polar_chart_velocity, sphere_xyz, torus_xyz, wrap_segments
-from .axes import plain_3d, wire
-from .primitives import SingularFlag
-from .toolkit import (
+from gm_core.drawing.toolkit.axes import plain_3d, wire
+from gm_core.drawing.toolkit.primitives import SingularFlag
+from gm_core.drawing.toolkit.style import (
     MATH_PT,
     PALETTE,
     TWO_PI,
@@ -29,6 +28,14 @@ from .toolkit import (
     title,
     xticks,
     yticks,
+)
+from gm_core.manifolds.spaces import (
+    chart_speed,
+    cylinder_xyz,
+    polar_chart_velocity,
+    sphere_xyz,
+    torus_xyz,
+    wrap_segments,
 )
 
 __all__ = ["configuration_space_gallery", "flattened_views", "TorusPathScene", "LoopsScene",

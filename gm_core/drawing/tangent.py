@@ -10,10 +10,21 @@ from __future__ import annotations
 import numpy as np
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
-from ..manifolds import circle_point_velocity, sphere_tangent_basis, sphere_velocity, sphere_xyz
-from .axes import plain_3d, wire
-from .toolkit import MATH_PT, PALETTE, TWO_PI, ArrowSet, PathText, Scene, axes_row, readout, set_arrows
-from .velocities import vec_text
+from gm_core.drawing.toolkit.axes import plain_3d, wire
+from gm_core.drawing.toolkit.style import (
+    MATH_PT,
+    PALETTE,
+    TWO_PI,
+    ArrowSet,
+    PathText,
+    Scene,
+    axes_row,
+    readout,
+    set_arrows,
+)
+from gm_core.drawing.vector_fields import vec_text
+from gm_core.manifolds.spaces import sphere_xyz
+from gm_core.manifolds.tangent import circle_point_velocity, sphere_tangent_basis, sphere_velocity
 
 __all__ = ["TangentSpaceScene", "arrow_3d"]
 

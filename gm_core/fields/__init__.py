@@ -33,7 +33,7 @@ The code is in :mod:`.vector_fields` and :mod:`.geodesics`; import everything fr
 """
 from __future__ import annotations
 
-from .geodesics import (
+from gm_core.fields.geodesics import (
                         HelixGeometry,
                         PuckVsArc,
                         group_geodesic,
@@ -42,7 +42,7 @@ from .geodesics import (
                         se2_helices,
                         se2_helix,
 )
-from .vector_fields import (
+from gm_core.fields.vector_fields import (
                         DEFAULT_ATOL,
                         DEFAULT_METHOD,
                         DEFAULT_RTOL,

@@ -6,9 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import as_array, batch_shape, check_int, check_option, check_positive
-from ..groups import SE2, R2xS1, check_group, matvec
-from .vector_fields import (
+from gm_core.fields.vector_fields import (
     _check_side,
     _check_solve_ivp_kw,
     _time,
@@ -16,6 +14,8 @@ from .vector_fields import (
     left_invariant_field,
     right_invariant_field,
 )
+from gm_core.groups import SE2, R2xS1, check_group, matvec
+from gm_core.validation import as_array, batch_shape, check_int, check_option, check_positive
 
 __all__ = ["group_geodesic", "HelixGeometry", "se2_helix", "se2_helices", "PuckVsArc", "puck_vs_arc",
            "rplus_geodesics"]

@@ -7,8 +7,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .._validate import as_array, check_int
-from ..groups import check_group, matvec
+from gm_core.groups import check_group, matvec
+from gm_core.validation import as_array, check_int
 
 #: Largest configuration-space dimension of a :class:`VectorField`.
 MAX_FIELD_DIM = 10_000

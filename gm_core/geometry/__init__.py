@@ -11,25 +11,32 @@ book's (``xi = -A(r) r_dot``, (3.10)).
   :mod:`.chain_strokes`: optimal strokes of 3-, 4- and 5-link chains (``chain_stroke``);
 * :mod:`.estimates`: ``shaped_gait``, ``displacement_estimates``, ``row_scaled``, ``field_rms`` (notebook 10's panels).
 """
-from .chain_strokes import CHAIN_STROKES, chain_stroke, chain_swimmer, optimize_chain_gait, wave_start
-from .coordinates import (
+from gm_core.geometry.chain_strokes import CHAIN_STROKES, chain_stroke, chain_swimmer, optimize_chain_gait, wave_start
+from gm_core.geometry.coordinates import (
     centre_of_mass,
     centre_of_mass_coordinates,
     drift_and_turn,
     minimum_perturbation_coordinates,
     reframe,
 )
-from .curvature import (
+from gm_core.geometry.curvature import (
     body_velocity_integral,
     connection_curl,
     connection_derivative,
     constraint_curvature,
     stokes_estimate,
 )
-from .estimates import FRAMES, Estimates, displacement_estimates, field_rms, row_scaled, shaped_gait
-from .metrics import dissipation_metric, efficiency, path_length
-from .optimal import FourierGait, OptimalGait, fourier_gait, gait_objective, optimize_gait, travelling_wave
-from .strokes import SYSPLOTTER_STROKES, sysplotter_stroke, sysplotter_swimmer
+from gm_core.geometry.estimates import FRAMES, Estimates, displacement_estimates, field_rms, row_scaled, shaped_gait
+from gm_core.geometry.metrics import dissipation_metric, efficiency, path_length
+from gm_core.geometry.optimal import (
+    FourierGait,
+    OptimalGait,
+    fourier_gait,
+    gait_objective,
+    optimize_gait,
+    travelling_wave,
+)
+from gm_core.geometry.strokes import SYSPLOTTER_STROKES, sysplotter_stroke, sysplotter_swimmer
 
 __all__ = ["constraint_curvature", "connection_derivative", "connection_curl", "stokes_estimate", "body_velocity_integral",
            "reframe", "centre_of_mass", "drift_and_turn", "centre_of_mass_coordinates", "minimum_perturbation_coordinates",

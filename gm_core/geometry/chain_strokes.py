@@ -13,9 +13,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_int, positive_number
-from ..systems import LinkChain
-from .optimal import fourier_gait, optimize_gait, travelling_wave
+from gm_core.geometry.optimal import fourier_gait, optimize_gait, travelling_wave
+from gm_core.systems import LinkChain
+from gm_core.validation import check_int, positive_number
 
 __all__ = ["CHAIN_STROKES", "chain_swimmer", "chain_stroke", "wave_start", "optimize_chain_gait"]
 

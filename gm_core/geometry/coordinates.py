@@ -11,11 +11,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..gaits import as_gait
-from ..groups import SE2
-from ..locomotion import check_system, net_displacement
-from ..systems.minimum_perturbation import MinimumPerturbationFrame
-from ..systems.reframed import CentreOfMassFrame, PoseFrame, Reframed
+from gm_core.groups import SE2
+from gm_core.systems.gaits import as_gait
+from gm_core.systems.minimum_perturbation import MinimumPerturbationFrame
+from gm_core.systems.motion import check_system, net_displacement
+from gm_core.systems.reframed import CentreOfMassFrame, PoseFrame, Reframed
 
 __all__ = ["reframe", "centre_of_mass", "centre_of_mass_coordinates", "drift_and_turn",
            "minimum_perturbation_coordinates"]

@@ -21,10 +21,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import SingularShapeError, as_array, check_int, positive_number
-from ..gaits import as_gait
-from ..groups import matvec
-from ..locomotion import (
+from gm_core.groups import matvec
+from gm_core.systems.base import LocomotionSystem
+from gm_core.systems.gaits import as_gait
+from gm_core.systems.motion import (
     FD_STEP,
     check_gait,
     check_system,
@@ -32,7 +32,7 @@ from ..locomotion import (
     exterior_derivative,
     fd_connection_derivative,
 )
-from ..systems.base import LocomotionSystem
+from gm_core.validation import SingularShapeError, as_array, check_int, positive_number
 
 __all__ = ["constraint_curvature", "connection_derivative", "connection_curl", "stokes_estimate",
            "body_velocity_integral", "closed_gait", "require_planar"]
@@ -52,8 +52,8 @@ def connection_derivative(system, r, *, method="auto", h=None):
 
     ``method="auto"`` asks the system (its ``connection_derivative``: a closed form for the
     differential drive, Ackerman car and kinematic snake, else central differences);
-    ``"fd"`` forces central differences (:func:`gm_core.locomotion.fd_connection_derivative`) with
-    relative step ``h`` (default :data:`gm_core.locomotion.FD_STEP`). The one place that chooses.
+    ``"fd"`` forces central differences (:func:`gm_core.systems.motion.fd_connection_derivative`) with
+    relative step ``h`` (default :data:`gm_core.systems.motion.FD_STEP`). The one place that chooses.
     """
     n = check_system(system)
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")

@@ -20,10 +20,10 @@ from types import MappingProxyType
 
 import numpy as np
 
-from .._validate import SingularShapeError, as_array, check_int, positive_number, real_number
-from ..locomotion import check_system, net_displacement
-from .curvature import body_velocity_integral, constraint_curvature, stokes_estimate
-from .optimal import fourier_gait
+from gm_core.geometry.curvature import body_velocity_integral, constraint_curvature, stokes_estimate
+from gm_core.geometry.optimal import fourier_gait
+from gm_core.systems.motion import check_system, net_displacement
+from gm_core.validation import SingularShapeError, as_array, check_int, positive_number, real_number
 
 __all__ = ["FRAMES", "INTERACTIVE", "Estimates", "shaped_gait", "displacement_estimates", "row_scaled",
            "field_rms", "square_grid", "frames_of", "curvature_grid"]

@@ -14,10 +14,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array
-from ..locomotion import check_gait, check_system, net_displacement
-from ..systems.base import LocomotionSystem
-from .curvature import closed_gait
+from gm_core.geometry.curvature import closed_gait
+from gm_core.systems.base import LocomotionSystem
+from gm_core.systems.motion import check_gait, check_system, net_displacement
+from gm_core.validation import as_array
 
 __all__ = ["dissipation_metric", "path_length", "efficiency", "metric_function"]
 
@@ -27,7 +27,7 @@ def dissipation_metric(system, r):
 
     ``D`` is the system's drag matrix (low Re: the power is ``r_dot^T M r_dot``) or its mass
     matrix (floating snake, high Re: twice the kinetic energy): the system's ``shape_metric``
-    (:func:`gm_core.connection.shape_space_metric`). It does not depend on the choice of body
+    (:func:`gm_core.systems.connection.shape_space_metric`). It does not depend on the choice of body
     frame, so a system seen from other coordinates gives its base's. TypeError for a system
     with no physical cost.
     """
@@ -79,8 +79,8 @@ def efficiency(system, gait, *, metric=None, check=True, samples=None, displacem
     """Efficiency (float): translation ``|(x, y) of g(T)|`` per unit path length in the cost metric.
 
     ``samples`` as for :func:`path_length`. ``displacement``: g(T) (3,) when it is already known
-    (the last pose of a :func:`~gm_core.locomotion.trajectory` a live panel draws), instead of
-    :func:`~gm_core.locomotion.net_displacement`.
+    (the last pose of a :func:`~gm_core.systems.motion.trajectory` a live panel draws), instead of
+    :func:`~gm_core.systems.motion.net_displacement`.
     """
     check_system(system)
     gait = closed_gait(gait, system)

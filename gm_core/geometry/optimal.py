@@ -18,14 +18,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import SingularShapeError, as_array, check_int, check_option, positive_number, real_number
-from ..gaits import Gait
-from ..groups import SE2, matvec
-from ..locomotion import check_gait, check_system, net_displacement, trajectory
-from ..systems.minimum_perturbation import MAX_DIMENSION, MinimumPerturbationFrame, too_many_dimensions
-from ..systems.reframed import Reframed
-from .curvature import connection_derivative
-from .metrics import metric_function, path_length
+from gm_core.geometry.curvature import connection_derivative
+from gm_core.geometry.metrics import metric_function, path_length
+from gm_core.groups import SE2, matvec
+from gm_core.systems.gaits import Gait
+from gm_core.systems.minimum_perturbation import MAX_DIMENSION, MinimumPerturbationFrame, too_many_dimensions
+from gm_core.systems.motion import check_gait, check_system, net_displacement, trajectory
+from gm_core.systems.reframed import Reframed
+from gm_core.validation import SingularShapeError, as_array, check_int, check_option, positive_number, real_number
 
 __all__ = ["FourierGait", "fourier_gait", "travelling_wave", "optimize_gait", "OptimalGait", "gait_objective"]
 
@@ -261,7 +261,7 @@ def optimize_gait(system, objective="displacement", order=3, start=None, *, coor
     """
     from scipy.optimize import minimize
 
-    from .coordinates import minimum_perturbation_coordinates
+    from gm_core.geometry.coordinates import minimum_perturbation_coordinates
 
     check_system(system)
     if coordinates not in ("minimum perturbation", "given"):

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..systems import LowReSwimmer
-from .optimal import fourier_gait
+from gm_core.geometry.optimal import fourier_gait
+from gm_core.systems import LowReSwimmer
 
 __all__ = ["SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer"]
 

@@ -36,10 +36,10 @@ R^2 x S^1), ``rplus.py`` ((R+, x)), ``se2.py`` (SE(2)). A new group subclasses
 """
 from __future__ import annotations
 
-from .additive import MAX_RN_DIM, S1, SO2, R2xS1, Rn
-from .base import TWO_PI, LieGroup, check_group, matvec, wrap_angle, wrap_periodic
-from .rplus import RPlus
-from .se2 import SE2
+from gm_core.groups.additive import MAX_RN_DIM, S1, SO2, R2xS1, Rn
+from gm_core.groups.base import TWO_PI, LieGroup, check_group, matvec, wrap_angle, wrap_periodic
+from gm_core.groups.rplus import RPlus
+from gm_core.groups.se2 import SE2
 
 __all__ = [
     "LieGroup", "Rn", "R", "R2", "RPlus", "SO2", "S1", "R2xS1", "SE2", "wrap_angle", "matvec",

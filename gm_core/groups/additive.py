@@ -7,8 +7,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import FloatArray, as_array, check_shape
-from .base import (
+from gm_core.groups.base import (
     TWO_PI,
     LieGroup,
     _angle_of_block,
@@ -22,6 +21,7 @@ from .base import (
     _wrap,
     wrap_periodic,
 )
+from gm_core.validation import FloatArray, as_array, check_shape
 
 __all__ = ["Rn", "S1", "MAX_RN_DIM"]
 

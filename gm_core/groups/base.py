@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import BoolArray, FloatArray, as_array, batch_shape, check_option, check_shape, real_number
+from gm_core.validation import BoolArray, FloatArray, as_array, batch_shape, check_option, check_shape, real_number
 
 __all__ = ["LieGroup", "wrap_angle", "wrap_periodic", "matvec", "check_group", "TWO_PI"]
 

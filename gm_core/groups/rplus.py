@@ -4,8 +4,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import FloatArray, as_array, check_option, check_shape, real_number
-from .base import LieGroup, _rng, _scale
+from gm_core.groups.base import LieGroup, _rng, _scale
+from gm_core.validation import FloatArray, as_array, check_option, check_shape, real_number
 
 __all__ = ["RPlus"]
 

@@ -8,8 +8,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import FloatArray, as_array
-from .base import TWO_PI, LieGroup, _angle_of_block, _check_entries, _check_rotation, _wrap
+from gm_core.groups.base import TWO_PI, LieGroup, _angle_of_block, _check_entries, _check_rotation, _wrap
+from gm_core.validation import FloatArray, as_array
 
 __all__ = ["SE2"]
 

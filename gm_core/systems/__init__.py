@@ -8,22 +8,22 @@ by a balance over the links are :class:`LinkChain` for any number of links; the 
 and the two swimmers of section 3.4 are its N = 3 cases (named subclasses that add only their
 book names and signatures), with ``link_matrices()`` and ``metric(r)``, called ``mass_matrix(r)``
 or ``drag_matrix(r)``. :class:`ThreeLinkSystem` is the base of the kinematic snake. Fluid
-coefficients come from :mod:`gm_core.fluids`. These modules import :mod:`gm_core.locomotion`,
+coefficients come from :mod:`gm_core.systems.fluids`. These modules import :mod:`gm_core.systems.motion`,
 never the other way round.
 """
-from .ackerman import Ackerman
-from .base import LocomotionSystem, Part
-from .diff_drive import DifferentialDrive
-from .floating_snake import FloatingSnake
-from .high_re import HighReSwimmer
-from .kinematic_snake import KinematicSnake
-from .link_chain import LinkChain
-from .low_re import LowReSwimmer
-from .minimum_perturbation import MinimumPerturbationFrame
-from .reframed import BodyFrame, CentreOfMassFrame, PoseFrame, Reframed
-from .restricted import AffineRestriction, shape_slice
-from .slender_body import SlenderBody, chain_approximation, serpenoid_modes
-from .three_link import ThreeLinkSystem
+from gm_core.systems.ackerman import Ackerman
+from gm_core.systems.base import LocomotionSystem, Part
+from gm_core.systems.diff_drive import DifferentialDrive
+from gm_core.systems.floating_snake import FloatingSnake
+from gm_core.systems.high_re import HighReSwimmer
+from gm_core.systems.kinematic_snake import KinematicSnake
+from gm_core.systems.link_chain import LinkChain
+from gm_core.systems.low_re import LowReSwimmer
+from gm_core.systems.minimum_perturbation import MinimumPerturbationFrame
+from gm_core.systems.reframed import BodyFrame, CentreOfMassFrame, PoseFrame, Reframed
+from gm_core.systems.restricted import AffineRestriction, shape_slice
+from gm_core.systems.slender_body import SlenderBody, chain_approximation, serpenoid_modes
+from gm_core.systems.three_link import ThreeLinkSystem
 
 __all__ = ["LocomotionSystem", "Part", "ThreeLinkSystem", "DifferentialDrive", "Ackerman",
            "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer",

@@ -13,9 +13,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import BoolArray, FloatArray, as_array
-from ..connection import SINGULAR_TOL, connection_from_pfaffian, pfaffian_determinant
-from ..locomotion import body_velocity, curvature_form, fd_connection_derivative
+from gm_core.systems.connection import SINGULAR_TOL, connection_from_pfaffian, pfaffian_determinant
+from gm_core.systems.motion import body_velocity, curvature_form, fd_connection_derivative
+from gm_core.validation import BoolArray, FloatArray, as_array
 
 __all__ = ["LocomotionSystem", "Part", "ellipse_outline", "rectangle_outline"]
 
@@ -84,7 +84,7 @@ class LocomotionSystem:
     def connection_derivative(self, r: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """``(A (..., 3, n), dA (..., 3, n, n))``, ``dA[..., i, j, k] = d A_ij / d r_k``.
 
-        Central differences (:func:`gm_core.locomotion.fd_connection_derivative`) unless a system
+        Central differences (:func:`gm_core.systems.motion.fd_connection_derivative`) unless a system
         has a closed form and overrides this.
         """
         return fd_connection_derivative(self, r)
@@ -92,7 +92,7 @@ class LocomotionSystem:
     def constraint_curvature(self, r: ArrayLike) -> FloatArray:
         """Constraint curvature D(-A): (..., 3) for a 2-D shape space, else the 2-form (..., 3, n, n).
 
-        ``F_ij = -(d_i A_j - d_j A_i) + [A_i, A_j]`` (:func:`gm_core.locomotion.curvature_form`);
+        ``F_ij = -(d_i A_j - d_j A_i) + [A_i, A_j]`` (:func:`gm_core.systems.motion.curvature_form`);
         for two shape variables the one component F_12 is returned as (..., 3). NaN at singular shapes.
         """
         F = curvature_form(*self.connection_derivative(r))

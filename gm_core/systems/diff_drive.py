@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import positive_number
-from .base import LocomotionSystem, Part, rectangle_outline
+from gm_core.systems.base import LocomotionSystem, Part, rectangle_outline
+from gm_core.validation import positive_number
 
 __all__ = ["DifferentialDrive"]
 

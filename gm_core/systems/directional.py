@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import positive_number, real_number
+from gm_core.validation import positive_number, real_number
 
 __all__ = ["RATE_MAPS", "rate_map", "replay", "rate_map_properties"]
 

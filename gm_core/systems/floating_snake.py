@@ -1,9 +1,9 @@
 """Floating snake: a three-link chain in free space conserving zero momentum, book section 3.4.3."""
 from __future__ import annotations
 
-from .._validate import as_array
-from .link_chain import LinkChain
-from .three_link import three_lengths
+from gm_core.systems.link_chain import LinkChain
+from gm_core.systems.three_link import three_lengths
+from gm_core.validation import as_array
 
 __all__ = ["FloatingSnake"]
 

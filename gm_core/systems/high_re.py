@@ -1,8 +1,8 @@
 """Three-link swimmer at high Reynolds number (ideal fluid, added mass), book section 3.4.5."""
 from __future__ import annotations
 
-from .link_chain import LinkChain
-from .three_link import three_lengths
+from gm_core.systems.link_chain import LinkChain
+from gm_core.systems.three_link import three_lengths
 
 __all__ = ["HighReSwimmer"]
 
@@ -14,7 +14,7 @@ class HighReSwimmer(LinkChain):
     Each link is an ellipse with semi-major axis a = l/2 and semi-minor axis b = a /
     aspect_ratio. Its effective inertia is the body's ``diag(m, m, m (a^2 + b^2)/4)``
     (``m = body_density * pi a b``) plus the added mass of
-    :func:`gm_core.fluids.ellipse_added_mass`, with the flows around the links treated as
+    :func:`gm_core.systems.fluids.ellipse_added_mass`, with the flows around the links treated as
     independent (3.47). The local connection comes from the mass matrix as for the floating
     snake, (3.39)-(3.40).
     """

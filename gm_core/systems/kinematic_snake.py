@@ -3,10 +3,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..chains import _flat
-from ..three_link_chain import _middle_frame_kernel
-from .base import Part, rectangle_outline
-from .three_link import ThreeLinkSystem
+from gm_core.chains.chain import _flat
+from gm_core.chains.three_link import _middle_frame_kernel
+from gm_core.systems.base import Part, rectangle_outline
+from gm_core.systems.three_link import ThreeLinkSystem
 
 __all__ = ["KinematicSnake"]
 

@@ -7,9 +7,9 @@ are :func:`gm_core.chains.link_chain_poses` and :func:`gm_core.chains.link_chain
 (written once, for every N). Physics per link, as in section 3.4 for three links:
 
 * ``"low_re"``: resistive force theory, each link's drag matrix diag(l, k l, k l^3 / 12)
-  (:func:`gm_core.fluids.slender_link_drag`, k = ``drag_ratio``); zero net drag wrench;
+  (:func:`gm_core.systems.fluids.slender_link_drag`, k = ``drag_ratio``); zero net drag wrench;
 * ``"high_re"``: ellipses (semi-axes l/2 and l/(2 ``aspect_ratio``)) carrying their added mass
-  (:func:`gm_core.fluids.ellipse_added_mass`) plus their own mass (``body_density``); zero momentum;
+  (:func:`gm_core.systems.fluids.ellipse_added_mass`) plus their own mass (``body_density``); zero momentum;
 * ``"floating"``: links of mass m_i (``masses``, default the lengths) and inertia m_i l_i^2 / 12
   (or ``inertias``) in free space; zero momentum.
 
@@ -40,12 +40,12 @@ import copy
 
 import numpy as np
 
-from .._validate import as_array, check_int, check_option, check_positive, positive_number
-from ..chains import _chain_jacobians_T, _chain_poses_T, _flat, _with_trig
-from ..connection import connection_from_pfaffian, shape_space_metric
-from ..fluids import ellipse_added_mass, slender_link_drag
-from ..groups import SE2
-from .base import LocomotionSystem, Part, ellipse_outline, rectangle_outline
+from gm_core.chains.chain import _chain_jacobians_T, _chain_poses_T, _flat, _with_trig
+from gm_core.groups import SE2
+from gm_core.systems.base import LocomotionSystem, Part, ellipse_outline, rectangle_outline
+from gm_core.systems.connection import connection_from_pfaffian, shape_space_metric
+from gm_core.systems.fluids import ellipse_added_mass, slender_link_drag
+from gm_core.validation import as_array, check_int, check_option, check_positive, positive_number
 
 __all__ = ["LinkChain", "PHYSICS", "FRAMES", "MAX_LINKS"]
 
@@ -113,7 +113,11 @@ class LinkChain(LocomotionSystem):
         self.shape_limits = ((-np.pi, np.pi),) * self.n_shape
         self.may_be_singular, self.singular_description = False, "never singular"
         if self.frame == "minimum perturbation":
-            from .minimum_perturbation import MAX_DIMENSION, MinimumPerturbationFrame, too_many_dimensions
+            from gm_core.systems.minimum_perturbation import (
+                MAX_DIMENSION,
+                MinimumPerturbationFrame,
+                too_many_dimensions,
+            )
 
             if self.n_shape > MAX_DIMENSION:
                 raise ValueError(too_many_dimensions("frame='minimum perturbation'", self.name, self.n_shape))
@@ -154,7 +158,7 @@ class LinkChain(LocomotionSystem):
         """{name: system}: the middle link (or joint), the centre of mass and, if asked and feasible
         (at most MAX_DIMENSION joints), minimum perturbation over ``bounds`` (default
         ``shape_limits``; ``n`` nodes per axis)."""
-        from .minimum_perturbation import MAX_DIMENSION
+        from gm_core.systems.minimum_perturbation import MAX_DIMENSION
 
         middle = "middle link" if self.n_links % 2 else "middle joint"
         out = {middle: self if self.frame == "middle" else self.with_frame("middle")}

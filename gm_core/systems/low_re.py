@@ -1,8 +1,8 @@
 """Three-link swimmer at low Reynolds number (resistive force theory), book section 3.4.4."""
 from __future__ import annotations
 
-from .link_chain import LinkChain
-from .three_link import three_lengths
+from gm_core.systems.link_chain import LinkChain
+from gm_core.systems.three_link import three_lengths
 
 __all__ = ["LowReSwimmer"]
 
@@ -15,7 +15,7 @@ class LowReSwimmer(LinkChain):
     ``-k u_perp`` with ``k = drag_ratio * c`` (resistive force theory; c = 1 here because the
     connection does not depend on it). Integrating over a link of length l (half-length l/2):
     ``F_x = -c l xi_x``, ``F_y = -k l xi_y``, ``M = -k l^3/12 xi_theta`` about the link centre,
-    i.e. (3.41)-(3.43) with L = l/2 (:func:`gm_core.fluids.slender_link_drag`). The net wrench in
+    i.e. (3.41)-(3.43) with L = l/2 (:func:`gm_core.systems.fluids.slender_link_drag`). The net wrench in
     the body frame, ``sum J_xi,i^T F_i``, is the corrected (3.44) (it includes the middle link's
     own drag and uses each link's own length); setting it to zero is the Pfaffian (3.45). All of
     it is :class:`~gm_core.systems.LinkChain`'s (one copy for every N).

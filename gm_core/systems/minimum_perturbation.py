@@ -20,9 +20,9 @@ import itertools
 
 import numpy as np
 
-from .._validate import SingularShapeError, as_array
-from ..locomotion import check_system
-from .reframed import BodyFrame, body_jacobian
+from gm_core.systems.motion import check_system
+from gm_core.systems.reframed import BodyFrame, body_jacobian
+from gm_core.validation import SingularShapeError, as_array
 
 __all__ = ["MinimumPerturbationFrame", "MAX_NODES", "MAX_DIMENSION", "default_nodes", "too_many_dimensions"]
 

@@ -19,9 +19,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..groups import SE2, matvec
-from ..locomotion import check_system
-from .base import LocomotionSystem
+from gm_core.groups import SE2, matvec
+from gm_core.systems.base import LocomotionSystem
+from gm_core.systems.motion import check_system
 
 __all__ = ["BodyFrame", "PoseFrame", "CentreOfMassFrame", "Reframed", "body_jacobian"]
 
@@ -146,7 +146,7 @@ class Reframed(LocomotionSystem):
 
     def connection_derivative(self, r):
         """(A~, dA~) by central differences of :meth:`connection` (the frame's Jacobian is smooth)."""
-        from ..locomotion import fd_connection_derivative
+        from gm_core.systems.motion import fd_connection_derivative
 
         return fd_connection_derivative(self, r)
 

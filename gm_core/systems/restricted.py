@@ -15,9 +15,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, check_int
-from ..locomotion import check_system
-from .base import LocomotionSystem
+from gm_core.systems.base import LocomotionSystem
+from gm_core.systems.motion import check_system
+from gm_core.validation import as_array, check_int
 
 __all__ = ["AffineRestriction", "shape_slice"]
 

@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, positive_number, real_number
-from ..groups import SE2
+from gm_core.groups import SE2
+from gm_core.validation import as_array, positive_number, real_number
 
 __all__ = ["DISK_DRIVE", "DISK_TURN", "disk_body_velocity", "disk_constraint_world", "disk_moves_path",
            "parallel_park_moves", "parallel_park_displacement", "bracket_estimate", "radial_point_path",

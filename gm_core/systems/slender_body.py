@@ -22,11 +22,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, check_int, check_option, positive_number
-from ..connection import connection_from_pfaffian, shape_space_metric
-from ..groups import SE2
-from .base import LocomotionSystem, Part, rectangle_outline
-from .reframed import body_jacobian
+from gm_core.groups import SE2
+from gm_core.systems.base import LocomotionSystem, Part, rectangle_outline
+from gm_core.systems.connection import connection_from_pfaffian, shape_space_metric
+from gm_core.systems.reframed import body_jacobian
+from gm_core.validation import as_array, check_int, check_option, positive_number
 
 __all__ = ["SlenderBody", "serpenoid_modes", "chain_approximation"]
 
@@ -201,8 +201,8 @@ class SlenderBody(LocomotionSystem):
         if centre_of_mass:
             out["centre of mass"] = self._twin("com")
         if minimum_perturbation:
-            from .minimum_perturbation import MinimumPerturbationFrame
-            from .reframed import Reframed
+            from gm_core.systems.minimum_perturbation import MinimumPerturbationFrame
+            from gm_core.systems.reframed import Reframed
 
             base = out["middle of the body"]
             out["minimum perturbation"] = Reframed(base, MinimumPerturbationFrame.fit(base, bounds, n),
@@ -237,8 +237,8 @@ def chain_approximation(body, n_links):
     restricted to those joint angles (an :class:`~gm_core.systems.AffineRestriction` with the
     body's shape variables), in the matching frame (middle link or joint).
     """
-    from .link_chain import LinkChain
-    from .restricted import AffineRestriction
+    from gm_core.systems.link_chain import LinkChain
+    from gm_core.systems.restricted import AffineRestriction
 
     if not isinstance(body, SlenderBody):
         raise TypeError(f"body must be a SlenderBody; got {type(body).__name__}")

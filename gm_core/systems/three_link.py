@@ -6,16 +6,16 @@ link 2; each link's frame g_i sits at its centre, x along the link towards link 
 and the floating snake are :class:`~gm_core.systems.LinkChain` with N = 3 (their constraint is a
 drag or momentum balance over the links); :class:`ThreeLinkSystem` is the base of the systems
 whose constraint is something else (the kinematic snake's wheels), with the same link poses and
-Jacobians (:func:`gm_core.three_link_chain.three_link_poses`, ``three_link_jacobians``, both
+Jacobians (:func:`gm_core.chains.three_link.three_link_poses`, ``three_link_jacobians``, both
 :func:`gm_core.chains.link_chain_poses` in the middle link's frame: one copy for every N).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .._validate import as_array, check_positive
-from ..three_link_chain import three_link_jacobians, three_link_poses
-from .base import LocomotionSystem, Part, rectangle_outline
+from gm_core.chains.three_link import three_link_jacobians, three_link_poses
+from gm_core.systems.base import LocomotionSystem, Part, rectangle_outline
+from gm_core.validation import as_array, check_positive
 
 __all__ = ["ThreeLinkSystem", "three_lengths"]
 
@@ -66,8 +66,8 @@ class ThreeLinkSystem(LocomotionSystem):
         """{name: system}: the middle link and, if asked, the centre of mass with the mean
         orientation and minimum perturbation over ``bounds`` (default ``shape_limits``, ``n``
         nodes per axis), both as :class:`~gm_core.systems.Reframed` systems."""
-        from .minimum_perturbation import MinimumPerturbationFrame
-        from .reframed import CentreOfMassFrame, Reframed
+        from gm_core.systems.minimum_perturbation import MinimumPerturbationFrame
+        from gm_core.systems.reframed import CentreOfMassFrame, Reframed
 
         out = {"middle link": self}
         if centre_of_mass:

@@ -4,6 +4,6 @@ A panel's ``update(**values)`` only moves artists and calls ``self.redraw()``. E
 class registers itself with :func:`register` so ``benchmarks/widget_latency.py`` and the
 headless tests can find all interactive figures of the course.
 """
-from .base import PANELS, Panel, all_panels, register
+from gm_core.widgets.base import PANELS, Panel, all_panels, register
 
 __all__ = ["Panel", "PANELS", "register", "all_panels"]

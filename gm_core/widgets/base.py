@@ -14,9 +14,9 @@ Changing a control calls ``update`` with the values of all controls, so a test c
 ``panel.controls["theta"].value = 1.0`` and then inspect the artists, with no browser.
 
 In a live notebook (ipympl canvas) each change is rendered by blitting
-(:class:`gm_core.drawing.blit.Blitter`): only the artists the update changed are redrawn over a
+(:class:`gm_core.drawing.toolkit.blit.Blitter`): only the artists the update changed are redrawn over a
 cached background; after the last change of a burst a key frame
-(:class:`gm_core.drawing.blit.KeyFrames`) sends the whole picture, so the browser always ends on
+(:class:`gm_core.drawing.toolkit.blit.KeyFrames`) sends the whole picture, so the browser always ends on
 the truth. A panel that must not be blitted sets ``blit = False``. :attr:`Panel.widget` lays the
 controls out for a 1366 x 768 laptop: labels above their controls, beside the figure when both
 fit, else in rows above it.
@@ -35,7 +35,7 @@ import numpy as np
 if TYPE_CHECKING:   # matplotlib is imported by the drawing layer, only when a panel is built
     from matplotlib.figure import Figure
 
-    from ..drawing.toolkit import Scene
+    from gm_core.drawing.toolkit.style import Scene
 
 __all__ = [
     "Panel", "ScenePanel", "PANELS", "register", "all_panels", "slider", "int_slider",
@@ -67,7 +67,7 @@ class Panel:
     """Controls plus a live figure; display it by leaving the panel as the last line of a cell."""
 
     title: str = ""
-    #: Render slider changes by blitting where the canvas allows it (see gm_core.drawing.blit).
+    #: Render slider changes by blitting where the canvas allows it (see gm_core.drawing.toolkit.blit).
     blit = True
     #: Send a whole picture after the last change of a burst on live canvases (KeyFrames): the
     #: picture a student is left with is always complete, however fast the slider moved.
@@ -92,14 +92,14 @@ class Panel:
             c.observe(self._on_change, names="value")
         self.update(**self.values())
         if self.fig is not None:
-            from ..drawing.toolkit import freeze_layout
+            from gm_core.drawing.toolkit.style import freeze_layout
 
             freeze_layout(self.fig)   # constrained layout once, then fixed (blitting needs still axes)
         self.blitter = None
         self.keyframes = None
         self._constructing = False
         if self.fig is not None:
-            from ..drawing.blit import Blitter, KeyFrames, can_blit, sends_differences
+            from gm_core.drawing.toolkit.blit import Blitter, KeyFrames, can_blit, sends_differences
 
             live = isinstance(self.fig.canvas, W.DOMWidget)
             if live:

@@ -6,7 +6,7 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
-from ..drawing.chains import (
+from gm_core.drawing.chains import (
     ArmScene,
     BetaFrameScene,
     JacobianMethodsScene,
@@ -14,7 +14,7 @@ from ..drawing.chains import (
     OffsetRPArmScene,
     ThreeLinkVelocityScene,
 )
-from .base import ScenePanel, register, slider
+from gm_core.widgets.base import ScenePanel, register, slider
 
 __all__ = [
     "SingleLinkPanel", "RRArmPanel", "RPArmPanel", "OffsetRPArmPanel", "MobileChainPanel",

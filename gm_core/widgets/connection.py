@@ -3,9 +3,9 @@
 """
 from __future__ import annotations
 
-from ..drawing.connection import ConnectionFieldScene
-from ..systems import KinematicSnake
-from .base import ScenePanel, register, slider
+from gm_core.drawing.connection import ConnectionFieldScene
+from gm_core.systems import KinematicSnake
+from gm_core.widgets.base import ScenePanel, register, slider
 
 __all__ = ["ConnectionFieldPanel"]
 

@@ -8,10 +8,10 @@ from __future__ import annotations
 
 import ipywidgets as W
 
-from ..drawing import curvature as D
-from ..geometry import optimize_gait
-from ..geometry.estimates import FRAMES
-from .base import ScenePanel, register, slider
+from gm_core.drawing import curvature as D
+from gm_core.geometry import optimize_gait
+from gm_core.geometry.estimates import FRAMES
+from gm_core.widgets.base import ScenePanel, register, slider
 
 __all__ = ["GaitStokesPanel", "FrameFieldsPanel", "optimize_with_progress"]
 

@@ -6,10 +6,10 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
-from ..drawing.gaits import GAIT_SHAPES, GaitScene
-from ..drawing.primitives import jshtml
-from ..systems import KinematicSnake
-from .base import ScenePanel, register, slider
+from gm_core.drawing.gaits import GAIT_SHAPES, GaitScene
+from gm_core.drawing.toolkit.primitives import jshtml
+from gm_core.systems import KinematicSnake
+from gm_core.widgets.base import ScenePanel, register, slider
 
 __all__ = ["GaitPanel"]
 

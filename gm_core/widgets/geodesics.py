@@ -6,8 +6,14 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
-from ..drawing.geodesics import ExpFourWaysScene, HelixScene, PuckArcScene, RPlusGeodesicScene, SurfaceGeodesicsScene
-from .base import ScenePanel, int_slider, register, slider
+from gm_core.drawing.geodesics import (
+    ExpFourWaysScene,
+    HelixScene,
+    PuckArcScene,
+    RPlusGeodesicScene,
+    SurfaceGeodesicsScene,
+)
+from gm_core.widgets.base import ScenePanel, int_slider, register, slider
 
 __all__ = ["SurfaceGeodesicsPanel", "HelixPanel", "PuckArcPanel", "RPlusGeodesicPanel", "ExpFourWaysPanel"]
 

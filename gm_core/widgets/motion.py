@@ -3,8 +3,8 @@
 """
 from __future__ import annotations
 
-from ..drawing.motion import AckermanScene, DiffDriveScene
-from .base import ScenePanel, register, slider
+from gm_core.drawing.motion import AckermanScene, DiffDriveScene
+from gm_core.widgets.base import ScenePanel, register, slider
 
 __all__ = ["DiffDriveCarPanel", "AckermanCarPanel"]
 

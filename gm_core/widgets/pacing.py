@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import ipywidgets as W
 
-from ..drawing.pacing import DirectionalScene, PacingSquareScene
-from ..systems.directional import RATE_MAPS
-from .base import ScenePanel, register, slider
+from gm_core.drawing.pacing import DirectionalScene, PacingSquareScene
+from gm_core.systems.directional import RATE_MAPS
+from gm_core.widgets.base import ScenePanel, register, slider
 
 __all__ = ["PacingSquarePanel", "DirectionalLinearityPanel"]
 

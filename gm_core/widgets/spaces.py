@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..drawing.spaces import LoopsScene, PoleChartScene, TorusPathScene
-from .base import ScenePanel, register, slider
+from gm_core.drawing.spaces import LoopsScene, PoleChartScene, TorusPathScene
+from gm_core.widgets.base import ScenePanel, register, slider
 
 __all__ = ["TorusPathPanel", "LoopsPanel", "PoleChartPanel"]
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..drawing.tangent import TangentSpaceScene
-from .base import ScenePanel, register, slider
+from gm_core.drawing.tangent import TangentSpaceScene
+from gm_core.widgets.base import ScenePanel, register, slider
 
 __all__ = ["TangentSpacePanel"]
 

@@ -143,7 +143,7 @@ def play_animations(nbp, wait_ms: int = 900) -> tuple[list[str], int]:
     """Press ▶ on every animation; (problems, number of animations)."""
     page = nbp.page
     res = page.evaluate(_ANIMS_JS, nbp.read_status()["panelId"])
-    problems = [f"{res['other']} animation(s) not made with gm_core.drawing.primitives.jshtml"] if res["other"] else []
+    problems = [f"{res['other']} animation(s) not made with gm_core.drawing.toolkit.primitives.jshtml"] if res["other"] else []
     for a in res["anims"]:
         root = page.locator(f'[data-gm-anim="{a["index"]}"]')
         root.scroll_into_view_if_needed()
@@ -358,7 +358,7 @@ def _drag(page, x0, y, x1, steps, pause_ms):
 
 #: Seconds a canvas must stay unchanged (with the kernel idle and its last picture whole) to
 #: count as final. A panel ends every burst of updates with a whole key frame (its timer fires
-#: 0.25 s after the last update: gm_core.drawing.blit.KeyFrames), and the browser sends a slider's
+#: 0.25 s after the last update: gm_core.drawing.toolkit.blit.KeyFrames), and the browser sends a slider's
 #: last value as soon as the kernel reports the previous one done, so once the key frame is on
 #: the canvas and the kernel is idle nothing more is on its way; the stillness only bridges the
 #: kernel's idle moments between queued messages.
@@ -566,8 +566,8 @@ _SELFCHECK_SETUP = r'''%matplotlib widget
 import numpy as np
 import ipywidgets as W
 import matplotlib.pyplot as plt
-from gm_core.drawing.primitives import animate, jshtml
-from gm_core.drawing.blit import KeyFrames
+from gm_core.drawing.toolkit.primitives import animate, jshtml
+from gm_core.drawing.toolkit.blit import KeyFrames
 
 def ghost_panel(key_frames, description="t", figsize=(4, 3)):
     """A blitted line whose update sends two difference images back to back, as a kernel that

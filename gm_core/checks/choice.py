@@ -1,0 +1,100 @@
+"""Multiple-choice parts: a letter, the option's text, or a phrase that names one option."""
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Iterable
+from typing import Any
+
+import numpy as np
+
+from gm_core.checks.answers import describe, is_starter
+from gm_core.checks.parts import Part, outcome_error
+from gm_core.checks.sandbox import Unattempted, Wrong
+
+
+def _words(text):
+    return re.sub(r"[^a-z0-9^+]+", " ", str(text).lower()).strip()
+
+
+class ChoicePart(Part):
+    """A multiple-choice question. The answer is an option letter (or the option's text).
+
+    A free-text answer that names exactly one option ("torus", "T^2") counts as that option; one
+    that names none is not recorded as failed (the verdict asks for a letter).
+    """
+
+    kind = "choice"
+    weight = 1.0
+
+    def __init__(self, name: str, prompt: str, options: dict[str, str], correct: str | Iterable[str],
+                 feedback: dict[str, str] | None = None, **kw: Any) -> None:
+        super().__init__(name, prompt, **kw)
+        self.options = dict(options)  # letter -> text
+        self.correct = set(correct) if not isinstance(correct, str) else {correct}
+        self.feedback = dict(feedback or {})
+        if self.reference is None:
+            self.reference = sorted(self.correct)[0]
+        if not self.wrong:  # default: every other option
+            self.wrong = [k for k in self.options if k not in self.correct]
+
+    @staticmethod
+    def _read(answer):
+        """Student side: the answer as plain data (a stripped string or an int)."""
+        if is_starter(answer):
+            raise Unattempted()
+        if isinstance(answer, (bool, np.bool_)):
+            raise Wrong(f"your answer is {describe(answer)}; give one of the option letters.")
+        if isinstance(answer, (int, np.integer)):
+            return int(answer)
+        if isinstance(answer, str):
+            return str(answer)[:500]
+        raise Wrong(f"your answer is {describe(answer)}; give one of the option letters.")
+
+    def probes(self) -> list[Callable[[Any], Any]]:
+        return [self._read]
+
+    def letter(self, value: int | str) -> str | None:
+        """The option letter a plain answer names, None if it names none (or several)."""
+        letters = list(self.options)
+        if isinstance(value, int):
+            return letters[value] if 0 <= value < len(letters) else None
+        a = value.strip().strip("().").strip().lower()
+        for k, text in self.options.items():
+            if a == k.lower() or _words(a) == _words(text):
+                return k
+        w = _words(a)
+        if len(w) >= 3 or any(c.isdigit() or c == "^" for c in w):
+            hits = [k for k, text in self.options.items() if f" {w} " in f" {_words(text)} "]
+            if len(hits) == 1:
+                return hits[0]
+        return None
+
+    def judge(self, outcomes: list[dict[str, Any]]) -> str:
+        o = outcomes[0] if outcomes else {"k": "crash", "m": ""}
+        if o["k"] != "ok":
+            outcome_error(o, "your answer", "no arguments")
+        value = o["v"]
+        if isinstance(value, str) and value.strip().strip("().").strip() == "":
+            raise Unattempted()
+        if not isinstance(value, (str, int)):
+            raise Wrong("give one of the option letters.")
+        k = self.letter(value)
+        if k is None:
+            choices = ", ".join(repr(x) for x in self.options)
+            if isinstance(value, int):
+                raise Wrong(f"there is no option number {value}; give one of the letters {choices}.")
+            raise Unattempted(f"'{value[:40]}' does not name one of the options; give one of the "
+                              f"letters {choices} (this is not counted as a wrong answer).")
+        if k in self.correct:
+            return self.feedback.get(k, "Correct.")
+        raise Wrong(self.feedback.get(k, "Not this one: reread the section the prompt cites."))
+
+    def markdown_table(self) -> str:
+        """The options as the markdown table the exercise notebook shows."""
+        rows = [f"| {k} | {text} |" for k, text in self.options.items()]
+        return "| letter | statement |\n|---|---|\n" + "\n".join(rows)
+
+    def widget(self) -> Any:
+        """Radio buttons, a Check button and feedback (ipywidgets)."""
+        from gm_core.checks.views import choice_widget
+        return choice_widget(self)

@@ -1,0 +1,48 @@
+"""How checkers show things: a coloured box in a notebook, plain text elsewhere. No gm_core imports."""
+from __future__ import annotations
+
+import html
+
+from gm_core.checks.store import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED
+
+COLORS = {PASSED: "#1a7f37", FAILED: "#b42318", UNATTEMPTED: "#6e7781", IN_PROGRESS: "#9a6700",
+          "hint": "#7a5c00", "solution": "#0550ae", "notice": "#8250df"}
+LABELS = {PASSED: "Correct", FAILED: "Not yet", UNATTEMPTED: "Unattempted", IN_PROGRESS: "In progress",
+          "hint": "Hint", "solution": "Solution", "notice": "Course update"}
+
+
+def in_notebook():
+    try:
+        from IPython import get_ipython
+    except Exception:  # noqa: BLE001 - IPython is always there with Jupyter
+        return False
+    ip = get_ipython()
+    return ip is not None and hasattr(ip, "kernel")
+
+
+def box_html(kind, title, message, extra=""):
+    color = COLORS.get(kind, "#333")
+    label = LABELS.get(kind, kind)
+    body = html.escape(message).replace("\n", "<br>")
+    more = ""
+    if extra:
+        more = ('<details><summary style="color:#555">What your code printed</summary><pre '
+                f'style="font-size:85%;max-height:12em;overflow:auto">{html.escape(extra)}</pre></details>')
+    return (f'<div style="border-left:4px solid {color};padding:4px 10px;margin:4px 0">'
+            f'<b style="color:{color}">{label}</b> <span style="color:#555">({html.escape(title)})'
+            f'</span><br>{body}{more}</div>')
+
+
+def show(kind, title, message, extra=""):
+    """Display a coloured message box in a notebook, or print it as plain text elsewhere. Once."""
+    if in_notebook():
+        try:
+            from IPython.display import HTML, display
+            display(HTML(box_html(kind, title, message, extra)))
+            return
+        except Exception:  # noqa: BLE001
+            pass
+    label = LABELS.get(kind, kind)
+    print(f"[{label}] ({title}) {message}")
+    if extra:
+        print("  Your code printed:\n    " + extra.replace("\n", "\n    "))

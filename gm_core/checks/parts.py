@@ -1,0 +1,502 @@
+"""The checking engine: parts, exercises, verdicts and the registry.
+
+Design (after Kaggle's learntools and otter-grader): every exercise part has ``check(answer)``,
+``hint(n=1)`` and ``solution()``. A check works in two halves:
+
+1. **collect** -- ``part.probes()`` are small functions ``probe(answer) -> plain data`` (numbers,
+   float arrays, strings). They are the only code that touches the student's answer, and they
+   run in a separate, killable process under a time limit (:mod:`gm_core.checks.sandbox`).
+2. **judge** -- ``part.judge(outcomes)`` compares those plain outcomes with the reference, here,
+   in the checking process. Nothing the student's code does can change the judge.
+
+The grader (:mod:`gm_grader.batch`) uses the same split: the probes run inside the student's
+notebook kernel at each check call, the judging in the grading process. ``check`` never raises (unless
+``strict=True``, for nbgrader/otter test cells: None on success, AssertionError on failure).
+
+numpy only at import time; sympy is imported only when an answer is a sympy object.
+"""
+from __future__ import annotations
+
+import copy
+from collections.abc import Callable, Iterable, Sequence
+from typing import Any
+
+import numpy as np
+
+from gm_core.checks import channel, store
+from gm_core.checks.answers import (
+    describe,
+    fmt_args,
+    is_starter,
+    is_sympy,
+    match_shape,
+    sympy_function,
+    to_numbers,
+)
+from gm_core.checks.display import show
+from gm_core.checks.exercise import Exercise
+from gm_core.checks.sandbox import Unattempted, Wrong, collect, decode_outcome, safe_text
+from gm_core.checks.store import FAILED, PASSED, UNATTEMPTED
+
+
+class Verdict:
+    """The result of a check: ``status`` (passed / failed / unattempted) and a message."""
+
+    def __init__(self, status: str, message: str, part: str = "", output: str = "") -> None:
+        self.status, self.message, self.part, self.output = status, message, part, output
+        self._shown = False
+
+    def __bool__(self) -> bool:
+        return self.status == PASSED
+
+    @property
+    def passed(self) -> bool:
+        return self.status == PASSED
+
+    def show(self) -> Verdict:
+        show(self.status, self.part, self.message, self.output)
+        self._shown = True
+        return self
+
+    def _ipython_display_(self) -> None:
+        # check() has already displayed the message; ending a cell with it shows nothing more.
+        if not self._shown:
+            self.show()
+
+    def __repr__(self) -> str:
+        return f"Verdict({self.part}: {self.status} - {self.message})"
+
+
+def outcome_error(o, what, label):
+    """Raise the readable Wrong/Unattempted for a non-"ok" probe outcome ``o``."""
+    k = o["k"]
+    if k == "wrong":
+        raise Wrong(o["m"])
+    if k == "unattempted":
+        raise Unattempted(o["m"])
+    if k == "error":
+        extra = f": {o['x']}" if o.get("x") else ""
+        raise Wrong(f"{what} raised {o['m']}{extra} when called with {label}.")
+    if k == "timeout":
+        raise Wrong(f"{what} took longer than {o['m']} s when called with {label}, so the check "
+                    "stopped it (an endless loop? a very slow method?). Your kernel is fine; "
+                    "set_time_limit(seconds) allows more time.")
+    if k == "crash":  # the sandbox says how ("x"): a signal, an exit status, a segfault
+        how = o.get("x") or "too much memory, or a recursion the interpreter could not survive"
+        raise Wrong(f"{what} crashed the Python process it ran in when called with {label} ({how}).")
+    raise Wrong(f"{what} could not be checked further after an earlier call stopped.")
+
+
+# ------------------------------------------------------------------------------ parts
+class Part:
+    """One checkable part. Subclasses implement :meth:`probes` and :meth:`judge`.
+
+    Attributes used by the tests: ``reference`` (a correct answer), ``wrong`` (plausible wrong
+    answers), ``starter`` (what the exercise notebook starts with), ``weight`` (grading points).
+    Subclasses default ``reference`` and ``wrong`` from what the part already declares (the
+    reference function, the registered mistakes, the correct option), so a declaration names
+    only what is new.
+    """
+
+    kind = "numeric"
+    weight = 2.0
+
+    def __init__(self, name: str, prompt: str, hints: Sequence[str] = (), solution_text: str = "",
+                 reference: Any = None, wrong: Sequence[Any] = (), starter: Any = None,
+                 weight: float | None = None) -> None:
+        self.name = name
+        self.prompt = prompt
+        self.hints = list(hints)
+        self.solution_text = solution_text
+        self.reference = reference
+        self.wrong = list(wrong)
+        self.starter = starter
+        if weight is not None:
+            self.weight = float(weight)
+        self.exercise: Exercise | None = None  # set by Exercise
+
+    @property
+    def id(self) -> str:
+        ex = self.exercise.id if self.exercise is not None else "?"
+        return f"{ex}{self.name}" if len(self.name) <= 1 else f"{ex} {self.name}"
+
+    @property
+    def title(self) -> str:
+        return f"exercise {self.id}"
+
+    def __repr__(self) -> str:
+        return f"<check for exercise {self.id}: {self.prompt}>"
+
+    # -- the two halves
+    def probes(self) -> list[Callable[[Any], Any]]:
+        """Functions probe(answer) -> plain data; the only code that touches the answer."""
+        raise NotImplementedError
+
+    def judge(self, outcomes: list[dict[str, Any]]) -> str:
+        """Return the success message, or raise Wrong / Unattempted, from the probes' outcomes."""
+        raise NotImplementedError
+
+    def verdict(self, outcomes: list[dict[str, Any]], output: str = "") -> Verdict:
+        """A Verdict from plain outcomes (used by check() and by the grader). Never raises."""
+        try:
+            if not isinstance(outcomes, list) or len(outcomes) != len(self.probes()):
+                raise Wrong("the check could not evaluate your answer completely.")
+            message = self.judge(outcomes)
+            status = PASSED
+        except Unattempted as u:
+            status, message = UNATTEMPTED, safe_text(u, 600) or (
+                "You have not answered yet: replace the starter value in the cell above (it is "
+                "still None). Use .hint() if you are stuck.")
+        except Wrong as w:
+            status, message = FAILED, safe_text(w, 600)
+        except Exception as exc:  # noqa: BLE001 - a checker bug must not break the notebook
+            status, message = FAILED, ("The checker could not make sense of your answer "
+                                       f"({type(exc).__name__}). Check its type against the "
+                                       "prompt, or ask .hint().")
+        return Verdict(status, message or "Well done.", self.title, output)
+
+    # -- the three verbs
+    def check(self, answer: Any = None, *, quiet: bool = False, strict: bool = False,
+              time_limit: float | None = None) -> Verdict | None:
+        """Check ``answer``; display and return a :class:`Verdict`. Never raises, unless
+        ``strict=True`` (nbgrader / otter-grader test cells): then a passed check returns None
+        (a doctest-style cell expects nothing) and a failed one raises AssertionError with the
+        same message.
+
+        While the grader runs the notebook, the plain outcomes are also sent, at this call, on
+        the grader's evidence channel (:mod:`gm_core.checks.channel`): the part is judged as it was now."""
+        channel.begin(self)
+        raw = None
+        try:
+            raw, output = collect(answer, self.probes(), time_limit, raw=True)
+            verdict = self.verdict([decode_outcome(o) for o in raw], output)
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:  # noqa: BLE001 - never let anything escape into the notebook
+            verdict = Verdict(FAILED, f"The check stopped unexpectedly ({type(exc).__name__}).",
+                              self.title)
+        finally:
+            channel.emit(self, raw if raw is not None else "stopped", "" if raw is None else output)
+        self._record(verdict.status)
+        if not quiet:
+            try:
+                verdict.show()
+            except Exception:  # noqa: BLE001
+                pass
+        if strict:
+            if not verdict.passed:
+                raise AssertionError(f"{self.title}: {verdict.message}")
+            return None
+        return verdict
+
+    def hint_text(self, n: int = 1) -> str:
+        if not self.hints:
+            return "There is no hint for this part; see the section of the book the prompt cites."
+        try:
+            k = int(n)
+        except Exception:  # noqa: BLE001
+            k = 1
+        k = min(max(k, 1), len(self.hints))
+        more = f" (hint {k} of {len(self.hints)}"
+        more += f"; ask .hint({k + 1}) for more)" if k < len(self.hints) else ")"
+        return self.hints[k - 1] + more
+
+    def hint(self, n: int = 1) -> None:
+        """Show hint number ``n`` (1 = gentlest). Shows it once; returns None."""
+        show("hint", self.title, self.hint_text(n))
+
+    def solution_path(self) -> str:
+        """Where the worked solution is, relative to the notebook's folder (workspace/, exercises/)."""
+        ex = self.exercise
+        name = f"ex{ex.id.replace('.', '_')}.ipynb" if ex is not None else ""
+        return f"../solutions/{name}"
+
+    def solution_text_full(self) -> str:
+        return (self.solution_text or "See the worked solution.") + \
+            f"\nFull derivation: {self.solution_path()} (the solutions/ folder of the course)"
+
+    def solution(self) -> None:
+        """Show the key result and where the worked notebook is (recorded in your progress)."""
+        if self.exercise is not None:
+            store.record_solution_view(self.exercise.id, self.name)
+        show("solution", self.title, self.solution_text_full())
+
+    def _record(self, status):
+        # "unattempted" (the starter, or a choice that names no option) never overwrites a
+        # saved verdict: re-running an untouched cell must not erase yesterday's pass
+        if self.exercise is not None and status != UNATTEMPTED:
+            store.record(self.exercise.id, self.name, status)
+
+
+class FunctionPart(Part):
+    """The answer is a function (or a sympy expression, or a constant) compared with a reference.
+
+    ``ref(*args)`` gives the expected array; ``inputs()`` yields argument tuples. A sympy answer is
+    evaluated with its symbols matched by name to ``sympy_names`` (values ``sympy_args(*args)``).
+    ``mistakes``: ``(wrong_function, message)`` pairs; a message is given only when the answer
+    equals that wrong function on every input checked. ``angles``: output entries compared
+    modulo 2 pi. ``postprocess(out, args)`` normalises a student's output (runs with the probes).
+    ``reference`` defaults to ``ref``; ``wrong`` is every mistake's function plus any further
+    plausible wrong answers given as ``wrong=``.
+    """
+
+    kind = "function"
+
+    def __init__(self, name: str, prompt: str, ref: Callable[..., Any], inputs: Callable[[], Iterable[tuple]],
+                 *, arg_names: Sequence[str], shape: tuple[int, ...], rtol: float = 1e-6, atol: float = 1e-8,
+                 mistakes: Sequence[tuple[Callable[..., Any], str]] = (),
+                 postprocess: Callable[[Any, tuple], Any] | None = None, sympy_names: Sequence[str] | None = None,
+                 sympy_args: Callable[..., tuple] | None = None, sympy_ok: Callable[..., bool] | None = None,
+                 angles: Sequence[int] = (), what: str = "your function", **kw: Any) -> None:
+        known = [fn for fn, _ in mistakes]
+        if kw.get("reference") is None:
+            kw["reference"] = ref
+        kw["wrong"] = known + [w for w in kw.get("wrong", ()) if all(w is not k for k in known)]
+        super().__init__(name, prompt, **kw)
+        self.ref = ref
+        self.inputs = inputs
+        self.arg_names = tuple(arg_names)
+        self.sympy_names = tuple(sympy_names) if sympy_names is not None else self.arg_names
+        self.sympy_args = sympy_args
+        self.sympy_ok = sympy_ok
+        self.shape = tuple(shape)
+        self.rtol, self.atol = rtol, atol
+        self.mistakes = list(mistakes)
+        self.postprocess = postprocess
+        self.angles = tuple(angles)
+        self.what = what
+
+    # -- student side (runs in the sandbox)
+    def as_function(self, answer: Any) -> tuple[Callable[..., Any], str, str]:
+        """(callable, kind, description) for an answer: a function, sympy object or constant."""
+        if is_starter(answer):
+            raise Unattempted()
+        if is_sympy(answer) or (isinstance(answer, (list, tuple)) and answer and any(
+                is_sympy(a) or isinstance(a, (list, tuple)) and any(is_sympy(b) for b in a)
+                for a in answer)):
+            f = sympy_function(answer, self.sympy_names, self.sympy_args, "your expression")
+            if f is not None:
+                return f, "sympy", "your expression"
+        if callable(answer) and not isinstance(answer, type):
+            return answer, "function", self.what
+        if isinstance(answer, (list, tuple)) and answer and all(is_starter(a) for a in answer):
+            raise Unattempted()
+        if not self.arg_names:
+            return (lambda *args: answer), "constant", "your answer"
+        raise Wrong(f"your answer is {describe(answer)}; {self.prompt_type} was expected.")
+
+    @property
+    def prompt_type(self) -> str:
+        return (f"a function of ({', '.join(self.arg_names)})" if self.arg_names
+                else "a number or array")
+
+    def student_value(self, answer: Any, args: tuple) -> Any:
+        f, kind, what = self.as_function(answer)
+        if kind == "sympy" and self.sympy_ok is not None and not self.sympy_ok(*args):
+            return "skip"
+        out = f(*copy.deepcopy(args))
+        if is_starter(out):
+            return None
+        if self.postprocess is not None:
+            out = self.postprocess(out, args)
+        got = to_numbers(out, f"the value {what} returned for {self._label(args)}")
+        return match_shape(got, self.shape, f"the value {what} returned")
+
+    def probes(self) -> list[Callable[[Any], Any]]:
+        def probe(args: tuple) -> Callable[[Any], Any]:
+            return lambda ans: self.student_value(ans, args)
+        return [probe(args) for args in self.inputs()]
+
+    # -- judge side
+    def close(self, got: Any, expected: Any) -> bool:
+        got = np.asarray(got, dtype=float)
+        expected = np.asarray(expected, dtype=float)
+        if got.shape != expected.shape:
+            return False
+        diff = got - expected
+        if self.angles and diff.ndim == 1:
+            for i in self.angles:
+                diff[i] = (diff[i] + np.pi) % (2 * np.pi) - np.pi
+        with np.errstate(all="ignore"):
+            return bool(np.all(np.abs(diff) <= self.atol + self.rtol * np.abs(expected)))
+
+    def judge(self, outcomes: list[dict[str, Any]]) -> str:
+        all_args = list(self.inputs())
+        what = self.what
+        got_all: list[Any] = []
+        nones = [o["k"] == "ok" and o["v"] is None for o in outcomes]
+        if outcomes and all(nones):
+            raise Unattempted("Your function still returns None: fill in its body.")
+        for args, o in zip(all_args, outcomes):
+            label = self._label(args)
+            if o["k"] != "ok":
+                outcome_error(o, what, label)
+            if o["v"] is None:
+                raise Wrong(f"{what} returned None for {label} (a branch without a return "
+                            "statement?), although it returns a value for other inputs.")
+            if isinstance(o["v"], str):
+                # "skip": a sympy closed form at its removable 0/0, and only there
+                if o["v"] == "skip" and self.sympy_ok is not None and not self.sympy_ok(*args):
+                    got_all.append(None)
+                    continue
+                raise Wrong(f"{what} returned text for {label}; numbers were expected.")
+            got = np.asarray(o["v"], dtype=float)
+            if got.shape != self.shape:
+                raise Wrong(f"the value {what} returned for {label} has shape {got.shape}, but "
+                            f"shape {self.shape} was expected.")
+            if not np.all(np.isfinite(got)):
+                raise Wrong(f"the value {what} returned for {label} contains NaN or infinite "
+                            "entries (a division by zero at this input?).")
+            got_all.append(got)
+        if len(outcomes) != len(all_args) or all(g is None for g in got_all):
+            raise Wrong("the check could not evaluate your answer on every input.")
+        expected = [np.asarray(self.ref(*a), dtype=float) for a in all_args]
+        bad = [i for i, g in enumerate(got_all) if g is not None and not self.close(g, expected[i])]
+        if not bad:
+            return self.success
+        for wrong_f, msg in self.mistakes:
+            if self._matches_everywhere(wrong_f, all_args, got_all):
+                raise Wrong(msg)
+        i = bad[0]
+        where = self._where(got_all[i], expected[i])
+        raise Wrong(f"{what.capitalize()} gives a different value for {self._label(all_args[i])}"
+                    f"{where}. Try this case by hand, or ask .hint().")
+
+    def _matches_everywhere(self, wrong_f, all_args, got_all):
+        for args, got in zip(all_args, got_all):
+            if got is None:
+                continue
+            try:
+                w = np.asarray(wrong_f(*copy.deepcopy(args)), dtype=float)
+            except Exception:  # noqa: BLE001
+                return False
+            if w.shape != got.shape or not self.close(got, w):
+                return False
+        return True
+
+    success = "Correct: your answer matches the reference on random and edge-case inputs."
+
+    def _label(self, args):
+        if not self.arg_names:
+            return "this part"
+        return ", ".join(f"{n}={fmt_args((a,))[1:-1]}" for n, a in zip(self.arg_names, args))
+
+    def _where(self, got, expected):
+        if got.ndim == 0 or got.size == 1:
+            return ""
+        with np.errstate(all="ignore"):
+            bad = np.abs(got - expected) > self.atol + self.rtol * np.abs(expected)
+        idx = [tuple(int(i) for i in ix) for ix in np.argwhere(bad)]
+        if not idx:
+            return ""
+        shown = ", ".join(str(i if len(i) > 1 else i[0]) for i in idx[:4])
+        return f" (entries {shown} differ)"
+
+
+class TuplePart(Part):
+    """An answer made of several named components, each judged like a :class:`FunctionPart`."""
+
+    kind = "tuple"
+
+    def __init__(self, name: str, prompt: str, components: Sequence[tuple[str, FunctionPart]],
+                 extra: Callable[[list[Any]], str | None] | None = None, **kw: Any) -> None:
+        super().__init__(name, prompt, **kw)
+        self.components = list(components)  # [(label, FunctionPart)]
+        if self.reference is None:  # default: each component's reference
+            self.reference = tuple(part.reference for _, part in self.components)
+        self.extra = extra  # optional judge(values by component) for a property of the whole
+
+    def _values(self, answer):
+        labels = [lbl for lbl, _ in self.components]
+        if is_starter(answer):
+            raise Unattempted()
+        if isinstance(answer, dict):
+            missing = [lbl for lbl in labels if lbl not in answer]
+            if missing:
+                raise Wrong(f"your dict is missing the key(s) {', '.join(missing)}.")
+            values = [answer[lbl] for lbl in labels]
+        elif isinstance(answer, (list, tuple)):
+            if len(answer) != len(labels):
+                raise Wrong(f"your answer has {len(answer)} components; {len(labels)} were expected "
+                            f"({', '.join(labels)}).")
+            values = list(answer)
+        else:
+            raise Wrong(f"your answer is {describe(answer)}; a tuple ({', '.join(labels)}) was "
+                        "expected.")
+        if all(is_starter(v) for v in values):
+            raise Unattempted()
+        for label, v in zip(labels, values):
+            if is_starter(v):
+                raise Wrong(f"{label} is still None; the other components were given.")
+        return values
+
+    def probes(self) -> list[Callable[[Any], Any]]:
+        def probe(i: int, part: FunctionPart, args: tuple) -> Callable[[Any], Any]:
+            return lambda ans: part.student_value(self._values(ans)[i], args)
+        out: list[Callable[[Any], Any]] = [lambda ans: (self._values(ans), "ok")[1]]
+        for i, (_, part) in enumerate(self.components):
+            out += [probe(i, part, args) for args in part.inputs()]
+        return out
+
+    def judge(self, outcomes: list[dict[str, Any]]) -> str:
+        if not outcomes:
+            raise Wrong("the check could not evaluate your answer.")
+        first = outcomes[0]
+        if first["k"] != "ok":
+            outcome_error(first, "your answer", "no arguments")
+        k = 1
+        for label, part in self.components:
+            n = len(list(part.inputs()))
+            try:
+                part.judge(outcomes[k:k + n])
+            except Unattempted:
+                raise Wrong(f"{label}: the function still returns None.") from None
+            except Wrong as w:
+                raise Wrong(f"{label}: {w}") from None
+            k += n
+        return "Correct: " + ", ".join(lbl for lbl, _ in self.components) + " all match the reference."
+
+
+class CustomPart(Part):
+    """A part with its own probes and judge: ``make_probes() -> [probe]``, ``judge(outcomes)``."""
+
+    def __init__(self, name: str, prompt: str, make_probes: Callable[[], list[Callable[[Any], Any]]],
+                 judge: Callable[[list[dict[str, Any]]], str], kind: str = "custom", **kw: Any) -> None:
+        super().__init__(name, prompt, **kw)
+        self._make_probes, self._judge = make_probes, judge
+        self.kind = kind
+
+    def probes(self) -> list[Callable[[Any], Any]]:
+        return list(self._make_probes())
+
+    def judge(self, outcomes: list[dict[str, Any]]) -> str:
+        return self._judge(outcomes)
+
+
+# ------------------------------------------------------------------------------ input helpers
+def probe_rng(seed: int) -> np.random.Generator:
+    """The random generator for a checker's inputs: ``seed``, salted by the grader when grading
+    (:func:`gm_core.checks.channel.set_probe_salt`), so a graded run's inputs cannot be known in advance."""
+    salt = channel.probe_salt()
+    return np.random.default_rng(seed if salt is None else [int(seed), salt])
+
+
+def salted() -> bool:
+    """True while the grader has salted the probe inputs (a graded run, or its judging)."""
+    return channel.probe_salt() is not None
+
+
+def rng_inputs(seed: int, n: int, make: Callable[[np.random.Generator], Sequence[Any]],
+               edges: Iterable[Sequence[Any]] = ()) -> Callable[[], Iterable[tuple]]:
+    """A function yielding the edge cases first, then ``n`` seeded random argument tuples."""
+    def inputs():
+        for e in edges:
+            yield tuple(e)
+        rng = probe_rng(seed)
+        for _ in range(n):
+            yield tuple(make(rng))
+    return inputs
+
+
+__all__ = ["Verdict", "Part", "FunctionPart", "TuplePart", "CustomPart", "outcome_error", "rng_inputs",
+           "probe_rng", "salted"]

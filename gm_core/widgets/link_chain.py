@@ -1,0 +1,136 @@
+"""Panels of notebook 11 (beyond the draft): design a chain, read its geometry on a slice, try a wave
+gait, optimise its gait live and watch it swim."""
+from __future__ import annotations
+
+import ipywidgets as W
+import numpy as np
+
+from gm_core.drawing.connection import ROW_LABELS
+from gm_core.drawing.link_chain import PHYSICS_LABELS, ChainSliceScene, OptimalGaitScene, WaveGaitScene
+from gm_core.drawing.toolkit.primitives import jshtml
+from gm_core.widgets.base import ScenePanel, int_slider, register, slider
+
+__all__ = ["ChainSlicePanel", "WaveGaitPanel", "OptimalGaitPanel"]
+
+
+#: the connection rows as a dropdown shows them (HTML: Unicode superscripts, as the other panels' ξˣ)
+_ROW_OPTIONS = [(label.replace("ξx", "ξˣ").replace("ξy", "ξʸ").replace("ξθ", "ξᶿ"), i)
+                for i, label in enumerate(ROW_LABELS)]
+
+
+def _physics_dropdown(value="low_re"):
+    label = {v: k for k, v in PHYSICS_LABELS.items()}.get(value, value)
+    return W.Dropdown(options=list(PHYSICS_LABELS), value=label, description="physics")
+
+
+@register
+class ChainSlicePanel(ScenePanel):
+    """Design a chain (number of links, physics) and read one connection row and its curvature on a
+    2-D slice of the shape space spanned by two joints (the other joints straight)."""
+
+    title = "A chain you design, on a slice of its shape space"
+    scene_class = ChainSliceScene
+
+    def controls_spec(self):
+        o = self.options
+        return {
+            "links": int_slider(o.get("links", 4), 3, 7, description="links"),
+            "physics": _physics_dropdown(o.get("physics", "low_re")),
+            "row": W.Dropdown(options=_ROW_OPTIONS, value=o.get("row", 2), description="row"),
+            "axis1": int_slider(o.get("axis1", 1), 1, 6, description="slice joint 1"),
+            "axis2": int_slider(o.get("axis2", 2), 1, 6, description="slice joint 2"),
+        }
+
+    def after_update(self, values):
+        n = int(values.get("links", 4)) - 1
+        for k in ("axis1", "axis2"):
+            self.controls[k].max = n
+
+
+@register
+class WaveGaitPanel(ScenePanel):
+    """A travelling wave along a chain (amplitude, phase lag between joints) and one cycle of its motion."""
+
+    title = "A travelling wave along a chain"
+    scene_class = WaveGaitScene
+
+    def controls_spec(self):
+        o = self.options
+        return {
+            "links": int_slider(o.get("links", 4), 2, 7, description="links"),
+            "physics": _physics_dropdown(o.get("physics", "low_re")),
+            "amplitude": slider(o.get("amplitude", 0.8), 0.1, 1.5, description="amplitude (rad)"),
+            "lag": slider(o.get("lag", 1.2), 0.0, float(np.pi), description="phase lag (rad)"),
+        }
+
+
+@register
+class OptimalGaitPanel(ScenePanel):
+    """Design a chain (links, taper, physics, Fourier order), press "optimise" to find its most
+    efficient gait (a progress bar counts the optimiser's steps), then watch the gait and its
+    animation. ``panel.run()`` does what the button does (for notebooks and tests)."""
+
+    title = "Design a chain and optimise its gait"
+    scene_class = OptimalGaitScene
+
+    def controls_spec(self):
+        o = self.options
+        return {
+            "links": int_slider(o.get("links", 4), 3, 6, description="links"),
+            "physics": _physics_dropdown(o.get("physics", "low_re")),
+            "taper": slider(o.get("taper", 0.0), 0.0, 0.6, step=0.05, description="taper (tail shorter)"),
+            "order": int_slider(o.get("order", 1), 1, 2, description="Fourier order"),
+        }
+
+    def build(self):
+        super().build()
+        self.button = W.Button(description="optimise", button_style="primary", icon="play",
+                               tooltip="find the most efficient gait of this chain (a few seconds)")
+        self.bar = W.IntProgress(value=0, min=0, max=40, layout=W.Layout(width="160px"))
+        self.status = W.HTML("")
+        self.movie = W.Output()
+        self.button.on_click(lambda _: self.run())
+
+    def after_update(self, values):
+        if getattr(self, "_shown", None) != self.scene.key:      # the animation belongs to another design
+            self.movie.clear_output()
+            self._shown = None
+        done = self.scene.result is not None
+        self.bar.value = self.bar.max if done else 0
+        self.status.value = f"optimised: efficiency {self.scene.result.efficiency:.4f}" if done else ""
+
+    def run(self, animate=True):
+        """Optimise the design shown with a live progress bar, then show the gait and, if ``animate``,
+        its animation below the panel. Returns the OptimalGait."""
+        self.button.disabled = True
+        self.bar.value = 0
+        self.status.value = "optimising ..."
+
+        def progress(it, value):
+            self.bar.value = min(it, self.bar.max)
+            self.status.value = f"step {it}: efficiency {value:.4f}"
+
+        try:
+            res = self.scene.optimize(callback=progress)
+        finally:
+            self.button.disabled = False
+        self.bar.value = self.bar.max
+        self.status.value = f"done: efficiency {res.efficiency:.4f} after {res.nit} steps"
+        self.redraw()
+        if animate:
+            from IPython.display import display
+
+            anim, fig, _ = self.scene.animation(n_frames=30, cycles=1)
+            self.movie.clear_output()
+            with self.movie:
+                display(jshtml(anim))
+            self._shown = self.scene.key
+        return res
+
+    @property
+    def widget(self):
+        if getattr(self, "_box", None) is None:
+            self._box = W.VBox([super().widget, W.HBox([self.button, self.bar, self.status],
+                                                       layout=W.Layout(align_items="center", grid_gap="0 10px")),
+                                self.movie])
+        return self._box
