@@ -59,7 +59,7 @@ lab-settings: setup
 	$(PY) tools/lab_settings.py
 
 lab: setup workspace lab-settings
-	$(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir="$(CURDIR)" $(ROOT_FLAG) $(LAB_ARGS) book/00-start-here.ipynb
+	$(VENV)/bin/jupyter lab --config=jupyter/jupyter_server_config.py --ServerApp.ip=127.0.0.1 --ServerApp.root_dir="$(CURDIR)" $(ROOT_FLAG) $(LAB_ARGS) book/00-start-here.ipynb
 
 # The publishing tests' own environments, made from PyPI/npm once and stamped (tools/venvs.py):
 # .venv-site (+ site/node_modules), .venv-kits, the Gradescope kit's venv. If this fails (no
