@@ -28,7 +28,7 @@ def test_plausible_wrong_gaits_are_told_what_is_wrong():
     cases = [
         (travelling_wave(3, 1.2, 0.0), "standing wave"),       # all joints in phase
         (travelling_wave(3, 0.6, 1.0), "at least 0.3"),        # too small
-        (travelling_wave(3, 1.5, 1.0), "at most 1.2 rad"),     # links would collide
+        (travelling_wave(3, 1.5, 1.0), "at most 1.2 rad"),     # over the exercise's limit
         (travelling_wave(3, 1.2, 2.9), "at least 0.3"),        # lag near pi: nearly a standing wave
         (travelling_wave(2, 1.2, 1.0), "three joints"),        # the three-link swimmer's gait
         (lambda t: np.stack([t, t, t], -1), "does not close"),

@@ -53,8 +53,8 @@ def _judge_51a(outcomes):
                     f"{fmt_value(r[-1])}. A gait must come back to its first shape after one period.")
     big = float(np.max(np.abs(r)))
     if big > ANGLE_MAX + 1e-9:
-        raise Wrong(f"your gait bends a joint by {big:.3f} rad; at most {ANGLE_MAX} rad is allowed (more "
-                    "and the links of a real swimmer would collide). Make the wave smaller.")
+        raise Wrong(f"your gait bends a joint by {big:.3f} rad; at most {ANGLE_MAX} rad is allowed (the "
+                    "exercise's limit, which keeps the strokes moderate). Make the wave smaller.")
     g = net_displacement(swimmer_5_1(), Gait.from_samples(r[:-1]), steps=512, check=False)
     d = float(np.hypot(g[0], g[1]))
     if d < 1e-3:
