@@ -103,3 +103,12 @@ def test_change_of_basis_reference():
 def test_links_answer_as_a_tuple_of_three():
     f = lambda al, le: tuple(ex2.links_from_com(al, le))
     assert ex2_3.c.check(f, quiet=True).passed
+
+
+def test_hint_2_of_2_2b_states_where_h2_sits_as_the_frames_say():
+    """The hint names h2's pose seen from the rotary joint's frame g1: (l1 + delta + l2, a, 0)."""
+    assert "(l1 + delta + l2, a, 0)" in ex2_2.b.hint_text(2)
+    al, de, l1, l2, a = 0.7, 0.3, 1.1, 0.8, 0.25
+    g1 = np.array([0.0, 0.0, al])
+    h2 = SE2.compose(SE2.compose(g1, [l1, a, 0.0]), [de + l2, 0.0, 0.0])
+    np.testing.assert_allclose(SE2.compose(SE2.inverse(g1), h2), [l1 + de + l2, a, 0.0], atol=1e-15)

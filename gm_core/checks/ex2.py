@@ -295,8 +295,9 @@ ex2_2 = Exercise("2.2", "Jacobian of the offset rotary-prismatic arm", [
                               "backwards (-x) when the arm turns counterclockwise."),
         hints=["Follow (2.38)-(2.45): body velocities, with Ad^-1 of each frame relative to the "
                "previous one.",
-               "The only new ingredient is the offset: h2 sits at (delta + l2, a, 0) relative to "
-               "the frame g2' aligned with h1.",
+               "The only new ingredient is the offset. Seen from the rotary joint's frame g1 (at the "
+               "joint, turning with link 1), h2 sits at (l1 + delta + l2, a, 0): everything along the "
+               "links adds up in x, the offset a is sideways.",
                "Ad^-1 of (x, y, 0) is [[1, 0, -y], [0, 1, x], [0, 0, 1]]."],
         solution_text="J_b = [[-a, 1], [l1 + delta + l2, 0], [1, 0]]; it equals T_{h2} L_{h2^-1} "
                       "times the world Jacobian of part a."),
