@@ -159,7 +159,13 @@ def otter_master(nb, ex_id):
 
     def otter_code(cell):
         before, starter, solution, after = split_region(cell.source)
-        src = before + ['""" # BEGIN PROMPT'] + (starter or [CODE_STUB]) + ['""" # END PROMPT']
+        prompt = starter or [CODE_STUB]
+        # otter keeps the prompt in the autograder notebook as a string literal: its quotes must not
+        # occur in the prompt (a starter's docstring uses """, which would end the string early)
+        quote = next((q for q in ('"""', "'''") if not any(q in line for line in prompt)), None)
+        if quote is None:
+            raise ValueError(f"exercise {ex_id}: a starter holds both kinds of triple quotes; otter cannot wrap it")
+        src = before + [f"{quote} # BEGIN PROMPT"] + prompt + [f"{quote} # END PROMPT"]
         return "\n".join(src + ["# BEGIN SOLUTION NO PROMPT"] + solution + ["# END SOLUTION"] + after)
 
     def plain(kind, cell):
