@@ -211,3 +211,20 @@ def test_nbgrader_generate_and_autograde_right_and_wrong(kits_bin, tmp_path):
     assert float(rows["right"]["score"]) == float(rows["right"]["max_score"]) == total, rows
     assert float(rows["wrong"]["score"]) == REGISTRY[EX].parts["b"].weight, rows
     shutil.rmtree(course / "autograded", ignore_errors=True)
+
+
+@pytest.mark.parametrize("path", SOLUTIONS, ids=lambda p: p.stem)
+def test_otter_master_cells_are_valid_python(path):
+    """otter runs the master notebook (prompts as string literals) to check the solution: every
+    code cell must parse, e.g. a starter's docstring must not end the prompt's string early."""
+    import ast
+    import re
+
+    master = export_kits.otter_master(nbformat.read(path, as_version=4), _id(path))
+    for i, cell in enumerate(master.cells):
+        if cell.cell_type == "code":
+            src = re.sub(r"^(\s*)[%!].*$", r"\1pass", cell.source, flags=re.M)
+            try:
+                ast.parse(src)
+            except SyntaxError as exc:
+                pytest.fail(f"{path.stem} master cell {i} does not parse ({exc}):\n{cell.source[:400]}")
