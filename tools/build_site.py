@@ -291,10 +291,20 @@ def _page_bytes(nb):
     return len(json.dumps([c.get("outputs", []) for c in nb.cells]))
 
 
+def _tex_span(tex, display=False):
+    """A span MathJax renders, written so that it reads the same whether MyST then parses it as
+    markdown (a paragraph inside <details>) or keeps it as raw HTML: backslashes, underscores and
+    asterisks as character references, which markdown neither escapes nor turns into emphasis."""
+    safe = tex.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    safe = safe.replace("\\", "&#92;").replace("_", "&#95;").replace("*", "&#42;")
+    left, right = ("&#92;[", "&#92;]") if display else ("&#92;(", "&#92;)")
+    return f'<span class="math notranslate nohighlight">{left}{safe}{right}</span>'
+
+
 def _html_math(m):
-    """$...$ inside a raw HTML block (MyST leaves it alone) -> a span MathJax renders."""
-    return re.sub(r"(?<![\\$])\$([^$\n]+?)\$",
-                  lambda k: f'<span class="math notranslate nohighlight">\\({k.group(1)}\\)</span>', m.group(0))
+    """$$...$$ and $...$ inside a raw HTML block (MyST leaves them alone) -> spans MathJax renders."""
+    text = re.sub(r"(?<!\\)\$\$(.+?)\$\$", lambda k: _tex_span(k.group(1), display=True), m.group(0), flags=re.S)
+    return re.sub(r"(?<![\\$])\$([^$]+?)\$", lambda k: _tex_span(k.group(1)), text, flags=re.S)
 
 
 def prepare(nb, rel, page_set):

@@ -38,9 +38,11 @@ _RAW_MATH = r"""() => {
   const walker = document.createTreeWalker(document.querySelector('article') || document.body, NodeFilter.SHOW_TEXT);
   const bad = [];
   for (let n = walker.nextNode(); n; n = walker.nextNode()) {
-    if (n.parentElement.closest('pre, code, script, style, mjx-container, .output, .cell_output, textarea')) continue;
+    // rendered text everywhere, outputs included (code and preformatted output excepted): a TeX
+    // delimiter or command left in it is a formula MathJax did not typeset
+    if (n.parentElement.closest('pre, code, script, style, mjx-container, textarea, .highlight')) continue;
     const t = n.textContent;
-    if (/\\\(|\\\[|\$[^$\s][^$]*\$/.test(t)) bad.push(t.trim().slice(0, 80));
+    if (/\\\(|\\\[|\$[^$\s][^$]*\$|\\[a-zA-Z]{2,}/.test(t)) bad.push(t.trim().slice(0, 80));
   }
   return {bad, rendered: document.querySelectorAll('mjx-container').length,
           errors: document.querySelectorAll('mjx-merror').length};
