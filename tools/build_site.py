@@ -460,8 +460,11 @@ def jb_build(src_dir, out):
 def finish(html_dir, alts, rels):
     static = html_dir / "_static"
     report = {}
-    for rel in rels:
-        page = html_dir / Path(rel).with_suffix(".html")
+    # the course's pages, then the pages Jupyter Book adds (start page, index, search): every page
+    # gets the same fixes (the theme's names, one thebe script, no CDN)
+    pages = {html_dir / Path(rel).with_suffix(".html"): rel for rel in rels}
+    pages.update({p: None for p in sorted(html_dir.glob("*.html")) if p not in pages})
+    for page, rel in pages.items():
         if not page.exists():
             continue
         text = page.read_text(encoding="utf-8")
@@ -495,7 +498,8 @@ def finish(html_dir, alts, rels):
         page.write_text(text, encoding="utf-8")
         images = set(re.findall(r'src="([^"]*_images/[^"]+)"', text))
         size = len(text.encode()) + sum((page.parent / s).stat().st_size for s in images if (page.parent / s).exists())
-        report[rel] = {"bytes": size, "html_bytes": len(text.encode()), "images": len(images)}
+        if rel is not None:
+            report[rel] = {"bytes": size, "html_bytes": len(text.encode()), "images": len(images)}
     return report
 
 

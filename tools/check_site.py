@@ -170,6 +170,7 @@ def check(html_dir, pages=None, playwright=None):
     if pages is None:
         pages = sorted(p.relative_to(html_dir).as_posix() for d in ("book", "exercises")
                        for p in (html_dir / d).glob("*.html"))
+        pages += sorted(p.name for p in html_dir.glob("*.html"))      # index, genindex, search
     srv = serve(html_dir)
     base = f"http://127.0.0.1:{srv.server_address[1]}/"
     results = []
