@@ -375,3 +375,20 @@ def test_makefile_installs_lab_and_test_and_ci_uses_the_two_commands():
     readme = (ROOT / "README.md").read_text()
     assert "make lab" in readme and "make test" in readme
 
+
+
+def test_the_pages_workflow_builds_with_the_makefiles_site_target():
+    """The site published to GitHub Pages is the one `make site` builds and checks, from the folder
+    tools/build_site.py writes."""
+    import yaml
+
+    flow = yaml.safe_load((ROOT / ".github" / "workflows" / "site.yml").read_text())
+    steps = [s for job in flow["jobs"].values() for s in job["steps"]]
+    runs = [s["run"] for s in steps if "run" in s]
+    assert "make site" in runs, runs
+    assert re.search(r"^site:", (ROOT / "Makefile").read_text(), re.M), "the Makefile has a site target"
+    upload = next(s for s in steps if s.get("uses", "").startswith("actions/upload-pages-artifact"))
+    sys.path.insert(0, str(ROOT / "tools"))
+    import build_site
+
+    assert Path(upload["with"]["path"]) == (build_site.DEFAULT_OUT / "_build" / "html").relative_to(ROOT)

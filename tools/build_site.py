@@ -546,8 +546,10 @@ def main(argv=None):
     args = ap.parse_args(argv)
     html, summary = build(args.out, args.only, args.fresh)
     big = max(summary["pages"].items(), key=lambda kv: kv[1]["bytes"])
+    total = sum(f.stat().st_size for f in html.rglob("*") if f.is_file())
     print(f"site: {html / 'index.html'} ({len(summary['pages'])} pages; executed in {summary['execute_s']:.0f} s, "
-          f"rendered in {summary['render_s']:.0f} s; largest page {big[0]} {big[1]['bytes'] / 1e6:.2f} MB)")
+          f"rendered in {summary['render_s']:.0f} s; largest page {big[0]} {big[1]['bytes'] / 1e6:.2f} MB; "
+          f"the whole site {total / 1e6:.1f} MB to publish)")
     over = [p for p, r in summary["pages"].items() if r["bytes"] > 5_000_000]
     if over:
         print(f"site: pages over 5 MB: {over}", file=sys.stderr)
