@@ -261,3 +261,12 @@ def test_sweep_config_names_real_panels_and_controls(tmp_path):
         path.write_text(bad)
         with pytest.raises(ValueError, match=r"\[P\]"):
             site_sweeps.load(path)
+
+
+def test_the_instructors_page_says_each_command_and_links_only_what_the_site_can_reach():
+    page = build_site.instructors_page()
+    for command in ("gm-grade", "make gradescope", "make kits", "otter assign", "nbgrader generate_assignment",
+                    "make site", "python tools/set_repository.py"):
+        assert command in page, command
+    relative = [t for t in re.findall(r"\]\(([^)\s]+)\)", page) if not re.match(r"[a-z]+:|#", t)]
+    assert not relative, f"links the site cannot follow: {relative}"

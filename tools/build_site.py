@@ -408,6 +408,28 @@ def copy_static(src_dir):
         shutil.copytree(mods / name, static / dest, ignore=shutil.ignore_patterns("*.map", "less", "scss", "*.md", "embed.js", "libembed-amd.js"))
 
 
+def only_some(rels):
+    """Is this a partial build (make site PAGES=...)? The instructor's page comes with full builds."""
+    return set(rels) != set(pages())
+
+
+def instructors_page():
+    """The site's page for instructors: README's sections on instructors and the website, one text
+    for both; links to files the site does not publish point at the repository."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    parts = [readme[readme.index(h):] for h in ("## For instructors", "## The website")]
+    body = "\n".join(p[:p.index("\n## ", 3)].rstrip() + "\n" if "\n## " in p[3:] else p for p in parts)
+
+    def link(m):
+        target = m.group(2)
+        if re.match(r"[a-z]+:|#", target):
+            return m.group(0)
+        return f"{m.group(1)}({set_repository.file_url(target)})"
+
+    body = re.sub(r"(\]\s*)\(([^)\s]+)\)", link, body)
+    return "# Publishing and grading the course\n\n" + body
+
+
 def write_book(src_dir, rels):
     repo, branch = set_repository.read()
     book = [r for r in rels if r.startswith("book/")]
@@ -420,6 +442,10 @@ def write_book(src_dir, rels):
             toc += ["parts:"] if "parts:" not in toc else []
             toc += [f"  - caption: {caption}", "    chapters:"]
             toc += [f"      - file: {r.removesuffix('.ipynb')}" for r in items]
+    if book and root == book[0] and not only_some(rels):
+        (src_dir / "instructors.md").write_text(instructors_page(), encoding="utf-8")
+        toc += ["parts:"] if "parts:" not in toc else []
+        toc += ["  - caption: For instructors", "    chapters:", "      - file: instructors"]
     (src_dir / "_toc.yml").write_text("\n".join(toc) + "\n")
     config = {
         "title": "Geometric mechanics, interactively",
