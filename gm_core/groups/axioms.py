@@ -13,7 +13,7 @@ import numpy as np
 from gm_core.groups import check_group
 from gm_core.validation import check_int
 
-__all__ = ["AXIOMS", "axiom_residuals", "powers", "GROUP_AXIOMS", "Structure", "Verdict",
+__all__ = ["AXIOMS", "axiom_residuals", "powers", "GROUP_AXIOMS", "Structure", "AxiomReport",
            "STRUCTURES", "structure", "group_structure", "check_axioms", "find_identity", "is_group",
            "try_elements"]
 
@@ -97,7 +97,7 @@ class Structure:
         return f"{self.fmt(a)} {self.symbol} {self.fmt(b)}"
 
 
-class Verdict:
+class AxiomReport:
     """One axiom's verdict on a :class:`Structure`: ``holds`` (bool), ``witness`` (the elements of
     a counterexample, or ()), ``why`` (one or two short lines saying what goes wrong or what
     was checked)."""
@@ -106,7 +106,7 @@ class Verdict:
         self.axiom, self.holds, self.why, self.witness = axiom, bool(holds), why, tuple(witness)
 
     def __repr__(self):
-        return f"Verdict({self.axiom!r}, holds={self.holds}, why={self.why!r})"
+        return f"AxiomReport({self.axiom!r}, holds={self.holds}, why={self.why!r})"
 
 
 def _fmt_number(x):
@@ -199,8 +199,8 @@ def _closure(S):
         for b in S.pool:
             c = S.op(a, b)
             if not S.member(c):
-                return Verdict("closure", False, f"{S.show(a, b)} = {S.fmt(c)} is not in {S.set_name}", (a, b))
-    return Verdict("closure", True, f"every a {S.symbol} b tried lands in {S.set_name}")
+                return AxiomReport("closure", False, f"{S.show(a, b)} = {S.fmt(c)} is not in {S.set_name}", (a, b))
+    return AxiomReport("closure", True, f"every a {S.symbol} b tried lands in {S.set_name}")
 
 
 def _associativity(S):
@@ -211,14 +211,14 @@ def _associativity(S):
         a, b, c = S.pool[i], S.pool[j], S.pool[k]
         left, right = S.op(S.op(a, b), c), S.op(a, S.op(b, c))
         if not S.equal(left, right):
-            return Verdict("associativity", False,
+            return AxiomReport("associativity", False,
                            f"({S.show(a, b)}) {S.symbol} {S.fmt(c)} = {S.fmt(left)}, but\n"
                            f"{S.fmt(a)} {S.symbol} ({S.show(b, c)}) = {S.fmt(right)}", (a, b, c))
-    return Verdict("associativity", True, "(a∘b)∘c = a∘(b∘c) for every triple tried".replace("∘", S.symbol))
+    return AxiomReport("associativity", True, "(a∘b)∘c = a∘(b∘c) for every triple tried".replace("∘", S.symbol))
 
 
 def find_identity(S):
-    """``(e, verdict)``: the two-sided identity of ``S`` (None if it has none) and its Verdict.
+    """``(e, verdict)``: the two-sided identity of ``S`` (None if it has none) and its AxiomReport.
 
     For each pool element a, the only right identity candidate is the solution of a o x = a and
     the only left one that of x o a = a (``S.solve_right`` / ``S.solve_left``); an identity
@@ -229,48 +229,48 @@ def find_identity(S):
     right = [(a, x) for a, x in right if x is not None]
     left = [(a, x) for a, x in left if x is not None]
     if not right or not left:
-        return None, Verdict("identity", False, "a∘x = a has no unique solution")
+        return None, AxiomReport("identity", False, "a∘x = a has no unique solution")
     (a0, e), sym = right[0], S.symbol
     for a, x in right[1:]:
         if not S.equal(x, e):
-            return None, Verdict("identity", False, f"{S.fmt(a0)} {sym} x = {S.fmt(a0)} needs x = {S.fmt(e)},\n"
+            return None, AxiomReport("identity", False, f"{S.fmt(a0)} {sym} x = {S.fmt(a0)} needs x = {S.fmt(e)},\n"
                                  f"but {S.fmt(a)} {sym} x = {S.fmt(a)} needs x = {S.fmt(x)}", (a0, a))
     for a, x in left:
         if not S.equal(x, e):
-            return e, Verdict("identity", False,
+            return e, AxiomReport("identity", False,
                                  f"{S.fmt(e)} works on the right ({S.fmt(a)} {sym} {S.fmt(e)} = {S.fmt(a)}), but\n"
                                  f"{S.show(e, a)} = {S.fmt(S.op(e, a))} ≠ {S.fmt(a)}: no two-sided identity",
                                  (e, a))
     if not S.member(e):
-        return e, Verdict("identity", False, f"a {sym} x = a forces x = {S.fmt(e)}, which is not in {S.set_name}",
+        return e, AxiomReport("identity", False, f"a {sym} x = a forces x = {S.fmt(e)}, which is not in {S.set_name}",
                           (e,))
-    return e, Verdict("identity", True, f"e = {S.fmt(e)}: e {sym} a = a {sym} e = a for every a tried")
+    return e, AxiomReport("identity", True, f"e = {S.fmt(e)}: e {sym} a = a {sym} e = a for every a tried")
 
 
 def _inverse(S, e, identity):
     sym = S.symbol
     if e is None:
-        return Verdict("inverse", False, "no identity e, so a∘x = e has\nnothing to aim at".replace("∘", sym))
+        return AxiomReport("inverse", False, "no identity e, so a∘x = e has\nnothing to aim at".replace("∘", sym))
     for a in S.pool:
         x = S.solve_right(a, e)
         if x is None:
-            return Verdict("inverse", False, f"{S.fmt(a)} {sym} x = {S.fmt(e)} has no solution at all", (a,))
+            return AxiomReport("inverse", False, f"{S.fmt(a)} {sym} x = {S.fmt(e)} has no solution at all", (a,))
         if not S.member(x):
             lead = "" if identity.holds else f"(even borrowing e = {S.fmt(e)}) "
-            return Verdict("inverse", False,
+            return AxiomReport("inverse", False,
                            f"{lead}{S.fmt(a)} {sym} x = {S.fmt(e)} needs x = {S.fmt(x)},\nwhich is not in {S.set_name}",
                            (a, x))
         y = S.solve_left(a, e)
         if y is None or not S.equal(x, y):
-            return Verdict("inverse", False, f"{S.fmt(a)} is undone by {S.fmt(x)} on the right but not on the left",
+            return AxiomReport("inverse", False, f"{S.fmt(a)} is undone by {S.fmt(x)} on the right but not on the left",
                            (a, x))
     if not identity.holds:
-        return Verdict("inverse", False, "no identity in the set: inverses\nare not defined")
-    return Verdict("inverse", True, f"every a tried has an a⁻¹ with a {sym} a⁻¹ = a⁻¹ {sym} a = e")
+        return AxiomReport("inverse", False, "no identity in the set: inverses\nare not defined")
+    return AxiomReport("inverse", True, f"every a tried has an a⁻¹ with a {sym} a⁻¹ = a⁻¹ {sym} a = e")
 
 
 def check_axioms(S):
-    """Verdicts ``{axiom: Verdict}`` of the four group axioms (1.ii)-(1.v) on a :class:`Structure`
+    """Verdicts ``{axiom: AxiomReport}`` of the four group axioms (1.ii)-(1.v) on a :class:`Structure`
     (or a name from :data:`STRUCTURES`), each failing one with a concrete counterexample from
     the structure's pool. A structure is a group when every verdict holds.
     """
