@@ -22,7 +22,7 @@ def main(argv=None):
     print(f"connection(r) on a {args.n} x {args.n} grid of shapes ({args.n ** 2} shapes), "
           f"{args.repeat} runs")
     print(f"{'system':<20} {'best ms':>9} {'median ms':>10} {'singular':>9}  target <= 20 ms")
-    for name, system in ALL_SYSTEMS().items():
+    for name, system in ALL_SYSTEMS.items():
         (lo1, hi1), (lo2, hi2) = system.shape_limits
         a, b = np.meshgrid(np.linspace(lo1, hi1, args.n), np.linspace(lo2, hi2, args.n), indexing="ij")
         grid = np.stack([a, b], -1)

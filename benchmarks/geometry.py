@@ -33,7 +33,7 @@ def main(argv=None):
     args = p.parse_args(argv)
     print(f"constraint_curvature(system, grid) on a {args.n} x {args.n} grid, {args.repeat} runs")
     print(f"{'system':<20} {'best ms':>9} {'median ms':>10}  target <= 50 ms")
-    for name, system in ALL_SYSTEMS().items():
+    for name, system in ALL_SYSTEMS.items():
         (lo1, hi1), (lo2, hi2) = system.shape_limits
         a, b = np.meshgrid(np.linspace(lo1, hi1, args.n), np.linspace(lo2, hi2, args.n), indexing="ij")
         grid = np.stack([a, b], -1)

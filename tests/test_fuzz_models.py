@@ -197,7 +197,7 @@ _METHODS = {"connection": (3, 2), "pfaffian": (3, 5), "singularity": None, "is_s
             "part_poses": (3,), "connection_derivative": None, "link_poses": (3, 3), "link_jacobians": None,
             "middle_link_jacobians": None, "mass_matrix": (5, 5), "drag_matrix": (5, 5),
             "metric": (5, 5), "frame_change": None, "frame_offset": None, "connection_closed_form": (3, 2)}
-for key, system in SY.ALL_SYSTEMS().items():
+for key, system in SY.ALL_SYSTEMS.items():
     for meth, tail in _METHODS.items():
         if callable(getattr(system, meth, None)):
             # connections are NaN at singular shapes (documented), so only their shape is checked

@@ -171,7 +171,7 @@ def test_bad_gait_input():
 # ------------------------------------------------------------------ reconstruction
 @pytest.mark.parametrize("name", list(GAITS))
 def test_net_displacement_matches_tight_solve_ivp(name):
-    s, g = ALL_SYSTEMS()[name], GAITS[name]
+    s, g = ALL_SYSTEMS[name], GAITS[name]
     d = net_displacement(s, g)
     ref = reference_displacement(s, g)
     assert d.shape == (3,)
@@ -192,7 +192,7 @@ def test_net_displacement_of_sampled_gait_matches_solve_ivp():
 @pytest.mark.parametrize("name", ["KinematicSnake", "LowReSwimmer", "HighReSwimmer", "Ackerman"])
 def test_reparameterization_invariance(name):
     """Fig. 3.1 / (3.3)-(3.4): the same path at another pacing gives the same displacement."""
-    s, g = ALL_SYSTEMS()[name], GAITS[name]
+    s, g = ALL_SYSTEMS[name], GAITS[name]
     a = 0.6
     tau = lambda t: t - a / (2 * np.pi) * np.sin(2 * np.pi * t)  # noqa: E731, tau' = 1 - a cos > 0
     tau_dot = lambda t: 1 - a * np.cos(2 * np.pi * t)  # noqa: E731
@@ -265,7 +265,7 @@ def test_nonsingular_systems_never_raise():
     """A large gait through every quadrant: no singular shape is reported, and the displacement
     is a finite element that the frame-by-frame trajectory ends on (an independent integration)."""
     for name in ["DifferentialDrive", "FloatingSnake", "LowReSwimmer", "HighReSwimmer"]:
-        system, gait = ALL_SYSTEMS()[name], circle_gait(2.5, (0.0, 0.0))
+        system, gait = ALL_SYSTEMS[name], circle_gait(2.5, (0.0, 0.0))
         assert not getattr(system, "may_be_singular", False), name
         check_gait(system, gait)
         g = net_displacement(system, gait)

@@ -318,9 +318,9 @@ def test_high_re_body_density_only_adds_body_inertia():
 
 
 # ------------------------------------------------------------------ shared behaviour
-@pytest.mark.parametrize("name", list(ALL_SYSTEMS()))
+@pytest.mark.parametrize("name", list(ALL_SYSTEMS))
 def test_connection_is_batched(name):
-    s = ALL_SYSTEMS()[name]
+    s = ALL_SYSTEMS[name]
     r = regular_shapes(s, 12).reshape(3, 4, 2)
     A = s.connection(r)
     assert A.shape == (3, 4, 3, 2)
@@ -331,10 +331,10 @@ def test_connection_is_batched(name):
     assert s.part_poses(r).shape == (3, 4, len(s.parts()), 3)
 
 
-@pytest.mark.parametrize("name", list(ALL_SYSTEMS()))
+@pytest.mark.parametrize("name", list(ALL_SYSTEMS))
 def test_connection_matches_finite_difference_of_the_constraint(name):
     """A r_dot must be the xi that zeroes the Pfaffian; check omega [xi; r_dot] = 0 directly."""
-    s = ALL_SYSTEMS()[name]
+    s = ALL_SYSTEMS[name]
     r = regular_shapes(s, 10)
     rd = RNG.normal(size=r.shape)
     xi = s.body_velocity(r, rd)
@@ -360,7 +360,7 @@ def test_singular_shapes_give_nan_quietly():
     a = 0.8  # D = 2 sin a1 - sin a2 + sin(a1 - a2) vanishes at a1 = 0 only if sin a2 = sin(-a2): a2 = 0
     assert s.is_singular([0.0, 0.0]) and not s.is_singular([0.0, a])
     for name in ["DifferentialDrive", "FloatingSnake", "LowReSwimmer", "HighReSwimmer"]:
-        assert np.all(np.isfinite(ALL_SYSTEMS()[name].connection(RNG.uniform(-3, 3, (50, 2)))))
+        assert np.all(np.isfinite(ALL_SYSTEMS[name].connection(RNG.uniform(-3, 3, (50, 2)))))
 
 
 def test_singular_error_is_a_value_error():
@@ -412,9 +412,9 @@ def test_other_bad_parameters():
         FloatingSnake(frame="tail")
 
 
-@pytest.mark.parametrize("name", list(ALL_SYSTEMS()))
+@pytest.mark.parametrize("name", list(ALL_SYSTEMS))
 def test_bad_shapes_name_the_argument(name):
-    s = ALL_SYSTEMS()[name]
+    s = ALL_SYSTEMS[name]
     with pytest.raises(ValueError, match="r"):
         s.connection([0.1, 0.2, 0.3])
     with pytest.raises(ValueError, match=r"\br\b"):

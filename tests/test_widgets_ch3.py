@@ -157,7 +157,7 @@ def test_gait_panel_singular_gait_flags():
 def test_static_figures_and_animation():
     fig, axes, arts = connection_fields_figure(KinematicSnake(), n=9)
     assert len(arts) == 3
-    fig2, axes2 = regimes_figure([ALL_SYSTEMS()[k] for k in ("KinematicSnake", "LowReSwimmer")], n=7)
+    fig2, axes2 = regimes_figure([ALL_SYSTEMS[k] for k in ("KinematicSnake", "LowReSwimmer")], n=7)
     assert axes2.shape == (2, 3)
     anim, fig3, traj = animate_gait(LowReSwimmer(), circle_gait(1.0), n_frames=12)
     assert traj.g.shape == (12, 3)
@@ -192,13 +192,13 @@ def test_singular_set_of_the_snake_includes_the_fold_lines_on_the_window_edge():
 
 
 # ------------------------------------------------------------------------- gaits for every system
-@pytest.fixture(scope="module", params=sorted(ALL_SYSTEMS()))
+@pytest.fixture(scope="module", params=sorted(ALL_SYSTEMS))
 def gait_panel(request):
     """``(name, GaitPanel)``: one panel per system, shared by the three families below (each test
     sets every control the family reads), closed after them."""
     import matplotlib.pyplot as plt
 
-    p = GaitPanel(system=ALL_SYSTEMS()[request.param])
+    p = GaitPanel(system=ALL_SYSTEMS[request.param])
     p.fig.gm_keep_open = True     # not closed by conftest's _close_figures between the tests
     yield request.param, p
     plt.close(p.fig)
@@ -210,7 +210,7 @@ def test_gait_panel_families_for_every_system(gait_panel, family):
     from gm_core.systems.gaits import family_gait
 
     name, p = gait_panel
-    system = ALL_SYSTEMS()[name]
+    system = ALL_SYSTEMS[name]
     (lo1, hi1), (lo2, hi2) = system.shape_limits
     c = (0.1 * hi1, -0.3 * hi2) if name != "KinematicSnake" else (0.5, -1.2)
     size = 0.25 * min(hi1 - lo1, hi2 - lo2) if name != "KinematicSnake" else 0.6

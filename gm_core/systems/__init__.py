@@ -12,7 +12,7 @@ coefficients come from :mod:`gm_core.systems.fluids`. These modules import :mod:
 never the other way round.
 """
 from gm_core.systems.ackerman import Ackerman
-from gm_core.systems.base import LocomotionSystem, Part
+from gm_core.systems.base import LocomotionSystem, SystemPart
 from gm_core.systems.diff_drive import DifferentialDrive
 from gm_core.systems.floating_snake import FloatingSnake
 from gm_core.systems.high_re import HighReSwimmer
@@ -25,15 +25,17 @@ from gm_core.systems.restricted import AffineRestriction, shape_slice
 from gm_core.systems.slender_body import SlenderBody, chain_approximation, serpenoid_modes
 from gm_core.systems.three_link import ThreeLinkSystem
 
-__all__ = ["LocomotionSystem", "Part", "ThreeLinkSystem", "DifferentialDrive", "Ackerman",
+__all__ = ["LocomotionSystem", "SystemPart", "ThreeLinkSystem", "DifferentialDrive", "Ackerman",
            "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer",
            "LinkChain", "BodyFrame", "PoseFrame", "CentreOfMassFrame", "Reframed", "MinimumPerturbationFrame",
            "AffineRestriction", "shape_slice", "SlenderBody", "chain_approximation", "serpenoid_modes",
            "ALL_SYSTEMS"]
 
 
-def ALL_SYSTEMS():
-    """One default instance of each system, keyed by class name (for tests, benchmarks, demos)."""
-    return {"DifferentialDrive": DifferentialDrive(), "Ackerman": Ackerman(),
-            "KinematicSnake": KinematicSnake(), "FloatingSnake": FloatingSnake(),
-            "LowReSwimmer": LowReSwimmer(), "HighReSwimmer": HighReSwimmer()}
+#: One default instance of each system of chapter 3, keyed by class name (like ALL_GROUPS): the
+#: system laws of tests/test_systems.py, the benchmarks and the demos run over every entry.
+ALL_SYSTEMS: dict[str, LocomotionSystem] = {
+    "DifferentialDrive": DifferentialDrive(), "Ackerman": Ackerman(),
+    "KinematicSnake": KinematicSnake(), "FloatingSnake": FloatingSnake(),
+    "LowReSwimmer": LowReSwimmer(), "HighReSwimmer": HighReSwimmer(),
+}

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gm_core.systems.base import LocomotionSystem, Part, rectangle_outline
+from gm_core.systems.base import LocomotionSystem, SystemPart, rectangle_outline
 from gm_core.validation import positive_number
 
 __all__ = ["Ackerman"]
@@ -60,9 +60,9 @@ class Ackerman(LocomotionSystem):
 
     def parts(self):
         R, L = self.wheel_radius, self.wheelbase
-        return [Part("chassis", rectangle_outline(1.3 * L, 0.45 * L), "chassis"),
-                Part("rear wheel", rectangle_outline(min(2 * R, 0.4 * L), 0.12 * L), "wheel"),
-                Part("front wheel", rectangle_outline(min(2 * R, 0.4 * L), 0.12 * L), "wheel")]
+        return [SystemPart("chassis", rectangle_outline(1.3 * L, 0.45 * L), "chassis"),
+                SystemPart("rear wheel", rectangle_outline(min(2 * R, 0.4 * L), 0.12 * L), "wheel"),
+                SystemPart("front wheel", rectangle_outline(min(2 * R, 0.4 * L), 0.12 * L), "wheel")]
 
     def part_poses(self, r):
         r = self._shape(r)

@@ -2,7 +2,7 @@
 
 A system knows its Pfaffian ``omega(r)`` (..., 3, 3 + n) (3.11)-(3.13) and so its local
 connection ``A(r) = omega_xi^-1 omega_r`` (3.17), with body velocity ``xi = -A(r) r_dot`` (3.10).
-For the drawing layer it also lists its rigid parts (:class:`Part`, an outline in the part's own
+For the drawing layer it also lists its rigid parts (:class:`SystemPart`, an outline in the part's own
 frame) and where they sit in the system's body frame at a shape (:meth:`part_poses`).
 """
 from __future__ import annotations
@@ -17,11 +17,11 @@ from gm_core.systems.connection import SINGULAR_TOL, connection_from_pfaffian, p
 from gm_core.systems.motion import body_velocity, curvature_form, fd_connection_derivative
 from gm_core.validation import BoolArray, FloatArray, as_array
 
-__all__ = ["LocomotionSystem", "Part", "ellipse_outline", "rectangle_outline"]
+__all__ = ["LocomotionSystem", "SystemPart", "ellipse_outline", "rectangle_outline"]
 
 
 @dataclass(frozen=True)
-class Part:
+class SystemPart:
     """A rigid part for drawing: ``outline (k, 2)`` in its own frame; ``kind`` is a style hint."""
 
     name: str
@@ -60,8 +60,8 @@ class LocomotionSystem:
         """Pfaffian ``omega(r)`` (..., 3, 3 + n): ``omega [xi; r_dot] = 0`` on allowed motions."""
         raise NotImplementedError
 
-    def parts(self) -> list[Part]:
-        """The rigid parts to draw (list of :class:`Part`)."""
+    def parts(self) -> list[SystemPart]:
+        """The rigid parts to draw (list of :class:`SystemPart`)."""
         raise NotImplementedError
 
     def part_poses(self, r: ArrayLike) -> FloatArray:

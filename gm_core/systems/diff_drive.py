@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gm_core.systems.base import LocomotionSystem, Part, rectangle_outline
+from gm_core.systems.base import LocomotionSystem, SystemPart, rectangle_outline
 from gm_core.validation import positive_number
 
 __all__ = ["DifferentialDrive"]
@@ -48,9 +48,9 @@ class DifferentialDrive(LocomotionSystem):
 
     def parts(self):
         R, w = self.wheel_radius, self.half_width
-        return [Part("chassis", rectangle_outline(1.6 * w, 1.4 * w), "chassis"),
-                Part("wheel 1", rectangle_outline(2 * R, 0.25 * w), "wheel"),
-                Part("wheel 2", rectangle_outline(2 * R, 0.25 * w), "wheel")]
+        return [SystemPart("chassis", rectangle_outline(1.6 * w, 1.4 * w), "chassis"),
+                SystemPart("wheel 1", rectangle_outline(2 * R, 0.25 * w), "wheel"),
+                SystemPart("wheel 2", rectangle_outline(2 * R, 0.25 * w), "wheel")]
 
     def part_poses(self, r):
         r = self._shape(r)

@@ -5,7 +5,7 @@ import numpy as np
 
 from gm_core.chains.chain import _flat
 from gm_core.chains.three_link import _middle_frame_kernel
-from gm_core.systems.base import Part, rectangle_outline
+from gm_core.systems.base import SystemPart, rectangle_outline
 from gm_core.systems.three_link import ThreeLinkSystem
 
 __all__ = ["KinematicSnake"]
@@ -84,7 +84,7 @@ class KinematicSnake(ThreeLinkSystem):
         out = super().parts()
         w = self._link_width()
         # A wheel (drawn across the link) under each link centre: it rolls along the link only.
-        out += [Part(f"wheel {i + 1}", rectangle_outline(2.5 * w, 0.8 * w), "wheel") for i in range(3)]
+        out += [SystemPart(f"wheel {i + 1}", rectangle_outline(2.5 * w, 0.8 * w), "wheel") for i in range(3)]
         return out
 
     def part_poses(self, r):

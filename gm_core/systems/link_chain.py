@@ -42,7 +42,7 @@ import numpy as np
 
 from gm_core.chains.chain import _chain_jacobians_T, _chain_poses_T, _flat, _with_trig
 from gm_core.groups import SE2
-from gm_core.systems.base import LocomotionSystem, Part, ellipse_outline, rectangle_outline
+from gm_core.systems.base import LocomotionSystem, SystemPart, ellipse_outline, rectangle_outline
 from gm_core.systems.connection import connection_from_pfaffian, shape_space_metric
 from gm_core.systems.fluids import ellipse_added_mass, slender_link_drag
 from gm_core.validation import as_array, check_int, check_option, check_positive, positive_number
@@ -329,11 +329,11 @@ class LinkChain(LocomotionSystem):
     # -- drawing -------------------------------------------------------------------------------
     def parts(self):
         if self.physics == "low_re":
-            return [Part(f"link {i + 1}", ellipse_outline(l / 2, l / 24), "link") for i, l in enumerate(self.lengths)]
+            return [SystemPart(f"link {i + 1}", ellipse_outline(l / 2, l / 24), "link") for i, l in enumerate(self.lengths)]
         if self.physics == "high_re":
-            return [Part(f"link {i + 1}", ellipse_outline(a, b), "link") for i, (a, b) in enumerate(self.semi_axes())]
+            return [SystemPart(f"link {i + 1}", ellipse_outline(a, b), "link") for i, (a, b) in enumerate(self.semi_axes())]
         w = 0.08 * sum(self.lengths) / 3
-        return [Part(f"link {i + 1}", rectangle_outline(l, w), "link") for i, l in enumerate(self.lengths)]
+        return [SystemPart(f"link {i + 1}", rectangle_outline(l, w), "link") for i, l in enumerate(self.lengths)]
 
     def part_poses(self, r):
         return self.link_poses(r)

@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from gm_core.groups import SE2
-from gm_core.systems.base import LocomotionSystem, Part, rectangle_outline
+from gm_core.systems.base import LocomotionSystem, SystemPart, rectangle_outline
 from gm_core.systems.connection import connection_from_pfaffian, shape_space_metric
 from gm_core.systems.reframed import body_jacobian
 from gm_core.validation import as_array, check_int, check_option, positive_number
@@ -217,7 +217,7 @@ class SlenderBody(LocomotionSystem):
     # -- drawing ---------------------------------------------------------------------------------
     def parts(self):
         piece = self.length / self.segments
-        return [Part(f"piece {i + 1}", rectangle_outline(piece * 1.02, self.length / 30), "link")
+        return [SystemPart(f"piece {i + 1}", rectangle_outline(piece * 1.02, self.length / 30), "link")
                 for i in range(self.segments)]
 
     def part_poses(self, r):

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from gm_core.chains.three_link import three_link_jacobians, three_link_poses
-from gm_core.systems.base import LocomotionSystem, Part, rectangle_outline
+from gm_core.systems.base import LocomotionSystem, SystemPart, rectangle_outline
 from gm_core.validation import as_array, check_positive
 
 __all__ = ["ThreeLinkSystem", "three_lengths"]
@@ -83,7 +83,7 @@ class ThreeLinkSystem(LocomotionSystem):
 
     def parts(self):
         w = self._link_width()
-        return [Part(f"link {i + 1}", rectangle_outline(l, w), "link") for i, l in enumerate(self.lengths)]
+        return [SystemPart(f"link {i + 1}", rectangle_outline(l, w), "link") for i, l in enumerate(self.lengths)]
 
     def __repr__(self):
         return f"{type(self).__name__}(lengths={self.lengths})"
