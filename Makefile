@@ -17,7 +17,7 @@ PYTEST_ARGS ?=
 # the site's and kits' subprocesses) are filled by the other (tests/nbrun.py: next_group).
 TEST_WORKERS ?= 4
 
-.PHONY: setup test-tools lab lab-settings test exercises workspace bench screenshots gradescope kits site clean help
+.PHONY: setup test-tools lab lab-settings test test-kits exercises workspace bench screenshots gradescope kits site clean help
 
 help:
 	@echo "make lab        set up and open JupyterLab on the course (book/00-start-here.ipynb)"
@@ -71,6 +71,11 @@ test-tools: setup
 # else each of the run's ~150 kernels and helper processes compiles the course from source.
 test: setup test-tools
 	env -u PYTHONDONTWRITEBYTECODE $(PY) -m pytest -n $(TEST_WORKERS) $(PYTEST_ARGS)
+
+# Every exercise through every grading kit (otter-grader, nbgrader, Gradescope), as each
+# instructor's tool runs it: tests/kits/, collected only here (each tool runs every notebook).
+test-kits: setup test-tools
+	GM_TEST_KITS=1 env -u PYTHONDONTWRITEBYTECODE $(PY) -m pytest -n 2 -p no:nbval tests/kits
 
 exercises: setup
 	$(PY) tools/make_exercises.py
