@@ -38,7 +38,7 @@ $(STAMP): pyproject.toml | $(PY)
 	@# setuptools' note about editable installs (not a problem here) is silenced; nothing else is.
 	PYTHONWARNINGS="ignore:::setuptools.command.editable_wheel" $(PY) -m pip install --quiet -e ".[lab,test]"
 	@# jsonschema's optional "iri" format checker compiles a Lark grammar whenever nbformat is
-	@# imported (about 1 s of CPU for every JupyterLab server, test worker and grading command);
+	@# imported (in every JupyterLab server, test worker and grading command);
 	@# nothing the course validates uses that format, so it is left out (as tools/venvs.py does).
 	$(PY) -m pip uninstall --yes --quiet rfc3987-syntax
 	@# The course is installed editable, so pip compiles none of it: compile it here, once (as pip

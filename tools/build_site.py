@@ -155,7 +155,7 @@ def execute(rel, src_dir, cache_dir, fresh=False):
     t = time.monotonic()
     try:
         # shutdown_kernel="immediate": the page is built from ``nb`` (its widget state included,
-        # stored before the kernel ends); an orderly exit would only cost the kernel ~0.4 CPU-s.
+        # stored before the kernel ends), so nothing needs the kernel's orderly exit.
         NotebookClient(nb, timeout=900, kernel_name="python3", allow_errors=False, store_widget_state=True,
                        shutdown_kernel="immediate", resources={"metadata": {"path": str(work)}}).execute()
     finally:

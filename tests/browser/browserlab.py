@@ -195,8 +195,8 @@ class LabServer:
             "--ServerApp.terminals_enabled=False",
             "--MappingKernelManager.cull_idle_timeout=0",
             # A test's kernel is ended at once when its session is deleted, not asked to exit
-            # first: an orderly exit of a kernel that ran a notebook (Python's finalization of its
-            # figures and modules) costs ~0.4 CPU-s, and no test looks at how a kernel ends.
+            # first: no test looks at how a kernel ends, and an orderly exit (Python finalizing
+            # the notebook's figures and modules) is work nobody needs.
             "--KernelManager.shutdown_wait_time=0",
         ] + (["--allow-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else [])
 

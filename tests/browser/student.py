@@ -159,7 +159,7 @@ def play_animations(nbp, wait_ms: int = 900) -> tuple[list[str], int]:
         root.locator("button.gm-anim-play").click()
         # the picture on screen must change: poll (a busy page may show the next frame late).
         # The player's frame number is read first; the screen is looked at (an element
-        # screenshot, ~0.1 s of the browser's CPU) once the player says it has moved on.
+        # screenshot, costly for the browser) only once the player says it has moved on.
         deadline = time.monotonic() + max(wait_ms / 1000, 10.0)
         after_px = before_px
         while True:
@@ -238,7 +238,7 @@ async () => {
 # a view's canvas only when a picture has loaded (counted by _WATCH_PICTURES_JS) or the canvas
 # is resized, so a watched canvas whose count and size are those of the last reading keeps its
 # pixels: its fingerprint is reused rather than computed again (the _settle loop asks ten times a
-# second, and hashing eight canvases took ~20 ms of the page's time).
+# second, and hashing every canvas each time would take the page's time from the notebook).
 _STATE_JS = r"""
 (keys) => {
   const out = {};
