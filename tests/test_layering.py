@@ -387,3 +387,23 @@ def test_no_course_file_imports_an_old_module_path():
     bad = [where for where, src, _, _ in _sources() if old.search(src)
            and where not in ("gm_core/renamed.py", "tests/test_old_workspaces.py", "tests/test_layering.py")]
     assert not bad, f"imports of old module paths: {bad}"
+
+
+def _private_imports(source):
+    """``(line, module, name)`` for every ``from gm_core... import _name`` / ``from gm_grader... import _name``."""
+    tree = ast.parse(re.sub(r"^(\s*)[%!].*$", r"\1pass", source, flags=re.M))
+    return [(n.lineno, n.module, a.name) for n in ast.walk(tree) if isinstance(n, ast.ImportFrom) and n.module
+            and n.module.split(".")[0] in ("gm_core", "gm_grader") for a in n.names if a.name.startswith("_")]
+
+
+def test_no_private_name_is_imported_across_modules():
+    """One copy of every formula is kept through public names: a helper another module needs is
+    public in its home (tests may reach private helpers of the module they test)."""
+    sources = [(str(p.relative_to(ROOT)), p.read_text(encoding="utf-8"))
+               for pkg in ("gm_core", "gm_grader") for p in sorted((ROOT / pkg).rglob("*.py"))]
+    bad = [f"{where} line {line}: {name} from {mod}" for where, src in sources for line, mod, name in _private_imports(src)]
+    assert not bad, "private names imported across modules:\n" + "\n".join(bad)
+
+
+def test_the_private_import_check_can_fail():
+    assert _private_imports("from gm_core.chains.kernels import _x, y\n") == [(1, "gm_core.chains.kernels", "_x")]

@@ -3,6 +3,7 @@
 * :mod:`.chain`: joints, links, :class:`Chain` and :class:`MobileChain`, forward kinematics and
   Jacobians of any serial chain (section 2.5);
 * :mod:`.jacobians`: world and body Jacobians, finite differences, relative poses;
+* :mod:`.kernels`: the batch-last kernels of chains of any length (poses, Jacobians, the middle frame);
 * :mod:`.arms`: the two-link arms of sections 2.2-2.5 (RR, RP);
 * :mod:`.three_link`: the three-link chain of section 2.6 and its middle, beta and centre-of-mass frames;
 * :mod:`.holonomic`: holonomic constraints (pinned links, the accessible manifold, section 2.1).
@@ -22,8 +23,6 @@ from gm_core.chains.chain import (
     Joint,
     Link,
     MobileChain,
-    link_chain_jacobians,
-    link_chain_poses,
     transported_columns,
 )
 from gm_core.chains.holonomic import (
@@ -40,6 +39,10 @@ from gm_core.chains.jacobians import (
     relative_pose,
     world_to_body_jacobian,
 )
+from gm_core.chains.kernels import (
+    link_chain_jacobians,
+    link_chain_poses,
+)
 from gm_core.chains.three_link import (
     beta_frame_jacobian,
     beta_frame_velocity,
@@ -53,12 +56,12 @@ from gm_core.chains.three_link import (
 )
 
 __all__ = [
-    "transported_columns", "Joint", "Link", "Chain", "MobileChain", "METHODS", "link_chain_poses",
-    "link_chain_jacobians", "finite_difference_jacobians", "relative_pose",
-    "world_to_body_jacobian", "body_to_world_jacobian", "single_link_frames", "rr_arm_frames",
-    "rr_arm_jacobian", "rp_arm_frames", "rp_arm_body_jacobians", "three_link_chain",
-    "three_link_frames", "three_link_poses", "three_link_jacobians", "beta_frame_velocity",
-    "beta_frame_jacobian", "links_from_beta_frame", "com_frame", "com_frame_jacobians",
-    "pin_constraints", "pinned_pair", "circle_constraints", "sphere_plane_constraints",
-    "sample_accessible_manifold", "accessible_circle",
+    "Joint", "Link", "Chain", "MobileChain", "METHODS", "transported_columns",
+    "finite_difference_jacobians", "relative_pose", "world_to_body_jacobian",
+    "body_to_world_jacobian", "link_chain_poses", "link_chain_jacobians", "single_link_frames",
+    "rr_arm_frames", "rr_arm_jacobian", "rp_arm_frames", "rp_arm_body_jacobians",
+    "three_link_chain", "three_link_frames", "three_link_poses", "three_link_jacobians",
+    "beta_frame_velocity", "beta_frame_jacobian", "links_from_beta_frame", "com_frame",
+    "com_frame_jacobians", "pin_constraints", "pinned_pair", "circle_constraints",
+    "sphere_plane_constraints", "sample_accessible_manifold", "accessible_circle",
 ]

@@ -8,11 +8,11 @@ from gm_core.checks.choice import ChoicePart
 from gm_core.checks.exercise import Exercise
 from gm_core.checks.exp_routes import (
     EXP_METHODS,
-    _d_judge,
-    _d_probes,
-    _exp_part,
-    _helix_inputs,
-    _helix_ref,
+    d_judge,
+    d_probes,
+    exp_part,
+    helix_inputs,
+    helix_ref,
 )
 from gm_core.checks.parts import CustomPart, FunctionPart, TuplePart, outcome_error, probe_rng, rng_inputs
 from gm_core.checks.sandbox import Unattempted, Wrong
@@ -288,18 +288,18 @@ ex1_3 = Exercise("1.3", "T_g L_{g^-1} = (T_e L_g)^-1 and T_g R_{g^-1} = (T_e R_g
 # ============================================================================ 1.4
 
 ex1_4 = Exercise("1.4", "The exponential map on SE(2)", [
-    _exp_part("a", "left"),
-    _exp_part("b", "right"),
+    exp_part("a", "left"),
+    exp_part("b", "right"),
     FunctionPart(
         "c", "helix(xi) -> (pitch, diameter, arclength) of the exponential's helix",
-        ref=_helix_ref, inputs=_helix_inputs, arg_names=("xi",), shape=(3,),
-        mistakes=[(lambda xi: _helix_ref(xi) * np.array([1, 0.5, 1]),
+        ref=helix_ref, inputs=helix_inputs, arg_names=("xi",), shape=(3,),
+        mistakes=[(lambda xi: helix_ref(xi) * np.array([1, 0.5, 1]),
                    "your second entry is the radius of the projected circle, not its diameter."),
-                  (lambda xi: np.array([_helix_ref(xi)[0], _helix_ref(xi)[1],
+                  (lambda xi: np.array([helix_ref(xi)[0], helix_ref(xi)[1],
                                         np.linalg.norm(np.asarray(xi, dtype=float))]),
                    "your arclength includes the rotational component: that is the length of the "
                    "helix in (x, y, theta) space, not of its projection onto the xy plane."),
-                  (lambda xi: np.array([abs(_helix_ref(xi)[0]), *_helix_ref(xi)[1:]]),
+                  (lambda xi: np.array([abs(helix_ref(xi)[0]), *helix_ref(xi)[1:]]),
                    "the pitch is signed: a negative w makes theta go down by 2 pi per turn.")],
         hints=["Project the flow onto the xy plane: its speed |(vx, vy)| is constant and its "
                "heading turns at the constant rate w. What curve is that?",
@@ -309,7 +309,7 @@ ex1_4 = Exercise("1.4", "The exponential map on SE(2)", [
         solution_text="pitch = 2 pi sign(w) (theta rises one full turn per loop), diameter = "
                       "2 |(vx, vy)| / |w|, xy arclength in unit time = |(vx, vy)|."),
     CustomPart(
-        "d", "Four numerical routes to exp: dict of functions f(xi, n)", _d_probes, _d_judge,
+        "d", "Four numerical routes to exp: dict of functions f(xi, n)", d_probes, d_judge,
         hints=["Euler on the left field: g <- g + (1/n) T_e L_g xi, n times. On the right field use "
                "T_e R_g instead.",
                "Cumulative product: multiply n copies of (I + xi_hat / n). Taylor: sum xi_hat^k / k! "

@@ -297,7 +297,7 @@ class MobileChainScene(_ChainScene):
         draw_chain_naive(self.ax, fr, frames_shown=("g",))
 
 
-class _ThreeLinkScene(_ChainScene):
+class ThreeLinkScene(_ChainScene):
     """Three links, middle link at the identity and drawn as the base (the convention of (2.57))."""
 
     def __init__(self, lengths=(1.0, 1.0, 1.0), **options):
@@ -310,7 +310,7 @@ class _ThreeLinkScene(_ChainScene):
         self.art = ChainArtist(self.ax, 3, frames_shown=("g",), frame_length=0.25, base_link=1)
 
 
-class BetaFrameScene(_ThreeLinkScene):
+class BetaFrameScene(ThreeLinkScene):
     """A body frame g = g_2 beta placed by values (fig. 2.7) or at the centre of mass (fig. 2.9)."""
 
     def create(self):
@@ -342,7 +342,7 @@ class BetaFrameScene(_ThreeLinkScene):
         draw_chain_naive(self.ax, {"f": beta[None], "g": beta[None], "h": beta[None]}, width=0.0)
 
 
-class ThreeLinkVelocityScene(_ThreeLinkScene):
+class ThreeLinkVelocityScene(ThreeLinkScene):
     """Body velocities of the three links from (xi, alpha_dot) through the corrected (2.57)-(2.59)."""
 
     def create(self):

@@ -13,7 +13,7 @@ import numpy as np
 from gm_core.chains import chain as C
 from gm_core.chains.holonomic import pin_constraints, pinned_pair
 from gm_core.chains.three_link import beta_frame_velocity, com_frame
-from gm_core.drawing.chains import ArrowsArtist, ChainArtist, _ThreeLinkScene
+from gm_core.drawing.chains import ArrowsArtist, ChainArtist, ThreeLinkScene
 from gm_core.drawing.toolkit.axes import square_axes
 from gm_core.drawing.toolkit.primitives import BodyArtist, FrameArtist
 from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, PathText, Scene, new_figure, readout
@@ -199,7 +199,7 @@ class RelativePoseScene(Scene):
 
 
 # ============================================ fig. 2.9, section 2.5.6: the velocity of beta
-class BetaVelocityScene(_ThreeLinkScene):
+class BetaVelocityScene(ThreeLinkScene):
     """The velocity of the centre-of-mass frame g = g_2 beta(alpha) split into its two causes, (2.60)-(2.67).
 
     The middle link sits at the identity and moves with body velocity xi; the shape changes at

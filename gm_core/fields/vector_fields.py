@@ -30,7 +30,7 @@ DEFAULT_METHOD = "DOP853"
 MAX_EVALUATIONS = 50_000
 
 
-def _check_side(side):
+def check_side(side):
     if not isinstance(side, str) or side not in ("left", "right"):  # a longer message than check_option's
         raise ValueError(
             f"side must be 'left' (left-invariant field, body velocity, (1.46)) or 'right' "
@@ -39,14 +39,14 @@ def _check_side(side):
     return side
 
 
-def _check_solve_ivp_kw(kw, where):
+def check_solve_ivp_kw(kw, where):
     unknown = sorted(set(kw) - SOLVE_IVP_OPTIONS)
     if unknown:
         raise TypeError(f"{where} got unknown keyword argument(s) {', '.join(unknown)}; "
                         f"solve_ivp options are {', '.join(sorted(SOLVE_IVP_OPTIONS))}")
 
 
-def _time(t, name="t"):
+def check_time(t, name="t"):
     t = as_array(t, name, what=" (times)")
     return t
 
@@ -227,7 +227,7 @@ def integral_curve(field, q0, t_span, t_eval=None, *, max_evaluations=MAX_EVALUA
             raise _TooManyEvaluations
         return X._eval(y.reshape(shape), t).ravel()
 
-    _check_solve_ivp_kw(solve_ivp_kw, "integral_curve")
+    check_solve_ivp_kw(solve_ivp_kw, "integral_curve")
     max_evaluations = check_int(max_evaluations, "max_evaluations", minimum=1, maximum=10**9)
     kw = {"method": DEFAULT_METHOD, "rtol": DEFAULT_RTOL, "atol": DEFAULT_ATOL}
     kw.update(solve_ivp_kw)

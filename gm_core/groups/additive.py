@@ -10,15 +10,15 @@ from numpy.typing import ArrayLike
 from gm_core.groups.base import (
     TWO_PI,
     LieGroup,
-    _angle_of_block,
-    _check_entries,
-    _check_rotation,
-    _eye,
-    _mod_period,
-    _rng,
-    _rot,
-    _scale,
-    _wrap,
+    angle_of_block,
+    as_generator,
+    check_entries,
+    check_rotation,
+    check_scale,
+    eye,
+    mod_period,
+    rot,
+    wrap,
     wrap_periodic,
 )
 from gm_core.validation import FloatArray, as_array, check_shape
@@ -48,13 +48,13 @@ class _Additive(LieGroup):
 
     def left_lifted_action(self, h: ArrayLike, g: ArrayLike) -> FloatArray:
         """The identity matrix: translations do not turn velocities, book (1.22)."""
-        return _eye(self.param_dim, self._batch(("h", self._element(h, "h")), ("g", self._element(g))))
+        return eye(self.param_dim, self._batch(("h", self._element(h, "h")), ("g", self._element(g))))
 
     right_lifted_action = left_lifted_action
 
     def Ad(self, g: ArrayLike) -> FloatArray:
         """The identity matrix: body and spatial velocities coincide in a commutative group."""
-        return _eye(self.tangent_dim, self._element(g).shape[:-1])
+        return eye(self.tangent_dim, self._element(g).shape[:-1])
 
     Ad_inv = Ad
 
@@ -111,23 +111,23 @@ class Rn(_Additive):
         n = self.param_dim
         expected = np.zeros_like(X)
         expected[..., :n, n] = X[..., :n, n]
-        _check_entries(X, expected, "X", f"a translation generator [[0, xi], [0, 0]] of {self.name}")
+        check_entries(X, expected, "X", f"a translation generator [[0, xi], [0, 0]] of {self.name}")
         return X[..., :n, n].copy()
 
     def matrix(self, g: ArrayLike) -> FloatArray:
         """The translation matrix [[I, g], [0, 1]], ``(..., n+1, n+1)``."""
         g = self._element(g)
         n = self.param_dim
-        G = _eye(n + 1, g.shape[:-1])
+        G = eye(n + 1, g.shape[:-1])
         G[..., :n, n] = g
         return G
 
     def from_matrix(self, G: ArrayLike) -> FloatArray:
         G = self._square(G, "G")
         n = self.param_dim
-        expected = _eye(n + 1, G.shape[:-2])
+        expected = eye(n + 1, G.shape[:-2])
         expected[..., :n, n] = G[..., :n, n]
-        _check_entries(G, expected, "G", f"a translation matrix [[I, g], [0, 1]] of {self.name}")
+        check_entries(G, expected, "G", f"a translation matrix [[I, g], [0, 1]] of {self.name}")
         return G[..., :n, n].copy()
 
     def nearest_element(self, M: ArrayLike) -> FloatArray:
@@ -160,20 +160,20 @@ class _SO2(_Additive):
 
     def log(self, g: ArrayLike) -> FloatArray:
         """theta reduced into (-pi, pi], exactly for every finite theta."""
-        return _wrap(self._element(g)).copy()
+        return wrap(self._element(g)).copy()
 
     def matrix(self, g: ArrayLike) -> FloatArray:
         """R(theta) = [[cos, -sin], [sin, cos]], book (1.1)."""
-        return _rot(self._element(g)[..., 0])
+        return rot(self._element(g)[..., 0])
 
     def from_matrix(self, G: ArrayLike) -> FloatArray:
         G = self._square(G, "G")
-        _check_rotation(G, "G")
+        check_rotation(G, "G")
         return np.arctan2(G[..., 1, 0], G[..., 0, 0])[..., None]
 
     def nearest_element(self, M: ArrayLike) -> FloatArray:
         """The angle of the nearest rotation to ``M``."""
-        return _angle_of_block(self._square(M, "M"))[..., None]
+        return angle_of_block(self._square(M, "M"))[..., None]
 
 
 class S1(_Additive):
@@ -199,7 +199,7 @@ class S1(_Additive):
         radians = self.period == TWO_PI
         self.name = "(S^1, + mod 2pi)" if radians else f"(S^1, + mod {period:g})"
         self.label = "S¹ (2π)" if radians else f"S¹ ({period:g})"
-        self._scale = TWO_PI / self.period
+        self.scale = TWO_PI / self.period
         super().__init__()
 
     def _in_domain(self, g):
@@ -207,42 +207,42 @@ class S1(_Additive):
 
     def project(self, g: ArrayLike) -> FloatArray:
         """The representative of ``g`` in [0, k)."""
-        return _mod_period(self._element(g), self.period)
+        return mod_period(self._element(g), self.period)
 
     def compose(self, g: ArrayLike, h: ArrayLike) -> FloatArray:
         """(a + b) mod k."""
-        return _mod_period(super().compose(g, h), self.period)
+        return mod_period(super().compose(g, h), self.period)
 
     def inverse(self, g: ArrayLike) -> FloatArray:
         """(-a) mod k."""
-        return _mod_period(-self._element(g), self.period)
+        return mod_period(-self._element(g), self.period)
 
     def hat(self, xi: ArrayLike) -> FloatArray:
         """so(2) generator of the rotation rate 2 pi xi / k, ``(..., 2, 2)``."""
-        return SO2.hat(self._algebra(xi) * self._scale)
+        return SO2.hat(self._algebra(xi) * self.scale)
 
     def vee(self, X: ArrayLike) -> FloatArray:
-        return SO2.vee(X) / self._scale
+        return SO2.vee(X) / self.scale
 
     def exp(self, xi: ArrayLike) -> FloatArray:
         """xi mod k."""
-        return _mod_period(self._algebra(xi), self.period)
+        return mod_period(self._algebra(xi), self.period)
 
     def matrix(self, g: ArrayLike) -> FloatArray:
         """The rotation R(2 pi a / k): the isomorphism S^1 -> SO(2) of (1.xiv)-(1.xvi)."""
-        return _rot(self._element(g)[..., 0] * self._scale)
+        return rot(self._element(g)[..., 0] * self.scale)
 
     def from_matrix(self, G: ArrayLike) -> FloatArray:
-        return _mod_period(SO2.from_matrix(G) / self._scale, self.period)
+        return mod_period(SO2.from_matrix(G) / self.scale, self.period)
 
     def nearest_element(self, M: ArrayLike) -> FloatArray:
-        return _mod_period(SO2.nearest_element(M) / self._scale, self.period)
+        return mod_period(SO2.nearest_element(M) / self.scale, self.period)
 
     def random(self, rng: np.random.Generator | int | None, size: int | tuple[int, ...] = (), scale: float = 1.0) -> FloatArray:
         """Uniform on [0, k) (``scale`` is accepted for the common interface and ignored: the
         circle has no size to stretch)."""
-        rng = _rng(rng)
-        _scale(scale)
+        rng = as_generator(rng)
+        check_scale(scale)
         return rng.uniform(0.0, self.period, check_shape(size, "size") + (1,))
 
 
@@ -269,32 +269,32 @@ class _R2xS1(_Additive):
     def vee(self, X: ArrayLike) -> FloatArray:
         X = self._square(X, "X")
         out = np.stack([X[..., 0, 2], X[..., 1, 2], X[..., 4, 3]], -1)
-        _check_entries(X, self.hat(out), "X", "a block-diagonal generator of (R^2 x S^1, +) (see hat)")
+        check_entries(X, self.hat(out), "X", "a block-diagonal generator of (R^2 x S^1, +) (see hat)")
         return out
 
     def matrix(self, g: ArrayLike) -> FloatArray:
         """Block-diagonal ``(..., 5, 5)``: translation [[I, (x, y)], [0, 1]] beside R(theta)."""
         g = self._element(g)
-        G = _eye(5, g.shape[:-1])
+        G = eye(5, g.shape[:-1])
         G[..., 0, 2] = g[..., 0]
         G[..., 1, 2] = g[..., 1]
-        G[..., 3:5, 3:5] = _rot(g[..., 2])
+        G[..., 3:5, 3:5] = rot(g[..., 2])
         return G
 
     def from_matrix(self, G: ArrayLike) -> FloatArray:
         G = self._square(G, "G")
-        _check_rotation(G[..., 3:5, 3:5], "G")
+        check_rotation(G[..., 3:5, 3:5], "G")
         out = np.stack([G[..., 0, 2], G[..., 1, 2], np.arctan2(G[..., 4, 3], G[..., 3, 3])], -1)
-        expected = _eye(5, G.shape[:-2])
+        expected = eye(5, G.shape[:-2])
         expected[..., 0, 2] = G[..., 0, 2]
         expected[..., 1, 2] = G[..., 1, 2]
         expected[..., 3:5, 3:5] = G[..., 3:5, 3:5]
-        _check_entries(G, expected, "G", "block-diagonal [[I, (x, y)], [0, 1]] beside a rotation R(theta)")
+        check_entries(G, expected, "G", "block-diagonal [[I, (x, y)], [0, 1]] beside a rotation R(theta)")
         return out
 
     def nearest_element(self, M: ArrayLike) -> FloatArray:
         M = self._square(M, "M")
-        return np.stack([M[..., 0, 2], M[..., 1, 2], _angle_of_block(M[..., 3:5, 3:5])], -1)
+        return np.stack([M[..., 0, 2], M[..., 1, 2], angle_of_block(M[..., 3:5, 3:5])], -1)
 
 
 SO2 = _SO2()

@@ -33,7 +33,7 @@ _PI = np.pi
 
 
 # ---------------------------------------------------------------------------------- angles
-def _wrap(t):
+def wrap(t):
     """Unchecked :func:`wrap_angle` for a float array (returns ``t`` itself when already in range)."""
     if t.size == 0 or (t.max() <= _PI and t.min() > -_PI):
         return t
@@ -56,7 +56,7 @@ def wrap_angle(theta: ArrayLike) -> FloatArray:
     angles (1e8, 1e300) are reduced exactly, not with a rounded 2 pi.
     """
     t = as_array(theta, "theta", what=" (angles in radians)")
-    out = _wrap(t)
+    out = wrap(t)
     return out.copy() if out is t else out
 
 
@@ -67,15 +67,15 @@ def wrap_periodic(x: ArrayLike, period: float) -> FloatArray:
     other period the reduction is by that double, exactly (``np.remainder``).
     """
     if period == TWO_PI:
-        return _wrap(x)
+        return wrap(x)
     r = np.remainder(x, period)
     return np.where(r > 0.5 * period, r - period, r)
 
 
-def _mod_period(x, period):
+def mod_period(x, period):
     """Unchecked representative of ``x`` modulo ``period`` in [0, period)."""
     if period == TWO_PI:
-        r = _wrap(x)
+        r = wrap(x)
         r = np.where(r < 0, r + TWO_PI, r)
     else:
         r = np.remainder(x, period)
@@ -98,7 +98,7 @@ def _matvec(M, v):
     return np.einsum("...ij,...j->...i", M, v)
 
 
-def _eye(n, batch):
+def eye(n, batch):
     return np.broadcast_to(np.eye(n), tuple(batch) + (n, n)).copy()
 
 
@@ -369,9 +369,9 @@ class LieGroup(abc.ABC):
         one period (-k/2, k/2). ``rng`` is a numpy Generator (or an int seed); ``scale`` stretches
         the coordinates (groups whose coordinates are not a vector space override it).
         """
-        rng = _rng(rng)
+        rng = as_generator(rng)
         size = check_shape(size, "size")
-        scale = _scale(scale)
+        scale = check_scale(scale)
         out = rng.uniform(-3.0, 3.0, size + (self.param_dim,))
         mask = np.array(self.angular)
         if mask.any():
@@ -410,7 +410,7 @@ class LieGroup(abc.ABC):
         return self._numerical_jacobian(lambda x: self.compose(x, h), g, eps)
 
 
-def _rng(rng):
+def as_generator(rng):
     if isinstance(rng, np.random.Generator):
         return rng
     if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool) and rng >= 0:
@@ -419,7 +419,7 @@ def _rng(rng):
                     f"non-negative int seed; got {type(rng).__name__}")
 
 
-def _scale(scale):
+def check_scale(scale):
     s = as_array(scale, "scale", what=" (a positive size factor)")
     if s.ndim != 0 or s <= 0 or s > 1e100:
         raise ValueError(f"scale must be a single positive number (at most 1e100); got {scale!r:.40}")
@@ -427,12 +427,12 @@ def _scale(scale):
 
 
 # ---------------------------------------------------------------------------------- shared pieces
-def _rot(theta):
+def rot(theta):
     c, s = np.cos(theta), np.sin(theta)
     return np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
 
 
-def _angle_of_block(B):
+def angle_of_block(B):
     """Angle of the rotational part of 2x2 blocks ``(..., 2, 2)`` (nearest rotation, polar decomposition)."""
     return np.arctan2(B[..., 1, 0] - B[..., 0, 1], B[..., 0, 0] + B[..., 1, 1])
 
@@ -441,7 +441,7 @@ def _angle_of_block(B):
 MATRIX_ATOL = 1e-8
 
 
-def _check_rotation(Rm, name):
+def check_rotation(Rm, name):
     with np.errstate(over="ignore", invalid="ignore"):     # huge entries fail the check below
         RtR = np.swapaxes(Rm, -1, -2) @ Rm
         det = Rm[..., 0, 0] * Rm[..., 1, 1] - Rm[..., 0, 1] * Rm[..., 1, 0]
@@ -452,6 +452,6 @@ def _check_rotation(Rm, name):
         )
 
 
-def _check_entries(M, expected, name, what):
+def check_entries(M, expected, name, what):
     if not np.all(np.abs(M - expected) <= MATRIX_ATOL):
         raise ValueError(f"{name} must be {what} (entries within {MATRIX_ATOL:g})")

@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from gm_core.groups.base import LieGroup, _rng, _scale
+from gm_core.groups.base import LieGroup, as_generator, check_scale
 from gm_core.validation import FloatArray, as_array, check_option, check_shape, real_number
 
 __all__ = ["RPlus"]
@@ -121,9 +121,9 @@ class _RPlus(LieGroup):
 
     def random(self, rng: np.random.Generator | int | None, size: int | tuple[int, ...] = (), scale: float = 1.0) -> FloatArray:
         """e^u with u uniform in (-2 scale, 2 scale)."""
-        rng = _rng(rng)
+        rng = as_generator(rng)
         size = check_shape(size, "size")
-        scale = _scale(scale)
+        scale = check_scale(scale)
         g = np.exp(rng.uniform(-2.0, 2.0, size + (1,)))
         return g ** scale if scale != 1.0 else g
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from gm_core.groups.base import TWO_PI, LieGroup, _angle_of_block, _check_entries, _check_rotation, _wrap
+from gm_core.groups.base import TWO_PI, LieGroup, angle_of_block, check_entries, check_rotation, wrap
 from gm_core.validation import FloatArray, as_array
 
 __all__ = ["SE2"]
@@ -143,7 +143,7 @@ class _SE2(LieGroup):
         """(vx, vy, w) from an se(2) matrix; raises ValueError if X is not of the form (1.54)."""
         X = self._square(X, "X")
         out = np.stack([X[..., 0, 2], X[..., 1, 2], X[..., 1, 0]], -1)
-        _check_entries(X, self.hat(out), "X", "an se(2) matrix [[0, -w, vx], [w, 0, vy], [0, 0, 0]] as in (1.54)")
+        check_entries(X, self.hat(out), "X", "an se(2) matrix [[0, -w, vx], [w, 0, vy], [0, 0, 0]] as in (1.54)")
         return out
 
     def exp(self, xi: ArrayLike) -> FloatArray:
@@ -172,7 +172,7 @@ class _SE2(LieGroup):
         """
         g = self._element(g)
         x, y = g[..., 0], g[..., 1]
-        t = _wrap(g[..., 2])
+        t = wrap(g[..., 2])
         h = 0.5 * t
         c, s = np.cos(h), np.sin(h)
         k = s / h if h.all() else np.divide(s, h, out=np.ones_like(h), where=h != 0)
@@ -200,15 +200,15 @@ class _SE2(LieGroup):
     def from_matrix(self, G: ArrayLike) -> FloatArray:
         """(x, y, th) from a homogeneous matrix; ValueError unless it is a proper rigid motion (1.2)."""
         G = self._square(G, "G")
-        _check_entries(G[..., 2, :], np.array([0.0, 0.0, 1.0]), "G",
+        check_entries(G[..., 2, :], np.array([0.0, 0.0, 1.0]), "G",
                        "a homogeneous SE(2) matrix with last row [0, 0, 1] (1.2)")
-        _check_rotation(G[..., :2, :2], "G")
+        check_rotation(G[..., :2, :2], "G")
         return np.stack([G[..., 0, 2], G[..., 1, 2], np.arctan2(G[..., 1, 0], G[..., 0, 0])], -1)
 
     def nearest_element(self, M: ArrayLike) -> FloatArray:
         """(x, y) from the translation column and the angle of the nearest rotation to the 2x2 block."""
         M = self._square(M, "M")
-        return np.stack([M[..., 0, 2], M[..., 1, 2], _angle_of_block(M[..., :2, :2])], -1)
+        return np.stack([M[..., 0, 2], M[..., 1, 2], angle_of_block(M[..., :2, :2])], -1)
 
     def act_on_points(self, g: ArrayLike, p: ArrayLike) -> FloatArray:
         """World positions ``(..., 2)`` of body-frame points p ``(..., 2)`` under g, book (1.11)-(1.12)."""
