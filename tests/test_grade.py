@@ -15,6 +15,7 @@ import hashlib
 import inspect
 import json
 import os
+import re
 import site
 import subprocess
 import sys
@@ -710,3 +711,156 @@ def test_the_runner_reads_notebooks_without_compiling_the_iri_grammar():
     assert res.returncode == 0, res.stderr[-2000:]
     assert res.stdout.strip() == "[]", res.stdout
 
+
+# ------------------------------------------------------------------ the protocol, encoded and decoded
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from gm_core.checks import protocol as P  # noqa: E402
+
+_text = st.text(max_size=40)
+_nd = st.lists(st.integers(0, 3), max_size=3).flatmap(
+    lambda shape: st.lists(st.floats(allow_nan=False, width=32) | st.integers(-9, 9),
+                           min_size=int(np.prod(shape)), max_size=int(np.prod(shape))).map(
+        lambda d: {"__nd__": shape, "d": d}))
+_plain = st.recursive(
+    st.none() | st.booleans() | st.integers(-2**40, 2**40) | st.floats(allow_nan=False) | _text | _nd,
+    lambda inner: st.lists(inner, max_size=3)
+    | st.lists(st.tuples(_text, inner).map(list), max_size=3).map(lambda kv: {"__dict__": kv}),
+    max_leaves=12)
+
+
+@st.composite
+def outcomes(draw):
+    kind = draw(st.sampled_from(P.OutcomeKind))
+    if kind is P.OutcomeKind.OK:
+        return P.Outcome(kind, draw(_plain))
+    detail = "" if kind in (P.OutcomeKind.WRONG, P.OutcomeKind.UNATTEMPTED) else draw(_text)
+    return P.Outcome(kind, None, draw(_text), detail)
+
+
+_cell = st.none() | st.integers(-1, 10**6)
+_at = st.floats(0, 1e5).map(lambda x: round(x, 2))
+records = st.one_of(
+    st.builds(P.Started, at=_at), st.builds(P.Done, at=_at),
+    st.builds(P.KernelStarted, at=_at, pid=st.none() | st.integers(1, 2**22)),
+    st.builds(P.CellStarted, at=_at, index=st.integers(0, 10**4)),
+    st.builds(P.CellEnded, at=_at, index=st.integers(0, 10**4), status=st.sampled_from(P.CellStatus),
+              error=_text, seconds=st.floats(0, 1e4)),
+    st.builds(P.CheckAnnounced, at=_at, cell=_cell, part=st.text(max_size=P.MAX_PART_KEY)),
+    st.builds(P.EvidenceLine, at=_at, cell=_cell, line=st.text(max_size=200)),
+    st.builds(P.OutputSize, at=_at, size=st.integers(0, 2**40)),
+    st.builds(P.Flooded, at=_at, message=_text), st.builds(P.Fatal, at=_at, message=_text))
+
+
+@settings(max_examples=150, deadline=None)
+@given(outcomes())
+def test_an_outcome_survives_its_codec(o):
+    wire = json.loads(json.dumps(P.encode_outcome(o)))
+    assert P.decode_outcome(wire) == o
+    from gm_core.checks.sandbox import decode_outcome
+    assert decode_outcome(wire)["k"] == o.kind.value          # the form the checkers' judges read
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(outcomes(), max_size=4), _text, st.sampled_from([None, *P.Withheld]))
+def test_evidence_and_announcements_survive_their_codec(outs, output, withheld):
+    got = P.Withheld.STOPPED if withheld is P.Withheld.STOPPED else tuple(outs)
+    ev = P.Evidence("n" * 32, "1.2", "a", got, output)
+    line = P.encode_kernel_message(ev)
+    assert line.endswith(b"\n") and line.count(b"\n") == 1
+    assert P.decode_evidence(line, nonce="n" * 32, exercise="1.2", probes={"a": len(outs)}) == ev
+    for spaced in (json.dumps(json.loads(line)), json.dumps(json.loads(line), indent=None,
+                                                             separators=(" , ", " : "))):
+        assert P.decode_evidence(spaced, nonce="n" * 32, exercise="1.2", probes={"a": len(outs)}) == ev
+    assert P.decode_check_begun(P.encode_kernel_message(P.CheckBegun("1.2/a"))) == P.CheckBegun("1.2/a")
+    with pytest.raises(P.ProtocolError):
+        P.decode_check_begun(line)                            # evidence is no announcement
+
+
+@settings(max_examples=200, deadline=None)
+@given(records)
+def test_a_runner_record_survives_its_codec_however_json_is_spaced(rec):
+    line = P.encode_record(rec)
+    assert P.decode_record(line) == rec
+    data = json.loads(line)
+    assert P.decode_record(json.dumps(data, indent=2, sort_keys=True)) == rec   # no byte prefixes
+    assert P.decode_record(json.dumps(data, separators=(",", ":"))) == rec
+
+
+@settings(max_examples=200, deadline=None)
+@given(records, st.data())
+def test_a_malformed_runner_record_is_rejected(rec, data):
+    wire = json.loads(P.encode_record(rec))
+    how = data.draw(st.sampled_from(["extra", "missing", "kind", "type", "bool", "list"]))
+    if how == "extra":
+        wire[data.draw(st.text(min_size=1, max_size=5).filter(lambda k: k not in wire))] = 1
+    elif how == "missing":
+        del wire[data.draw(st.sampled_from(sorted(wire)))]
+    elif how == "kind":
+        wire["kind"] = data.draw(st.text(max_size=8).filter(lambda k: k not in {r.value for r in P.RecordKind})
+                                 | st.integers() | st.none())
+    elif how == "type":
+        key = data.draw(st.sampled_from(sorted(set(wire) - {"kind"})))
+        wire[key] = data.draw(st.sampled_from([[1], {"a": 1}] + (["1" * 3000] if key != "line" else [])))
+    elif how == "bool":
+        key = data.draw(st.sampled_from(sorted(set(wire) - {"kind"})))
+        if isinstance(wire[key], str) or wire[key] is None:
+            wire[key] = [wire[key]]
+        else:
+            wire[key] = True
+    else:
+        wire = [wire]
+    with pytest.raises(P.ProtocolError):
+        P.decode_record(json.dumps(wire))
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.binary(max_size=300) | st.recursive(st.none() | st.booleans() | st.integers() | _text,
+                                               lambda i: st.lists(i) | st.dictionaries(_text, i),
+                                               max_leaves=10).map(lambda v: json.dumps(v).encode()))
+def test_junk_is_rejected_with_a_reason_never_a_crash(line):
+    for decode in (P.decode_record, P.decode_check_begun,
+                   lambda x: P.decode_evidence(x, nonce="s", exercise="1.2", probes={"a": 1})):
+        try:
+            decode(line)
+        except P.ProtocolError as exc:
+            assert str(exc)
+    try:
+        data = json.loads(line)
+    except ValueError:
+        return
+    try:
+        P.decode_outcome(data)
+    except P.ProtocolError as exc:
+        assert str(exc)
+
+
+def test_malformed_evidence_is_rejected_for_the_reason_the_report_gives():
+    ok = [{"k": "ok", "v": 1.0}]
+    cases = {"an over-long or missing record": "x" * (P.MAX_EVIDENCE_LINE + 1),
+             "a record that is not valid JSON (or nested too deeply)": "[" * 100000,
+             "a record of the wrong form": evidence_line(ok, extra=1),
+             "a record without this run's secret": evidence_line(ok, nonce="t"),
+             "a record for a part this exercise does not have": evidence_line(ok, name="b"),
+             "a record for part a with the wrong number of outcomes": evidence_line(ok * 2),
+             "a record for part a with malformed outcomes": evidence_line([{"k": "ok", "v": 1, "m": ""}])}
+    for why, line in cases.items():
+        with pytest.raises(P.ProtocolError, match=re.escape(why)):
+            P.decode_evidence(line, nonce="s", exercise="1.2", probes={"a": 1})
+    for bad in ({"k": "ok"}, {"k": "ok", "v": "t" * 601}, {"k": "wrong", "m": "", "x": ""},
+                {"k": "error", "m": 1}, {"k": "ok", "v": {"__nd__": [2], "d": [1, True]}},
+                {"k": "ok", "v": {"__nd__": [-1], "d": []}}, {"k": "ok", "v": {"a": 1}},
+                {"k": "ok", "v": [[[[[[[[[[[[[[1]]]]]]]]]]]]]]}, {"k": ["ok"]}, ["ok"]):
+        with pytest.raises(P.ProtocolError):
+            P.decode_outcome(bad)
+
+
+def test_the_runner_configuration_survives_its_codec():
+    cfg = P.RunnerConfig("/tmp/.gm-in/submission.ipynb", "/tmp/work", 7, "ab" * 16, 2**61 + 3,
+                         P.Limits(cell_timeout=4, memory_mb=2048), {"1.2/a": 40.5}, None)
+    assert P.decode_config(P.encode_config(cfg)) == cfg
+    assert P.Limits(cell_timeout=4).cell_timeout == 4.0 and isinstance(P.Limits().memory_mb, int)
+    for broken in ("{}", P.encode_config(cfg).replace('"evidence_fd": 7', '"evidence_fd": "7"')):
+        with pytest.raises(P.ProtocolError):
+            P.decode_config(broken)
