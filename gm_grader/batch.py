@@ -50,7 +50,7 @@ from gm_core.checks import channel
 from gm_core.checks.exercise import REGISTRY, exercise_ids
 from gm_core.checks.parts import Part
 from gm_core.checks.protocol import Limits
-from gm_core.checks.store import PASSED
+from gm_core.checks.store import FAILED, PASSED
 from gm_grader import report as _report
 from gm_grader.clock import check_caps
 from gm_grader.evidence import summarise
@@ -392,7 +392,7 @@ def _judge_one(item: ToRun, run: RunResult | str | None, assignment: Assignment,
 
 
 def _failed_with(message: str) -> Callable[[str, Part], tuple[str, str]]:
-    return lambda name, part: ("failed", message)
+    return lambda name, part: (FAILED, message)
 
 
 def judge(the_plan: Plan, runs: Mapping[Path, RunResult | str], assignment: Assignment,
@@ -407,7 +407,7 @@ def judge(the_plan: Plan, runs: Mapping[Path, RunResult | str], assignment: Assi
     rows: list[Row] = []
     for item in the_plan.items:
         if isinstance(item, NotGraded):
-            rows.append({"notebook": item.rel, "exercise": "", "part": "", "status": "failed",
+            rows.append({"notebook": item.rel, "exercise": "", "part": "", "status": FAILED,
                          "score": 0.0, "max_score": 0.0,
                          "message": f"Not graded: {item.why}."})
         elif isinstance(item, Missing):
