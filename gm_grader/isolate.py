@@ -63,7 +63,7 @@ from gm_core.checks.protocol import (
 from gm_grader.clock import OUTER_MARGIN, STARTUP_LIMIT, CellClock
 from gm_grader.runner import GRACE as _RUNNER_GRACE
 
-PKG_PARENT = Path(__file__).resolve().parents[2]
+PKG_PARENT = Path(__file__).resolve().parents[1]   # the folder holding gm_core and gm_grader
 MAX_EVIDENCE_BYTES = 64_000_000
 MAX_LOG_BYTES = 20_000
 
