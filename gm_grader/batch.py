@@ -358,20 +358,20 @@ def _sources(notebook: Notebook) -> dict[int, str]:
     return sources
 
 
-def _judge_one(item: ToRun, run: RunResult | str | None, assignment: Assignment,
+def _judge_one(item: ToRun, result: RunResult | str | None, assignment: Assignment,
                weights: Mapping[str, float], lines: list[str]) -> list[Row]:
     ex_id, rel = item.exercise, item.rel
     ex = REGISTRY[ex_id]
-    if item.notebook is None or not isinstance(run, RunResult):
+    if item.notebook is None or not isinstance(result, RunResult):
         read = _read_notebook(item.path)
-        why = run if isinstance(run, str) else (read if isinstance(read, str) else "")
+        why = result if isinstance(result, str) else (read if isinstance(read, str) else "")
         msg = f"the notebook could not be graded: {why}"
         lines.append(f"{rel}: {msg}")
         return _rows_for(ex_id, rel, assignment, weights, _failed_with(msg))
     old = channel.probe_salt()
     try:
-        channel.set_probe_salt(run.salt)
-        summary = summarise(run, ex, _sources(item.notebook))
+        channel.set_probe_salt(result.salt)
+        summary = summarise(result, ex, _sources(item.notebook))
     finally:
         channel.set_probe_salt(old)
     if summary.problem:
@@ -380,13 +380,13 @@ def _judge_one(item: ToRun, run: RunResult | str | None, assignment: Assignment,
     lines += [f"{rel}: {n}" for n in notes]
 
     def message_of(name: str, part: Part) -> tuple[str, str]:
-        result = summary.parts[name]
-        msg = result.verdict.message
-        if result.cell is not None:
-            msg += f" (checked in {summary.where(result.cell)})"
-        if not result.verdict.passed and notes:
+        judged = summary.parts[name]
+        msg = judged.verdict.message
+        if judged.cell is not None:
+            msg += f" (checked in {summary.where(judged.cell)})"
+        if not judged.verdict.passed and notes:
             msg += " Note: " + "; ".join(notes) + "."
-        return result.verdict.status, msg
+        return judged.verdict.status, msg
 
     return _rows_for(ex_id, rel, assignment, weights, message_of)
 
