@@ -53,11 +53,12 @@ def parse_line(line: str, nonce: str, ex: Exercise) -> Evidence:
 
 def judge_part(part: Part, evidence: Evidence | None) -> Verdict:
     """A Verdict for one part from one accepted record's plain evidence (never raises)."""
-    if evidence is None or evidence.outcomes is Withheld.UNSERIALISABLE \
-            or evidence.outcomes is Withheld.TOO_LARGE:
+    if evidence is None:
         return Verdict(FAILED, "no answer was collected for this part", part.title)
-    if evidence.outcomes is Withheld.STOPPED:
+    if evidence.stopped:
         return Verdict(FAILED, "the check of this part stopped before it finished", part.title)
+    if isinstance(evidence.outcomes, Withheld):
+        return Verdict(FAILED, "no answer was collected for this part", part.title)
     return part.verdict([decode_outcome(o.to_json()) for o in evidence.outcomes],
                         evidence.output[:MAX_OUTPUT])
 
