@@ -20,9 +20,10 @@ sys.path.insert(0, str(ROOT))
 
 from gm_core.checks import channel  # noqa: E402
 from gm_core.checks.exercise import REGISTRY  # noqa: E402
+from gm_core.checks.protocol import Limits, RecordKind  # noqa: E402
 from gm_grader.batch import identify  # noqa: E402
 from gm_grader.evidence import summarise  # noqa: E402
-from gm_grader.isolate import Limits, run_submission, sandbox_problem  # noqa: E402
+from gm_grader.isolate import run_submission, sandbox_problem  # noqa: E402
 
 
 def main(argv=None):
@@ -39,13 +40,13 @@ def main(argv=None):
             t = time.monotonic()
             run = run_submission(nb, limits=Limits(), sandbox=sandbox)
             total = time.monotonic() - t
-            at = {r["t"]: r.get("at", 0.0) for r in run["records"]}
-            channel.set_probe_salt(run["salt"])
-            verdicts, _, _, _ = summarise(run, ex, {})
+            at = {r.kind: r.at for r in run.records}
+            channel.set_probe_salt(run.salt)
+            verdicts = summarise(run, ex, {}).parts
             channel.set_probe_salt(None)
-            got = sum(v.passed for v, _ in verdicts.values())
-            kernel = at.get("kernel", float("nan"))
-            cells = at.get("done", float("nan")) - kernel
+            got = sum(r.verdict.passed for r in verdicts.values())
+            kernel = at.get(RecordKind.KERNEL, float("nan"))
+            cells = at.get(RecordKind.DONE, float("nan")) - kernel
             print(f"{nb.name:<14} {label:<11} {kernel:9.1f} {cells:8.1f} {total:8.1f} "
                   f"{got:>4}/{len(verdicts):<4}")
     return 0

@@ -40,27 +40,57 @@ import re
 import secrets
 import sys
 import time
+from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any, TypeAlias
 
 from gm_core.checks import channel
 from gm_core.checks.exercise import REGISTRY, exercise_ids
-from gm_core.checks.store import PASSED
+from gm_core.checks.parts import Part
+from gm_core.checks.protocol import Limits
+from gm_core.checks.store import FAILED, PASSED
 from gm_grader import report as _report
 from gm_grader.clock import check_caps
 from gm_grader.evidence import summarise
-from gm_grader.isolate import Limits, run_submission, sandbox_problem
+from gm_grader.isolate import RunResult, run_submission, sandbox_problem
 
 _EXACT = re.compile(r"ex(\d+)_(\d+)\.ipynb")
 _ANY = re.compile(r"ex(\d+)_(\d+)", re.IGNORECASE)
 MAX_NOTEBOOK_BYTES = 50_000_000
+
+Row: TypeAlias = dict[str, Any]            # one row of grades.csv (report.FIELDS, visibility)
+Notebook: TypeAlias = dict[str, Any]       # a notebook's JSON
 
 
 class SandboxUnavailable(RuntimeError):
     """bubblewrap cannot make a sandbox here, and ``--no-sandbox`` was not given."""
 
 
-def leftover_reason(path: Path):
+@dataclass(frozen=True)
+class GradeSettings:
+    """How a batch is graded: the limits of each notebook, the sandbox, the parallel runs and the
+    results' Gradescope visibility (the command line's options, with the same defaults)."""
+
+    limits: Limits = field(default_factory=Limits)
+    sandbox: bool = True
+    jobs: int = 1
+    visibility: str = "visible"
+
+
+@dataclass(frozen=True)
+class Assignment:
+    """The declared assignment (``--assignment``), or the empty one: nothing declared."""
+
+    exercises: tuple[str, ...] | None = None
+    max_score: float | None = None
+    weights: Mapping[str, float] = field(default_factory=dict)
+    visibility: str | None = None
+    part_visibility: Mapping[str, str] = field(default_factory=dict)
+
+
+def leftover_reason(path: Path) -> str | None:
     """Why a notebook is a workspace leftover and not a submission (None if it is not one)."""
     name = path.name
     if ".ipynb_checkpoints" in path.parts or name.endswith("-checkpoint.ipynb"):
@@ -74,28 +104,29 @@ def leftover_reason(path: Path):
     return None
 
 
-def _metadata(path: Path):
-    """The notebook's top-level metadata dict, or (None, reason) -- never raises."""
+def _read_notebook(path: Path) -> tuple[dict[str, Any], Notebook] | str:
+    """(the notebook's top-level metadata, its JSON), or the reason it cannot be read -- never raises."""
     try:
         if path.is_symlink() or not path.is_file():
-            return None, "it is not a plain file (a link, a folder or a device)"
+            return "it is not a plain file (a link, a folder or a device)"
         size = path.stat().st_size
         if size > MAX_NOTEBOOK_BYTES:
-            return None, f"it is too large ({size >> 20} MB)"
+            return f"it is too large ({size >> 20} MB)"
         data = json.loads(path.read_bytes().decode("utf-8"))
     except RecursionError:
-        return None, "it is not a readable notebook (its JSON is nested too deeply)"
+        return "it is not a readable notebook (its JSON is nested too deeply)"
     except (OSError, ValueError, UnicodeDecodeError) as exc:
-        return None, f"it is not a readable notebook ({type(exc).__name__})"
+        return f"it is not a readable notebook ({type(exc).__name__})"
     if not isinstance(data, dict) or not isinstance(data.get("cells"), list):
-        return None, "it is not a readable notebook (no list of cells)"
+        return "it is not a readable notebook (no list of cells)"
     meta = data.get("metadata")
     return (meta if isinstance(meta, dict) else {}), data
 
 
-def identify(path: Path):
+def identify(path: Path) -> tuple[str | None, str, Notebook | None]:
     """(exercise id or None, note, notebook JSON or None) for a notebook file."""
-    meta, data = _metadata(path)
+    read = _read_notebook(path)
+    meta, data = read if isinstance(read, tuple) else (None, None)
     m = _EXACT.fullmatch(path.name)
     note = ""
     if m is None:
@@ -111,12 +142,11 @@ def identify(path: Path):
                 note = (f"named {path.name!r}; recognised from its metadata as "
                         f"ex{m.group(1)}_{m.group(2)}.ipynb (please keep the course's file names)")
     if m is None:
-        return None, "", (data if meta is not None else None)
-    ex_id = f"{int(m.group(1))}.{int(m.group(2))}"
-    return ex_id, note, (data if meta is not None else None)
+        return None, "", data
+    return f"{int(m.group(1))}.{int(m.group(2))}", note, data
 
 
-def load_assignment(path):
+def load_assignment(path: str | Path) -> Assignment:
     """The assignment declaration (see the module docstring), validated."""
     try:
         a = json.loads(Path(path).read_text(encoding="utf-8"))
@@ -124,7 +154,7 @@ def load_assignment(path):
         raise ValueError(f"assignment: cannot read {path} ({exc})") from None
     if not isinstance(a, dict):
         raise ValueError("assignment: the file must hold a JSON object")
-    exs = a.get("exercises", [])
+    exs = list(a.get("exercises", []))
     exs += [f"{int(m.group(1))}.{int(m.group(2))}" for n in a.get("notebooks", [])
             if (m := _EXACT.fullmatch(str(n)))]
     bad = [e for e in exs if str(e) not in REGISTRY]
@@ -136,15 +166,73 @@ def load_assignment(path):
     if unknown:
         raise ValueError(f"assignment: unknown key(s) {', '.join(sorted(unknown))}")
     _report.check_visibility(a.get("visibility", "visible"), "assignment visibility")
-    for k, v in a.get("part_visibility", {}).items():
+    part_vis = a.get("part_visibility", {})
+    for k, v in part_vis.items():
         _report.check_visibility(v, f"assignment part_visibility[{k!r}]")
     if "max_score" in a and not (isinstance(a["max_score"], (int, float)) and a["max_score"] > 0):
         raise ValueError("assignment: max_score must be a positive number")
-    return {**a, "exercises": list(dict.fromkeys(str(e) for e in exs))}
+    return Assignment(exercises=tuple(dict.fromkeys(str(e) for e in exs)),
+                      max_score=a.get("max_score"), weights=dict(a.get("weights", {})),
+                      visibility=a.get("visibility"), part_visibility=dict(part_vis))
 
 
-def _submissions(paths):
-    """[(label prefix, [(notebook path, relative name)], [skipped notes])] for each argument."""
+# ------------------------------------------------------------------------------ plan
+@dataclass(frozen=True)
+class Submission:
+    """One argument of the command line: its label prefix, its notebooks, its skipped files."""
+
+    prefix: str
+    found: tuple[tuple[Path, str], ...]     # (notebook path, name in the report)
+    skipped: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class NotGraded:
+    """A notebook that is no exercise of the course: one row saying why."""
+
+    rel: str
+    why: str
+
+
+@dataclass(frozen=True)
+class ToRun:
+    """A notebook to run and judge as exercise ``exercise`` (``notebook`` None: unreadable)."""
+
+    path: Path
+    rel: str
+    exercise: str
+    notebook: Notebook | None
+
+
+@dataclass(frozen=True)
+class Missing:
+    """An exercise the assignment expects that the submission lacks: its rows, each failed."""
+
+    want: str
+    exercise: str
+    message: str
+
+
+PlanItem: TypeAlias = NotGraded | ToRun | Missing
+
+
+@dataclass(frozen=True)
+class Plan:
+    """What a batch will grade, in the report's order, the notes so far and what every sandbox
+    must not see."""
+
+    items: tuple[PlanItem, ...]
+    notes: tuple[str, ...]
+    hide: tuple[str, ...]
+
+    @property
+    def runs(self) -> tuple[ToRun, ...]:
+        """The notebooks to run (the readable ones)."""
+        return tuple(i for i in self.items if isinstance(i, ToRun) and i.notebook is not None)
+
+
+def _submissions(paths: Sequence[str | Path]) -> list[Submission]:
+    """The notebooks of each argument, leftovers set aside."""
     out = []
     many = len(paths) > 1
     for p in map(Path, paths):
@@ -163,17 +251,97 @@ def _submissions(paths):
                 skipped.append(f"{rel} skipped: {why}")
             else:
                 found.append((q, rel))
-        out.append((prefix, found, skipped))
+        out.append(Submission(prefix, tuple(found), tuple(skipped)))
     return out
 
 
-def _rows_for(ex_id, rel, weights, part_vis, message_of):
+@dataclass(frozen=True)
+class _Choice:
+    path: Path
+    rel: str
+    note: str
+    exact: bool
+    notebook: Notebook | None
+
+
+def plan(paths: Sequence[str | Path], out_dir: str | Path, assignment: Assignment) -> Plan:
+    """Which notebook of each submission grades which exercise, and what is missing or not graded."""
+    subs = _submissions(paths)
+    # hidden from every sandbox: the output, the batch, and the folders around each submission
+    # (where other students' uploads usually sit, graded in this run or not)
+    hide = [str(Path(out_dir).resolve())] + [str(Path(p).resolve()) for p in paths]
+    hide += [str(Path(p).resolve().parent) for p in paths]
+    hide += [str(q.resolve()) for sub in subs for q, _ in sub.found]
+    items: list[PlanItem] = []
+    lines: list[str] = []
+    expected = assignment.exercises
+    for sub in subs:
+        lines += sub.skipped
+        chosen: dict[str, _Choice] = {}
+        for path, rel in sub.found:
+            ex_id, note, data = identify(path)
+            if ex_id is None or ex_id not in REGISTRY:
+                why = (f"there is no exercise {ex_id} in this course" if ex_id else
+                       "it is not one of the course's exercise notebooks (exN_M.ipynb, e.g. "
+                       "ex1_4.ipynb)")
+                items.append(NotGraded(rel, why))
+                lines.append(f"{rel}: not graded ({why})")
+                continue
+            if expected is not None and ex_id not in expected:
+                lines.append(f"{rel}: not graded (exercise {ex_id} is not part of this assignment)")
+                continue
+            exact = _EXACT.fullmatch(path.name) is not None
+            before = chosen.get(ex_id)
+            if before is not None and (before.exact or not exact):
+                lines.append(f"{rel}: not graded (exercise {ex_id} is graded from {before.rel})")
+                continue
+            if before is not None:
+                lines.append(f"{before.rel}: not graded (exercise {ex_id} is graded from {rel})")
+            chosen[ex_id] = _Choice(path, rel, note, exact, data)
+        for ex_id, c in sorted(chosen.items()):
+            if c.note:
+                lines.append(f"{c.rel}: {c.note}")
+            items.append(ToRun(c.path, c.rel, ex_id, c.notebook))
+        for ex_id in expected or ():
+            if ex_id not in chosen:
+                want = f"{sub.prefix}ex{ex_id.replace('.', '_')}.ipynb"
+                msg = (f"{want} was not found in the submission (upload the exercise notebook "
+                       "under this name)")
+                items.append(Missing(want, ex_id, msg))
+                lines.append(msg)
+    return Plan(tuple(items), tuple(lines), tuple(hide))
+
+
+# ------------------------------------------------------------------------------ run
+def run(the_plan: Plan, settings: GradeSettings) -> dict[Path, RunResult | str]:
+    """Run every readable notebook of the plan in its sandbox, ``settings.jobs`` at a time:
+    {path: what its run brought back, or why the grader could not run it}."""
+    salt = secrets.randbits(62)
+    limits = settings.limits
+    done: dict[Path, RunResult | str] = {}
+    with ThreadPoolExecutor(max_workers=max(1, int(settings.jobs))) as pool:
+        futures = {pool.submit(run_submission, item.path, limits=limits, hide=the_plan.hide,
+                               sandbox=settings.sandbox, salt=salt,
+                               caps=check_caps(REGISTRY[item.exercise], limits.time_limit)): item.path
+                   for item in the_plan.runs}
+        for fut, path in futures.items():
+            try:
+                done[path] = fut.result()
+            except Exception as exc:  # noqa: BLE001 - the grader's own failure: a row, not a crash
+                done[path] = f"the grader could not run it ({type(exc).__name__}: {exc})"[:300]
+    return done
+
+
+# ------------------------------------------------------------------------------ judge
+def _rows_for(ex_id: str, rel: str, assignment: Assignment, weights: Mapping[str, float],
+              message_of: Callable[[str, Part], tuple[str, str]]) -> list[Row]:
     rows = []
+    part_vis = assignment.part_visibility
     for name, part in REGISTRY[ex_id].parts.items():
         pts = float(weights.get(part.id, weights.get(f"{ex_id}{name}", part.weight)))
         status, msg = message_of(name, part)
-        row = {"notebook": rel, "exercise": ex_id, "part": name, "status": status,
-               "score": pts if status == PASSED else 0.0, "max_score": pts, "message": msg}
+        row: Row = {"notebook": rel, "exercise": ex_id, "part": name, "status": status,
+                    "score": pts if status == PASSED else 0.0, "max_score": pts, "message": msg}
         vis = part_vis.get(part.id, part_vis.get(f"{ex_id}{name}"))
         if vis:
             row["visibility"] = vis
@@ -181,99 +349,104 @@ def _rows_for(ex_id, rel, weights, part_vis, message_of):
     return rows
 
 
-def grade(paths, out_dir, weights=None, *, limits=None, sandbox=True, assignment=None,
-          visibility="visible", jobs=1):
-    """Grade every submission under ``paths``; write results.json and grades.csv; return results."""
-    t0 = time.monotonic()
-    limits = limits or Limits()
-    _report.check_visibility(visibility)
-    assignment = assignment or {}
-    weights = {**(weights or {}), **assignment.get("weights", {})}
-    part_vis = assignment.get("part_visibility", {})
-    visibility = assignment.get("visibility", visibility)
-    if sandbox:
-        problem = sandbox_problem()
-        if problem:
-            raise SandboxUnavailable(problem)
-    subs = _submissions(paths)
-    # hidden from every sandbox: the output, the batch, and the folders around each submission
-    # (where other students' uploads usually sit, graded in this run or not)
-    hide = [str(Path(out_dir).resolve())] + [str(Path(p).resolve()) for p in paths]
-    hide += [str(Path(p).resolve().parent) for p in paths]
-    hide += [str(q.resolve()) for _, found, _ in subs for q, _ in found]
-    salt, plan, lines = secrets.randbits(62), [], []
-    expected = assignment.get("exercises")
-    for prefix, found, skipped in subs:
-        lines += skipped
-        chosen = {}
-        for path, rel in found:
-            ex_id, note, data = identify(path)
-            if ex_id is None or ex_id not in REGISTRY:
-                why = (f"there is no exercise {ex_id} in this course" if ex_id else
-                       "it is not one of the course's exercise notebooks (exN_M.ipynb, e.g. "
-                       "ex1_4.ipynb)")
-                plan.append(("row", {"notebook": rel, "exercise": "", "part": "", "status": "failed",
-                                     "score": 0.0, "max_score": 0.0, "message": f"Not graded: {why}."}))
-                lines.append(f"{rel}: not graded ({why})")
-                continue
-            if expected is not None and ex_id not in expected:
-                lines.append(f"{rel}: not graded (exercise {ex_id} is not part of this assignment)")
-                continue
-            exact = _EXACT.fullmatch(path.name) is not None
-            if ex_id in chosen and (chosen[ex_id][3] or not exact):
-                lines.append(f"{rel}: not graded (exercise {ex_id} is graded from {chosen[ex_id][1]})")
-                continue
-            if ex_id in chosen:
-                lines.append(f"{chosen[ex_id][1]}: not graded (exercise {ex_id} is graded from {rel})")
-            chosen[ex_id] = (path, rel, note, exact, data)
-        for ex_id, (path, rel, note, _, data) in sorted(chosen.items()):
-            if note:
-                lines.append(f"{rel}: {note}")
-            plan.append(("run", (path, rel, ex_id, data)))
-        for ex_id in expected or []:
-            if ex_id not in chosen:
-                want = f"{prefix}ex{ex_id.replace('.', '_')}.ipynb"
-                msg = (f"{want} was not found in the submission (upload the exercise notebook "
-                       "under this name)")
-                plan.append(("missing", (want, ex_id, msg)))
-                lines.append(msg)
-    runs = [item for kind, item in plan if kind == "run" and item[3] is not None]
-    done = {}
-    with ThreadPoolExecutor(max_workers=max(1, int(jobs))) as pool:
-        futures = {pool.submit(run_submission, path, limits=limits, hide=hide, sandbox=sandbox,
-                               salt=salt, caps=check_caps(REGISTRY[ex_id], limits.time_limit)): path
-                   for path, _, ex_id, _ in runs}
-        for fut, path in futures.items():
-            try:
-                done[path] = fut.result()
-            except Exception as exc:  # noqa: BLE001 - the grader's own failure: a row, not a crash
-                done[path] = f"the grader could not run it ({type(exc).__name__}: {exc})"[:300]
-    ran = [r for r in done.values() if isinstance(r, dict)]
+def _sources(notebook: Notebook) -> dict[int, str]:
+    sources = {}
+    for i, c in enumerate(notebook.get("cells", [])):
+        src = c.get("source", "") if isinstance(c, dict) else ""
+        sources[i] = "".join(src) if isinstance(src, list) and all(isinstance(s, str) for s in src) \
+            else (src if isinstance(src, str) else "")
+    return sources
+
+
+def _judge_one(item: ToRun, result: RunResult | str | None, assignment: Assignment,
+               weights: Mapping[str, float], lines: list[str]) -> list[Row]:
+    ex_id, rel = item.exercise, item.rel
+    ex = REGISTRY[ex_id]
+    if item.notebook is None or not isinstance(result, RunResult):
+        read = _read_notebook(item.path)
+        why = result if isinstance(result, str) else (read if isinstance(read, str) else "")
+        msg = f"the notebook could not be graded: {why}"
+        lines.append(f"{rel}: {msg}")
+        return _rows_for(ex_id, rel, assignment, weights, _failed_with(msg))
+    old = channel.probe_salt()
+    try:
+        channel.set_probe_salt(result.salt)
+        summary = summarise(result, ex, _sources(item.notebook))
+    finally:
+        channel.set_probe_salt(old)
+    if summary.problem:
+        lines.append(f"{rel}: {summary.problem}")
+    notes = summary.notes
+    lines += [f"{rel}: {n}" for n in notes]
+
+    def message_of(name: str, part: Part) -> tuple[str, str]:
+        judged = summary.parts[name]
+        msg = judged.verdict.message
+        if judged.cell is not None:
+            msg += f" (checked in {summary.where(judged.cell)})"
+        if not judged.verdict.passed and notes:
+            msg += " Note: " + "; ".join(notes) + "."
+        return judged.verdict.status, msg
+
+    return _rows_for(ex_id, rel, assignment, weights, message_of)
+
+
+def _failed_with(message: str) -> Callable[[str, Part], tuple[str, str]]:
+    return lambda name, part: (FAILED, message)
+
+
+def judge(the_plan: Plan, runs: Mapping[Path, RunResult | str], assignment: Assignment,
+          weights: Mapping[str, float], settings: GradeSettings) -> tuple[list[Row], list[str]]:
+    """The report's rows, in the plan's order, and its overall lines."""
+    lines = list(the_plan.notes)
+    ran = [r.cgroups for r in runs.values() if isinstance(r, RunResult)]
     if ran:
-        note = _limits_note(ran, sandbox)
+        note = _limits_note(ran, settings.sandbox)
         if note:
             lines.insert(0, note)
-    rows = []
-    for kind, item in plan:
-        if kind == "row":
-            rows.append(item)
-        elif kind == "missing":
-            want, ex_id, msg = item
-            rows += _rows_for(ex_id, want, weights, part_vis, lambda n, p, m=msg: ("failed", m))
+    rows: list[Row] = []
+    for item in the_plan.items:
+        if isinstance(item, NotGraded):
+            rows.append({"notebook": item.rel, "exercise": "", "part": "", "status": FAILED,
+                         "score": 0.0, "max_score": 0.0,
+                         "message": f"Not graded: {item.why}."})
+        elif isinstance(item, Missing):
+            rows += _rows_for(item.exercise, item.want, assignment, weights,
+                              _failed_with(item.message))
         else:
-            path, rel, ex_id, data = item
-            rows += _judge_one(path, rel, ex_id, data, done.get(path), weights, part_vis, lines)
+            rows += _judge_one(item, runs.get(item.path), assignment, weights, lines)
     if not rows:
         lines.insert(0, "No exercise notebook of this course was found in the submission: upload "
                      "the notebooks named exN_M.ipynb (e.g. ex1_4.ipynb) from your workspace.")
-    res = _report.write(rows, out_dir, message="\n".join(lines), elapsed=time.monotonic() - t0,
-                        visibility=visibility, max_score=assignment.get("max_score"))
-    return res
+    return rows, lines
 
 
-def _limits_note(ran, sandbox):
-    """The report's header line when a notebook ran without its own cgroups (else None)."""
-    missing = sorted({c for r in ran for c in ("pids", "memory") if c not in r.get("cgroups", [])})
+def grade(paths: Sequence[str | Path], out_dir: str | Path,
+          weights: Mapping[str, float] | None = None, *,
+          settings: GradeSettings | None = None,
+          assignment: Assignment | None = None) -> dict[str, Any]:
+    """Grade every submission under ``paths``; write results.json and grades.csv; return results."""
+    t0 = time.monotonic()
+    settings = settings or GradeSettings()
+    _report.check_visibility(settings.visibility)
+    assignment = assignment or Assignment()
+    weights = {**(weights or {}), **assignment.weights}
+    visibility = assignment.visibility or settings.visibility
+    if settings.sandbox:
+        problem = sandbox_problem()
+        if problem:
+            raise SandboxUnavailable(problem)
+    the_plan = plan(paths, out_dir, assignment)
+    runs = run(the_plan, settings)
+    rows, lines = judge(the_plan, runs, assignment, weights, settings)
+    return _report.write(rows, out_dir, message="\n".join(lines), elapsed=time.monotonic() - t0,
+                         visibility=visibility, max_score=assignment.max_score)
+
+
+def _limits_note(cgroups: Sequence[Sequence[str]], sandbox: bool) -> str | None:
+    """The report's header line when a notebook ran without its own cgroups (else None);
+    ``cgroups``: the cgroup controllers each run had."""
+    missing = sorted({c for kinds in cgroups for c in ("pids", "memory") if c not in kinds})
     if not missing:
         return None
     what = {"pids": "the number of its processes was not bounded (RLIMIT_NPROC does not hold "
@@ -283,48 +456,13 @@ def _limits_note(ran, sandbox):
     end = ("the sandbox's pid namespace still ended every process with it" if sandbox else
            "processes that left the kernel's session may have outlived it")
     return (f"Grader note: no {' or '.join(missing)} cgroup could be made here for "
-            f"{'a notebook' if len(ran) == 1 else 'the notebooks'}, so "
+            f"{'a notebook' if len(cgroups) == 1 else 'the notebooks'}, so "
             + "; ".join(what[c] for c in missing) + f"; {end} (see the README, 'Limits').")
 
 
-def _judge_one(path, rel, ex_id, data, run, weights, part_vis, lines):
-    ex = REGISTRY[ex_id]
-    if data is None or not isinstance(run, dict):
-        why = run if isinstance(run, str) else _metadata(path)[1]
-        msg = f"the notebook could not be graded: {why}"
-        lines.append(f"{rel}: {msg}")
-        return _rows_for(ex_id, rel, weights, part_vis, lambda n, p: ("failed", msg))
-    cells = data.get("cells", [])
-    sources = {}
-    for i, c in enumerate(cells):
-        src = c.get("source", "") if isinstance(c, dict) else ""
-        sources[i] = "".join(src) if isinstance(src, list) and all(isinstance(s, str) for s in src) \
-            else (src if isinstance(src, str) else "")
-    old = channel.probe_salt()
-    try:
-        channel.set_probe_salt(run["salt"])
-        verdicts, problem, notes, where = summarise(run, ex, sources)
-    finally:
-        channel.set_probe_salt(old)
-    if problem:
-        lines.append(f"{rel}: {problem}")
-    lines += [f"{rel}: {n}" for n in notes]
-
-    def message_of(name, part):
-        v, cell = verdicts[name]
-        msg = v.message
-        if cell is not None:
-            msg += f" (checked in {where(cell)})"
-        if not v.passed and notes:
-            msg += " Note: " + "; ".join(notes) + "."
-        return v.status, msg
-
-    return _rows_for(ex_id, rel, weights, part_vis, message_of)
-
-
-def main(argv=None):
+def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m gm_grader",
-                                 description=__doc__.splitlines()[0])
+                                 description=(__doc__ or "").splitlines()[0])
     ap.add_argument("paths", nargs="+", help="submission folders, or exercise notebooks")
     ap.add_argument("--out", required=True, type=Path, help="folder for results.json and grades.csv")
     ap.add_argument("--assignment", type=Path, help="JSON: expected exercises, max_score, weights, visibility")
@@ -349,10 +487,12 @@ def main(argv=None):
     try:
         weights = json.loads(args.weights.read_text()) if args.weights else None
         assignment = load_assignment(args.assignment) if args.assignment else None
-        limits = Limits(args.cell_timeout, args.time_limit, args.notebook_timeout, args.memory,
-                        args.max_processes)
-        results = grade(args.paths, args.out, weights, limits=limits, sandbox=not args.no_sandbox,
-                        assignment=assignment, visibility=args.visibility, jobs=args.jobs)
+        limits = Limits(cell_timeout=args.cell_timeout, time_limit=args.time_limit,
+                        notebook_timeout=args.notebook_timeout, memory_mb=args.memory,
+                        processes=args.max_processes)
+        settings = GradeSettings(limits=limits, sandbox=not args.no_sandbox, jobs=args.jobs,
+                                 visibility=args.visibility)
+        results = grade(args.paths, args.out, weights, settings=settings, assignment=assignment)
     except SandboxUnavailable as exc:
         print(f"grade: refusing to run student notebooks without a sandbox: {exc}. Install "
               "bubblewrap, or pass --no-sandbox where each submission already runs in its own "
@@ -370,4 +510,6 @@ def main(argv=None):
     return 0
 
 
-__all__ = ["grade", "main", "identify", "leftover_reason", "load_assignment", "SandboxUnavailable"]
+__all__ = ["grade", "plan", "run", "judge", "main", "identify", "leftover_reason",
+           "load_assignment", "SandboxUnavailable", "GradeSettings", "Assignment", "Plan",
+           "ToRun", "Missing", "NotGraded", "Submission"]

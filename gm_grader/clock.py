@@ -1,8 +1,8 @@
 """The cell clock of a graded notebook: seconds of *student* time in the running cell.
 
 A cell's limit (``--cell-timeout``) does not count the time its checks' probes take (each probe
-has its own per-call limit). The kernel announces a check (``B <exercise>/<part>`` on the
-evidence channel) and its end (the evidence record), so a notebook could announce a check and
+has its own per-call limit). The kernel announces a check (a :class:`~gm_core.checks.protocol.CheckBegun`
+on the evidence channel) and its end (the evidence record), so a notebook could announce a check and
 then sleep, and its clock would stand still. Here every announced check is credited at most
 its part's longest honest duration (its probes times the per-call limit, plus the sandbox's own
 overhead), a check of a part this notebook does not grade is credited nothing, and all the
@@ -17,6 +17,12 @@ kernel that stopped or confused its runner): then it ends the whole sandbox.
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:     # the runner imports this module: no checkers loaded there for a hint
+    from gm_core.checks.exercise import Exercise
+
 #: All the checks of one cell together are credited at most this many honest checks of every part.
 CELL_BUDGET = 3.0
 #: Seconds a check may take beyond its probes' limits (fork, encoding, a loaded machine).
@@ -28,9 +34,9 @@ OUTER_MARGIN = 10.0
 STARTUP_LIMIT = 240.0
 
 
-def check_caps(exercise, time_limit):
+def check_caps(exercise: Exercise, time_limit: float) -> dict[str, float]:
     """{"<exercise id>/<part>": seconds} the longest honest check of each part may take."""
-    caps = {}
+    caps: dict[str, float] = {}
     for name, part in exercise.parts.items():
         try:
             n = len(part.probes())
@@ -43,33 +49,34 @@ def check_caps(exercise, time_limit):
 class CellClock:
     """Student seconds since the clock was last restarted, not counting (capped) check time."""
 
-    def __init__(self, caps=None):
+    def __init__(self, caps: Mapping[str, float] | None = None) -> None:
         self.caps = {str(k): float(v) for k, v in (caps or {}).items()}
         self.budget = CELL_BUDGET * sum(self.caps.values())
-        self.restart(0.0)
+        self.started, self.credit = 0.0, 0.0
+        self.open: tuple[float, float] | None = None
 
-    def restart(self, now):
+    def restart(self, now: float) -> None:
         self.started, self.credit, self.open = float(now), 0.0, None
 
-    def begin(self, key, now):
+    def begin(self, key: str, now: float) -> None:
         """A check of ``key`` ("1.4/a") starts; it is credited until :meth:`end`, at most its cap."""
         self.end(now)
         cap = self.caps.get(str(key), 0.0)
         if cap > 0:
             self.open = (float(now), cap)
 
-    def end(self, now):
+    def end(self, now: float) -> None:
         if self.open is not None:
             t0, cap = self.open
             self.credit += min(max(now - t0, 0.0), cap)
             self.open = None
 
-    def credited(self, now):
+    def credited(self, now: float) -> float:
         c = self.credit
         if self.open is not None:
             t0, cap = self.open
             c += min(max(now - t0, 0.0), cap)
         return min(c, self.budget)
 
-    def seconds(self, now):
+    def seconds(self, now: float) -> float:
         return now - self.started - self.credited(now)

@@ -1,168 +1,155 @@
 """Evidence, checked and not believed: from the runner's records to one verdict per part.
 
-A record from the kernel (``{"t": "k", "line": ...}``) is accepted only if it parses (size and
-nesting capped), carries this run's nonce, names a part of the notebook's exercise, and holds
-exactly one outcome per probe of that part, each of a known kind with exactly the fields that
-kind has and a value of plain numbers/text (arrays with a consistent shape). Anything else is
-counted as *rejected* and reported. The judge then runs here, on the grader's own checkers, with
-the probe inputs of this run (the salt the kernel was given).
+A kernel's evidence line (an :class:`~gm_core.checks.protocol.EvidenceLine` record) is accepted
+only if :func:`gm_core.checks.protocol.decode_evidence` accepts it: it parses (size and nesting
+capped), carries this run's nonce, names a part of the notebook's exercise, and holds exactly one
+outcome per probe of that part, each of a known kind with exactly the fields that kind has and a
+value of plain numbers/text (arrays with a consistent shape). Anything else is counted as
+*rejected* and reported. The judge then runs here, on the grader's own checkers, with the probe
+inputs of this run (the salt the kernel was given).
 
 The last accepted check call of a part decides it (as the student's own last check did); a part
 with no accepted call gets a message saying why (never checked, or the notebook stopped first).
 """
 from __future__ import annotations
 
-import json
-import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 
-from gm_core.checks.parts import Verdict
+from gm_core.checks.exercise import Exercise
+from gm_core.checks.parts import Part, Verdict
+from gm_core.checks.protocol import (
+    MAX_OUTPUT,
+    CellEnded,
+    CellStarted,
+    CellStatus,
+    Evidence,
+    EvidenceLine,
+    Fatal,
+    Flooded,
+    ForeignEvidence,
+    ProtocolError,
+    Withheld,
+    decode_evidence,
+)
+from gm_core.checks.protocol import Done as DoneRecord
 from gm_core.checks.sandbox import decode_outcome
 from gm_core.checks.store import FAILED
-
-KINDS = {"ok": {"k", "v"}, "wrong": {"k", "m"}, "unattempted": {"k", "m"},
-         "error": {"k", "m", "x"}, "timeout": {"k", "m", "x"}, "crash": {"k", "m", "x"},
-         "skipped": {"k", "m", "x"}}
-MAX_LINE = 4_100_000
-MAX_DEPTH = 12
+from gm_grader.isolate import Killed, RunResult
 
 
-def _plain(v, depth=0):
-    """JSON data that :func:`gm_core.checks.sandbox.decode` can turn into numbers, text, arrays, lists, dicts."""
-    if depth > MAX_DEPTH:
-        return False
-    if v is None or isinstance(v, (bool, str)):
-        return not isinstance(v, str) or len(v) <= 600
-    if isinstance(v, (int, float)):
-        return True
-    if isinstance(v, list):
-        return all(_plain(x, depth + 1) for x in v)
-    if isinstance(v, dict):
-        if set(v) == {"__nd__", "d"}:
-            shape, d = v["__nd__"], v["d"]
-            return (isinstance(shape, list) and all(isinstance(s, int) and not isinstance(s, bool)
-                                                    and 0 <= s for s in shape)
-                    and isinstance(d, list) and len(d) == math.prod(shape)
-                    and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in d))
-        if set(v) == {"__dict__"} and isinstance(v["__dict__"], list):
-            return all(isinstance(kv, list) and len(kv) == 2 and isinstance(kv[0], str)
-                       and _plain(kv[1], depth + 1) for kv in v["__dict__"])
-    return False
+def parse_line(line: str, nonce: str, ex: Exercise) -> Evidence:
+    """The evidence of one check call of ``ex`` in this run (``nonce``), checked; raises
+    :class:`~gm_core.checks.protocol.ForeignEvidence` for another exercise's check and
+    :class:`~gm_core.checks.protocol.ProtocolError` (the reason) for anything not accepted."""
+    probes: dict[str, int] = {}
+    for name, part in ex.parts.items():
+        try:
+            probes[name] = len(part.probes())
+        except Exception:  # noqa: BLE001 - a checker that cannot list its probes accepts nothing
+            continue
+    return decode_evidence(line, nonce=nonce, exercise=ex.id, probes=probes)
 
 
-def valid_outcome(o):
-    if not isinstance(o, dict) or o.get("k") not in KINDS:
-        return False
-    allowed = KINDS[o["k"]]
-    if not set(o) <= allowed or "k" not in o:
-        return False
-    if o["k"] == "ok":
-        return "v" in o and _plain(o["v"])
-    return all(isinstance(o.get(f, ""), str) and len(o.get(f, "")) <= 2000 for f in ("m", "x"))
-
-
-def parse_line(line, nonce, ex):
-    """(part name, {"outcomes", "output"}) for a valid kernel record, or (None, reason)."""
-    if not isinstance(line, str) or len(line) > MAX_LINE:
-        return None, "an over-long or missing record"
-    try:
-        rec = json.loads(line)
-    except (ValueError, RecursionError):
-        return None, "a record that is not valid JSON (or nested too deeply)"
-    if not isinstance(rec, dict) or set(rec) != {"n", "ex", "part", "o", "out"}:
-        return None, "a record of the wrong form"
-    if rec["n"] != nonce:
-        return None, "a record without this run's secret"
-    if rec["ex"] != ex.id:
-        return "", "a check of another exercise"          # ignored, not an offence
-    part = ex.parts.get(rec["part"]) if isinstance(rec["part"], str) else None
-    if part is None:
-        return None, "a record for a part this exercise does not have"
-    outcomes = rec["o"]
-    if outcomes == "stopped":
-        return part.name, {"stopped": True}
-    if not isinstance(outcomes, list) or len(outcomes) != len(part.probes()):
-        return None, f"a record for part {part.name} with the wrong number of outcomes"
-    if not all(valid_outcome(o) for o in outcomes):
-        return None, f"a record for part {part.name} with malformed outcomes"
-    output = rec["out"] if isinstance(rec["out"], str) else ""
-    return part.name, {"outcomes": outcomes, "output": output[:2000]}
-
-
-def judge_part(part, evidence):
+def judge_part(part: Part, evidence: Evidence | None) -> Verdict:
     """A Verdict for one part from one accepted record's plain evidence (never raises)."""
-    if not isinstance(evidence, dict):
+    if evidence is None:
         return Verdict(FAILED, "no answer was collected for this part", part.title)
-    if evidence.get("stopped"):
+    if evidence.stopped:
         return Verdict(FAILED, "the check of this part stopped before it finished", part.title)
-    raw = evidence.get("outcomes")
-    if not isinstance(raw, list) or not all(valid_outcome(o) for o in raw):
+    if isinstance(evidence.outcomes, Withheld):
         return Verdict(FAILED, "no answer was collected for this part", part.title)
-    output = evidence.get("output") if isinstance(evidence.get("output"), str) else ""
-    return part.verdict([decode_outcome(o) for o in raw], output[:2000])
+    return part.verdict([decode_outcome(o.to_json()) for o in evidence.outcomes],
+                        evidence.output[:MAX_OUTPUT])
 
 
-def _snippet(source):
+def _snippet(source: str) -> str:
     first = next((ln.strip() for ln in str(source).splitlines() if ln.strip()), "")
     return first[:50] + ("..." if len(first) > 50 else "")
 
 
-def summarise(run, ex, sources):
-    """{part: (verdict, cell index or None)}, the run's problem text and notes, from one run.
+@dataclass(frozen=True)
+class PartResult:
+    """One part's verdict and the cell (index) of the check call that decided it, if any."""
 
-    ``sources`` maps cell indices to their source (to name a cell by its first line)."""
-    nonce = run["nonce"]
-    latest, rejected, cells, problem, notes = {}, {}, {}, "", []
-    running = None
-    fatal = done = False
-    for r in run["records"]:
-        t = r.get("t")
-        if t == "k":
-            name, ev = parse_line(r.get("line"), nonce, ex)
-            if name:
-                latest[name] = (ev, r.get("cell"))
-            elif name is None:
-                rejected[ev] = rejected.get(ev, 0) + 1
-        elif t == "run":
-            running = r.get("i")
-        elif t == "cell":
-            cells[r.get("i")] = r
-        elif t == "fatal":
-            fatal, problem = True, str(r.get("m", ""))[:300]
-        elif t == "done":
-            done = True
-        elif t == "flood":
-            notes.append("the notebook flooded the grader's evidence channel")
+    verdict: Verdict
+    cell: int | None = None
 
-    def where(i):
+
+@dataclass(frozen=True)
+class Summary:
+    """One run of a notebook, judged: every part's result, why the run stopped early (``problem``,
+    empty when it did not) and notes on what the notebook did that the grader flags."""
+
+    parts: dict[str, PartResult]
+    problem: str = ""
+    notes: tuple[str, ...] = ()
+    sources: Mapping[int, str] = field(default_factory=dict)
+
+    def where(self, i: int | None) -> str:
+        """A cell named for the reader: its number and its first line."""
         if not isinstance(i, int):
             return "a cell"
-        return f"cell {i + 1} (`{_snippet(sources.get(i, ''))}`)"
+        return f"cell {i + 1} (`{_snippet(self.sources.get(i, ''))}`)"
+
+
+def summarise(run: RunResult, ex: Exercise, sources: Mapping[int, str]) -> Summary:
+    """Every part of ``ex`` judged from one run, with the run's problem and notes.
+
+    ``sources`` maps cell indices to their source (to name a cell by its first line)."""
+    latest: dict[str, tuple[Evidence, int | None]] = {}
+    rejected: dict[str, int] = {}
+    cells: dict[int, CellEnded] = {}
+    problem, notes = "", []
+    running: int | None = None
+    fatal = done = False
+    for r in run.records:
+        if isinstance(r, EvidenceLine):
+            try:
+                ev = parse_line(r.line, run.nonce, ex)
+            except ForeignEvidence:
+                continue                                  # ignored, not an offence
+            except ProtocolError as exc:
+                rejected[str(exc)] = rejected.get(str(exc), 0) + 1
+                continue
+            latest[ev.part] = (ev, r.cell)
+        elif isinstance(r, CellStarted):
+            running = r.index
+        elif isinstance(r, CellEnded):
+            cells[r.index] = r
+        elif isinstance(r, Fatal):
+            fatal, problem = True, r.message[:300]
+        elif isinstance(r, DoneRecord):
+            done = True
+        elif isinstance(r, Flooded):
+            notes.append("the notebook flooded the grader's evidence channel")
+    where = Summary({}, sources=sources).where
 
     stop_cell = None
-    for i, c in sorted(((k, v) for k, v in cells.items() if isinstance(k, int)), key=lambda kv: kv[0]):
-        if c.get("status") == "timeout":
+    last = max(cells, default=None)
+    for i, c in sorted(cells.items()):
+        if c.status is CellStatus.TIMEOUT:
             notes.append(f"{where(i)} ran longer than the cell limit and was interrupted")
-            if stop_cell is None and i == max(k for k in cells if isinstance(k, int)) and not done:
+            if stop_cell is None and i == last and not done:
                 stop_cell = i
-        elif c.get("status") == "died":
+        elif c.status is CellStatus.DIED:
             stop_cell = i
     if not fatal and not done:
-        if run.get("killed") == "time":
+        if run.killed is Killed.TIME:
             problem = "the notebook ran longer than the time allowed for a whole notebook"
-        elif run.get("killed") == "cell":
-            at = where(running) if isinstance(running, int) and running not in cells else \
-                "a cell"
+        elif run.killed is Killed.CELL:
+            at = where(running) if running is not None and running not in cells else "a cell"
             problem = (f"the grader ended the notebook in {at}: it ran far past the cell limit "
                        "while the grader's runner had stopped enforcing it (stopped or stalled "
                        "from inside the notebook)")
-        elif run.get("killed") == "evidence":
+        elif run.killed is Killed.EVIDENCE:
             problem = "the notebook sent far too much on the grader's evidence channel"
         elif stop_cell is not None:
             c = cells[stop_cell]
             problem = (f"the notebook's kernel stopped in {where(stop_cell)}"
-                       + (" after it exceeded the cell limit" if c.get("status") == "timeout" else
-                          " (it crashed, ran out of memory, or ended the grader's runner)"))
-        elif isinstance(running, int) and running not in cells:
+                       + (" after it exceeded the cell limit" if c.status is CellStatus.TIMEOUT
+                          else " (it crashed, ran out of memory, or ended the grader's runner)"))
+        elif running is not None and running not in cells:
             problem = (f"the notebook ended its own grading in {where(running)} (it stopped the "
                        "grader's runner, or everything crashed)")
         else:
@@ -170,14 +157,17 @@ def summarise(run, ex, sources):
     if rejected:
         notes.append("the grader rejected evidence it could not verify: " + "; ".join(
             f"{n} x {why}" for why, n in sorted(rejected.items())))
-    verdicts = {}
+    parts: dict[str, PartResult] = {}
     for name, part in ex.parts.items():
         if name in latest:
             ev, cell = latest[name]
-            verdicts[name] = (judge_part(part, ev), cell)
+            parts[name] = PartResult(judge_part(part, ev), cell)
         else:
             msg = (f"this part was not checked before {problem}" if problem else
                    f"no check of this part ran in the notebook (call ex{ex.id.replace('.', '_')}."
                    f"{name}.check(...) in a cell, and run it)")
-            verdicts[name] = (Verdict(FAILED, msg, part.title), None)
-    return verdicts, problem, notes, where
+            parts[name] = PartResult(Verdict(FAILED, msg, part.title), None)
+    return Summary(parts, problem, tuple(notes), sources)
+
+
+__all__ = ["parse_line", "judge_part", "summarise", "Summary", "PartResult"]

@@ -31,7 +31,6 @@ group, killed at the end.
 """
 from __future__ import annotations
 
-import json
 import os
 import resource
 import secrets
@@ -42,27 +41,59 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from enum import Enum
 from pathlib import Path
 
+from gm_core.checks.protocol import (
+    CellEnded,
+    CellStarted,
+    CheckAnnounced,
+    Done,
+    EvidenceLine,
+    KernelStarted,
+    Limits,
+    ProtocolError,
+    Record,
+    RunnerConfig,
+    decode_record,
+    encode_config,
+)
 from gm_grader.clock import OUTER_MARGIN, STARTUP_LIMIT, CellClock
 from gm_grader.runner import GRACE as _RUNNER_GRACE
 
-PKG_PARENT = Path(__file__).resolve().parents[2]
+PKG_PARENT = Path(__file__).resolve().parents[1]   # the folder holding gm_core and gm_grader
 MAX_EVIDENCE_BYTES = 64_000_000
 MAX_LOG_BYTES = 20_000
 
 
-class Limits:
-    """Per-notebook limits (seconds, MiB, counts)."""
+class Killed(Enum):
+    """Why the grading process ended a sandbox before its runner said it was done."""
 
-    def __init__(self, cell_timeout=120.0, time_limit=5.0, notebook_timeout=900.0,
-                 memory_mb=4096, processes=256, tmp_mb=512):
-        self.cell_timeout, self.time_limit = float(cell_timeout), float(time_limit)
-        self.notebook_timeout = float(notebook_timeout)
-        self.memory_mb, self.processes, self.tmp_mb = int(memory_mb), int(processes), int(tmp_mb)
+    TIME = "time"            # the notebook ran past --notebook-timeout
+    CELL = "cell"            # a cell ran far past its limit and the runner did not end it
+    EVIDENCE = "evidence"    # the runner sent more than MAX_EVIDENCE_BYTES
 
 
-def sandbox_problem():
+@dataclass(frozen=True)
+class RunResult:
+    """What one sandboxed run of a notebook brought back (the grading process's view)."""
+
+    records: tuple[Record, ...]
+    nonce: str
+    salt: int
+    killed: Killed | None = None
+    log: str = ""
+    seconds: float = 0.0
+    cgroups: tuple[str, ...] = ()
+
+    @property
+    def kernel_pid(self) -> int | None:
+        return next((r.pid for r in self.records if isinstance(r, KernelStarted)), None)
+
+
+def sandbox_problem() -> str | None:
     """None when bubblewrap works here; otherwise a sentence saying why not."""
     bwrap = shutil.which("bwrap")
     if bwrap is None:
@@ -80,9 +111,10 @@ def sandbox_problem():
 
 
 # ------------------------------------------------------------------------------ cgroups
-def _own_cgroup_dirs():
-    """{controller: folder of this process's cgroup} for writable memory/pids controllers."""
-    out = {}
+def _own_cgroup_dirs() -> dict[str, tuple[str, Path]]:
+    """{controller: (cgroup version, folder of this process's cgroup)} for writable memory/pids
+    controllers."""
+    out: dict[str, tuple[str, Path]] = {}
     root = Path("/sys/fs/cgroup")
     try:
         lines = Path("/proc/self/cgroup").read_text().splitlines()
@@ -108,7 +140,7 @@ def _own_cgroup_dirs():
     return {c: v for c, v in out.items() if os.access(v[1], os.W_OK)}
 
 
-def _remove_stale(base):
+def _remove_stale(base: Path) -> None:
     """Remove the empty cgroups a grader that died (killed, power cut) left behind: named
     ``gm-grade-<pid>-...`` after a process that is gone. A cgroup with a process in it cannot be
     removed, so nothing that still runs loses its limits."""
@@ -128,8 +160,9 @@ def _remove_stale(base):
 class _Cgroups:
     """Child cgroups (memory, pids) for one sandbox, where this process may create them."""
 
-    def __init__(self, limits, tag):
-        self.dirs, self.kinds = [], []
+    def __init__(self, limits: Limits, tag: str) -> None:
+        self.dirs: list[Path] = []
+        self.kinds: list[str] = []
         try:
             found = {} if os.environ.get("GM_GRADE_NO_CGROUPS") == "1" else _own_cgroup_dirs()
         except Exception:  # noqa: BLE001
@@ -153,7 +186,7 @@ class _Cgroups:
                 except OSError:
                     pass
 
-    def join(self):  # runs in the child between fork and exec
+    def join(self) -> None:  # runs in the child between fork and exec
         for d in self.dirs:
             try:
                 with open(d / "cgroup.procs", "w") as f:
@@ -161,8 +194,8 @@ class _Cgroups:
             except OSError:
                 pass
 
-    def pids(self):
-        out = set()
+    def pids(self) -> set[int]:
+        out: set[int] = set()
         for d in self.dirs:
             try:
                 out |= {int(p) for p in (d / "cgroup.procs").read_text().split()}
@@ -170,7 +203,7 @@ class _Cgroups:
                 pass
         return out
 
-    def close(self):
+    def close(self) -> None:
         """Kill every process of the cgroups (a daemon that called setsid, a probe that killed its
         keeper: all of them), then remove the cgroups."""
         for d in self.dirs:
@@ -199,17 +232,17 @@ class _Cgroups:
 _TMP = Path("/tmp")
 
 
-def _kept():
+def _kept() -> list[Path]:
     """What the kernel must see: the course's code and the Python it runs on."""
     return [PKG_PARENT, Path(sys.prefix).resolve(), Path(sys.base_prefix).resolve(),
             Path(sys.executable).resolve().parent]
 
 
-def _within(p, roots):
+def _within(p: Path, roots: Iterable[Path]) -> bool:
     return any(r == p or r in p.parents for r in roots)
 
 
-def _keep_args():
+def _keep_args() -> list[str]:
     """bwrap arguments that bring back, read-only, the kept folders lying under ``/tmp``.
 
     The sandbox mounts an empty ``/tmp`` of its own; a course or venv cloned under ``/tmp`` (as a
@@ -221,18 +254,19 @@ def _keep_args():
     return [a for k in top for a in ("--ro-bind", str(k), str(k))]
 
 
-def _hide_args(hide):
+def _hide_args(hide: Iterable[str | Path]) -> list[str]:
     """bwrap arguments hiding folders (tmpfs) or files (/dev/null) the sandbox must not see."""
     keep = _kept()
     # under /tmp only what _keep_args brings back is visible; the rest the empty /tmp hides already
     visible = [k for k in keep if _TMP in k.parents]
 
-    def hidden_anyway(p):
+    def hidden_anyway(p: Path) -> bool:
         return (p == _TMP or _TMP in p.parents) and not _within(p, visible)
 
-    dirs, files = set(), set()
-    for p in hide:
-        p = Path(p).resolve()
+    dirs: set[Path] = set()
+    files: set[Path] = set()
+    for h in hide:
+        p = Path(h).resolve()
         if p.is_file():
             d = p.parent
             if any(k == d or d in k.parents for k in keep):
@@ -245,9 +279,9 @@ def _hide_args(hide):
                 files |= {q for q in p.glob("*.csv")}
             else:
                 dirs.add(p)
-    dirs = sorted(d for d in dirs if d != Path("/") and not hidden_anyway(d))
-    top = [d for d in dirs if not any(o in d.parents for o in dirs)]
-    args = []
+    shown = sorted(d for d in dirs if d != Path("/") and not hidden_anyway(d))
+    top = [d for d in shown if not any(o in d.parents for o in shown)]
+    args: list[str] = []
     for d in top:
         args += ["--tmpfs", str(d)]
     for f in sorted(files):
@@ -256,7 +290,7 @@ def _hide_args(hide):
     return args
 
 
-def _env(home):
+def _env(home: str) -> dict[str, str]:
     keep = {k: v for k, v in os.environ.items() if k in ("PATH", "LANG", "LC_ALL", "TZ")}
     pp = [str(PKG_PARENT)]
     return {**keep, "PYTHONPATH": os.pathsep.join(pp), "HOME": f"{home}/home",
@@ -267,54 +301,63 @@ def _env(home):
             "PYDEVD_DISABLE_FILE_VALIDATION": "1", "GM_CHECKS_GRADING": "1"}
 
 
-def _mpl_cache():
+def _mpl_cache() -> str | None:
     try:
         import matplotlib
-        return matplotlib.get_cachedir()
+        return str(matplotlib.get_cachedir())
     except Exception:  # noqa: BLE001
         return None
 
 
 class _OuterClock:
     """The runner's cell clock kept again here, outside the sandbox, from its records as they
-    arrive (:mod:`gm_grader.clock`): the kernel can stop or stall its runner, not this process."""
+    arrive (:mod:`gm_grader.clock`): the kernel can stop or stall its runner, not this process.
+    Each whole line is decoded (:func:`gm_core.checks.protocol.decode_record`) once, here; the
+    records are kept for the judge and junk lines are dropped."""
 
-    def __init__(self, limits, caps, started):
+    def __init__(self, limits: Limits, caps: Mapping[str, float] | None, started: float) -> None:
         self.clock = CellClock(caps)
         self.clock.restart(started)
         self.cell_bound = limits.cell_timeout + _RUNNER_GRACE + OUTER_MARGIN
         self.bound = STARTUP_LIMIT            # until the first cell starts
-        self.head = b""                       # the start of the line being received
+        self.pending: list[bytes] = []        # the pieces of the line being received
+        self.records: list[Record] = []
+        self.done = False
 
-    def feed(self, chunk, now):
-        pieces = chunk.split(b"\n")
-        for i, piece in enumerate(pieces):
-            if len(self.head) < 200:
-                self.head += piece[:200 - len(self.head)]
-            if i < len(pieces) - 1:           # a whole line: act on its kind
-                self._line(self.head, now)
-                self.head = b""
+    def feed(self, chunk: bytes, now: float) -> None:
+        if b"\n" not in chunk:
+            self.pending.append(chunk)        # joined once, when its line ends
+            return
+        first, *lines, last = chunk.split(b"\n")
+        for line in [b"".join([*self.pending, first]), *lines]:
+            if line.strip():
+                self._line(line, now)
+        self.pending = [last] if last else []
 
-    def _line(self, head, now):
-        if head.startswith((b'{"t": "run"', b'{"t": "cell"')):
+    def _line(self, line: bytes, now: float) -> None:
+        try:
+            rec = decode_record(line)
+        except ProtocolError:
+            return                             # junk: the runner writes none
+        self.records.append(rec)
+        if isinstance(rec, (CellStarted, CellEnded)):
             self.clock.restart(now)
             self.bound = self.cell_bound
-        elif head.startswith(b'{"t": "b"'):
-            try:
-                key = json.loads(head.decode("utf-8", "replace")).get("part")
-            except (ValueError, AttributeError):
-                key = None
-            if isinstance(key, str):
-                self.clock.begin(key, now)
-        elif head.startswith(b'{"t": "k"'):
+        elif isinstance(rec, CheckAnnounced):
+            self.clock.begin(rec.part, now)
+        elif isinstance(rec, EvidenceLine):
             self.clock.end(now)
+        elif isinstance(rec, Done):
+            self.done = True
 
-    def over(self, now):
+    def over(self, now: float) -> bool:
         return self.clock.seconds(now) > self.bound
 
 
-def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=None, caps=None):
-    """Run ``notebook`` in its sandbox; return ({"records": [...], "log": text, ...}).
+def run_submission(notebook: str | Path, *, limits: Limits, hide: Sequence[str | Path] = (),
+                   sandbox: bool = True, nonce: str | None = None, salt: int | None = None,
+                   caps: Mapping[str, float] | None = None) -> RunResult:
+    """Run ``notebook`` in its sandbox; return what it brought back.
 
     ``caps``: {"<exercise>/<part>": seconds} the longest honest check of each part may take
     (:func:`gm_grader.clock.check_caps`), credited on the cell clocks."""
@@ -328,11 +371,11 @@ def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=
     rfd, wfd = os.pipe()
     inside = "/tmp/.gm-in" if sandbox else str(inbox)
     scratch = "/tmp" if sandbox else str(private / "tmp")
-    config = {"notebook": f"{inside}/{name}", "workdir": f"{scratch}/work", "evidence_fd": wfd,
-              "nonce": nonce or secrets.token_hex(16), "salt": salt if salt is not None else secrets.randbits(62),
-              "cell_timeout": limits.cell_timeout, "time_limit": limits.time_limit,
-              "mpl_cache": _mpl_cache(), "caps": dict(caps or {})}
-    (inbox / "config.json").write_text(json.dumps(config))
+    config = RunnerConfig(notebook=f"{inside}/{name}", workdir=f"{scratch}/work", evidence_fd=wfd,
+                          nonce=nonce or secrets.token_hex(16),
+                          salt=salt if salt is not None else secrets.randbits(62), limits=limits,
+                          caps=dict(caps or {}), mpl_cache=_mpl_cache())
+    (inbox / "config.json").write_text(encode_config(config))
     cmd = [sys.executable, "-m", "gm_grader.runner", f"{inside}/config.json"]
     cgroups = _Cgroups(limits, f"gm-grade-{os.getpid()}-{secrets.token_hex(4)}")
     if sandbox:
@@ -346,28 +389,31 @@ def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=
         (private / "tmp").mkdir()
     cmd, preexec = _limited(cmd, limits, cgroups)
     started = time.monotonic()
-    log, evidence, killed, kernel_pid = b"", b"", "", None
+    log, received = b"", 0
+    killed: Killed | None = None
     proc = None
+    outer = _OuterClock(limits, caps, started)
+    wfd_open = True
     try:
         proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                                 stderr=subprocess.STDOUT, pass_fds=(wfd,), env=_env(scratch),
                                 cwd=str(private if not sandbox else "/"), preexec_fn=preexec,
                                 start_new_session=True)
         os.close(wfd)
-        wfd = None
+        wfd_open = False
+        assert proc.stdout is not None
         streams = {rfd: "e", proc.stdout.fileno(): "o"}
         deadline = started + limits.notebook_timeout
-        outer = _OuterClock(limits, caps, started)
         while streams:
             if rfd not in streams and proc.poll() is not None:
                 break   # the runner is gone and said all it will say
             now = time.monotonic()
             wait = deadline - now
             if wait <= 0:
-                killed = "time"
+                killed = Killed.TIME
                 break
             if outer.over(now):
-                killed = "cell"       # the runner did not end an over-long cell: end it all
+                killed = Killed.CELL      # the runner did not end an over-long cell: end it all
                 break
             ready, _, _ = select.select(list(streams), [], [], min(wait, 0.5))
             for fd in ready:
@@ -375,43 +421,42 @@ def run_submission(notebook, *, limits, hide=(), sandbox=True, nonce=None, salt=
                 if not chunk:
                     del streams[fd]
                 elif streams[fd] == "e":
+                    if received >= MAX_EVIDENCE_BYTES:
+                        killed = killed or Killed.EVIDENCE
+                        continue
+                    received += len(chunk)
                     outer.feed(chunk, time.monotonic())
-                    if len(evidence) < MAX_EVIDENCE_BYTES:
-                        evidence += chunk
-                        if b'"t": "done"' in evidence[-200:]:
-                            streams.clear()     # the runner has said all: end the sandbox now
-                            break
-                    else:
-                        killed = killed or "evidence"
+                    if outer.done:
+                        streams.clear()     # the runner has said all: end the sandbox now
+                        break
                 elif len(log) < MAX_LOG_BYTES:
                     log += chunk
-            if killed == "evidence":
+            if killed is Killed.EVIDENCE:
                 break
     finally:
-        if wfd is not None:
+        if wfd_open:
             os.close(wfd)
         if proc is not None:
             _stop(proc)
         os.close(rfd)
         cgroups.close()
         shutil.rmtree(private, ignore_errors=True)
-    records = _records(evidence)
-    for r in records:
-        if r.get("t") == "kernel" and isinstance(r.get("pid"), int) and kernel_pid is None:
-            kernel_pid = r["pid"]
+    result = RunResult(records=tuple(outer.records), nonce=config.nonce, salt=config.salt,
+                       killed=killed, log=log.decode("utf-8", "replace")[-4000:],
+                       seconds=time.monotonic() - started, cgroups=tuple(sorted(cgroups.kinds)))
+    kernel_pid = result.kernel_pid
     if not sandbox and kernel_pid and proc is not None and _session_of(kernel_pid) == kernel_pid \
             and kernel_pid not in (os.getpid(), os.getpgrp(), os.getsid(0)):
         _killpg(kernel_pid)   # the kernel has its own session; without a pid namespace end it here
-    return {"records": records, "log": log.decode("utf-8", "replace")[-4000:], "killed": killed,
-            "seconds": time.monotonic() - started, "nonce": config["nonce"], "salt": config["salt"],
-            "cgroups": sorted(cgroups.kinds)}
+    return result
 
 
 _JOIN = ('for c in "$@"; do [ "$c" = -- ] && break; echo $$ > "$c/cgroup.procs" 2>/dev/null; '
          'shift; done; shift; exec "$@"')
 
 
-def _limited(cmd, limits, cgroups):
+def _limited(cmd: list[str], limits: Limits,
+             cgroups: _Cgroups) -> tuple[list[str], Callable[[], None] | None]:
     """(command, preexec_fn) applying the limits before ``cmd`` starts: a shell joins the cgroups
     and ``prlimit`` sets the resource limits, then both exec (no Python runs between fork and
     exec, which matters with --jobs); without prlimit, a preexec_fn does the same."""
@@ -425,7 +470,7 @@ def _limited(cmd, limits, cgroups):
         return ["/bin/sh", "-c", _JOIN, "sh", *map(str, cgroups.dirs), "--", prlimit, *lim,
                 "--", *cmd], None
 
-    def preexec():
+    def preexec() -> None:
         cgroups.join()
         for res, val in ((resource.RLIMIT_AS, mem), (resource.RLIMIT_CORE, 0),
                          (resource.RLIMIT_FSIZE, fsize)) + (
@@ -437,7 +482,7 @@ def _limited(cmd, limits, cgroups):
     return cmd, preexec
 
 
-def _session_of(pid):
+def _session_of(pid: int) -> int | None:
     """The session id of a live process (the kernel leads its own), or None."""
     try:
         return os.getsid(pid)
@@ -445,7 +490,7 @@ def _session_of(pid):
         return None
 
 
-def _user_processes():
+def _user_processes() -> int:
     uid, n = os.getuid(), 0
     for p in Path("/proc").iterdir():
         if p.name.isdigit():
@@ -457,14 +502,14 @@ def _user_processes():
     return n
 
 
-def _killpg(pid):
+def _killpg(pid: int) -> None:
     try:
         os.killpg(pid, signal.SIGKILL)
     except OSError:
         pass
 
 
-def _stop(proc):
+def _stop(proc: subprocess.Popen[bytes]) -> None:
     """End the sandbox: its process group first, then bwrap itself (taking its namespace)."""
     if proc.poll() is None:
         _killpg(proc.pid)
@@ -479,18 +524,3 @@ def _stop(proc):
     _killpg(proc.pid)
     if proc.stdout is not None:
         proc.stdout.close()
-
-
-def _records(data):
-    """The runner's JSON lines (shallow, written by course code); junk lines are dropped."""
-    out = []
-    for line in data.split(b"\n"):
-        if not line.strip():
-            continue
-        try:
-            r = json.loads(line.decode("utf-8", "replace"))
-        except (ValueError, RecursionError):
-            continue
-        if isinstance(r, dict) and isinstance(r.get("t"), str):
-            out.append(r)
-    return out

@@ -9,7 +9,9 @@ from __future__ import annotations
 import csv
 import io
 import json
+from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import Any
 
 from gm_core.checks.files import atomic_write
 
@@ -17,13 +19,14 @@ VISIBILITIES = ("visible", "hidden", "after_due_date", "after_published")
 FIELDS = ["notebook", "exercise", "part", "status", "score", "max_score", "message"]
 
 
-def check_visibility(v, what="visibility"):
+def check_visibility(v: str, what: str = "visibility") -> str:
     if v not in VISIBILITIES:
         raise ValueError(f"{what} must be one of {', '.join(VISIBILITIES)}; got {v!r}")
     return v
 
 
-def results(rows, *, message="", elapsed=0.0, visibility="visible", max_score=None):
+def results(rows: Sequence[Mapping[str, Any]], *, message: str = "", elapsed: float = 0.0,
+            visibility: str = "visible", max_score: float | None = None) -> dict[str, Any]:
     """Gradescope's results dict. ``rows`` carry ``visibility`` per test (default ``visibility``)."""
     check_visibility(visibility)
     tests = []
@@ -35,7 +38,7 @@ def results(rows, *, message="", elapsed=0.0, visibility="visible", max_score=No
                       "output": r["message"], "visibility": r.get("visibility", visibility)})
     total = sum(t["score"] for t in tests)
     top = sum(t["max_score"] for t in tests)
-    out = {"score": total, "execution_time": round(float(elapsed), 1), "output": message,
+    out: dict[str, Any] = {"score": total, "execution_time": round(float(elapsed), 1), "output": message,
            "visibility": visibility, "stdout_visibility": "hidden", "tests": tests}
     if max_score is not None and top > 0 and abs(top - float(max_score)) > 1e-9:
         out["score"] = round(total * float(max_score) / top, 6)
@@ -44,15 +47,18 @@ def results(rows, *, message="", elapsed=0.0, visibility="visible", max_score=No
     return out
 
 
-def write(rows, out_dir, **kw):
+def write(rows: Sequence[Mapping[str, Any]], out_dir: str | Path, *, message: str = "",
+          elapsed: float = 0.0, visibility: str = "visible",
+          max_score: float | None = None) -> dict[str, Any]:
     """Write results.json and grades.csv into ``out_dir`` (atomically); return the results."""
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    res = results(rows, **kw)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    res = results(rows, message=message, elapsed=elapsed, visibility=visibility,
+                  max_score=max_score)
     buf = io.StringIO()
     w = csv.DictWriter(buf, fieldnames=FIELDS, extrasaction="ignore")
     w.writeheader()
     w.writerows(rows)
-    atomic_write(out_dir / "grades.csv", buf.getvalue())
-    atomic_write(out_dir / "results.json", json.dumps(res, indent=1) + "\n")
+    atomic_write(out / "grades.csv", buf.getvalue())
+    atomic_write(out / "results.json", json.dumps(res, indent=1) + "\n")
     return res

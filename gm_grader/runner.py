@@ -2,17 +2,13 @@
 
 This process is started by the grader (:mod:`.grade`), normally inside the submission's
 bubblewrap sandbox (:mod:`gm_grader.isolate`); it is the only course code there besides the kernel.
-It writes plain records, one JSON line each, to the evidence descriptor it inherited from the
-grader (``config["evidence_fd"]``):
-
-* ``{"t": "start"}``, ``{"t": "kernel", "pid": ...}``;
-* ``{"t": "run", "i": index}`` as a code cell starts, ``{"t": "cell", "i": index, "status":
-  "ok" | "error" | "timeout" | "died", ...}`` when it ends;
-* ``{"t": "k", "cell": index, "line": "..."}``: a line the kernel's checks wrote on the pipe
-  this runner created *before the kernel started* (forwarded as text; the grader parses it);
-* ``{"t": "b", "cell": index, "part": "1.4/a"}``: a check announced itself (its probes' time is
-  credited, capped, on this runner's cell clock and on the grader's, :mod:`gm_grader.clock`);
-* ``{"t": "fatal", "m": ...}`` and ``{"t": "done"}``.
+It writes the records of :mod:`gm_core.checks.protocol` (:class:`~gm_core.checks.protocol.Record`),
+one JSON line each, to the evidence descriptor it inherited from the grader
+(``RunnerConfig.evidence_fd``): it started, the kernel started, a code cell starts or ends (with
+its status), a check announced itself in the kernel (its probes' time is credited, capped, on
+this runner's cell clock and on the grader's, :mod:`gm_grader.clock`), a line of the kernel's
+evidence (forwarded as text; the grader decodes and checks it), the notebook flooded the pipe,
+could not be run, or is done.
 
 Before the student's first cell a hidden cell binds the kernel's end of that pipe
 (:func:`gm_core.checks.channel.open_channel`). Each code cell runs under the cell limit, *not counting the
@@ -26,29 +22,52 @@ grader never looks at what a notebook prints.
 """
 from __future__ import annotations
 
-import json
 import os
 import shutil
 import signal
 import sys
 import threading
 import time
+from collections.abc import Callable
+from dataclasses import replace
+from typing import Any
 
+from gm_core.checks.protocol import (
+    CellEnded,
+    CellStarted,
+    CellStatus,
+    CheckAnnounced,
+    Done,
+    EvidenceLine,
+    Fatal,
+    Flooded,
+    KernelStarted,
+    OutputSize,
+    ProtocolError,
+    Record,
+    RunnerConfig,
+    Started,
+    decode_check_begun,
+    decode_config,
+    encode_record,
+)
 from gm_grader.clock import CellClock
 
 MAX_FORWARD_BYTES = 32_000_000
 MAX_LINE_BYTES = 4_100_000
 GRACE = 5.0
+#: A check's announcement is short; a longer line is evidence (or junk) and is not parsed here.
+MAX_ANNOUNCEMENT_BYTES = 200
 
 
 class _Out:
-    """The evidence descriptor: whole JSON lines, written under a lock."""
+    """The evidence descriptor: whole records, one line each, written under a lock."""
 
-    def __init__(self, fd):
+    def __init__(self, fd: int) -> None:
         self.fd, self.lock, self.t0 = fd, threading.Lock(), time.monotonic()
 
-    def send(self, rec):
-        data = (json.dumps({**rec, "at": round(time.monotonic() - self.t0, 2)}) + "\n").encode()
+    def send(self, rec: Record) -> None:
+        data = encode_record(_stamped(rec, time.monotonic() - self.t0))
         with self.lock:
             try:
                 while data:
@@ -57,26 +76,30 @@ class _Out:
                 pass
 
 
+def _stamped(rec: Record, at: float) -> Record:
+    return replace(rec, at=round(at, 2))
+
+
 class _State:
-    def __init__(self, caps=None):
-        self.cell = None            # index of the cell running now
-        self.clock = CellClock(caps)   # student seconds of that cell (checks' probes credited)
-        self.interrupted = None
+    def __init__(self, caps: dict[str, float] | None = None) -> None:
+        self.cell: int | None = None         # index of the cell running now
+        self.clock = CellClock(caps)         # student seconds of that cell (checks' probes credited)
+        self.interrupted: float | None = None
         self.timed_out = False
         self.lock = threading.Lock()
 
-    def start_cell(self, index, now):
+    def start_cell(self, index: int, now: float) -> None:
         with self.lock:
             self.cell = index
             self.clock.restart(now)
             self.interrupted, self.timed_out = None, False
 
-    def student_seconds(self, now):
+    def student_seconds(self, now: float) -> float:
         with self.lock:
             return self.clock.seconds(now)
 
 
-def _forward(rfd, out, state):
+def _forward(rfd: int, out: _Out, state: _State) -> None:
     """Forward the kernel's check lines, tagged with the cell that was running."""
     pending, total, noted = b"", 0, False
     while True:
@@ -89,7 +112,7 @@ def _forward(rfd, out, state):
         total += len(chunk)
         if total > MAX_FORWARD_BYTES:
             if not noted:
-                out.send({"t": "flood", "m": "the kernel wrote too much on the evidence channel"})
+                out.send(Flooded(message="the kernel wrote too much on the evidence channel"))
                 noted = True
             pending = b""
             continue
@@ -98,25 +121,30 @@ def _forward(rfd, out, state):
             line, pending = pending.split(b"\n", 1)
             _handle(line, out, state)
         if len(pending) > MAX_LINE_BYTES:
-            out.send({"t": "k", "cell": state.cell, "line": "", "m": "an over-long record"})
+            out.send(EvidenceLine(cell=state.cell, line=""))    # an over-long record: rejected
             pending = b""
 
 
-def _handle(line, out, state):
+def _handle(line: bytes, out: _Out, state: _State) -> None:
+    """One line of the kernel: a check's announcement (parsed) or evidence (forwarded as text)."""
     now = time.monotonic()
-    if line.startswith(b"B "):
-        key = line[2:80].decode("utf-8", "replace").strip()
-        with state.lock:
-            state.clock.begin(key, now)
-        out.send({"t": "b", "cell": state.cell, "part": key})   # the grader's clock credits it too
-        return
+    if len(line) <= MAX_ANNOUNCEMENT_BYTES:
+        try:
+            key = decode_check_begun(line).part
+        except ProtocolError:
+            pass
+        else:
+            with state.lock:
+                state.clock.begin(key, now)
+            out.send(CheckAnnounced(cell=state.cell, part=key))  # the grader's clock credits it too
+            return
     with state.lock:
         state.clock.end(now)
-    text = line.decode("utf-8", "replace")
-    out.send({"t": "k", "cell": state.cell, "line": text[2:] if text.startswith("R ") else text})
+    out.send(EvidenceLine(cell=state.cell, line=line.decode("utf-8", "replace")))
 
 
-def _watchdog(state, limit, pid_of, stop):
+def _watchdog(state: _State, limit: float, pid_of: Callable[[], int | None],
+              stop: threading.Event) -> None:
     while not stop.wait(0.2):
         now = time.monotonic()
         if state.cell is None or state.cell < 0:
@@ -132,7 +160,7 @@ def _watchdog(state, limit, pid_of, stop):
             state.interrupted = now + 3600  # once
 
 
-def _signal(pid, sig):
+def _signal(pid: int, sig: int) -> None:
     for kill in (lambda: os.killpg(pid, sig), lambda: os.kill(pid, sig)):
         try:
             kill()
@@ -141,16 +169,16 @@ def _signal(pid, sig):
             pass
 
 
-def _without_iri_grammar():
+def _without_iri_grammar() -> None:
     """Importing nbformat imports jsonschema, which imports ``rfc3987_syntax`` when it is installed
     (an extra that jupyter_events asks for) and that compiles a Lark grammar at import: 1-2 s of CPU
     for every graded notebook. The notebook schema has no IRI format to check, so this process,
     which only reads and runs one notebook, marks the module absent (``sys.modules[name] = None``
     is Python's documented way to make an import fail) and jsonschema does without it."""
-    sys.modules.setdefault("rfc3987_syntax", None)
+    sys.modules.setdefault("rfc3987_syntax", None)  # type: ignore[arg-type]
 
 
-def _client_class():
+def _client_class() -> Any:
     from nbclient import NotebookClient
     from nbclient.exceptions import CellExecutionComplete
 
@@ -158,9 +186,9 @@ def _client_class():
         """Executes cells but keeps none of their output (counted, then dropped)."""
 
         output_bytes = 0
-        last_error = None
+        last_error: str | None = None
 
-        def process_message(self, msg, cell, cell_index):
+        def process_message(self, msg: dict[str, Any], cell: Any, cell_index: int) -> None:
             mtype = msg.get("msg_type")
             content = msg.get("content") or {}
             if mtype == "status":
@@ -179,7 +207,7 @@ def _client_class():
     return QuietClient
 
 
-def _copy_font_cache(src, dst):
+def _copy_font_cache(src: str, dst: str) -> None:
     try:
         os.makedirs(dst, exist_ok=True)
         for name in os.listdir(src):
@@ -189,22 +217,32 @@ def _copy_font_cache(src, dst):
         pass
 
 
-def run(config):
-    out = _Out(int(config["evidence_fd"]))
-    out.send({"t": "start"})
-    work = config["workdir"]
+def _setup_source(wfd: int, config: RunnerConfig) -> str:
+    """The hidden first cell: bind the kernel's end of the evidence pipe, set the per-call limit."""
+    limit = config.limits.time_limit
+    return ("import gm_core.checks.channel as __gm_grading, gm_core.checks.sandbox as __gm_sandbox\n"
+            f"__gm_grading.open_channel({wfd}, {config.nonce!r}, {config.salt!r}, {limit!r})\n"
+            f"__gm_sandbox.set_time_limit({limit!r})\n"
+            "del __gm_grading, __gm_sandbox")
+
+
+def run(config: RunnerConfig) -> int:
+    out = _Out(config.evidence_fd)
+    out.send(Started())
+    work = config.workdir
     os.makedirs(work, exist_ok=True)
     for d in ("HOME", "IPYTHONDIR", "JUPYTER_RUNTIME_DIR", "MPLCONFIGDIR"):
         if os.environ.get(d):
             os.makedirs(os.environ[d], exist_ok=True)
-    if config.get("mpl_cache") and os.environ.get("MPLCONFIGDIR"):
-        _copy_font_cache(config["mpl_cache"], os.environ["MPLCONFIGDIR"])
+    mpl_dir = os.environ.get("MPLCONFIGDIR")
+    if config.mpl_cache and mpl_dir:
+        _copy_font_cache(config.mpl_cache, mpl_dir)
     try:
         _without_iri_grammar()
         import nbformat
-        with open(config["notebook"], "rb") as f:
-            raw = f.read(int(config.get("max_notebook_bytes", 50_000_000)) + 1)
-        if len(raw) > int(config.get("max_notebook_bytes", 50_000_000)):
+        with open(config.notebook, "rb") as f:
+            raw = f.read(config.max_notebook_bytes + 1)
+        if len(raw) > config.max_notebook_bytes:
             raise ValueError("the notebook file is too large")
         nb = nbformat.reads(raw.decode("utf-8"), as_version=4)
         cells = [(i, c) for i, c in enumerate(nb.cells) if c.get("cell_type") == "code"]
@@ -212,74 +250,72 @@ def run(config):
             if not isinstance(c.get("source"), str):
                 raise ValueError("a cell's source is not text")
     except (Exception, RecursionError) as exc:  # noqa: BLE001 - malformed, deep, huge JSON
-        out.send({"t": "fatal", "m": f"the notebook could not be read ({type(exc).__name__})"})
+        out.send(Fatal(message=f"the notebook could not be read ({type(exc).__name__})"))
         return 0
-    name = os.path.basename(config["notebook"])
+    name = os.path.basename(config.notebook)
     try:
-        shutil.copy(config["notebook"], os.path.join(work, name))
+        shutil.copy(config.notebook, os.path.join(work, name))
     except OSError:
         pass
 
     rfd, wfd = os.pipe()
-    state = _State(config.get("caps"))
+    state = _State(dict(config.caps))
     stop = threading.Event()
     reader = threading.Thread(target=_forward, args=(rfd, out, state), daemon=True)
     reader.start()
-    setup = nbformat.v4.new_code_cell(
-        "import gm_core.checks.channel as __gm_grading, gm_core.checks.sandbox as __gm_sandbox\n"
-        f"__gm_grading.open_channel({wfd}, {config['nonce']!r}, {config['salt']!r}, "
-        f"{config['time_limit']!r})\n"
-        f"__gm_sandbox.set_time_limit({config['time_limit']!r})\n"
-        "del __gm_grading, __gm_sandbox")
+    setup = nbformat.v4.new_code_cell(_setup_source(wfd, config))
     nb.cells.insert(0, setup)
     client = _client_class()(nb, timeout=None, kernel_name="python3", allow_errors=True,
                              startup_timeout=120, resources={"metadata": {"path": work}})
 
-    def pid_of():
+    def pid_of() -> int | None:
         try:
-            return client.km.provisioner.process.pid
+            pid = client.km.provisioner.process.pid
         except AttributeError:
             return None
+        return pid if isinstance(pid, int) else None
 
     dog = threading.Thread(target=_watchdog,
-                           args=(state, float(config["cell_timeout"]), pid_of, stop), daemon=True)
+                           args=(state, config.limits.cell_timeout, pid_of, stop), daemon=True)
     dog.start()
     try:
         with client.setup_kernel(pass_fds=(wfd,), cwd=work):
             os.close(wfd)
-            out.send({"t": "kernel", "pid": pid_of()})
+            out.send(KernelStarted(pid=pid_of()))
             state.start_cell(-1, time.monotonic())
             client.execute_cell(setup, 0)
             if client.last_error:
-                out.send({"t": "fatal", "m": "the course's checkers could not be loaded in the "
-                          f"notebook's kernel ({client.last_error})"})
+                out.send(Fatal(message="the course's checkers could not be loaded in the "
+                               f"notebook's kernel ({client.last_error})"))
                 return 0
             for index, cell in cells:
                 state.start_cell(index, time.monotonic())
                 client.last_error = None
-                out.send({"t": "run", "i": index})
+                out.send(CellStarted(index=index))
                 try:
                     client.execute_cell(cell, index + 1)
                 except Exception as exc:  # noqa: BLE001 - DeadKernelError and kin
-                    status = "timeout" if state.timed_out else "died"
-                    out.send({"t": "cell", "i": index, "status": status,
-                              "m": type(exc).__name__, "s": round(time.monotonic() - state.clock.started, 1)})
+                    out.send(CellEnded(
+                        index=index, status=CellStatus.TIMEOUT if state.timed_out else CellStatus.DIED,
+                        error=type(exc).__name__,
+                        seconds=round(time.monotonic() - state.clock.started, 1)))
                     return 0
-                status = "timeout" if state.timed_out else ("error" if client.last_error else "ok")
-                out.send({"t": "cell", "i": index, "status": status, "m": client.last_error or "",
-                          "s": round(time.monotonic() - state.clock.started, 1)})
+                status = (CellStatus.TIMEOUT if state.timed_out else
+                          CellStatus.ERROR if client.last_error else CellStatus.OK)
+                out.send(CellEnded(index=index, status=status, error=client.last_error or "",
+                                   seconds=round(time.monotonic() - state.clock.started, 1)))
             state.cell = None
-            out.send({"t": "output", "bytes": client.output_bytes})
-            out.send({"t": "done"})   # the grader ends the sandbox now: no slow kernel shutdown
+            out.send(OutputSize(size=client.output_bytes))
+            out.send(Done())   # the grader ends the sandbox now: no slow kernel shutdown
     except (Exception, RecursionError) as exc:  # noqa: BLE001 - the kernel would not start, ...
-        out.send({"t": "fatal", "m": f"the notebook's kernel stopped ({type(exc).__name__})"})
+        out.send(Fatal(message=f"the notebook's kernel stopped ({type(exc).__name__})"))
         return 0
     finally:
         stop.set()
     return 0
 
 
-def _not_dumpable():
+def _not_dumpable() -> None:
     """Keep the kernel (same user) out of this process: no ptrace, no /proc/<pid>/fd."""
     try:
         import ctypes
@@ -288,16 +324,16 @@ def _not_dumpable():
         pass
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     _not_dumpable()
     with open(argv[0], encoding="utf-8") as f:
-        config = json.load(f)
+        config = decode_config(f.read())
     try:
         return run(config)
     except Exception as exc:  # noqa: BLE001 - say so on the channel rather than vanish
-        _Out(int(config["evidence_fd"])).send(
-            {"t": "fatal", "m": f"the grader's runner failed ({type(exc).__name__}: {exc})"[:300]})
+        _Out(config.evidence_fd).send(
+            Fatal(message=f"the grader's runner failed ({type(exc).__name__}: {exc})"[:300]))
         raise
 
 

@@ -15,6 +15,7 @@ import hashlib
 import inspect
 import json
 import os
+import re
 import site
 import subprocess
 import sys
@@ -29,10 +30,22 @@ import pytest
 from gm_core.checks import channel
 from gm_core.checks.ex1 import ex1_1, ex1_2
 from gm_core.checks.exercise import REGISTRY, exercise_ids
+from gm_core.checks.protocol import (
+    CellEnded,
+    CellStarted,
+    CellStatus,
+    Done,
+    EvidenceLine,
+    Fatal,
+    ForeignEvidence,
+    Limits,
+    ProtocolError,
+    Started,
+)
 from gm_grader import evidence as _evidence
 from gm_grader import report as _report
 from gm_grader.batch import identify, leftover_reason, load_assignment
-from gm_grader.isolate import _own_cgroup_dirs, sandbox_problem
+from gm_grader.isolate import Killed, RunResult, _own_cgroup_dirs, sandbox_problem
 
 ROOT = Path(__file__).resolve().parent.parent
 TOKEN = f"gm-test-daemon-{uuid.uuid4().hex[:8]}"
@@ -84,10 +97,10 @@ def forger_cells():
             "lambda *a: print('<<gm-course-grading>>' + forged))",
             "ex1_2.a.check(lambda h, g: h + g)\nex1_2.b.check(lambda h, g: np.diag(g))\n"
             "ex1_2.c.check(lambda h, g: np.eye(2))",
-            "fd, nonce = channel._STATE['fd'], channel._STATE['nonce']\n"
+            "fd, nonce = channel._STATE.fd, channel._STATE.nonce\n"
             "def rec(part, o, n=nonce):\n"
-            "    os.write(fd, ('R ' + json.dumps({'n': n, 'ex': '1.2', 'part': part, 'o': o, "
-            "'out': ''}) + '\\n').encode())\n"
+            "    os.write(fd, (json.dumps({'kind': 'evidence', 'nonce': n, 'exercise': '1.2', "
+            "'part': part, 'outcomes': o, 'output': ''}) + '\\n').encode())\n"
             "def nd(x):\n    x = np.asarray(x, float)\n    return {'__nd__': list(x.shape), 'd': x.ravel().tolist()}\n"
             "P = ex1_2.parts\n"
             "rec('a', [{'k': 'ok', 'v': 'skip'}] * len(P['a'].probes()))             # all skip\n"
@@ -99,7 +112,7 @@ def forger_cells():
             "rec('c', [{'k': 'ok', 'v': True}] * len(right))                        # mistyped\n"
             "rec('c', right + right)                                                # extra\n"
             "rec('c', [dict(o, extra=1) for o in right])                            # extra field\n"
-            "os.write(fd, b'R ' + b'[' * 100000 + b'\\n')                            # deep JSON",
+            "os.write(fd, b'[' * 100000 + b'\\n')                                   # deep JSON",
             "for _ in range(200):\n    sys.stdout.write('x' * 100_000 + '\\n')     # 20 MB of output",
             "x = " + "-" * 5000 + "1",
             "import signal\nsignal.signal(signal.SIGINT, signal.SIG_IGN)\nwhile True:\n    pass"]
@@ -133,8 +146,9 @@ def staller_cells():
     patched clock, then its runner stopped with SIGSTOP (only the grading process's own clock,
     outside the sandbox, can end that cell)."""
     return ["import numpy as np, os, signal, time\nfrom gm_core.checks import ex1_2, channel\n"
+            "from gm_core.checks.protocol import CheckBegun, encode_kernel_message as enc\n"
             "ex1_2.a.check(lambda h, g: h * g)",
-            "os.write(channel._STATE['fd'], b'B 9.9/z\\n')   # 'my probes are running'\n"
+            "os.write(channel._STATE.fd, enc(CheckBegun('9.9/z')))  # 'my probes are running'\n"
             "time.monotonic = time.time = time.perf_counter = lambda: 0.0\n"
             "time.sleep(10**6)",
             "ex1_2.b.check(lambda h, g: np.diag(h))",
@@ -265,7 +279,7 @@ def test_a_kernel_cannot_stop_its_cell_clock(batch):
     rows = rows_of(batch, "staller")
     assert scores(batch, "staller") == {"a": 2.0, "b": 2.0, "c": 0.0}, rows
     lines = batch["results"]["output"].splitlines()
-    assert any(ln.startswith("staller/ex1_2.ipynb: cell 2 (`os.write(channel._STATE['fd'], b'B 9.9/z")
+    assert any(ln.startswith("staller/ex1_2.ipynb: cell 2 (`os.write(channel._STATE.fd, enc(CheckBegun('9.9/z'")
                and ln.endswith("ran longer than the cell limit and was interrupted") for ln in lines), lines
     msg = rows["c"]["message"]
     assert "the grader ended the notebook in cell 4 (`os.kill(os.getppid(), signal.SIGSTOP)" in msg, msg
@@ -392,7 +406,7 @@ def test_leftovers_and_identification(tmp_path):
 def test_assignment_validation(tmp_path):
     p = tmp_path / "a.json"
     p.write_text('{"notebooks": ["ex1_1.ipynb"], "max_score": 5}')
-    assert load_assignment(p)["exercises"] == ["1.1"]
+    assert load_assignment(p).exercises == ("1.1",)
     for bad in ('[1]', '{"exercises": []}', '{"exercises": ["1.1"], "visibility": "sometimes"}',
                 '{"exercises": ["1.1"], "max_score": -1}', '{"exercises": ["1.1"], "typo": 1}'):
         p.write_text(bad)
@@ -400,37 +414,48 @@ def test_assignment_validation(tmp_path):
             load_assignment(p)
 
 
-@pytest.mark.parametrize("evidence", [None, {}, {"outcomes": "x"}, {"outcomes": []},
-                                      {"outcomes": [{"k": "ok", "v": {"__nd__": [3], "d": [1, 2]}}]},
-                                      {"outcomes": [{"k": "ok", "v": "a"}] * 99},
-                                      {"outcomes": [{"k": "ok", "v": "skip"}] * 99},
-                                      {"stopped": True}, {"missing": "NameError"}])
-def test_forged_or_garbled_evidence_never_passes(evidence):
+def evidence_line(o, nonce="s", ex="1.2", name="a", **kw):
+    """A kernel's evidence line, written by hand (as a forger would)."""
+    return json.dumps({"kind": "evidence", "nonce": nonce, "exercise": ex, "part": name,
+                       "outcomes": o, "output": "", **kw})
+
+
+@pytest.mark.parametrize("outcomes", [None, {}, "x", [], "stopped", "too large",
+                                      [{"k": "ok", "v": {"__nd__": [3], "d": [1, 2]}}],
+                                      [{"k": "ok", "v": "a"}] * 99,
+                                      [{"k": "ok", "v": "skip"}] * 99, {"missing": "NameError"}])
+def test_forged_or_garbled_evidence_never_passes(outcomes):
     for ex_id in exercise_ids():
-        for part in REGISTRY[ex_id].parts.values():
-            ev = evidence
-            if evidence and evidence.get("outcomes") == [{"k": "ok", "v": "skip"}] * 99:
-                ev = {"outcomes": evidence["outcomes"][:len(part.probes())]}
-            assert not _evidence.judge_part(part, ev).passed, (ex_id, part.name, evidence)
+        ex = REGISTRY[ex_id]
+        for part in ex.parts.values():
+            o = outcomes
+            if outcomes == [{"k": "ok", "v": "skip"}] * 99:
+                o = outcomes[:len(part.probes())]               # the right count: judged, failed
+            try:
+                ev = _evidence.parse_line(evidence_line(o, ex=ex_id, name=part.name), "s", ex)
+            except ProtocolError:
+                continue                                        # rejected
+            assert not _evidence.judge_part(part, ev).passed, (ex_id, part.name, outcomes)
+        assert not _evidence.judge_part(part, None).passed
 
 
 def test_records_are_checked_not_believed():
     part = ex1_2.a
     n = len(part.probes())
     ok = [{"k": "ok", "v": {"__nd__": [2], "d": list(map(float, part.ref(*a)))}} for a in part.inputs()]
-
-    def line(o, nonce="s", ex="1.2", name="a", **kw):
-        return json.dumps({"n": nonce, "ex": ex, "part": name, "o": o, "out": "", **kw})
-
-    assert _evidence.parse_line(line(ok), "s", REGISTRY["1.2"])[0] == "a"
-    name, ev = _evidence.parse_line(line(ok), "s", REGISTRY["1.2"])
-    assert _evidence.judge_part(part, ev).passed                   # the right values do pass
+    line = evidence_line
+    ev = _evidence.parse_line(line(ok), "s", REGISTRY["1.2"])
+    assert ev.part == "a" and _evidence.judge_part(part, ev).passed   # the right values do pass
     for bad in (line(ok, nonce="t"), line(ok, name="z"), line(ok + ok), line(ok[:-1]),
                 line(ok, extra=1), line([dict(o, x="") for o in ok]), "[" * 50000, "{}",
                 line([{"k": "ok", "v": {"__nd__": [3], "d": [1.0, 2.0]}}] * n),
-                line([{"k": "nope", "v": 1}] * n), line([{"k": "ok", "v": [[[[[[[[[[[[[[1]]]]]]]]]]]]]]}] * n)):
-        assert _evidence.parse_line(bad, "s", REGISTRY["1.2"])[0] is None, bad
-    assert _evidence.parse_line(line(ok, ex="1.1"), "s", REGISTRY["1.2"])[0] == ""   # other exercise
+                line([{"k": "nope", "v": 1}] * n), line([{"k": "ok", "v": [[[[[[[[[[[[[[1]]]]]]]]]]]]]]}] * n),
+                line(ok).replace('"evidence"', '"begin"')):
+        with pytest.raises(ProtocolError) as exc:
+            _evidence.parse_line(bad, "s", REGISTRY["1.2"])
+        assert not isinstance(exc.value, ForeignEvidence), bad
+    with pytest.raises(ForeignEvidence):
+        _evidence.parse_line(line(ok, ex="1.1"), "s", REGISTRY["1.2"])       # other exercise
 
 
 def test_probe_inputs_are_salted_and_skip_only_where_sympy_allows():
@@ -545,7 +570,7 @@ def test_the_cell_clock_credits_checks_only_as_long_as_an_honest_one_takes():
 
 @pytest.mark.skipif(not CGROUPS, reason="no writable pids and memory cgroups here")
 def test_cgroups_of_a_sandbox_end_every_process_and_a_dead_graders_are_removed():
-    from gm_grader.isolate import Limits, _Cgroups
+    from gm_grader.isolate import _Cgroups
     gone = subprocess.Popen(["true"])
     gone.wait()
     stale = [Path(base) / f"gm-grade-{gone.pid}-dead" for _, base in _own_cgroup_dirs().values()]
@@ -570,10 +595,10 @@ def test_cgroups_of_a_sandbox_end_every_process_and_a_dead_graders_are_removed()
 
 def test_the_report_says_when_no_cgroup_could_be_made():
     from gm_grader.batch import _limits_note
-    assert _limits_note([{"cgroups": ["memory", "pids"]}], True) is None
-    note = _limits_note([{"cgroups": []}, {"cgroups": ["memory", "pids"]}], True)
+    assert _limits_note([("memory", "pids")], True) is None
+    note = _limits_note([(), ("memory", "pids")], True)
     assert "no memory or pids cgroup" in note and "pid namespace" in note and "README" in note
-    assert "outlived" in _limits_note([{"cgroups": ["memory"]}], False)
+    assert "outlived" in _limits_note([("memory",)], False)
 
 
 def test_results_are_written_atomically(tmp_path):
@@ -589,40 +614,41 @@ def test_results_are_written_atomically(tmp_path):
 
 def test_every_way_a_run_ends_gives_every_part_a_row_and_a_reason():
     ex = REGISTRY["1.2"]
-    good = json.dumps({"n": "s", "ex": "1.2", "part": "a", "o": [
-        {"k": "ok", "v": {"__nd__": [2], "d": list(map(float, ex.parts["a"].ref(*a)))}}
-        for a in ex.parts["a"].inputs()], "out": ""})
-    base = [{"t": "start"}, {"t": "k", "cell": 1, "line": good}, {"t": "cell", "i": 1, "status": "ok"}]
-    endings = {"killed by the notebook limit": ([], "time", "longer than the time allowed"),
-               "kernel died": ([{"t": "run", "i": 2}, {"t": "cell", "i": 2, "status": "died"}], "",
-                               "kernel stopped in cell 3"),
-               "cell limit, then killed": ([{"t": "cell", "i": 2, "status": "timeout"}], "",
+    good = evidence_line([{"k": "ok", "v": {"__nd__": [2], "d": list(map(float, ex.parts["a"].ref(*a)))}}
+                          for a in ex.parts["a"].inputs()])
+    base = [Started(), EvidenceLine(cell=1, line=good), CellEnded(index=1, status=CellStatus.OK)]
+    endings = {"killed by the notebook limit": ([], Killed.TIME, "longer than the time allowed"),
+               "kernel died": ([CellStarted(index=2), CellEnded(index=2, status=CellStatus.DIED)],
+                               None, "kernel stopped in cell 3"),
+               "cell limit, then killed": ([CellEnded(index=2, status=CellStatus.TIMEOUT)], None,
                                            "after it exceeded the cell limit"),
-               "runner killed": ([{"t": "run", "i": 2}], "", "ended its own grading in cell 3"),
-               "runner killed between cells": ([], "", "ended its own grading"),
-               "unreadable": ([{"t": "fatal", "m": "the notebook could not be read (ValueError)"}], "",
+               "runner killed": ([CellStarted(index=2)], None, "ended its own grading in cell 3"),
+               "runner killed between cells": ([], None, "ended its own grading"),
+               "unreadable": ([Fatal(message="the notebook could not be read (ValueError)")], None,
                               "could not be read"),
-               "finished": ([{"t": "done"}], "", "")}
+               "finished": ([Done()], None, "")}
     for what, (tail, killed, phrase) in endings.items():
-        run = {"nonce": "s", "records": base + tail, "killed": killed}
-        verdicts, problem, notes, _ = _evidence.summarise(run, ex, {1: "ex1_2.a.check(f)", 2: "boom()"})
+        run = RunResult(records=(*base, *tail), nonce="s", salt=0, killed=killed)
+        summary = _evidence.summarise(run, ex, {1: "ex1_2.a.check(f)", 2: "boom()"})
+        problem, verdicts = summary.problem, summary.parts
         assert set(verdicts) == {"a", "b", "c"}, what
-        assert verdicts["a"][0].passed and verdicts["a"][1] == 1, what     # checked before: kept
+        assert verdicts["a"].verdict.passed and verdicts["a"].cell == 1, what   # checked before: kept
         assert phrase in problem if phrase else problem == "", (what, problem)
         for name in "bc":
-            v = verdicts[name][0]
+            v = verdicts[name].verdict
             assert not v.passed and (phrase in v.message if phrase else "no check" in v.message), (what, v)
 
 
 @needs_sandbox
 def test_the_notebook_limit_ends_the_sandbox_and_everything_in_it(tmp_path):
-    from gm_grader.isolate import Limits, run_submission
+    from gm_grader.isolate import run_submission
     nb = write_nb(tmp_path / "ex1_1.ipynb", ["import time\ntime.sleep(10**6)"])
     t = time.monotonic()
     run = run_submission(nb, limits=Limits(notebook_timeout=2.0), hide=[tmp_path])
-    assert run["killed"] == "time" and time.monotonic() - t < 30
-    verdicts, problem, _, _ = _evidence.summarise(run, REGISTRY["1.1"], {})
-    assert "longer than the time allowed" in problem and not any(v.passed for v, _ in verdicts.values())
+    assert run.killed is Killed.TIME and time.monotonic() - t < 30
+    summary = _evidence.summarise(run, REGISTRY["1.1"], {})
+    assert "longer than the time allowed" in summary.problem
+    assert not any(r.verdict.passed for r in summary.parts.values())
     assert alive_with(str(tmp_path)) == []          # bwrap (its command line names tmp_path) is gone
 
 
@@ -684,3 +710,157 @@ def test_the_runner_reads_notebooks_without_compiling_the_iri_grammar():
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert res.returncode == 0, res.stderr[-2000:]
     assert res.stdout.strip() == "[]", res.stdout
+
+
+# ------------------------------------------------------------------ the protocol, encoded and decoded
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from gm_core.checks import protocol as P  # noqa: E402
+
+_text = st.text(max_size=40)
+_nd = st.lists(st.integers(0, 3), max_size=3).flatmap(
+    lambda shape: st.lists(st.floats(allow_nan=False, width=32) | st.integers(-9, 9),
+                           min_size=int(np.prod(shape)), max_size=int(np.prod(shape))).map(
+        lambda d: {"__nd__": shape, "d": d}))
+_plain = st.recursive(
+    st.none() | st.booleans() | st.integers(-2**40, 2**40) | st.floats(allow_nan=False) | _text | _nd,
+    lambda inner: st.lists(inner, max_size=3)
+    | st.lists(st.tuples(_text, inner).map(list), max_size=3).map(lambda kv: {"__dict__": kv}),
+    max_leaves=12)
+
+
+@st.composite
+def outcomes(draw):
+    kind = draw(st.sampled_from(P.OutcomeKind))
+    if kind is P.OutcomeKind.OK:
+        return P.Outcome(kind, draw(_plain))
+    detail = "" if kind in (P.OutcomeKind.WRONG, P.OutcomeKind.UNATTEMPTED) else draw(_text)
+    return P.Outcome(kind, None, draw(_text), detail)
+
+
+_cell = st.none() | st.integers(-1, 10**6)
+_at = st.floats(0, 1e5).map(lambda x: round(x, 2))
+records = st.one_of(
+    st.builds(P.Started, at=_at), st.builds(P.Done, at=_at),
+    st.builds(P.KernelStarted, at=_at, pid=st.none() | st.integers(1, 2**22)),
+    st.builds(P.CellStarted, at=_at, index=st.integers(0, 10**4)),
+    st.builds(P.CellEnded, at=_at, index=st.integers(0, 10**4), status=st.sampled_from(P.CellStatus),
+              error=_text, seconds=st.floats(0, 1e4)),
+    st.builds(P.CheckAnnounced, at=_at, cell=_cell, part=st.text(max_size=P.MAX_PART_KEY)),
+    st.builds(P.EvidenceLine, at=_at, cell=_cell, line=st.text(max_size=200)),
+    st.builds(P.OutputSize, at=_at, size=st.integers(0, 2**40)),
+    st.builds(P.Flooded, at=_at, message=_text), st.builds(P.Fatal, at=_at, message=_text))
+
+
+@settings(max_examples=150, deadline=None)
+@given(outcomes())
+def test_an_outcome_survives_its_codec(o):
+    wire = json.loads(json.dumps(P.encode_outcome(o)))
+    assert P.decode_outcome(wire) == o
+    from gm_core.checks.sandbox import decode_outcome
+    assert decode_outcome(wire)["k"] == o.kind.value          # the form the checkers' judges read
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(outcomes(), max_size=4), _text, st.sampled_from([None, *P.Withheld]))
+def test_evidence_and_announcements_survive_their_codec(outs, output, withheld):
+    got = P.Withheld.STOPPED if withheld is P.Withheld.STOPPED else tuple(outs)
+    ev = P.Evidence("n" * 32, "1.2", "a", got, output)
+    line = P.encode_kernel_message(ev)
+    assert line.endswith(b"\n") and line.count(b"\n") == 1
+    assert P.decode_evidence(line, nonce="n" * 32, exercise="1.2", probes={"a": len(outs)}) == ev
+    for spaced in (json.dumps(json.loads(line)), json.dumps(json.loads(line), indent=None,
+                                                             separators=(" , ", " : "))):
+        assert P.decode_evidence(spaced, nonce="n" * 32, exercise="1.2", probes={"a": len(outs)}) == ev
+    assert P.decode_check_begun(P.encode_kernel_message(P.CheckBegun("1.2/a"))) == P.CheckBegun("1.2/a")
+    with pytest.raises(P.ProtocolError):
+        P.decode_check_begun(line)                            # evidence is no announcement
+
+
+@settings(max_examples=200, deadline=None)
+@given(records)
+def test_a_runner_record_survives_its_codec_however_json_is_spaced(rec):
+    line = P.encode_record(rec)
+    assert P.decode_record(line) == rec
+    data = json.loads(line)
+    assert P.decode_record(json.dumps(data, indent=2, sort_keys=True)) == rec   # no byte prefixes
+    assert P.decode_record(json.dumps(data, separators=(",", ":"))) == rec
+
+
+@settings(max_examples=200, deadline=None)
+@given(records, st.data())
+def test_a_malformed_runner_record_is_rejected(rec, data):
+    wire = json.loads(P.encode_record(rec))
+    how = data.draw(st.sampled_from(["extra", "missing", "kind", "type", "bool", "list"]))
+    if how == "extra":
+        wire[data.draw(st.text(min_size=1, max_size=5).filter(lambda k: k not in wire))] = 1
+    elif how == "missing":
+        del wire[data.draw(st.sampled_from(sorted(wire)))]
+    elif how == "kind":
+        wire["kind"] = data.draw(st.text(max_size=8).filter(lambda k: k not in {r.value for r in P.RecordKind})
+                                 | st.integers() | st.none())
+    elif how == "type":
+        key = data.draw(st.sampled_from(sorted(set(wire) - {"kind"})))
+        wire[key] = data.draw(st.sampled_from([[1], {"a": 1}] + (["1" * 3000] if key != "line" else [])))
+    elif how == "bool":
+        key = data.draw(st.sampled_from(sorted(set(wire) - {"kind"})))
+        if isinstance(wire[key], str) or wire[key] is None:
+            wire[key] = [wire[key]]
+        else:
+            wire[key] = True
+    else:
+        wire = [wire]
+    with pytest.raises(P.ProtocolError):
+        P.decode_record(json.dumps(wire))
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.binary(max_size=300) | st.recursive(st.none() | st.booleans() | st.integers() | _text,
+                                               lambda i: st.lists(i) | st.dictionaries(_text, i),
+                                               max_leaves=10).map(lambda v: json.dumps(v).encode()))
+def test_junk_is_rejected_with_a_reason_never_a_crash(line):
+    for decode in (P.decode_record, P.decode_check_begun,
+                   lambda x: P.decode_evidence(x, nonce="s", exercise="1.2", probes={"a": 1})):
+        try:
+            decode(line)
+        except P.ProtocolError as exc:
+            assert str(exc)
+    try:
+        data = json.loads(line)
+    except ValueError:
+        return
+    try:
+        P.decode_outcome(data)
+    except P.ProtocolError as exc:
+        assert str(exc)
+
+
+def test_malformed_evidence_is_rejected_for_the_reason_the_report_gives():
+    ok = [{"k": "ok", "v": 1.0}]
+    cases = {"an over-long or missing record": "x" * (P.MAX_EVIDENCE_LINE + 1),
+             "a record that is not valid JSON (or nested too deeply)": "[" * 100000,
+             "a record of the wrong form": evidence_line(ok, extra=1),
+             "a record without this run's secret": evidence_line(ok, nonce="t"),
+             "a record for a part this exercise does not have": evidence_line(ok, name="b"),
+             "a record for part a with the wrong number of outcomes": evidence_line(ok * 2),
+             "a record for part a with malformed outcomes": evidence_line([{"k": "ok", "v": 1, "m": ""}])}
+    for why, line in cases.items():
+        with pytest.raises(P.ProtocolError, match=re.escape(why)):
+            P.decode_evidence(line, nonce="s", exercise="1.2", probes={"a": 1})
+    for bad in ({"k": "ok"}, {"k": "ok", "v": "t" * 601}, {"k": "wrong", "m": "", "x": ""},
+                {"k": "error", "m": 1}, {"k": "ok", "v": {"__nd__": [2], "d": [1, True]}},
+                {"k": "ok", "v": {"__nd__": [-1], "d": []}}, {"k": "ok", "v": {"a": 1}},
+                {"k": "ok", "v": [[[[[[[[[[[[[[1]]]]]]]]]]]]]]}, {"k": ["ok"]}, ["ok"]):
+        with pytest.raises(P.ProtocolError):
+            P.decode_outcome(bad)
+
+
+def test_the_runner_configuration_survives_its_codec():
+    cfg = P.RunnerConfig("/tmp/.gm-in/submission.ipynb", "/tmp/work", 7, "ab" * 16, 2**61 + 3,
+                         P.Limits(cell_timeout=4, memory_mb=2048), {"1.2/a": 40.5}, None)
+    assert P.decode_config(P.encode_config(cfg)) == cfg
+    assert P.Limits(cell_timeout=4).cell_timeout == 4.0 and isinstance(P.Limits().memory_mb, int)
+    for broken in ("{}", P.encode_config(cfg).replace('"evidence_fd": 7', '"evidence_fd": "7"')):
+        with pytest.raises(P.ProtocolError):
+            P.decode_config(broken)

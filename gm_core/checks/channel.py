@@ -10,46 +10,79 @@ helper function), writes one line to that pipe at the moment it is called: the p
 plain outcomes its probes produced on the answer *as it was then*. The grader reads that pipe,
 never the notebook's printed output, and judges in its own process.
 
-Lines on the pipe: ``B <part id>`` when a check starts (the runner stops the cell clock while
-probes run: each probe has its own per-call limit), then ``R <json>`` with the evidence.
+The lines are the messages of :mod:`gm_core.checks.protocol`: a :class:`~.protocol.CheckBegun`
+when a check starts (the runner stops the cell clock while probes run: each probe has its own
+per-call limit), then the :class:`~.protocol.Evidence` of the call.
 """
 from __future__ import annotations
 
-import json
 import os
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
-_STATE = {"fd": None, "nonce": None, "salt": None, "time_limit": None}
+from gm_core.checks.protocol import (
+    MAX_OUTPUT,
+    CheckBegun,
+    Evidence,
+    KernelMessage,
+    Outcome,
+    OutcomeKind,
+    ProtocolError,
+    Withheld,
+    decode_outcome,
+    encode_kernel_message,
+)
+
+if TYPE_CHECKING:
+    from gm_core.checks.parts import Part
+
+__all__ = ["open_channel", "time_limit", "set_probe_salt", "probe_salt", "active", "begin", "emit",
+           "MAX_RECORD_BYTES"]
+
 MAX_RECORD_BYTES = 4_000_000
 
 
-def open_channel(fd, nonce, salt, time_limit=None):
+@dataclass
+class _Channel:
+    """The kernel's end of the grader's pipe (fd None: not grading) and this run's settings."""
+
+    fd: int | None = None
+    nonce: str = ""
+    salt: int | None = None
+    time_limit: float | None = None
+
+
+_STATE = _Channel()
+
+
+def open_channel(fd: int, nonce: str, salt: int | None, time_limit: float | None = None) -> None:
     """Bind the evidence pipe (called by the grader's runner before any student code runs)."""
-    _STATE["fd"], _STATE["nonce"] = int(fd), str(nonce)
+    _STATE.fd, _STATE.nonce = int(fd), str(nonce)
     set_probe_salt(salt)
     if time_limit is not None:     # the runner also makes it the default (sandbox.set_time_limit)
-        _STATE["time_limit"] = float(time_limit)
+        _STATE.time_limit = float(time_limit)
 
 
-def time_limit():
+def time_limit() -> float | None:
     """The grader's per-call limit while grading (no check may allow more), else None."""
-    return _STATE["time_limit"] if active() else None
+    return _STATE.time_limit if active() else None
 
 
-def set_probe_salt(salt):
+def set_probe_salt(salt: int | None) -> None:
     """Set (or clear, with None) the salt mixed into the seeds of the checkers' random inputs."""
-    _STATE["salt"] = None if salt is None else int(salt)
+    _STATE.salt = None if salt is None else int(salt)
 
 
-def probe_salt():
-    return _STATE["salt"]
+def probe_salt() -> int | None:
+    return _STATE.salt
 
 
-def active():
-    return _STATE["fd"] is not None
+def active() -> bool:
+    return _STATE.fd is not None
 
 
-def _write(data: bytes):
-    fd = _STATE["fd"]
+def _write(data: bytes) -> None:
+    fd = _STATE.fd
     if fd is None:
         return
     try:
@@ -57,26 +90,45 @@ def _write(data: bytes):
             n = os.write(fd, data)
             data = data[n:]
     except OSError:
-        _STATE["fd"] = None   # the runner is gone; the kernel carries on
+        _STATE.fd = None   # the runner is gone; the kernel carries on
 
 
-def begin(part):
+def _send(msg: KernelMessage) -> None:
+    _write(encode_kernel_message(msg))
+
+
+def _exercise_id(part: Part) -> str:
+    return part.exercise.id if part.exercise is not None else ""
+
+
+def begin(part: Part) -> None:
     """A check of ``part`` starts (its probes' time is not counted against the cell)."""
     if active():
-        _write(f"B {part.exercise.id}/{part.name}\n".encode())
+        _send(CheckBegun(f"{_exercise_id(part)}/{part.name}"))
 
 
-def emit(part, outcomes, output=""):
-    """Send the evidence of one check call: plain (JSON-able) outcomes, the captured output."""
+def _outcome(raw: Any) -> Outcome:
+    """A probe's plain result as an Outcome; one the grader could not read is a crash (as the
+    student's own check sees it)."""
+    try:
+        return decode_outcome(raw)
+    except ProtocolError:
+        return Outcome(OutcomeKind.CRASH, message="unreadable result")
+
+
+def emit(part: Part, outcomes: list[dict[str, Any]] | str, output: str = "") -> None:
+    """Send the evidence of one check call: the probes' plain outcomes (or ``"stopped"``), the
+    captured output."""
     if not active():
         return
-    rec = {"n": _STATE["nonce"], "ex": part.exercise.id, "part": part.name,
-           "o": outcomes, "out": str(output)[:2000]}
+    got: tuple[Outcome, ...] | Withheld = (
+        tuple(_outcome(o) for o in outcomes) if isinstance(outcomes, list) else Withheld.STOPPED)
+    ev = Evidence(_STATE.nonce, _exercise_id(part), part.name, got, str(output)[:MAX_OUTPUT])
     try:
-        line = json.dumps(rec)
+        data = encode_kernel_message(ev)
     except (TypeError, ValueError):
-        line = json.dumps({**rec, "o": "unserialisable"})
-    data = ("R " + line + "\n").encode()
+        data = encode_kernel_message(Evidence(ev.nonce, ev.exercise, ev.part,
+                                              Withheld.UNSERIALISABLE, ev.output))
     if len(data) > MAX_RECORD_BYTES:
-        data = ("R " + json.dumps({**rec, "o": "too large", "out": ""}) + "\n").encode()
+        data = encode_kernel_message(Evidence(ev.nonce, ev.exercise, ev.part, Withheld.TOO_LARGE))
     _write(data)
