@@ -33,7 +33,7 @@ _PI = np.pi
 
 
 # ---------------------------------------------------------------------------------- angles
-def wrap(t):
+def wrap(t: Any) -> FloatArray:
     """Unchecked :func:`wrap_angle` for a float array (returns ``t`` itself when already in range)."""
     if t.size == 0 or (t.max() <= _PI and t.min() > -_PI):
         return t
@@ -72,7 +72,7 @@ def wrap_periodic(x: ArrayLike, period: float) -> FloatArray:
     return np.where(r > 0.5 * period, r - period, r)
 
 
-def mod_period(x, period):
+def mod_period(x: FloatArray, period: float) -> FloatArray:
     """Unchecked representative of ``x`` modulo ``period`` in [0, period)."""
     if period == TWO_PI:
         r = wrap(x)
@@ -98,7 +98,8 @@ def _matvec(M, v):
     return np.einsum("...ij,...j->...i", M, v)
 
 
-def eye(n, batch):
+def eye(n: int, batch: tuple[int, ...]) -> FloatArray:
+    """Identity matrices ``(*batch, n, n)``, writable."""
     return np.broadcast_to(np.eye(n), tuple(batch) + (n, n)).copy()
 
 
@@ -410,7 +411,8 @@ class LieGroup(abc.ABC):
         return self._numerical_jacobian(lambda x: self.compose(x, h), g, eps)
 
 
-def as_generator(rng):
+def as_generator(rng: object) -> np.random.Generator:
+    """``rng`` as a numpy Generator (a Generator, or a non-negative int seed); TypeError otherwise."""
     if isinstance(rng, np.random.Generator):
         return rng
     if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool) and rng >= 0:
@@ -419,7 +421,8 @@ def as_generator(rng):
                     f"non-negative int seed; got {type(rng).__name__}")
 
 
-def check_scale(scale):
+def check_scale(scale: object) -> float:
+    """``scale`` as a single positive number (at most 1e100); ValueError otherwise."""
     s = as_array(scale, "scale", what=" (a positive size factor)")
     if s.ndim != 0 or s <= 0 or s > 1e100:
         raise ValueError(f"scale must be a single positive number (at most 1e100); got {scale!r:.40}")
@@ -427,12 +430,13 @@ def check_scale(scale):
 
 
 # ---------------------------------------------------------------------------------- shared pieces
-def rot(theta):
+def rot(theta: FloatArray) -> FloatArray:
+    """Rotation matrices ``(..., 2, 2)`` of the angles ``theta``."""
     c, s = np.cos(theta), np.sin(theta)
     return np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
 
 
-def angle_of_block(B):
+def angle_of_block(B: FloatArray) -> FloatArray:
     """Angle of the rotational part of 2x2 blocks ``(..., 2, 2)`` (nearest rotation, polar decomposition)."""
     return np.arctan2(B[..., 1, 0] - B[..., 0, 1], B[..., 0, 0] + B[..., 1, 1])
 
@@ -441,7 +445,8 @@ def angle_of_block(B):
 MATRIX_ATOL = 1e-8
 
 
-def check_rotation(Rm, name):
+def check_rotation(Rm: FloatArray, name: str) -> None:
+    """ValueError naming ``name`` unless ``Rm (..., 2, 2)`` are rotations (orthonormal, det +1)."""
     with np.errstate(over="ignore", invalid="ignore"):     # huge entries fail the check below
         RtR = np.swapaxes(Rm, -1, -2) @ Rm
         det = Rm[..., 0, 0] * Rm[..., 1, 1] - Rm[..., 0, 1] * Rm[..., 1, 0]
@@ -452,6 +457,7 @@ def check_rotation(Rm, name):
         )
 
 
-def check_entries(M, expected, name, what):
+def check_entries(M: FloatArray, expected: FloatArray | float, name: str, what: str) -> None:
+    """ValueError naming ``name`` unless ``M`` matches ``expected`` entry by entry."""
     if not np.all(np.abs(M - expected) <= MATRIX_ATOL):
         raise ValueError(f"{name} must be {what} (entries within {MATRIX_ATOL:g})")
