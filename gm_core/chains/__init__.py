@@ -2,6 +2,7 @@
 
 * :mod:`.chain`: joints, links, :class:`Chain` and :class:`MobileChain`, forward kinematics and
   Jacobians of any serial chain (section 2.5);
+* :mod:`.kernels`: batch-last kernels of revolute chains of any length (link poses, body Jacobians);
 * :mod:`.jacobians`: world and body Jacobians, finite differences, relative poses;
 * :mod:`.arms`: the two-link arms of sections 2.2-2.5 (RR, RP);
 * :mod:`.three_link`: the three-link chain of section 2.6 and its middle, beta and centre-of-mass frames;
@@ -22,8 +23,6 @@ from gm_core.chains.chain import (
     Joint,
     Link,
     MobileChain,
-    link_chain_jacobians,
-    link_chain_poses,
     transported_columns,
 )
 from gm_core.chains.holonomic import (
@@ -39,6 +38,17 @@ from gm_core.chains.jacobians import (
     finite_difference_jacobians,
     relative_pose,
     world_to_body_jacobian,
+)
+from gm_core.chains.kernels import (
+    chain_arguments,
+    chain_jacobians_T,
+    chain_poses_T,
+    flatten_batch,
+    joint_turns,
+    link_chain_jacobians,
+    link_chain_poses,
+    middle_frame_kernel,
+    with_trig,
 )
 from gm_core.chains.three_link import (
     beta_frame_jacobian,
@@ -60,5 +70,6 @@ __all__ = [
     "three_link_frames", "three_link_poses", "three_link_jacobians", "beta_frame_velocity",
     "beta_frame_jacobian", "links_from_beta_frame", "com_frame", "com_frame_jacobians",
     "pin_constraints", "pinned_pair", "circle_constraints", "sphere_plane_constraints",
-    "sample_accessible_manifold", "accessible_circle",
+    "sample_accessible_manifold", "accessible_circle", "chain_arguments", "flatten_batch",
+    "chain_poses_T", "joint_turns", "chain_jacobians_T", "with_trig", "middle_frame_kernel",
 ]

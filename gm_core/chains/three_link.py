@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from gm_core.chains.chain import MobileChain, _chain_jacobians_T, _chain_poses_T, _flat
+from gm_core.chains.chain import MobileChain
+from gm_core.chains.kernels import flatten_batch, middle_frame_kernel
 from gm_core.groups import SE2, matvec
 from gm_core.validation import as_array, batch_shape, check_lengths
 
@@ -49,17 +50,10 @@ def _three_link_lengths(lengths):
 
 def middle_frame_T(alpha, lengths, rows=(0, 1, 2)):
     """``(batch, (x, y, theta, cos, sin), J)``: the link poses (each (3, M)) and Jacobians J (rows, 5, 3, M) in the
-    middle link's frame, batch-last (the kernels of :func:`gm_core.chains.link_chain_poses` and
-    :func:`~gm_core.chains.link_chain_jacobians`); ``batch`` the shape M was flattened from."""
+    middle link's frame, batch-last (:func:`gm_core.chains.kernels.middle_frame_kernel`); ``batch`` the shape M was flattened from."""
     alpha = as_array(alpha, "alpha", (2,), what=" (alpha1, alpha2)")
-    a, batch = _flat(alpha)
-    return (batch,) + _middle_frame_kernel(a, np.asarray(_three_link_lengths(lengths)), rows)
-
-
-def _middle_frame_kernel(a, L, rows):
-    """:func:`middle_frame_T` on validated, flattened joint angles ``a (2, M)`` and lengths ``L (3,)``:
-    the chain kernels walked out from the middle link (their base), so nothing is re-expressed."""
-    return _chain_jacobians_T(*_chain_poses_T(a, L, base=1), rows=rows)
+    a, batch = flatten_batch(alpha)
+    return (batch,) + middle_frame_kernel(a, np.asarray(_three_link_lengths(lengths)), rows)
 
 
 def _middle_frame(alpha, lengths):

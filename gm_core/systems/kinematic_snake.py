@@ -3,8 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gm_core.chains.chain import _flat
-from gm_core.chains.three_link import _middle_frame_kernel
+from gm_core.chains.kernels import flatten_batch, middle_frame_kernel
 from gm_core.systems.base import SystemPart, rectangle_outline
 from gm_core.systems.three_link import ThreeLinkSystem
 
@@ -38,8 +37,8 @@ class KinematicSnake(ThreeLinkSystem):
         (shapes on the last axis in memory), the layout in which :func:`connection_from_pfaffian`
         reads each entry of the many 3 x 3 blocks as one contiguous row."""
         r = self._shape(r)
-        a, batch = (r, ()) if r.ndim == 1 else _flat(r)       # one shape: the kernel's rows are scalars
-        _, J = _middle_frame_kernel(a, self._L, (1,))          # J (row, column, link[, M])
+        a, batch = (r, ()) if r.ndim == 1 else flatten_batch(r)       # one shape: the kernel's rows are scalars
+        _, J = middle_frame_kernel(a, self._L, (1,))          # J (row, column, link[, M])
         return J[0].T.reshape(batch + (3, 5))
 
     def _closed_form_parts(self, r):

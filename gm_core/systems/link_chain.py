@@ -40,7 +40,7 @@ import copy
 
 import numpy as np
 
-from gm_core.chains.chain import _chain_jacobians_T, _chain_poses_T, _flat, _with_trig
+from gm_core.chains.kernels import chain_jacobians_T, chain_poses_T, flatten_batch, with_trig
 from gm_core.groups import SE2
 from gm_core.systems.base import LocomotionSystem, SystemPart, ellipse_outline, rectangle_outline
 from gm_core.systems.connection import connection_from_pfaffian, shape_space_metric
@@ -190,11 +190,11 @@ class LinkChain(LocomotionSystem):
         w = np.array(self.masses if self.physics == "floating" else self.lengths)
         return w / w.sum()
 
-    # -- kinematics (batch-last arrays, see gm_core.chains._chain_poses_T) ----------------------
+    # -- kinematics (batch-last arrays, see gm_core.chains.kernels.chain_poses_T) ----------------------
     def _frame_pose(self, P, B, a, frame=None):
         """Pose ``(x, y, theta, cos theta, sin theta)`` (each (M,)) of the body frame (or of ``frame``)
         relative to the kernels' base link (``self._base``) and its body Jacobian ``(Bx, By, Btheta)``
-        (each (n, M)), from the kernel's ``P, B`` (:func:`gm_core.chains._chain_poses_T`); ``a (n, M)``
+        (each (n, M)), from the kernel's ``P, B`` (:func:`gm_core.chains.kernels.chain_poses_T`); ``a (n, M)``
         the joint angles."""
         frame = frame or self.frame
         if frame == "minimum perturbation":
@@ -203,7 +203,7 @@ class LinkChain(LocomotionSystem):
             b2, jac = self._mp.pose(r), self._mp.jacobian(r)
             beta = SE2.compose(np.stack(beta[:3], -1), b2)
             Bb = SE2.Ad_inv(b2) @ np.stack(Bb).transpose(2, 0, 1) + jac
-            return _with_trig(*beta.T), tuple(Bb.transpose(1, 2, 0))
+            return with_trig(*beta.T), tuple(Bb.transpose(1, 2, 0))
         if frame in ("com", "com middle"):
             w = self.link_weights()[:, None]
             (px, py, th, c, s), (B0, B1, B2) = P, B
@@ -240,15 +240,15 @@ class LinkChain(LocomotionSystem):
         return beta, (Bx, By, Bt)
 
     def _kinematics_T(self, r):
-        """(r, batch shape, Q, J) in the batch-last layout of :func:`gm_core.chains._chain_jacobians_T`.
+        """(r, batch shape, Q, J) in the batch-last layout of :func:`gm_core.chains.kernels.chain_jacobians_T`.
 
-        The kernels walk the chain out from its middle link (the base of :func:`_chain_poses_T`,
+        The kernels walk the chain out from its middle link (the base of :func:`chain_poses_T`,
         held still), so in the middle frame of an odd chain nothing is re-expressed."""
         r = self._shape(r)
-        a, batch = _flat(r)
-        P, B = _chain_poses_T(a, self._L, self._base)
+        a, batch = flatten_batch(r)
+        P, B = chain_poses_T(a, self._L, self._base)
         frame = (None, None) if self.frame == "middle" and self.n_links % 2 else self._frame_pose(P, B, a)
-        Q, J = _chain_jacobians_T(P, B, *frame)
+        Q, J = chain_jacobians_T(P, B, *frame)
         return r, batch, Q, J
 
     def link_poses(self, r):
@@ -302,8 +302,8 @@ class LinkChain(LocomotionSystem):
             return super().constraint_curvature(r)
         r = self._shape(r)
         F = self._middle_chain().constraint_curvature(r)
-        a, batch = _flat(r)
-        P, B = _chain_poses_T(a, self._L, self._base)
+        a, batch = flatten_batch(r)
+        P, B = chain_poses_T(a, self._L, self._base)
         pose = lambda frame: np.stack(self._frame_pose(P, B, a, frame)[0][:3], -1).reshape(batch + (3,))  # noqa: E731
         Ad = SE2.Ad_inv(SE2.compose(SE2.inverse(pose("middle")), pose(self.frame)))
         F = (Ad @ F[..., None])[..., 0] if self.n_shape == 2 else np.einsum("...ij,...jkl->...ikl", Ad, F)
