@@ -14,7 +14,7 @@ import numpy as np
 from gm_core.groups import SE2
 from gm_core.systems.gaits import as_gait
 from gm_core.systems.minimum_perturbation import MinimumPerturbationFrame
-from gm_core.systems.motion import check_system, net_displacement
+from gm_core.systems.motion import net_displacement, trusted_dimension
 from gm_core.systems.reframed import CentreOfMassFrame, PoseFrame, Reframed
 
 __all__ = ["reframe", "centre_of_mass", "centre_of_mass_coordinates", "drift_and_turn",
@@ -26,7 +26,7 @@ def reframe(system, beta, jacobian=None, name=None):
 
     ``jacobian(r)`` = d beta / dr (..., 3, n), or None for central differences.
     """
-    check_system(system)
+    trusted_dimension(system)
     frame = PoseFrame(beta, jacobian, name="other frame")
     return Reframed(system, frame, name=name)
 
@@ -38,14 +38,14 @@ def centre_of_mass(system, r):
     Links are weighted by ``system.link_weights()``: mass for the floating snake, else length
     (uniform slender links, as for the swimmers).
     """
-    check_system(system)
+    trusted_dimension(system)
     return CentreOfMassFrame(system).pose(r)
 
 
 def centre_of_mass_coordinates(system):
     """A ``system`` made of links seen from its centre of mass with the mean link orientation
     (:class:`~gm_core.systems.CentreOfMassFrame`)."""
-    check_system(system)
+    trusted_dimension(system)
     return Reframed(system, CentreOfMassFrame(system), name=f"{system.name} (centre of mass, mean orientation)")
 
 
@@ -56,7 +56,7 @@ def drift_and_turn(system, gait):
     same point c of the body frame; the net displacement g(T) carries it from c to g(T) c. Both
     numbers are independent of the choice of body frame.
     """
-    check_system(system)
+    trusted_dimension(system)
     CentreOfMassFrame(system)
     gait = as_gait(gait)
     gT = net_displacement(system, gait)

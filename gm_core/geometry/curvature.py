@@ -27,10 +27,10 @@ from gm_core.systems.gaits import as_gait
 from gm_core.systems.motion import (
     FD_STEP,
     check_gait,
-    check_system,
     curvature_form,
     exterior_derivative,
     fd_connection_derivative,
+    trusted_dimension,
 )
 from gm_core.validation import SingularShapeError, as_array, check_int, positive_number
 
@@ -40,7 +40,7 @@ __all__ = ["constraint_curvature", "connection_derivative", "connection_curl", "
 
 def require_planar(system, what="curvature maps and Stokes estimates"):
     """``system`` after checking it has a 2-D shape space (ValueError pointing to :func:`shape_slice` if not)."""
-    n = check_system(system)
+    n = trusted_dimension(system)
     if n != 2:
         raise ValueError(f"system must have a 2-D shape space for {what}; {getattr(system, 'name', system)} has "
                          f"n_shape = {n}: take a 2-D slice with gm_core.systems.shape_slice(system, through, axes)")
@@ -55,7 +55,7 @@ def connection_derivative(system, r, *, method="auto", h=None):
     ``"fd"`` forces central differences (:func:`gm_core.systems.motion.fd_connection_derivative`) with
     relative step ``h`` (default :data:`gm_core.systems.motion.FD_STEP`). The one place that chooses.
     """
-    n = check_system(system)
+    n = trusted_dimension(system)
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     if method not in ("auto", "fd"):
         raise ValueError(f"method must be 'auto' or 'fd'; got {method!r}")
@@ -77,7 +77,7 @@ def connection_curl(system, r, h=None):
     exact one-form, box on one-forms (3.xvii)); only then does a global contour plot of that row
     make sense.
     """
-    if check_system(system) != 2:
+    if trusted_dimension(system) != 2:
         raise ValueError(f"system must have a 2-D shape space for a scalar curl; {system.name} has "
                          f"{system.n_shape} shape variables")
     r = as_array(r, "r", (2,), what=" (a point of a 2-D shape space)")
@@ -96,7 +96,7 @@ def constraint_curvature(system, r, *, method="auto", pair=None):
     ``method="auto"`` asks the system (a frame change acts by Ad_{beta^-1}, gauge covariance);
     ``"fd"`` differentiates the connection by central differences.
     """
-    n = check_system(system)
+    n = trusted_dimension(system)
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     if method not in ("auto", "fd"):
         raise ValueError(f"method must be 'auto' or 'fd'; got {method!r}")
@@ -196,7 +196,7 @@ def body_velocity_integral(system, gait, *, rtol=1e-12, check=True, samples=None
     Trapezoidal rule over the period (spectrally accurate for smooth periodic gaits), doubled
     until two results agree to ``rtol``; ``samples=n`` uses n equal time steps once instead.
     """
-    check_system(system)
+    trusted_dimension(system)
     gait = closed_gait(gait, system)
     if check:
         check_gait(system, gait)

@@ -22,7 +22,7 @@ import numpy as np
 
 from gm_core.geometry.curvature import body_velocity_integral, constraint_curvature, stokes_estimate
 from gm_core.geometry.optimal import fourier_gait
-from gm_core.systems.motion import check_system, net_displacement
+from gm_core.systems.motion import net_displacement, trusted_dimension
 from gm_core.validation import SingularShapeError, as_array, check_int, positive_number, real_number
 
 __all__ = ["FRAMES", "INTERACTIVE", "Estimates", "shaped_gait", "displacement_estimates", "row_scaled",
@@ -119,7 +119,7 @@ def field_rms(system, grid):
     Row i contributes sqrt(mean over the grid of |A_i(r)|^2), |.| the Euclidean norm of the row
     (both columns); shapes where A is undefined are left out.
     """
-    check_system(system)
+    trusted_dimension(system)
     grid = as_array(grid, "grid", (system.n_shape,), what=f" (shapes of {system.name})")
     if grid.size == 0:
         raise ValueError("grid must hold at least one shape")
@@ -156,7 +156,7 @@ def frames_of(system, limits, n=33):
 
 @functools.lru_cache(maxsize=8)
 def _frames(system, limits, n):
-    check_system(system)
+    trusted_dimension(system)
     return MappingProxyType(system.body_frames(limits, n=n))
 
 

@@ -16,7 +16,7 @@ import numpy as np
 
 from gm_core.geometry.curvature import closed_gait
 from gm_core.systems.base import LocomotionSystem
-from gm_core.systems.motion import check_gait, check_system, net_displacement
+from gm_core.systems.motion import check_gait, net_displacement, trusted_dimension
 from gm_core.validation import as_array
 
 __all__ = ["dissipation_metric", "path_length", "efficiency", "metric_function"]
@@ -31,7 +31,7 @@ def dissipation_metric(system, r):
     frame, so a system seen from other coordinates gives its base's. TypeError for a system
     with no physical cost.
     """
-    n = check_system(system)
+    n = trusted_dimension(system)
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     if not isinstance(system, LocomotionSystem):
         raise TypeError(f"system {getattr(system, 'name', system)!r} has no physical cost metric; pass "
@@ -60,7 +60,7 @@ def path_length(system, gait, *, metric=None, samples=None, check=True):
     ``metric=None`` uses :func:`dissipation_metric`; ``'euclidean'`` the identity. Trapezoidal
     rule over the period (spectral for smooth periodic gaits): 4096 samples unless given.
     """
-    check_system(system)
+    trusted_dimension(system)
     gait = closed_gait(gait, system)
     Mf = metric_function(system, metric)
     if check:
@@ -82,7 +82,7 @@ def efficiency(system, gait, *, metric=None, check=True, samples=None, displacem
     (the last pose of a :func:`~gm_core.systems.motion.trajectory` a live panel draws), instead of
     :func:`~gm_core.systems.motion.net_displacement`.
     """
-    check_system(system)
+    trusted_dimension(system)
     gait = closed_gait(gait, system)
     L = path_length(system, gait, metric=metric, check=check, samples=samples)
     if displacement is None:

@@ -20,7 +20,7 @@ import itertools
 
 import numpy as np
 
-from gm_core.systems.motion import check_system
+from gm_core.systems.motion import trusted_dimension
 from gm_core.systems.reframed import BodyFrame, body_jacobian
 from gm_core.validation import SingularShapeError, as_array
 
@@ -136,7 +136,7 @@ class MinimumPerturbationFrame(BodyFrame):
         import scipy.sparse as sp
         import scipy.sparse.linalg as spla
 
-        d = check_system(system)
+        d = trusted_dimension(system)
         if d > MAX_DIMENSION:
             raise ValueError(too_many_dimensions("system", system.name, d))
         bounds = system.shape_limits if bounds is None else bounds

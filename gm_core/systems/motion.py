@@ -4,7 +4,8 @@ A symmetric linear-kinematic locomotor moves with body velocity ``xi = -A(r) r_d
 where ``A`` is the *local connection*. This module holds the parts shared by every system in
 :mod:`gm_core.systems` (which import it; it never imports them):
 
-* :func:`check_system` (the one validator of systems), :func:`body_velocity`;
+* :func:`check_system` (the one validator of systems at the boundary; a
+  :class:`CheckedSystem` was checked when built and is trusted), :func:`body_velocity`;
 * :func:`fd_connection_derivative`, :func:`curvature_form`: the connection's
   derivative (one difference routine), its curvature 2-form and curl;
 * :func:`check_gait`: does a gait meet a singular shape?
@@ -29,6 +30,7 @@ import math
 import numbers
 import warnings
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -38,7 +40,8 @@ from gm_core.systems.pacing import constant_rate_path
 from gm_core.validation import SingularShapeError, as_array, check_int, positive_number, real_number
 
 __all__ = [
-    "body_velocity", "check_system", "fd_connection_derivative", "curvature_form",
+    "CheckedSystem", "validate_system", "check_system", "trusted_dimension", "body_velocity",
+    "fd_connection_derivative", "curvature_form",
     "exterior_derivative", "FD_STEP", "check_gait", "net_displacement", "trajectory", "displacement_until",
     "Trajectory", "drive", "AccuracyWarning",
 ]
@@ -48,12 +51,25 @@ class AccuracyWarning(UserWarning):
     """A result was returned without meeting its requested tolerance; the message gives the estimate."""
 
 
-def check_system(system, name="system"):
+class CheckedSystem:
+    """Base of the systems checked once, when they are built (every :class:`gm_core.systems.LocomotionSystem`).
+
+    :func:`check_system` returns at once for an instance, and the functions of :mod:`gm_core.systems`
+    and :mod:`gm_core.geometry` read its ``n_shape`` without checking it again
+    (:func:`trusted_dimension`); any other object is checked by :func:`check_system` wherever it
+    enters.
+    """
+
+    name: str
+    n_shape: int
+
+
+def validate_system(system: Any, name: str = "system") -> int:
     """n_shape of ``system`` after checking it looks like a locomotion system (TypeError naming ``name``).
 
-    The one validator of systems: an object with an integer ``n_shape`` >= 1 and a callable
-    ``connection(r)`` (every :class:`gm_core.systems.LocomotionSystem`, or any object shaped
-    like one); one that ``may_be_singular`` must also have ``singularity(r)``.
+    The full check, whatever ``system`` is: an object with an integer ``n_shape`` >= 1 and a
+    callable ``connection(r)``; one that ``may_be_singular`` must also have ``singularity(r)``.
+    A :class:`gm_core.systems.LocomotionSystem` runs it once, when it is built.
     """
     n = getattr(system, "n_shape", None)
     if (isinstance(system, (str, bytes, type)) or not isinstance(n, numbers.Integral) or isinstance(n, bool)
@@ -65,6 +81,27 @@ def check_system(system, name="system"):
     return int(n)
 
 
+def check_system(system: Any, name: str = "system") -> int:
+    """n_shape of ``system`` after checking it looks like a locomotion system (TypeError naming ``name``).
+
+    The one validator of systems at the boundary: a :class:`CheckedSystem` (every
+    :class:`gm_core.systems.LocomotionSystem`, checked when it was built) is trusted and its
+    ``n_shape`` returned at once; any other object, shaped like a system or not, gets the full
+    check of :func:`validate_system`.
+    """
+    if isinstance(system, CheckedSystem):
+        return system.n_shape
+    return validate_system(system, name)
+
+
+def trusted_dimension(system: Any, name: str = "system") -> int:
+    """n_shape of ``system`` inside the library: read directly from a :class:`CheckedSystem`
+    (checked once, when it was built), else :func:`check_system` (a duck-typed system, checked
+    wherever it enters). Public functions call this, so that a system handed from one to another
+    is not checked again at every step."""
+    if isinstance(system, CheckedSystem):
+        return system.n_shape
+    return check_system(system, name)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -72,7 +109,7 @@ def check_system(system, name="system"):
 # ---------------------------------------------------------------------------------------------
 def body_velocity(system, r, r_dot):
     """Body velocity ``xi = -A(r) r_dot`` (..., 3) of ``system`` at shape r moving at r_dot, (3.10)."""
-    n = check_system(system)
+    n = trusted_dimension(system)
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     r_dot = as_array(r_dot, "r_dot", (n,), what=f" (a shape velocity of {system.name})")
     try:
@@ -99,7 +136,7 @@ def fd_connection_derivative(system, r, step=FD_STEP):
     ``max(1, |r|)``; A itself is the mean of the stencil values (error O(h^2), about 1e-11), all
     2n stencil points in one batched call.
     """
-    n = check_system(system)
+    n = trusted_dimension(system)
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     step = positive_number(step, "h")
     h = step * np.maximum(1.0, np.abs(r))
@@ -148,7 +185,7 @@ _CHUNK = 8192
 
 
 def _check_shapes(system, gait):
-    n = check_system(system)
+    n = trusted_dimension(system)
     if gait.n_shape != n:
         raise ValueError(f"gait has {gait.n_shape} shape variables but {system.name} has {n}")
 

@@ -21,7 +21,7 @@ import numpy as np
 
 from gm_core.groups import SE2, matvec
 from gm_core.systems.base import LocomotionSystem
-from gm_core.systems.motion import check_system
+from gm_core.systems.motion import trusted_dimension
 
 __all__ = ["BodyFrame", "PoseFrame", "CentreOfMassFrame", "Reframed", "body_jacobian"]
 
@@ -120,7 +120,7 @@ class Reframed(LocomotionSystem):
     """
 
     def __init__(self, base, frame, name=None):
-        check_system(base, "base")
+        trusted_dimension(base, "base")
         if not isinstance(frame, BodyFrame):
             raise TypeError(f"frame must be a gm_core.systems.BodyFrame; got {type(frame).__name__}")
         self.base_system, self.frame = base, frame

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from gm_core.systems.base import LocomotionSystem
-from gm_core.systems.motion import check_system
+from gm_core.systems.motion import trusted_dimension
 from gm_core.validation import as_array, check_int
 
 __all__ = ["AffineRestriction", "shape_slice"]
@@ -26,7 +26,7 @@ class AffineRestriction(LocomotionSystem):
     """``base`` with its shape confined to ``r = offset + matrix @ q``; shape q (m,)."""
 
     def __init__(self, base, matrix, offset=None, *, shape_names=None, shape_limits=None, name=None):
-        n = check_system(base, "base")
+        n = trusted_dimension(base, "base")
         S = as_array(matrix, "matrix", what=f" (an (n, m) map from the new shapes to the {n} shapes of {base.name})")
         if S.ndim != 2 or S.shape[0] != n or S.shape[1] < 1:
             raise ValueError(f"matrix must have shape ({n}, m) with m >= 1; got shape {S.shape}")
@@ -114,7 +114,7 @@ def shape_slice(system, through=None, axes=(0, 1), *, limits=None):
     The result is a system with two shape variables (an :class:`AffineRestriction`); a gait
     drawn in it is a gait of the full system lying in the slice.
     """
-    n = check_system(system)
+    n = trusted_dimension(system)
     r0 = np.zeros(n) if through is None else as_array(through, "through", (n,), what=f" (a shape of {system.name})")
     if r0.ndim != 1:
         raise ValueError(f"through must be one shape ({n},); got shape {r0.shape}")
