@@ -33,6 +33,8 @@ link i + 1 is turned by ``alpha_i`` relative to link i (chapter 2's convention, 
 from __future__ import annotations
 
 import functools
+from collections.abc import Sized
+from typing import cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -52,9 +54,9 @@ Jac3 = tuple[FloatArray, FloatArray, FloatArray]
 
 def chain_arguments(alpha: ArrayLike, lengths: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """Validated ``(alpha (..., N - 1), L (N,))`` for an N-link chain (N >= 2), naming a bad argument."""
-    if isinstance(lengths, (str, bytes)) or np.ndim(lengths) != 1 or len(lengths) < 2:
+    if isinstance(lengths, (str, bytes)) or np.ndim(lengths) != 1 or len(cast(Sized, lengths)) < 2:
         raise ValueError(f"lengths must be a sequence of N >= 2 positive link lengths; got {lengths!r}")
-    L = check_lengths(lengths, len(lengths))
+    L = check_lengths(lengths, len(cast(Sized, lengths)))
     alpha = as_array(alpha, "alpha", (L.size - 1,), what=f" (the {L.size - 1} joint angles of a {L.size}-link chain)")
     return alpha, L
 
@@ -241,7 +243,7 @@ def link_chain_jacobians(P: ArrayLike, B: ArrayLike, beta: ArrayLike,
     beta = np.broadcast_to(beta, batch + (3,)).reshape(-1, 3).T
     Bb = np.broadcast_to(B_beta, batch + (3, n)).reshape(-1, 3, n).transpose(1, 2, 0)
     PT = with_trig(*(P[..., k].T for k in range(3)))
-    BT = tuple(B[:, :, k].transpose(1, 2, 0) for k in range(3))
-    (x, y, t, _, _), J = chain_jacobians_T(PT, BT, with_trig(*beta), tuple(Bb))
+    BT = (B[:, :, 0].transpose(1, 2, 0), B[:, :, 1].transpose(1, 2, 0), B[:, :, 2].transpose(1, 2, 0))
+    (x, y, t, _, _), J = chain_jacobians_T(PT, BT, with_trig(*beta), (Bb[0], Bb[1], Bb[2]))
     Q = np.stack([x, y, t]).T.reshape(batch + (N, 3))
     return Q, J.transpose(3, 2, 0, 1).reshape(batch + (N, 3, 3 + n))

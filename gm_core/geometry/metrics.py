@@ -12,17 +12,21 @@ the metric used by Hatton and co-workers (sysplotter: drag per unit length 1 alo
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.geometry.curvature import closed_gait
 from gm_core.systems.base import LocomotionSystem
 from gm_core.systems.motion import check_gait, net_displacement, trusted_dimension
-from gm_core.validation import as_array
+from gm_core.validation import FloatArray, as_array
 
 __all__ = ["dissipation_metric", "path_length", "efficiency", "metric_function"]
 
 
-def dissipation_metric(system, r):
+def dissipation_metric(system: LocomotionSystem, r: ArrayLike) -> FloatArray:
     """Shape-space cost metric M(r) (..., n, n) = [-A; I]^T D [-A; I] (power or kinetic energy).
 
     ``D`` is the system's drag matrix (low Re: the power is ``r_dot^T M r_dot``) or its mass
@@ -39,7 +43,7 @@ def dissipation_metric(system, r):
     return system.shape_metric(r)
 
 
-def metric_function(system, metric=None):
+def metric_function(system: LocomotionSystem, metric: Any = None) -> Callable[[Any], FloatArray]:
     """A callable r -> M(r) (..., n, n): the system's own metric (None), the identity ('euclidean'), or ``metric``."""
     if metric is None:
         dissipation_metric(system, np.zeros(system.n_shape))      # fails early if there is none
@@ -54,7 +58,8 @@ def metric_function(system, metric=None):
     return metric
 
 
-def path_length(system, gait, *, metric=None, samples=None, check=True):
+def path_length(system: LocomotionSystem, gait: Any, *, metric: Any = None, samples: int | None = None,
+                check: bool = True) -> float:
     """Length (float) of the gait in the cost metric: ``int_0^T sqrt(r_dot^T M(r) r_dot) dt``.
 
     ``metric=None`` uses :func:`dissipation_metric`; ``'euclidean'`` the identity. Trapezoidal
@@ -75,7 +80,8 @@ def path_length(system, gait, *, metric=None, samples=None, check=True):
     return float(np.sqrt(np.maximum(speed2, 0.0)).sum() * gait.period / n)
 
 
-def efficiency(system, gait, *, metric=None, check=True, samples=None, displacement=None):
+def efficiency(system: LocomotionSystem, gait: Any, *, metric: Any = None, check: bool = True,
+               samples: int | None = None, displacement: ArrayLike | None = None) -> float:
     """Efficiency (float): translation ``|(x, y) of g(T)|`` per unit path length in the cost metric.
 
     ``samples`` as for :func:`path_length`. ``displacement``: g(T) (3,) when it is already known

@@ -59,6 +59,7 @@ class SystemMeta(ABCMeta):
     :func:`~gm_core.systems.motion.check_system` trusts the instance and returns at once.
     """
 
+    @override
     def __call__(cls, *args: Any, **kwargs: Any) -> Any:
         system = super().__call__(*args, **kwargs)
         n = validate_system(system, f"{cls.__name__}(...)")
