@@ -183,14 +183,15 @@ class Reframed(LocomotionSystem):
 
     @override
     def pfaffian(self, r: ArrayLike) -> FloatArray:
-        """Pfaffian (..., 3, 3 + n) in the new frame: ``omega [xi; r_dot]`` with xi = Ad_beta (xi~ + B_beta r_dot)."""
+        """Pfaffian (..., 3, 3 + n) in the new frame: ``omega [xi; r_dot]`` with xi = Ad_beta (xi~ - B_beta r_dot)
+        (the body velocity of g~ = g beta is xi~ = Ad_{beta^-1} xi + B_beta r_dot)."""
         r = self._shape(r)
         om = self.base_system.pfaffian(r)
         b, B = self.frame.pose_and_jacobian(r)
         Ad = SE2.Ad(b)
         out = np.empty(np.broadcast_shapes(om.shape, Ad.shape[:-2] + om.shape[-2:]))
         out[..., :3] = om[..., :3] @ Ad
-        out[..., 3:] = om[..., 3:] + om[..., :3] @ Ad @ B
+        out[..., 3:] = om[..., 3:] - om[..., :3] @ Ad @ B
         return self._mask(r, out, 2)
 
     @override
