@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike
 
 from gm_core.groups import SE2
 from gm_core.systems.base import LocomotionSystem
-from gm_core.systems.gaits import as_gait
+from gm_core.systems.gaits import GaitLike, as_gait
 from gm_core.systems.minimum_perturbation import MinimumPerturbationFrame
 from gm_core.systems.motion import net_displacement, trusted_dimension
 from gm_core.systems.reframed import CentreOfMassFrame, PoseFrame, Reframed
@@ -56,7 +56,7 @@ def centre_of_mass_coordinates(system: LocomotionSystem) -> Reframed:
     return Reframed(system, CentreOfMassFrame(system), name=f"{system.name} (centre of mass, mean orientation)")
 
 
-def drift_and_turn(system: LocomotionSystem, gait: Any) -> tuple[float, float]:
+def drift_and_turn(system: LocomotionSystem, gait: GaitLike) -> tuple[float, float]:
     """(net turn angle, distance moved by the centre of mass) over one cycle of ``gait``.
 
     The shape is the same at the start and the end of a cycle, so the centre of mass sits at the

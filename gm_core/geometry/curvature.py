@@ -19,14 +19,12 @@ Stokes estimates are for gaits in a 2-D slice (:func:`gm_core.systems.shape_slic
 """
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 from numpy.typing import ArrayLike
 
 from gm_core.groups import matvec
 from gm_core.systems.base import LocomotionSystem
-from gm_core.systems.gaits import Gait, as_gait
+from gm_core.systems.gaits import Gait, GaitLike, as_gait
 from gm_core.systems.motion import (
     FD_STEP,
     check_gait,
@@ -162,7 +160,7 @@ def _check_rtol(rtol):
     return r
 
 
-def stokes_estimate(system: LocomotionSystem, gait: Any, *, rtol: float = 1e-11, method: str = "auto",
+def stokes_estimate(system: LocomotionSystem, gait: GaitLike, *, rtol: float = 1e-11, method: str = "auto",
                     check: bool = True, samples: int | None = None) -> FloatArray:
     """Area integral (3,) of the constraint curvature over the region the gait encloses.
 
@@ -196,7 +194,7 @@ def stokes_estimate(system: LocomotionSystem, gait: Any, *, rtol: float = 1e-11,
         prev = cur
 
 
-def body_velocity_integral(system: LocomotionSystem, gait: Any, *, rtol: float = 1e-12, check: bool = True,
+def body_velocity_integral(system: LocomotionSystem, gait: GaitLike, *, rtol: float = 1e-12, check: bool = True,
                            samples: int | None = None) -> FloatArray:
     """The naive estimate (3,): ``int_0^T xi dt = -oint A(r) dr`` (ignores the Lie bracket).
 
@@ -239,7 +237,7 @@ def _fixed_samples(samples, count):
     return [int(v) for v in vals]
 
 
-def closed_gait(gait: Any, system: LocomotionSystem | None = None, name: str = "gait") -> Gait:
+def closed_gait(gait: GaitLike, system: LocomotionSystem | None = None, name: str = "gait") -> Gait:
     """``gait`` as a :class:`Gait` after checking it is closed (r(T) = r(0)) and matches ``system``."""
     gait = as_gait(gait)
     p0, p1 = gait(np.array([0.0, gait.period]))

@@ -26,6 +26,7 @@ from numpy.typing import ArrayLike
 from gm_core.geometry.curvature import body_velocity_integral, constraint_curvature, stokes_estimate
 from gm_core.geometry.optimal import FourierGait, fourier_gait
 from gm_core.systems.base import LocomotionSystem
+from gm_core.systems.gaits import GaitLike
 from gm_core.systems.motion import net_displacement, trusted_dimension
 from gm_core.validation import FloatArray, SingularShapeError, as_array, check_int, positive_number, real_number
 
@@ -76,7 +77,7 @@ class Estimates:
         return np.array([self.exact, self.stokes, self.body_velocity_integral])
 
 
-def displacement_estimates(system: LocomotionSystem, gait: Any, *, interactive: bool = False) -> Estimates:
+def displacement_estimates(system: LocomotionSystem, gait: GaitLike, *, interactive: bool = False) -> Estimates:
     """:class:`Estimates` of ``gait`` on ``system``: exact g(T) (``net_displacement``), the Stokes
     estimate and the body-velocity integral.
 

@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike
 
 from gm_core.geometry.curvature import closed_gait
 from gm_core.systems.base import LocomotionSystem
+from gm_core.systems.gaits import GaitLike
 from gm_core.systems.motion import check_gait, net_displacement, trusted_dimension
 from gm_core.validation import FloatArray, as_array
 
@@ -58,7 +59,7 @@ def metric_function(system: LocomotionSystem, metric: Any = None) -> Callable[[A
     return metric
 
 
-def path_length(system: LocomotionSystem, gait: Any, *, metric: Any = None, samples: int | None = None,
+def path_length(system: LocomotionSystem, gait: GaitLike, *, metric: Any = None, samples: int | None = None,
                 check: bool = True) -> float:
     """Length (float) of the gait in the cost metric: ``int_0^T sqrt(r_dot^T M(r) r_dot) dt``.
 
@@ -80,7 +81,7 @@ def path_length(system: LocomotionSystem, gait: Any, *, metric: Any = None, samp
     return float(np.sqrt(np.maximum(speed2, 0.0)).sum() * gait.period / n)
 
 
-def efficiency(system: LocomotionSystem, gait: Any, *, metric: Any = None, check: bool = True,
+def efficiency(system: LocomotionSystem, gait: GaitLike, *, metric: Any = None, check: bool = True,
                samples: int | None = None, displacement: ArrayLike | None = None) -> float:
     """Efficiency (float): translation ``|(x, y) of g(T)|`` per unit path length in the cost metric.
 

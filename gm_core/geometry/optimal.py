@@ -26,7 +26,7 @@ from gm_core.geometry.curvature import connection_derivative
 from gm_core.geometry.metrics import metric_function, path_length
 from gm_core.groups import SE2, matvec
 from gm_core.systems.base import LocomotionSystem
-from gm_core.systems.gaits import Gait
+from gm_core.systems.gaits import Gait, GaitLike
 from gm_core.systems.minimum_perturbation import MAX_DIMENSION, MinimumPerturbationFrame, too_many_dimensions
 from gm_core.systems.motion import check_gait, check_system, net_displacement, trajectory
 from gm_core.systems.reframed import Reframed
@@ -147,7 +147,7 @@ def _check_intervals(intervals):
     return n
 
 
-def gait_objective(system: LocomotionSystem, gait: Any, objective: str = "displacement", *, intervals: int = 512,
+def gait_objective(system: LocomotionSystem, gait: GaitLike, objective: str = "displacement", *, intervals: int = 512,
                    metric: Any = None, gradient: bool = True) -> tuple[float, FloatArray | None, dict[str, Any]]:
     """Objective value and gradient with respect to ``gait.parameters`` (to be *maximised*).
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable
-from typing import Any
+from typing import Any, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -31,6 +31,7 @@ from gm_core.validation import (
 )
 
 __all__ = [
+    "GaitLike",
     "Gait", "CircleGait", "circle_gait", "as_gait", "GaitWarning", "CLOSURE_RTOL", "ellipse_gait",
     "serpenoid_gait", "GAIT_FAMILIES", "family_gait",
 ]
@@ -41,6 +42,9 @@ CLOSURE_RTOL = 1e-8
 # Eighth-order central difference weights for f'(t) with offsets 1..4.
 _FD8 = np.array([4 / 5, -1 / 5, 4 / 105, -1 / 280])
 
+
+#: What :func:`as_gait` accepts: a :class:`Gait`, a callable ``t -> r`` or closed-path samples ``(K, n)``.
+GaitLike = Union["Gait", Callable[[Any], ArrayLike], ArrayLike]
 
 class GaitWarning(UserWarning):
     """A gait was accepted but something about it is probably not what was meant (e.g. an open path)."""
@@ -335,7 +339,7 @@ def family_gait(family: str, size: float, center: ArrayLike = (0.0, 0.0), aspect
     return serpenoid_gait((size, aspect * size), angle, 2, center, period)
 
 
-def as_gait(gait: Any, period: float = 1.0) -> Gait:
+def as_gait(gait: GaitLike, period: float = 1.0) -> Gait:
     """A :class:`Gait` from a Gait, a callable ``t -> r`` (period ``period``) or samples ``(K, n)``."""
     if isinstance(gait, Gait):
         return gait

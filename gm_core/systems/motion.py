@@ -36,7 +36,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from gm_core.groups import SE2, matvec
-from gm_core.systems.gaits import Gait, as_gait
+from gm_core.systems.gaits import Gait, GaitLike, as_gait
 from gm_core.systems.pacing import constant_rate_path
 from gm_core.validation import FloatArray, SingularShapeError, as_array, check_int, positive_number, real_number
 
@@ -235,7 +235,7 @@ def _scan(system, gait, s, d):
                                                    xtol=1e-15), "crosses")
 
 
-def check_gait(system: SystemLike, gait: Any, *, samples: int | None = None) -> None:
+def check_gait(system: SystemLike, gait: GaitLike, *, samples: int | None = None) -> None:
     """Raise SingularShapeError if the gait crosses or touches a singular shape of ``system``.
 
     Samples the scaled ``det omega_xi`` (``system.singularity``, never zero at regular shapes) at
@@ -403,7 +403,7 @@ def _adaptive(system, gait, rtol, with_det):
         lo, hi, full, Ea, Eb = lo[order], hi[order], full[order], Ea[order], Eb[order]
 
 
-def net_displacement(system: SystemLike, gait: Any, *, steps: int | None = None, check: bool = True,
+def net_displacement(system: SystemLike, gait: GaitLike, *, steps: int | None = None, check: bool = True,
                      rtol: float = 1e-10) -> FloatArray:
     """Net displacement g(T) (3,) over one period of ``gait``, starting from g(0) = e.
 
@@ -463,7 +463,7 @@ class Trajectory:
     r: np.ndarray
 
 
-def trajectory(system: SystemLike, gait: Any, n_frames: int = 101, *, cycles: int = 1, g0: ArrayLike = (0.0, 0.0, 0.0),
+def trajectory(system: SystemLike, gait: GaitLike, n_frames: int = 101, *, cycles: int = 1, g0: ArrayLike = (0.0, 0.0, 0.0),
                substeps: int | None = None, check: bool = True) -> Trajectory:
     """Position trajectory g(t) at ``n_frames`` equally spaced times over ``cycles`` periods.
 
@@ -503,7 +503,7 @@ def trajectory(system: SystemLike, gait: Any, n_frames: int = 101, *, cycles: in
     return Trajectory(t=t, g=g, r=gait(t))
 
 
-def displacement_until(system: SystemLike, gait: Any, t: ArrayLike, *, steps: int | None = 256,
+def displacement_until(system: SystemLike, gait: GaitLike, t: ArrayLike, *, steps: int | None = 256,
                        g0: ArrayLike = (0.0, 0.0, 0.0)) -> FloatArray:
     """Position g(t) (3,) after the first ``t`` time units of ``gait``, from g(0) = g0.
 
