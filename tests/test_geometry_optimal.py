@@ -201,3 +201,40 @@ def test_optimiser_bad_input():
     with pytest.raises(ValueError, match="period"):
         fourier_gait([[1.0]], period=-1)
     assert isinstance(Gait, type)
+
+
+def test_optimize_gait_checks_the_system_once(monkeypatch):
+    """The boundary is crossed once: a LocomotionSystem was checked when it was built, so one
+    optimisation calls check_system once (its own entry), however many objectives, trajectories
+    and connection derivatives it evaluates inside (every module's binding is counted)."""
+    import sys
+
+    from gm_core.systems import motion
+
+    calls = []
+    original = motion.check_system
+
+    def counting(system, name="system"):
+        calls.append(name)
+        return original(system, name)
+
+    bound = [m for m in list(sys.modules.values())
+             if getattr(m, "__name__", "").startswith("gm_core") and getattr(m, "check_system", None) is original]
+    assert motion in bound
+    for module in bound:
+        monkeypatch.setattr(module, "check_system", counting)
+    res = optimize_gait(LowReSwimmer(), "efficiency", order=1, maxiter=3, intervals=64)
+    assert res.nit >= 1 and len(res.history) >= 2            # it did iterate (many objective calls)
+    assert calls == ["system"]
+
+
+def test_a_duck_typed_system_is_still_checked_at_every_entry():
+    """Objects that are not LocomotionSystems were never checked when built: each public entry
+    still refuses a bad one, naming the argument."""
+    class NoConnection:
+        n_shape, name = 2, "no connection"
+
+    for f in (lambda s: net_displacement(s, circle_gait(0.5)), lambda s: path_length(s, circle_gait(0.5)),
+              lambda s: optimize_gait(s)):
+        with pytest.raises(TypeError, match="system must be a locomotion system"):
+            f(NoConnection())

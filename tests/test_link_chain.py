@@ -97,6 +97,12 @@ class _BookThreeLinks(LocomotionSystem):
         return sum((np.swapaxes(J[..., i, :, :], -1, -2) @ M @ J[..., i, :, :])[..., :3, :]
                    for i, M in enumerate(self.matrices))
 
+    def parts(self):
+        return []
+
+    def part_poses(self, r):
+        return np.zeros(self._shape(r).shape[:-1] + (0, 3))
+
 
 def test_values_printed_by_the_three_link_notebooks_are_the_closed_forms_to_the_digit():
     """What notebooks 09 and 10 and exercise 4.1 print from LinkChain(N = 3) (body velocity, one

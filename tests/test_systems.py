@@ -7,13 +7,19 @@
 * low-Reynolds swimmer: the distributed drag integrated by quadrature along every link sums to
   zero force and moment;
 * kinematic snake: the link-centre lateral velocities from gm_core.chains.three_link_jacobians
-  vanish.
+  vanish;
+* the system laws (``@system_law``, jaxlie's ``general_group_test`` pattern, like
+  tests/test_group_laws.py): what holds for every locomotion system, written once and run over
+  every system of ALL_SYSTEMS plus LinkChain variants, a Reframed system and a SlenderBody, at
+  the batch shapes (), (1,) and (3, 1, 2). A system added to ALL_SYSTEMS gets every law.
 """
 import warnings
 
 import numpy as np
 import pytest
 import sympy as sp
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import gm_core
 from gm_core import SE2, SingularShapeError
@@ -26,10 +32,16 @@ from gm_core.systems import (
     FloatingSnake,
     HighReSwimmer,
     KinematicSnake,
+    LinkChain,
     LowReSwimmer,
+    Reframed,
+    SlenderBody,
 )
+from gm_core.systems.base import LocomotionSystem, SystemPart, rectangle_outline
 from gm_core.systems.connection import connection_from_mass_matrix, connection_from_pfaffian
 from gm_core.systems.fluids import ellipse_added_mass
+from gm_core.systems.motion import check_system, curvature_form, fd_connection_derivative, validate_system
+from gm_core.systems.reframed import CentreOfMassFrame
 
 RNG = np.random.default_rng(20261122)
 
@@ -497,3 +509,218 @@ def test_rolling_disk_bad_input_names_the_argument():
         parallel_park_moves("far", 0.3)
     with pytest.raises(ValueError, match="q0"):
         radial_point_path([[1.0, 0.5]], q0=(0.0, 0.0))
+
+
+# ------------------------------------------------------------------ the system laws
+#: Every system the laws run over: ALL_SYSTEMS, then chains of four links under each physics, a
+#: system seen from another body frame and the continuous slender body.
+LAW_SYSTEMS = {
+    **ALL_SYSTEMS,
+    "LinkChain(4, low_re)": LinkChain((1.0, 0.8, 1.2, 1.0), "low_re"),
+    "LinkChain(4, high_re)": LinkChain((1.0, 0.8, 1.2, 1.0), "high_re"),
+    "LinkChain(4, floating)": LinkChain((1.0, 0.8, 1.2, 1.0), "floating", masses=(1.0, 2.0, 1.0, 0.5)),
+    "Reframed(LowReSwimmer, centre of mass)": Reframed(LowReSwimmer(), CentreOfMassFrame(LowReSwimmer())),
+    "SlenderBody": SlenderBody(),
+}
+LAW_SHAPES = [(), (1,), (3, 1, 2)]
+SYSTEM_LAWS = settings(max_examples=4, deadline=None)
+
+
+def law_shapes(system, shape, rng, margin=0.1):
+    """Shapes ``shape + (n,)`` drawn in the middle 70 % of the system's window, away from singular
+    shapes (scaled |det omega_xi| > ``margin``)."""
+    lo, hi = (np.array(v, dtype=float) for v in zip(*system.shape_limits))
+    mid, half = (lo + hi) / 2, 0.35 * (hi - lo)
+    out = np.empty(shape + (system.n_shape,))
+    for idx in np.ndindex(*shape):
+        for _ in range(1000):
+            r = mid + half * rng.uniform(-1.0, 1.0, system.n_shape)
+            if abs(float(system.singularity(r))) > margin:
+                out[idx] = r
+                break
+        else:
+            raise AssertionError(f"no regular shape found for {system!r}")
+    return out
+
+
+def system_law(f):
+    """A law ``f(system, shape, rng)`` that every locomotion system obeys, as a test over every system
+    of LAW_SYSTEMS, every batch shape of LAW_SHAPES and hypothesis-drawn seeds; the law itself stays
+    reachable as ``test.law`` (to show a broken system fails it)."""
+    def test(name, shape, seed):
+        f(LAW_SYSTEMS[name], shape, np.random.default_rng(seed))
+
+    test.__name__, test.__qualname__, test.__doc__ = f.__name__, f.__qualname__, f.__doc__
+    test = given(seed=st.integers(0, 2 ** 32 - 1))(test)
+    test = SYSTEM_LAWS(test)
+    test = pytest.mark.parametrize("shape", LAW_SHAPES, ids=["scalar", "one", "3x1x2"])(test)
+    test = pytest.mark.parametrize("name", list(LAW_SYSTEMS))(test)
+    test.law = f
+    return test
+
+
+def central_difference(system, r, h=1e-3):
+    """d A / d r_k (..., 3, n, n) by the five-point stencil (error O(h^4)), independent of
+    gm_core's differences (fd_connection_derivative: two points, a relative step of 6e-6)."""
+    cols = []
+    for e in np.eye(system.n_shape):
+        step = h * e
+        A = [system.connection(r + c * step) for c in (2, 1, -1, -2)]
+        cols.append((-A[0] + 8 * A[1] - 8 * A[2] + A[3]) / (12 * h))
+    return np.stack(cols, -1)
+
+
+@system_law
+def test_law_shapes_of_every_map(system, shape, rng):
+    """connection (..., 3, n), pfaffian (..., 3, 3 + n), singularity and is_singular (...),
+    part poses (..., P, 3), body velocity (..., 3), connection derivative (..., 3, n, n); the
+    batched call agrees with the calls one shape at a time."""
+    n = system.n_shape
+    r = law_shapes(system, shape, rng)
+    A = system.connection(r)
+    assert A.shape == shape + (3, n)
+    assert system.pfaffian(r).shape == shape + (3, 3 + n)
+    assert system.singularity(r).shape == shape and system.is_singular(r).shape == shape
+    assert system.part_poses(r).shape == shape + (len(system.parts()), 3)
+    assert system.body_velocity(r, np.ones(shape + (n,))).shape == shape + (3,)
+    dA = system.connection_derivative(r)[1]
+    assert dA.shape == shape + (3, n, n)
+    for idx in np.ndindex(*shape):
+        np.testing.assert_allclose(A[idx], system.connection(r[idx]), rtol=1e-12, atol=1e-13)
+    assert np.all(np.isfinite(A)) and not np.any(system.is_singular(r))
+
+
+@system_law
+def test_law_the_pfaffian_annihilates_allowed_motions(system, shape, rng):
+    """omega(r) [xi; r_dot] = 0 with xi = -A(r) r_dot, (3.10)-(3.17): the connection solves the
+    constraint (and is the connection read off the Pfaffian)."""
+    r = law_shapes(system, shape, rng)
+    rd = rng.normal(size=r.shape)
+    A = system.connection(r)
+    xi = -np.einsum("...ij,...j->...i", A, rd)
+    om = system.pfaffian(r)
+    resid = np.einsum("...ij,...j->...i", om, np.concatenate([xi, rd], -1))
+    scale = 1.0 + np.abs(om).max() * (1.0 + np.abs(rd).max())
+    np.testing.assert_allclose(resid, 0.0, atol=1e-10 * scale)
+    np.testing.assert_allclose(A, connection_from_pfaffian(om), rtol=1e-9, atol=1e-11)
+
+
+@system_law
+def test_law_body_velocity_is_minus_a_r_dot(system, shape, rng):
+    """body_velocity(r, r_dot) = -A(r) r_dot, (3.10): linear in r_dot (scaling, odd symmetry and
+    additivity, the box "Directional linearity")."""
+    r = law_shapes(system, shape, rng)
+    rd, rd2 = rng.normal(size=r.shape), rng.normal(size=r.shape)
+    xi = system.body_velocity(r, rd)
+    np.testing.assert_allclose(xi, -np.einsum("...ij,...j->...i", system.connection(r), rd), rtol=1e-12, atol=1e-13)
+    atol = 1e-11 * (1.0 + np.abs(xi).max())
+    np.testing.assert_allclose(system.body_velocity(r, -2.5 * rd), -2.5 * xi, rtol=1e-11, atol=atol)
+    np.testing.assert_allclose(system.body_velocity(r, rd + rd2), xi + system.body_velocity(r, rd2), atol=atol)
+
+
+@system_law
+def test_law_connection_derivative_matches_an_independent_difference(system, shape, rng):
+    """fd_connection_derivative (two points, relative step 6e-6) and the system's own
+    connection_derivative (closed form where it has one) both match a five-point central
+    difference of the connection; A comes back with them."""
+    r = law_shapes(system, shape, rng)
+    ref = central_difference(system, r)
+    atol = 1e-5 * (1.0 + np.abs(ref).max())
+    for A, dA in (fd_connection_derivative(system, r), system.connection_derivative(r)):
+        np.testing.assert_allclose(dA, ref, atol=atol)
+        np.testing.assert_allclose(A, system.connection(r), rtol=1e-8, atol=1e-10)
+
+
+@system_law
+def test_law_the_curvature_form_is_antisymmetric(system, shape, rng):
+    """F_ij = -(d_i A_j - d_j A_i) + [A_i, A_j] is antisymmetric in (i, j), so zero on the
+    diagonal, and constraint_curvature returns it (its (1, 2) component for two shape variables)."""
+    r = law_shapes(system, shape, rng)
+    F = curvature_form(*system.connection_derivative(r))
+    n = system.n_shape
+    assert F.shape == shape + (3, n, n)
+    np.testing.assert_allclose(F, -np.swapaxes(F, -1, -2), atol=1e-12 * (1.0 + np.abs(F).max()))
+    D = system.constraint_curvature(r)
+    expected = F[..., 0, 1] if n == 2 else F
+    assert D.shape == expected.shape
+    # two routes: closed forms or the gauge covariance D(-A~) = Ad_{beta^-1} D(-A) against differences
+    # of A~; a frame whose Jacobian is itself differenced (the centre of mass) leaves ~1e-5 of noise
+    np.testing.assert_allclose(D, expected, rtol=1e-5, atol=5e-5 * (1.0 + np.abs(F).max()))
+
+
+@system_law
+def test_law_a_system_describes_itself(system, shape, rng):
+    """Names and windows for every shape variable, drawable parts, a scaled determinant in
+    [-1, 1], and a system checked once when built: check_system trusts it."""
+    n = system.n_shape
+    assert isinstance(system, LocomotionSystem) and isinstance(system.name, str) and system.name
+    assert len(system.shape_names) == n and len(system.shape_limits) == n
+    assert all(lo < hi for lo, hi in system.shape_limits)
+    assert len(system.row_names) == system.n_position == 3
+    for part in system.parts():
+        assert isinstance(part, SystemPart) and part.outline.ndim == 2 and part.outline.shape[1] == 2
+    d = system.singularity(law_shapes(system, shape, rng))
+    assert np.all(np.abs(d) <= 1.0 + 1e-12)
+    assert check_system(system) == validate_system(system) == n
+
+
+class _SignSlip(DifferentialDrive):
+    """Deliberately broken: its connection has the wrong sign (xi = +A r_dot), so it disagrees
+    with its own Pfaffian."""
+
+    def connection(self, r):
+        return -super().connection(r)
+
+
+class _FrozenDerivative(Ackerman):
+    """Deliberately broken: it claims a closed-form connection derivative of zero, but steering
+    changes its connection."""
+
+    def connection_derivative(self, r):
+        A = self.connection(r)
+        return A, np.zeros(A.shape + (2,))
+
+
+class _Quadratic(DifferentialDrive):
+    """Deliberately broken: its body velocity grows with the square of the shape velocity."""
+
+    def body_velocity(self, r, r_dot):
+        return super().body_velocity(r, r_dot) * np.abs(np.asarray(r_dot, dtype=float)[..., :1])
+
+
+def test_a_broken_system_fails_the_laws():
+    """The laws can fail: each broken system passes for its healthy parent and fails the law it breaks."""
+    for law, healthy, broken in [
+            (test_law_the_pfaffian_annihilates_allowed_motions.law, DifferentialDrive(), _SignSlip()),
+            (test_law_connection_derivative_matches_an_independent_difference.law, Ackerman(), _FrozenDerivative()),
+            (test_law_body_velocity_is_minus_a_r_dot.law, DifferentialDrive(), _Quadratic())]:
+        law(healthy, (3, 1, 2), np.random.default_rng(1))
+        with pytest.raises(AssertionError):
+            law(broken, (3, 1, 2), np.random.default_rng(1))
+
+
+def test_a_system_is_checked_once_when_built():
+    """LocomotionSystem is abstract, and a subclass instance that is not a system (no integer
+    n_shape >= 1, or names that do not match it) is refused when it is built, naming the class."""
+    class NoParts(LocomotionSystem):
+        def pfaffian(self, r):
+            return np.zeros(np.shape(r)[:-1] + (3, 5))
+
+    with pytest.raises(TypeError, match="abstract"):
+        NoParts()
+    with pytest.raises(TypeError, match="abstract"):
+        LocomotionSystem()
+
+    class Flat(NoParts):
+        def parts(self):
+            return [SystemPart("body", rectangle_outline(1.0, 0.5))]
+
+        def part_poses(self, r):
+            return np.zeros(np.shape(r)[:-1] + (1, 3))
+
+    Flat()
+    with pytest.raises(TypeError, match=r"Zero\(\.\.\.\) must be a locomotion system"):
+        type("Zero", (Flat,), {"n_shape": 0})()
+    with pytest.raises(ValueError, match="shape_names has 3 entries for 2"):
+        type("Named", (Flat,), {"shape_names": ("a", "b", "c")})()
+

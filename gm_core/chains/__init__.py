@@ -2,8 +2,8 @@
 
 * :mod:`.chain`: joints, links, :class:`Chain` and :class:`MobileChain`, forward kinematics and
   Jacobians of any serial chain (section 2.5);
+* :mod:`.kernels`: batch-last kernels of revolute chains of any length (link poses, body Jacobians);
 * :mod:`.jacobians`: world and body Jacobians, finite differences, relative poses;
-* :mod:`.kernels`: the batch-last kernels of chains of any length (poses, Jacobians, the middle frame);
 * :mod:`.arms`: the two-link arms of sections 2.2-2.5 (RR, RP);
 * :mod:`.three_link`: the three-link chain of section 2.6 and its middle, beta and centre-of-mass frames;
 * :mod:`.holonomic`: holonomic constraints (pinned links, the accessible manifold, section 2.1).
@@ -40,8 +40,15 @@ from gm_core.chains.jacobians import (
     world_to_body_jacobian,
 )
 from gm_core.chains.kernels import (
+    chain_arguments,
+    chain_jacobians_T,
+    chain_poses_T,
+    flatten_batch,
+    joint_turns,
     link_chain_jacobians,
     link_chain_poses,
+    middle_frame_kernel,
+    with_trig,
 )
 from gm_core.chains.three_link import (
     beta_frame_jacobian,
@@ -56,12 +63,13 @@ from gm_core.chains.three_link import (
 )
 
 __all__ = [
-    "Joint", "Link", "Chain", "MobileChain", "METHODS", "transported_columns",
-    "finite_difference_jacobians", "relative_pose", "world_to_body_jacobian",
-    "body_to_world_jacobian", "link_chain_poses", "link_chain_jacobians", "single_link_frames",
-    "rr_arm_frames", "rr_arm_jacobian", "rp_arm_frames", "rp_arm_body_jacobians",
-    "three_link_chain", "three_link_frames", "three_link_poses", "three_link_jacobians",
-    "beta_frame_velocity", "beta_frame_jacobian", "links_from_beta_frame", "com_frame",
-    "com_frame_jacobians", "pin_constraints", "pinned_pair", "circle_constraints",
-    "sphere_plane_constraints", "sample_accessible_manifold", "accessible_circle",
+    "transported_columns", "Joint", "Link", "Chain", "MobileChain", "METHODS", "link_chain_poses",
+    "link_chain_jacobians", "finite_difference_jacobians", "relative_pose",
+    "world_to_body_jacobian", "body_to_world_jacobian", "single_link_frames", "rr_arm_frames",
+    "rr_arm_jacobian", "rp_arm_frames", "rp_arm_body_jacobians", "three_link_chain",
+    "three_link_frames", "three_link_poses", "three_link_jacobians", "beta_frame_velocity",
+    "beta_frame_jacobian", "links_from_beta_frame", "com_frame", "com_frame_jacobians",
+    "pin_constraints", "pinned_pair", "circle_constraints", "sphere_plane_constraints",
+    "sample_accessible_manifold", "accessible_circle", "chain_arguments", "flatten_batch",
+    "chain_poses_T", "joint_turns", "chain_jacobians_T", "with_trig", "middle_frame_kernel",
 ]

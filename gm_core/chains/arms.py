@@ -9,10 +9,11 @@ Shapes: configurations ``alpha: (..., n_joints)``; poses ``(..., 3)`` = (x, y, t
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.chains.chain import Chain
 from gm_core.groups import SE2
-from gm_core.validation import as_array, check_lengths, positive_number, real_number
+from gm_core.validation import FloatArray, as_array, check_lengths, positive_number, real_number
 
 __all__ = [
     "single_link_frames", "rr_arm_frames", "rr_arm_jacobian", "rp_arm_frames",
@@ -20,7 +21,7 @@ __all__ = [
 ]
 
 
-def single_link_frames(alpha, length=1.0):
+def single_link_frames(alpha: ArrayLike, length: float = 1.0) -> tuple[FloatArray, FloatArray]:
     """Proximal and distal poses (g, h), each ``(..., 3)``, of the pivoted link of fig. 2.2; book (2.3)-(2.4)."""
     alpha = as_array(alpha, "alpha")
     L = positive_number(length, "length")
@@ -28,14 +29,14 @@ def single_link_frames(alpha, length=1.0):
     return g, SE2.compose(g, np.array([L, 0.0, 0.0]))
 
 
-def rr_arm_frames(alpha, lengths=(1.0, 1.0)):
+def rr_arm_frames(alpha: ArrayLike, lengths: ArrayLike = (1.0, 1.0)) -> FloatArray:
     """Poses ``(..., 4, 3)`` of g1, h1, g2, h2 of the two-link arm of fig. 2.3; book (2.5)-(2.7)."""
     ch = Chain("RR", lengths)
     fr = ch.frames(alpha)
     return np.stack([fr["f"][..., 0, :], fr["h"][..., 0, :], fr["f"][..., 1, :], fr["h"][..., 1, :]], -2)
 
 
-def rr_arm_jacobian(alpha, lengths=(1.0, 1.0)):
+def rr_arm_jacobian(alpha: ArrayLike, lengths: ArrayLike = (1.0, 1.0)) -> FloatArray:
     """World-velocity Jacobian ``(..., 3, 2)`` of the two-link arm's end effector h2, closed form; book (2.19), (2.30)."""
     alpha = as_array(alpha, "alpha", (2,), what=" (alpha1, alpha2)")
     l1, l2 = check_lengths(lengths, 2)
@@ -59,7 +60,8 @@ def _rp_args(alpha, delta, l1, l2, offset):
     return alpha, delta, l1, l2, a
 
 
-def rp_arm_frames(alpha, delta, l1=1.0, l2=1.0, offset=0.0):
+def rp_arm_frames(alpha: ArrayLike, delta: ArrayLike, l1: float = 1.0, l2: float = 1.0,
+                  offset: float = 0.0) -> dict[str, FloatArray]:
     """Poses of g1, h1, g2', g2, h2, dict of ``(..., 3)``, for the rotary-prismatic arm of figs. 2.4 and 2.10; book (2.10)-(2.11).
 
     g1 is the rotating frame at the pivot, h1 = g1 (l1, offset, 0) the end of link 1 (``offset`` is
@@ -75,7 +77,8 @@ def rp_arm_frames(alpha, delta, l1=1.0, l2=1.0, offset=0.0):
     return {"g1": g1, "h1": h1, "g2p": h1.copy(), "g2": g2, "h2": h2}
 
 
-def rp_arm_body_jacobians(alpha, delta, l1=1.0, l2=1.0, offset=0.0):
+def rp_arm_body_jacobians(alpha: ArrayLike, delta: ArrayLike, l1: float = 1.0, l2: float = 1.0,
+                          offset: float = 0.0) -> dict[str, FloatArray]:
     """Body-velocity Jacobians wrt (alpha_dot, delta_dot), dict of ``(..., 3, 2)``; book (2.40)-(2.45), exercise 2.2.
 
     Keys g1, h1, g2p, g2, h2 as in :func:`rp_arm_frames`. With lateral offset a (fig. 2.10) the

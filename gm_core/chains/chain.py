@@ -11,9 +11,9 @@ section 2.2). For a prismatic joint the proximal frame of the sliding link sits 
 displacement delta from the joint, which is the book's ``g_2`` of (2.10).
 
 For revolute chains of any length, :func:`gm_core.chains.kernels.link_chain_poses` and
-:func:`~gm_core.chains.kernels.link_chain_jacobians` give
-the link-centre poses and body Jacobians in closed form, vectorized over many shapes (the
-locomotors of :class:`gm_core.systems.LinkChain`; tests check them against :class:`MobileChain`).
+:func:`gm_core.chains.kernels.link_chain_jacobians` give the link-centre poses and body Jacobians in
+closed form, vectorized over many shapes (the locomotors of :class:`gm_core.systems.LinkChain`;
+tests check them against :class:`MobileChain`).
 
 Jacobians are computed three independent ways (section 2.5), which agree to rounding:
 
@@ -31,15 +31,22 @@ The book's worked examples built on these are in :mod:`gm_core.chains.arms` (fix
 """
 from __future__ import annotations
 
+from collections.abc import Sized
 from dataclasses import dataclass
+from typing import Any, cast
 
 import numpy as np
+from numpy.typing import ArrayLike
+from typing_extensions import override
 
 from gm_core.chains.jacobians import body_to_world_jacobian, relative_pose, world_to_body_jacobian
 from gm_core.groups import SE2, matvec
-from gm_core.validation import as_array, check_lengths
+from gm_core.validation import FloatArray, as_array, check_lengths
 
-__all__ = ["Joint", "Link", "Chain", "MobileChain", "METHODS", "transported_columns"]
+__all__ = [
+    "transported_columns",
+    "Joint", "Link", "Chain", "MobileChain", "METHODS",
+]
 
 METHODS = ("direct", "world", "body")
 
@@ -57,7 +64,10 @@ class Joint:
     joint, book (2.9). Its body (and spatial) velocity is ``X q_dot``, the v_i of (2.34).
     """
 
-    def __init__(self, kind="revolute"):
+    kind: str
+    axis: FloatArray
+
+    def __init__(self, kind: Any = "revolute") -> None:
         if isinstance(kind, Joint):
             kind = kind.kind
         if not isinstance(kind, str) or kind.strip().lower() not in _KINDS:
@@ -65,22 +75,25 @@ class Joint:
         self.kind = _KINDS[kind.strip().lower()]
         self.axis = _AXIS[self.kind].copy()
 
-    def element(self, q, sign=1.0):
+    def element(self, q: ArrayLike, sign: float = 1.0) -> FloatArray:
         """The relative SE(2) element exp(sign q X), shape ``(..., 3)``; book (2.3), (2.9)."""
         q = np.asarray(q, dtype=float)
         return (sign * q)[..., None] * self.axis
 
     @property
-    def letter(self):
+    def letter(self) -> str:
         return "R" if self.kind == "revolute" else "P"
 
-    def __repr__(self):
+    @override
+    def __repr__(self) -> str:
         return f"Joint({self.kind!r})"
 
-    def __eq__(self, other):
+    @override
+    def __eq__(self, other: object) -> bool:
         return isinstance(other, Joint) and other.kind == self.kind
 
-    def __hash__(self):
+    @override
+    def __hash__(self) -> int:
         return hash(self.kind)
 
 
@@ -283,7 +296,8 @@ class Chain(_ChainBase):
     Link i: ``f_i = h_{i-1} exp(alpha_i X_i)``, ``g_i = f_i (l_i/2, a_i/2, 0)``, ``h_i = f_i (l_i, a_i, 0)``.
     """
 
-    def __init__(self, joints, lengths, offsets=None, base=None):
+    def __init__(self, joints: Any, lengths: ArrayLike, offsets: ArrayLike | None = None,
+                 base: ArrayLike | None = None) -> None:
         self.joints = _joints(joints)
         n = len(self.joints)
         if n == 0:
@@ -304,16 +318,18 @@ class Chain(_ChainBase):
             self._index[("h", i)] = parent = gr.add_fixed(f, [L, a, 0.0])
         self._graph = gr
 
+    @override
     def _root(self, g):
         if g is not None:
             raise ValueError("g: a fixed-base chain has no free base pose; set base= in the constructor")
         return self.base
 
-    def end_effector(self, alpha):
+    def end_effector(self, alpha: ArrayLike) -> FloatArray:
         """Pose ``(..., 3)`` of the distal frame of the last link; book (2.7), (2.11)."""
         return self.frames(alpha)["h"][..., -1, :]
 
-    def __repr__(self):
+    @override
+    def __repr__(self) -> str:
         letters = "".join(j.letter for j in self.joints)
         return f"Chain({letters!r}, lengths={self.lengths.tolist()})"
 
@@ -328,9 +344,9 @@ class MobileChain(_ChainBase):
     the body velocity xi of the base link, then the joint speeds, as in (2.46)-(2.59).
     """
 
-    def __init__(self, lengths, joints=None, base_link=None):
+    def __init__(self, lengths: ArrayLike, joints: Any = None, base_link: int | None = None) -> None:
         try:
-            n_links = len(lengths)
+            n_links = len(cast(Sized, lengths))
         except TypeError:
             raise ValueError(f"lengths must be a sequence of positive link lengths; got {lengths!r}") from None
         if n_links < 1:
@@ -363,21 +379,23 @@ class MobileChain(_ChainBase):
         self._index = idx
         self._graph = gr
 
+    @override
     def _root(self, g):
         if g is None:
             return SE2.identity()
         return as_array(g, "g", (3,), what=" (pose of the base link's medial frame)")
 
-    def body_jacobians(self, alpha, method="body"):
+    def body_jacobians(self, alpha: ArrayLike, method: str = "body") -> FloatArray:
         """Body-velocity Jacobians of the link centres, ``(..., n_links, 3, 3 + n_joints)``; book (2.46)-(2.59)."""
         return self.jacobians(alpha, method=method, velocity="body")["g"]
 
-    def __repr__(self):
+    @override
+    def __repr__(self) -> str:
         return f"MobileChain(lengths={self.lengths.tolist()}, base_link={self.base_link})"
 
 
 # ------------------------------------------------------------ columns carried to the tip
-def transported_columns(chain, alpha):
+def transported_columns(chain: Chain, alpha: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """Each joint's unit velocity carried out along a fixed-base chain, column by column; book (2.33)-(2.37).
 
     Returns ``(frames, columns)``: ``frames (..., 2n, 3)`` the poses f_1, h_1, f_2, h_2, ..., f_n,
@@ -401,5 +419,3 @@ def transported_columns(chain, alpha):
         rel = relative_pose(outward, frames[..., 2 * j, None, :])
         columns[..., j, 2 * j:, :] = matvec(SE2.Ad_inv(rel), joint.axis)
     return frames, columns
-
-

@@ -3,10 +3,13 @@ of box (2.i)-(2.ii), exercise 2.1. numpy only.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.groups import SE2
-from gm_core.validation import as_array, batch_shape, check_int, positive_number
+from gm_core.validation import FloatArray, as_array, batch_shape, check_int, positive_number
 
 __all__ = [
     "pin_constraints", "pinned_pair", "circle_constraints", "sphere_plane_constraints",
@@ -14,7 +17,7 @@ __all__ = [
 ]
 
 
-def pin_constraints(g1, g2):
+def pin_constraints(g1: ArrayLike, g2: ArrayLike) -> FloatArray:
     """Constraint values ``(..., 2)`` of two bodies pinned at their frame origins: (x1 - x2, y1 - y2); fig. 2.1.
 
     g1, g2: poses ``(..., 3)``. The pair is a configuration of the pinned system exactly where
@@ -27,7 +30,7 @@ def pin_constraints(g1, g2):
     return g1[..., :2] - g2[..., :2]
 
 
-def pinned_pair(g, alpha):
+def pinned_pair(g: ArrayLike, alpha: ArrayLike) -> FloatArray:
     """Poses ``(..., 2, 3)`` of two bodies pinned at their frame origins, from (g, alpha) in SE(2) x S^1; fig. 2.1.
 
     Body 1 is at g; body 2 shares its origin and is turned by alpha relative to it, g2 = g exp(alpha)
@@ -42,19 +45,21 @@ def pinned_pair(g, alpha):
     return np.stack([g, SE2.compose(g, turn)], axis=-2)
 
 
-def circle_constraints(p):
+def circle_constraints(p: ArrayLike) -> FloatArray:
     """Constraint values ``(..., 2)``: f1 = z - 1 and f2 = sqrt(x^2 + y^2) - 1; book (2.i)-(2.ii). p: ``(..., 3)``."""
     p = as_array(p, "p", (3,), what=" (points x, y, z)")
     return np.stack([p[..., 2] - 1.0, np.hypot(p[..., 0], p[..., 1]) - 1.0], -1)
 
 
-def sphere_plane_constraints(p):
+def sphere_plane_constraints(p: ArrayLike) -> FloatArray:
     """Constraint values ``(..., 2)``: distance from the origin sqrt(2) and z = 1 (exercise 2.1: same manifold). p: ``(..., 3)``."""
     p = as_array(p, "p", (3,), what=" (points x, y, z)")
     return np.stack([np.hypot(np.hypot(p[..., 0], p[..., 1]), p[..., 2]) - np.sqrt(2.0), p[..., 2] - 1.0], -1)
 
 
-def sample_accessible_manifold(constraints, n=200, rng=None, box=2.0, dim=3, iters=50, tol=1e-12):
+def sample_accessible_manifold(constraints: Callable[[FloatArray], FloatArray], n: int = 200,
+                               rng: np.random.Generator | None = None, box: float = 2.0, dim: int = 3, iters: int = 50,
+                               tol: float = 1e-12) -> FloatArray:
     """Points ``(k, dim)`` on the zero set of ``constraints`` (the accessible manifold), book box (2.i)-(2.ii).
 
     Random points in ``[-box, box]^dim`` are projected onto ``constraints(p) = 0`` by Gauss-Newton
@@ -84,7 +89,7 @@ def sample_accessible_manifold(constraints, n=200, rng=None, box=2.0, dim=3, ite
     return p[ok]
 
 
-def accessible_circle(n=100):
+def accessible_circle(n: int = 100) -> FloatArray:
     """Points ``(n, 3)`` of the accessible manifold of (2.i)-(2.ii): the unit circle in the plane z = 1."""
     n = check_int(n, "n", minimum=2, maximum=10 ** 7, what=" (the number of points)")
     t = np.linspace(0.0, 2 * np.pi, n)

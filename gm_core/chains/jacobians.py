@@ -5,10 +5,14 @@ numpy only. Shapes as in :mod:`gm_core.chains.chain`: poses ``(..., 3)``, Jacobi
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.groups import SE2
-from gm_core.validation import as_array, positive_number
+from gm_core.groups.base import LieGroup
+from gm_core.validation import FloatArray, as_array, positive_number
 
 __all__ = [
     "finite_difference_jacobians", "relative_pose", "world_to_body_jacobian",
@@ -16,7 +20,7 @@ __all__ = [
 ]
 
 
-def world_to_body_jacobian(g, J):
+def world_to_body_jacobian(g: ArrayLike, J: ArrayLike) -> FloatArray:
     """Body-velocity Jacobian ``T_g L_{g^-1} J`` from a world-velocity one; g: (..., 3), J: (..., 3, m); book (1.32)."""
     g = as_array(g, "g", (3,), what=" (the pose the Jacobian is taken at)")
     J = as_array(J, "J", what=" (a world-velocity Jacobian (..., 3, m))")
@@ -29,12 +33,13 @@ def world_to_body_jacobian(g, J):
     return SE2.left_lifted_action(SE2.inverse(g), g) @ J
 
 
-def body_to_world_jacobian(g, J):
-    return SE2.left_lifted_action(g, SE2.identity()) @ J
+def body_to_world_jacobian(g: ArrayLike, J: ArrayLike) -> FloatArray:
+    return SE2.left_lifted_action(g, SE2.identity()) @ np.asarray(J, dtype=float)
 
 
 # ------------------------------------------------------------------------ finite differences
-def finite_difference_jacobians(fk, alpha, eps=1e-6):
+def finite_difference_jacobians(fk: Callable[[FloatArray], ArrayLike], alpha: ArrayLike,
+                                eps: float = 1e-6) -> FloatArray:
     """World-velocity Jacobian ``(..., k, 3, n)`` of poses ``fk(alpha): (..., k, 3)`` by central differences.
 
     An independent route to (2.16): angles are differenced modulo 2 pi. ``alpha: (..., n)``.
@@ -56,7 +61,7 @@ def finite_difference_jacobians(fk, alpha, eps=1e-6):
 
 
 # ------------------------------------------------------------------------ relative poses
-def relative_pose(g, base, group=SE2):
+def relative_pose(g: ArrayLike, base: ArrayLike, group: LieGroup = SE2) -> FloatArray:
     """The pose ``base^-1 g`` of frame g seen from frame ``base``, ``(..., dim)``; book (2.iii), g_{1,h} = h^-1 g_1.
 
     With this notation poses chain by cancelling the frame in the middle, box "A note on

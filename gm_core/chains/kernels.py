@@ -1,57 +1,73 @@
-"""Batch-last kernels of revolute chains of any length (book section 2.5; beyond the draft for N > 3).
+"""Batch-last kernels of revolute chains of any length: link poses and body Jacobians in closed form.
 
-One copy of the link-centre poses and body Jacobians of an N-link planar chain, used by the
-three-link chain of chapter 2 (:mod:`gm_core.chains.three_link`), the locomoting chains
-(:class:`gm_core.systems.LinkChain`, the kinematic snake) and their checkers.
+numpy only. The public, validated entry points are :func:`link_chain_poses` and
+:func:`link_chain_jacobians` (batch-first, ``(..., N, 3)``); the kernels under them are public
+too, so that the locomotion systems (:class:`gm_core.systems.LinkChain`, the kinematic snake) and
+the three-link chain (:mod:`gm_core.chains.three_link`) share one copy. Kernels do not validate:
+callers pass arrays that :func:`chain_arguments` (or their own checks) have already checked.
 
-**Layout.** The kernels take and return *batch-last* arrays: the M shapes of a batch sit on the
-last axis, so every operation runs along long contiguous rows. For a chain of N links and
-n = N - 1 joints:
+The batch-last layout. A chain has ``N`` links and ``n = N - 1`` revolute joints; a batch of
+``M`` shapes is flattened (:func:`flatten_batch`) and put *last*, so that every numpy operation
+runs on long contiguous rows:
 
-* joint angles ``a``: ``(n, M)`` (or ``(n,)`` for one shape: every result then loses its last axis);
-  :func:`batch_last` turns the usual ``(..., n)`` into ``(n, M)`` and returns the batch shape;
-* link lengths ``L``: ``(N,)``;
-* poses ``P = (x, y, theta, cos theta, sin theta)``: five arrays ``(N, M)``, the link centres in the
-  centre frame of the base link;
-* pose Jacobians ``B = (Bx, By, Btheta)``: ``Bx, By (N, n, M)`` and ``Btheta (N, n, 1)`` (the
-  read-only table of :func:`joint_turns`);
-* a body frame ``beta = (x, y, theta, cos, sin)`` (each ``(M,)``) with Jacobian
-  ``Bb = (Bx, By, Btheta)`` (each ``(n, M)``);
-* link Jacobians ``J``: ``(rows, 3 + n, N, M)``, columns (xi, alpha_dot), rows 0 = x, 1 = y, 2 = theta.
+=======================  ===============================================================
+argument / result        shape
+=======================  ===============================================================
+``alpha`` (batch-first)  ``(..., n)``; :func:`flatten_batch` gives ``a (n, M)`` and ``...``
+``a``                    ``(n, M)`` joint angles, or ``(n,)`` for one shape (no batch axis:
+                         every array below then loses its last axis ``M``)
+``L``                    ``(N,)`` positive link lengths
+``P`` (poses)            ``(x, y, theta, cos theta, sin theta)``, each ``(N, M)``
+``B`` (shape Jacobians)  ``(Bx, By, Btheta)``: ``Bx, By (N, n, M)``, ``Btheta (N, n, 1)``
+``beta`` (body frame)    ``(x, y, theta, cos theta, sin theta)``, each ``(M,)``
+``Bb`` (its Jacobian)    ``(Bx, By, Btheta)``, each ``(n, M)``
+``Q`` (links in body)    ``(x, y, theta, cos theta, sin theta)``, each ``(N, M)``
+``J`` (link Jacobians)   ``(len(rows), 3 + n, N, M)``: rows x, y, theta of each link's map
+                         from ``(xi, alpha_dot)`` to its body velocity
+:func:`joint_turns`      ``(N, n) + (1,) * (ndim - 1)``, read-only
+=======================  ===============================================================
 
-:func:`link_chain_poses` and :func:`link_chain_jacobians` are the same computations in the usual
-batch-first layout, with their arguments validated. numpy only.
+Frames: link ``base`` (0-based) is the kernels' reference link, its centre frame at the origin;
+link i + 1 is turned by ``alpha_i`` relative to link i (chapter 2's convention, fig. 2.8).
 """
 from __future__ import annotations
 
 import functools
+from collections.abc import Sized
+from typing import cast
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from gm_core.validation import as_array, check_lengths
+from gm_core.validation import FloatArray, as_array, check_lengths
 
 __all__ = [
-    "batch_last", "chain_arguments", "chain_poses_batch_last", "chain_jacobians_batch_last", "joint_turns",
+    "chain_arguments", "flatten_batch", "chain_poses_T", "joint_turns", "chain_jacobians_T",
     "with_trig", "middle_frame_kernel", "link_chain_poses", "link_chain_jacobians",
 ]
 
+#: ``(x, y, theta, cos theta, sin theta)``, each ``(N, M)`` (or ``(M,)`` for a body frame).
+Pose5 = tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]
+#: ``(Bx, By, Btheta)``: body Jacobians of poses, batch-last.
+Jac3 = tuple[FloatArray, FloatArray, FloatArray]
 
-def chain_arguments(alpha, lengths):
-    """``(alpha, L)`` validated: joint angles ``(..., N - 1)`` and N >= 2 positive link lengths ``L (N,)``."""
-    if isinstance(lengths, (str, bytes)) or np.ndim(lengths) != 1 or len(lengths) < 2:
+
+def chain_arguments(alpha: ArrayLike, lengths: ArrayLike) -> tuple[FloatArray, FloatArray]:
+    """Validated ``(alpha (..., N - 1), L (N,))`` for an N-link chain (N >= 2), naming a bad argument."""
+    if isinstance(lengths, (str, bytes)) or np.ndim(lengths) != 1 or len(cast(Sized, lengths)) < 2:
         raise ValueError(f"lengths must be a sequence of N >= 2 positive link lengths; got {lengths!r}")
-    L = check_lengths(lengths, len(lengths))
+    L = check_lengths(lengths, len(cast(Sized, lengths)))
     alpha = as_array(alpha, "alpha", (L.size - 1,), what=f" (the {L.size - 1} joint angles of a {L.size}-link chain)")
     return alpha, L
 
 
-def batch_last(alpha):
+def flatten_batch(alpha: FloatArray) -> tuple[FloatArray, tuple[int, ...]]:
     """alpha (..., n) -> (n, M) with the batch flattened last (contiguous rows), and the batch shape."""
     return np.ascontiguousarray(alpha.reshape(-1, alpha.shape[-1]).T), alpha.shape[:-1]
 
 
-def chain_poses_batch_last(a, L, base=0):
-    """Link-centre poses and their body Jacobians, batch-last (the kernel of :func:`link_chain_poses`): joint angles ``a (n, M)``, lengths ``L (N,)``.
+def chain_poses_T(a: FloatArray, L: FloatArray, base: int = 0) -> tuple[Pose5, Jac3]:
+    """The batch-last kernel of :func:`link_chain_poses`: joint angles ``a (n, M)``, lengths ``L (N,)``.
 
     Returns ``(P, B)`` with ``P = (x, y, theta, cos theta, sin theta)``, each ``(N, M)``, the link
     centres in the centre frame of link ``base + 1`` (0-based ``base``, default link 1), and
@@ -111,7 +127,7 @@ def chain_poses_batch_last(a, L, base=0):
 
 
 @functools.cache
-def joint_turns(N, base, ndim):
+def joint_turns(N: int, base: int, ndim: int) -> FloatArray:
     """The read-only (N, N - 1) table of d theta_i / d alpha_j with link ``base`` held still: +1 for
     i > j >= base, -1 for i <= j < base, else 0; with ``ndim - 1`` trailing axes of length 1."""
     i, j = np.arange(N)[:, None], np.arange(N - 1)[None, :]
@@ -121,8 +137,9 @@ def joint_turns(N, base, ndim):
     return turns
 
 
-def chain_jacobians_batch_last(P, B, beta=None, Bb=None, rows=(0, 1, 2)):
-    """The batch-last kernel of :func:`link_chain_jacobians`: ``P, B`` from :func:`chain_poses_batch_last`,
+def chain_jacobians_T(P: Pose5, B: Jac3, beta: Pose5 | None = None, Bb: Jac3 | None = None,
+                      rows: tuple[int, ...] = (0, 1, 2)) -> tuple[Pose5, FloatArray]:
+    """The batch-last kernel of :func:`link_chain_jacobians`: ``P, B`` from :func:`chain_poses_T`,
     the body frame ``beta = (x, y, theta, cos theta, sin theta)`` (each (M,)) relative to the
     kernel's base link and its body Jacobian ``Bb = (Bx, By, Btheta)`` (each (n, M)); ``None``
     for both when the body frame is the base link itself (nothing to re-express). Returns
@@ -174,12 +191,20 @@ def chain_jacobians_batch_last(P, B, beta=None, Bb=None, rows=(0, 1, 2)):
     return (x, y, t, c, sn), J
 
 
-def with_trig(x, y, t):
+def with_trig(x: FloatArray, y: FloatArray, t: FloatArray) -> Pose5:
     """A batch-last pose (x, y, theta) with its cosine and sine, as the kernels take it."""
     return x, y, t, np.cos(t), np.sin(t)
 
 
-def link_chain_poses(alpha, lengths):
+def middle_frame_kernel(a: FloatArray, L: FloatArray, rows: tuple[int, ...]) -> tuple[Pose5, FloatArray]:
+    """The links and Jacobians of a chain in its second link's frame (the middle of three):
+    :func:`chain_poses_T` walked out from link 1 (0-based) and :func:`chain_jacobians_T` with no
+    re-expression. ``a (n, M)`` validated, flattened joint angles, ``L (N,)``; returns ``(Q, J)``
+    in the layout of the module docstring."""
+    return chain_jacobians_T(*chain_poses_T(a, L, base=1), rows=rows)
+
+
+def link_chain_poses(alpha: ArrayLike, lengths: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """Link-centre poses ``(..., N, 3)`` of an N-link chain in link 1's centre frame and their body Jacobians.
 
     The chain of fig. 2.8 with any number of links: link i + 1 is turned by alpha_i relative to
@@ -190,15 +215,16 @@ def link_chain_poses(alpha, lengths):
     the joint: ``d p_i / d alpha_j = perp(p_i - q_j)`` for i > j, ``d theta_i / d alpha_j = 1``.
     """
     alpha, L = chain_arguments(alpha, lengths)
-    a, batch = batch_last(alpha)
-    (px, py, th, _, _), (B0, B1, B2) = chain_poses_batch_last(a, L)
+    a, batch = flatten_batch(alpha)
+    (px, py, th, _, _), (B0, B1, B2) = chain_poses_T(a, L)
     N, n = L.size, L.size - 1
     P = np.stack([px, py, th]).T.reshape(batch + (N, 3))
     B = np.stack([B0, B1, np.broadcast_to(B2, B0.shape)]).transpose(3, 1, 0, 2).reshape(batch + (N, 3, n))
     return P, B
 
 
-def link_chain_jacobians(P, B, beta, B_beta):
+def link_chain_jacobians(P: ArrayLike, B: ArrayLike, beta: ArrayLike,
+                         B_beta: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """Link Jacobians ``(..., N, 3, 3 + n)`` mapping (xi, alpha_dot) to each link's body velocity.
 
     ``P, B`` from :func:`link_chain_poses`; the body frame sits at ``beta (..., 3)`` relative to
@@ -207,6 +233,8 @@ def link_chain_jacobians(P, B, beta, B_beta):
     (body velocities of products and inverses, section 1.5; (2.68) for any number of links).
     Returns ``(Q (..., N, 3), J (..., N, 3, 3 + n))``.
     """
+    P, B = np.asarray(P, dtype=float), np.asarray(B, dtype=float)
+    beta, B_beta = np.asarray(beta, dtype=float), np.asarray(B_beta, dtype=float)
     n = B.shape[-1]
     batch = np.broadcast_shapes(P.shape[:-2], B.shape[:-3], beta.shape[:-1], B_beta.shape[:-2])
     N = P.shape[-2]
@@ -215,13 +243,7 @@ def link_chain_jacobians(P, B, beta, B_beta):
     beta = np.broadcast_to(beta, batch + (3,)).reshape(-1, 3).T
     Bb = np.broadcast_to(B_beta, batch + (3, n)).reshape(-1, 3, n).transpose(1, 2, 0)
     PT = with_trig(*(P[..., k].T for k in range(3)))
-    BT = tuple(B[:, :, k].transpose(1, 2, 0) for k in range(3))
-    (x, y, t, _, _), J = chain_jacobians_batch_last(PT, BT, with_trig(*beta), tuple(Bb))
+    BT = (B[:, :, 0].transpose(1, 2, 0), B[:, :, 1].transpose(1, 2, 0), B[:, :, 2].transpose(1, 2, 0))
+    (x, y, t, _, _), J = chain_jacobians_T(PT, BT, with_trig(*beta), (Bb[0], Bb[1], Bb[2]))
     Q = np.stack([x, y, t]).T.reshape(batch + (N, 3))
     return Q, J.transpose(3, 2, 0, 1).reshape(batch + (N, 3, 3 + n))
-
-
-def middle_frame_kernel(a, L, rows):
-    """:func:`middle_frame_T` on validated, flattened joint angles ``a (2, M)`` and lengths ``L (3,)``:
-    the chain kernels walked out from the middle link (their base), so nothing is re-expressed."""
-    return chain_jacobians_batch_last(*chain_poses_batch_last(a, L, base=1), rows=rows)

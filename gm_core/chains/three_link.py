@@ -9,12 +9,16 @@ Jacobians ``(..., 3, 5)``.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence, Sized
+from typing import cast
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.chains.chain import MobileChain
-from gm_core.chains.kernels import batch_last, middle_frame_kernel
+from gm_core.chains.kernels import Pose5, flatten_batch, middle_frame_kernel
 from gm_core.groups import SE2, matvec
-from gm_core.validation import as_array, batch_shape, check_lengths
+from gm_core.validation import FloatArray, as_array, batch_shape, check_lengths
 
 __all__ = [
     "three_link_chain", "three_link_frames", "three_link_poses", "three_link_jacobians",
@@ -23,14 +27,15 @@ __all__ = [
 ]
 
 
-def three_link_chain(lengths):
+def three_link_chain(lengths: ArrayLike) -> MobileChain:
     """The three-link mobile system of fig. 2.8 with the middle link as body frame (a :class:`MobileChain`)."""
-    if isinstance(lengths, (str, bytes)) or np.ndim(lengths) != 1 or len(lengths) != 3:
+    if isinstance(lengths, (str, bytes)) or np.ndim(lengths) != 1 or len(cast(Sized, lengths)) != 3:
         raise ValueError(f"lengths must be a length-3 sequence of positive link lengths; got {lengths!r}")
     return MobileChain(lengths, base_link=1)
 
 
-def three_link_frames(alpha, lengths=(1.0, 1.0, 1.0), g=None):
+def three_link_frames(alpha: ArrayLike, lengths: ArrayLike = (1.0, 1.0, 1.0),
+                      g: ArrayLike | None = None) -> dict[str, FloatArray]:
     """Poses of the three links' f, g, h frames and the two joints, with link 2's centre at g; book (2.12), fig. 2.8.
 
     alpha: ``(..., 2)``, alpha1 = rotation of link 2 relative to link 1, alpha2 = rotation of link 3
@@ -48,12 +53,12 @@ def _three_link_lengths(lengths):
     return check_lengths(lengths, 3)
 
 
-def middle_frame_T(alpha, lengths, rows=(0, 1, 2)):
+def middle_frame_T(alpha: ArrayLike, lengths: ArrayLike,
+                   rows: tuple[int, ...] = (0, 1, 2)) -> tuple[tuple[int, ...], Pose5, FloatArray]:
     """``(batch, (x, y, theta, cos, sin), J)``: the link poses (each (3, M)) and Jacobians J (rows, 5, 3, M) in the
-    middle link's frame, batch-last (the kernels of :func:`gm_core.chains.link_chain_poses` and
-    :func:`~gm_core.chains.link_chain_jacobians`); ``batch`` the shape M was flattened from."""
+    middle link's frame, batch-last (:func:`gm_core.chains.kernels.middle_frame_kernel`); ``batch`` the shape M was flattened from."""
     alpha = as_array(alpha, "alpha", (2,), what=" (alpha1, alpha2)")
-    a, batch = batch_last(alpha)
+    a, batch = flatten_batch(alpha)
     return (batch,) + middle_frame_kernel(a, np.asarray(_three_link_lengths(lengths)), rows)
 
 
@@ -63,7 +68,7 @@ def _middle_frame(alpha, lengths):
     return np.stack([x, y, t]).T.reshape(batch + (3, 3)), J.transpose(3, 2, 0, 1).reshape(batch + (3, 3, 5))
 
 
-def three_link_poses(alpha, lengths=(1.0, 1.0, 1.0)):
+def three_link_poses(alpha: ArrayLike, lengths: ArrayLike = (1.0, 1.0, 1.0)) -> FloatArray:
     """Poses ``(..., 3, 3)`` of the three link centres g1, g2, g3 in the middle link's frame; book (2.12), fig. 2.8.
 
     The chain product ``g1 = (-l2/2, 0, 0) exp(-alpha1) (-l1/2, 0, 0)``, ``g2 = e``,
@@ -74,7 +79,8 @@ def three_link_poses(alpha, lengths=(1.0, 1.0, 1.0)):
     return _middle_frame(alpha, lengths)[0]
 
 
-def three_link_jacobians(alpha, lengths=(1.0, 1.0, 1.0)):
+def three_link_jacobians(alpha: ArrayLike,
+                         lengths: ArrayLike = (1.0, 1.0, 1.0)) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Body-velocity Jacobians (J1, J2, J3) of the three links, each ``(..., 3, 5)``; book (2.57)-(2.59), corrected.
 
     Each maps (xi_x, xi_y, xi_theta, alpha1_dot, alpha2_dot) -- the body velocity of the middle link
@@ -104,7 +110,8 @@ def _v_beta_matrix(beta, dbeta):
     return SE2.right_lifted_action(SE2.inverse(beta), beta) @ dbeta
 
 
-def beta_frame_velocity(beta, dbeta, xi_base, alpha_dot):
+def beta_frame_velocity(beta: ArrayLike, dbeta: ArrayLike, xi_base: ArrayLike,
+                        alpha_dot: ArrayLike) -> dict[str, FloatArray]:
     """The body velocity of the frame g = g_base beta(alpha), split into its two causes; book (2.60)-(2.62), (2.67).
 
     Returns a dict of ``(..., 3)`` arrays:
@@ -131,7 +138,7 @@ def beta_frame_velocity(beta, dbeta, xi_base, alpha_dot):
             "v_beta": matvec(_v_beta_matrix(beta, dbeta), alpha_dot)}
 
 
-def beta_frame_jacobian(beta, dbeta):
+def beta_frame_jacobian(beta: ArrayLike, dbeta: ArrayLike) -> FloatArray:
     """Body-velocity Jacobian ``(..., 3, 3 + n)`` of the frame g = g_base beta(alpha); book (2.60)-(2.67).
 
     Maps (xi_base, alpha_dot) to xi_g = Ad_beta^-1 (xi_base + T_beta R_{beta^-1} dbeta alpha_dot).
@@ -146,7 +153,7 @@ def beta_frame_jacobian(beta, dbeta):
     return SE2.Ad_inv(beta) @ M
 
 
-def links_from_beta_frame(jacobians, beta, dbeta):
+def links_from_beta_frame(jacobians: Sequence[ArrayLike], beta: ArrayLike, dbeta: ArrayLike) -> list[FloatArray]:
     """Link Jacobians re-expressed with the frame g = g_base beta as body frame: list of ``(..., 3, 3 + n)``; book (2.68).
 
     ``jacobians`` are Jacobians wrt (xi_base, alpha_dot) (e.g. from :func:`three_link_jacobians`);
@@ -167,7 +174,8 @@ def links_from_beta_frame(jacobians, beta, dbeta):
     return [J @ M for J in Js]
 
 
-def com_frame(alpha, lengths=(1.0, 1.0, 1.0), weights=None):
+def com_frame(alpha: ArrayLike, lengths: ArrayLike = (1.0, 1.0, 1.0),
+              weights: ArrayLike | None = None) -> tuple[FloatArray, FloatArray]:
     """The centre-of-mass / mean-orientation frame beta(alpha) ``(..., 3)`` and d beta/d alpha ``(..., 3, 2)``; exercise 2.3a, (2.69).
 
     beta is the pose relative to the middle link of the three-link system: position the weighted
@@ -186,7 +194,8 @@ def com_frame(alpha, lengths=(1.0, 1.0, 1.0), weights=None):
     return np.einsum("i,...ij->...j", w, Q), np.einsum("i,...ijk->...jk", w, dP)
 
 
-def com_frame_jacobians(alpha, lengths=(1.0, 1.0, 1.0), weights=None):
+def com_frame_jacobians(alpha: ArrayLike, lengths: ArrayLike = (1.0, 1.0, 1.0),
+                        weights: ArrayLike | None = None) -> tuple[FloatArray, tuple[FloatArray, ...]]:
     """Jacobian of the centre-of-mass frame and the three link Jacobians seen from it; exercise 2.3b-c.
 
     Returns ``(J_com, (J1, J2, J3))``: J_com ``(..., 3, 5)`` maps (xi_middle, alpha_dot) to the

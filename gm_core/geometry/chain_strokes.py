@@ -11,16 +11,20 @@ and reproduces the stored efficiency and displacement.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 
-from gm_core.geometry.optimal import fourier_gait, optimize_gait, travelling_wave
+from gm_core.geometry.optimal import FourierGait, OptimalGait, fourier_gait, optimize_gait, travelling_wave
 from gm_core.systems import LinkChain
+from gm_core.systems.base import LocomotionSystem
 from gm_core.validation import check_int, positive_number
 
 __all__ = ["CHAIN_STROKES", "chain_swimmer", "chain_stroke", "wave_start", "optimize_chain_gait"]
 
 #: Fourier coefficients (a, b: (N - 1, 2); center: (N - 1,)) and the values they give.
-CHAIN_STROKES = {
+CHAIN_STROKES: dict[int, dict[str, Any]] = {
     3: dict(a=[[1.25806291516, 0.240434185368],
               [0.139719183254, 0.328106592347]],
              b=[[-0.0800170633457, -0.303506727275],
@@ -48,12 +52,12 @@ CHAIN_STROKES = {
 }
 
 
-def chain_swimmer(n_links, total_length=3.0):
+def chain_swimmer(n_links: int, total_length: float = 3.0) -> LinkChain:
     """The swimmer of :data:`CHAIN_STROKES`: n_links equal links, drag ratio 2, centre-of-mass frame."""
     return LinkChain((total_length / n_links,) * n_links, "low_re", drag_ratio=2.0, frame="com")
 
 
-def chain_stroke(n_links):
+def chain_stroke(n_links: int) -> FourierGait:
     """The stored optimal stroke for ``n_links`` (3, 4 or 5) links as a :func:`fourier_gait` (period 2 pi)."""
     if n_links not in CHAIN_STROKES:
         raise ValueError(f"n_links must be one of {sorted(CHAIN_STROKES)}; got {n_links!r}")
@@ -61,7 +65,8 @@ def chain_stroke(n_links):
     return fourier_gait(c["a"], c["b"], c["center"], name=f"optimal {n_links}-link stroke (efficiency, order 2)")
 
 
-def wave_start(n_joints, amplitude=0.6, lag=0.8, *, spread=0.05, seed=0):
+def wave_start(n_joints: int, amplitude: float = 0.6, lag: float = 0.8, *, spread: float = 0.05,
+               seed: int = 0) -> FourierGait:
     """A start for optimising a chain's gait: the :func:`travelling_wave` (``amplitude``, ``lag``)
     with its Fourier coefficients nudged by a seeded normal ``spread``, so an optimisation leaves
     the symmetric saddle points a perfect wave can sit on (deterministic for a given ``seed``)."""
@@ -72,7 +77,8 @@ def wave_start(n_joints, amplitude=0.6, lag=0.8, *, spread=0.05, seed=0):
                         name=f"start: wave, amplitude {amplitude:g}, lag {lag:g} rad")
 
 
-def optimize_chain_gait(system, order=1, *, start=None, maxiter=40, intervals=64, callback=None):
+def optimize_chain_gait(system: LocomotionSystem, order: int = 1, *, start: Any = None, maxiter: int = 40,
+                        intervals: int = 64, callback: Callable[[int, float], Any] | None = None) -> OptimalGait:
     """The most efficient Fourier gait of ``order`` of a chain of any number of links, from
     :func:`wave_start` (or ``start``), measured in the chain's own body frame (use
     ``frame="com"``): :func:`optimize_gait` with ``objective="efficiency"``,

@@ -9,54 +9,61 @@ notebooks call: :func:`reframe`, :func:`centre_of_mass`, :func:`centre_of_mass_c
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.groups import SE2
-from gm_core.systems.gaits import as_gait
+from gm_core.systems.base import LocomotionSystem
+from gm_core.systems.gaits import GaitLike, as_gait
 from gm_core.systems.minimum_perturbation import MinimumPerturbationFrame
-from gm_core.systems.motion import check_system, net_displacement
+from gm_core.systems.motion import net_displacement, trusted_dimension
 from gm_core.systems.reframed import CentreOfMassFrame, PoseFrame, Reframed
+from gm_core.validation import FloatArray
 
 __all__ = ["reframe", "centre_of_mass", "centre_of_mass_coordinates", "drift_and_turn",
            "minimum_perturbation_coordinates"]
 
 
-def reframe(system, beta, jacobian=None, name=None):
+def reframe(system: LocomotionSystem, beta: Callable[[Any], ArrayLike],
+            jacobian: Callable[[Any], ArrayLike] | None = None, name: str | None = None) -> Reframed:
     """``system`` seen from the body frame at ``beta(r)`` (..., 3): a :class:`Reframed` system.
 
     ``jacobian(r)`` = d beta / dr (..., 3, n), or None for central differences.
     """
-    check_system(system)
+    trusted_dimension(system)
     frame = PoseFrame(beta, jacobian, name="other frame")
     return Reframed(system, frame, name=name)
 
 
-def centre_of_mass(system, r):
+def centre_of_mass(system: LocomotionSystem, r: ArrayLike) -> FloatArray:
     """Weighted mean ``(..., 3)`` of the link poses of a ``system`` made of links at shapes ``r``,
     in its body frame: (x, y) the centre of mass, theta the mean link orientation.
 
     Links are weighted by ``system.link_weights()``: mass for the floating snake, else length
     (uniform slender links, as for the swimmers).
     """
-    check_system(system)
+    trusted_dimension(system)
     return CentreOfMassFrame(system).pose(r)
 
 
-def centre_of_mass_coordinates(system):
+def centre_of_mass_coordinates(system: LocomotionSystem) -> Reframed:
     """A ``system`` made of links seen from its centre of mass with the mean link orientation
     (:class:`~gm_core.systems.CentreOfMassFrame`)."""
-    check_system(system)
+    trusted_dimension(system)
     return Reframed(system, CentreOfMassFrame(system), name=f"{system.name} (centre of mass, mean orientation)")
 
 
-def drift_and_turn(system, gait):
+def drift_and_turn(system: LocomotionSystem, gait: GaitLike) -> tuple[float, float]:
     """(net turn angle, distance moved by the centre of mass) over one cycle of ``gait``.
 
     The shape is the same at the start and the end of a cycle, so the centre of mass sits at the
     same point c of the body frame; the net displacement g(T) carries it from c to g(T) c. Both
     numbers are independent of the choice of body frame.
     """
-    check_system(system)
+    trusted_dimension(system)
     CentreOfMassFrame(system)
     gait = as_gait(gait)
     gT = net_displacement(system, gait)
@@ -64,7 +71,8 @@ def drift_and_turn(system, gait):
     return float(gT[2]), float(np.linalg.norm(SE2.act_on_points(gT, c) - c))
 
 
-def minimum_perturbation_coordinates(system, bounds=None, n=None, *, reference=None):
+def minimum_perturbation_coordinates(system: LocomotionSystem, bounds: Any = None, n: int | None = None, *,
+                                     reference: ArrayLike | None = None) -> Reframed:
     """Hatton's minimum-perturbation body frame of ``system`` over the box ``bounds``: a :class:`Reframed` system.
 
     Minimises ``int |A~_theta|^2`` (a Neumann-Poisson problem: A~_theta divergence-free with no

@@ -20,34 +20,36 @@ Stokes estimates are for gaits in a 2-D slice (:func:`gm_core.systems.shape_slic
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.groups import matvec
 from gm_core.systems.base import LocomotionSystem
-from gm_core.systems.gaits import as_gait
+from gm_core.systems.gaits import Gait, GaitLike, as_gait
 from gm_core.systems.motion import (
     FD_STEP,
     check_gait,
-    check_system,
     curvature_form,
     exterior_derivative,
     fd_connection_derivative,
+    trusted_dimension,
 )
-from gm_core.validation import SingularShapeError, as_array, check_int, positive_number
+from gm_core.validation import FloatArray, SingularShapeError, as_array, check_int, positive_number
 
 __all__ = ["constraint_curvature", "connection_derivative", "connection_curl", "stokes_estimate",
            "body_velocity_integral", "closed_gait", "require_planar"]
 
 
-def require_planar(system, what="curvature maps and Stokes estimates"):
+def require_planar(system: LocomotionSystem, what: str = "curvature maps and Stokes estimates") -> LocomotionSystem:
     """``system`` after checking it has a 2-D shape space (ValueError pointing to :func:`shape_slice` if not)."""
-    n = check_system(system)
+    n = trusted_dimension(system)
     if n != 2:
         raise ValueError(f"system must have a 2-D shape space for {what}; {getattr(system, 'name', system)} has "
                          f"n_shape = {n}: take a 2-D slice with gm_core.systems.shape_slice(system, through, axes)")
     return system
 
 
-def connection_derivative(system, r, *, method="auto", h=None):
+def connection_derivative(system: LocomotionSystem, r: ArrayLike, *, method: str = "auto",
+                          h: float | None = None) -> tuple[FloatArray, FloatArray]:
     """Connection and its shape derivative: ``(A (..., 3, n), dA (..., 3, n, n))``, ``dA[..., i, j, k] = d A_ij / d r_k``.
 
     ``method="auto"`` asks the system (its ``connection_derivative``: a closed form for the
@@ -55,7 +57,7 @@ def connection_derivative(system, r, *, method="auto", h=None):
     ``"fd"`` forces central differences (:func:`gm_core.systems.motion.fd_connection_derivative`) with
     relative step ``h`` (default :data:`gm_core.systems.motion.FD_STEP`). The one place that chooses.
     """
-    n = check_system(system)
+    n = trusted_dimension(system)
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     if method not in ("auto", "fd"):
         raise ValueError(f"method must be 'auto' or 'fd'; got {method!r}")
@@ -68,7 +70,7 @@ def connection_derivative(system, r, *, method="auto", h=None):
     return fd_connection_derivative(system, r, FD_STEP if h is None else h)
 
 
-def connection_curl(system, r, h=None):
+def connection_curl(system: LocomotionSystem, r: ArrayLike, h: float | None = None) -> FloatArray:
     """Scalar curl (..., 3) of each connection row over a 2-D shape space.
 
     For row i, ``d A_i2 / d alpha1 - d A_i1 / d alpha2``, from :func:`connection_derivative`
@@ -77,7 +79,7 @@ def connection_curl(system, r, h=None):
     exact one-form, box on one-forms (3.xvii)); only then does a global contour plot of that row
     make sense.
     """
-    if check_system(system) != 2:
+    if trusted_dimension(system) != 2:
         raise ValueError(f"system must have a 2-D shape space for a scalar curl; {system.name} has "
                          f"{system.n_shape} shape variables")
     r = as_array(r, "r", (2,), what=" (a point of a 2-D shape space)")
@@ -85,7 +87,8 @@ def connection_curl(system, r, h=None):
     return exterior_derivative(dA)[..., 0, 1]
 
 
-def constraint_curvature(system, r, *, method="auto", pair=None):
+def constraint_curvature(system: LocomotionSystem, r: ArrayLike, *, method: str = "auto",
+                         pair: tuple[int, int] | None = None) -> FloatArray:
     """Constraint curvature D(-A) at shapes r: ``F_ij = -(d_i A_j - d_j A_i) + [A_i, A_j]``.
 
     For a 2-D shape space the one component F_12, (..., 3); for n shape variables the 2-form
@@ -96,7 +99,7 @@ def constraint_curvature(system, r, *, method="auto", pair=None):
     ``method="auto"`` asks the system (a frame change acts by Ad_{beta^-1}, gauge covariance);
     ``"fd"`` differentiates the connection by central differences.
     """
-    n = check_system(system)
+    n = trusted_dimension(system)
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     if method not in ("auto", "fd"):
         raise ValueError(f"method must be 'auto' or 'fd'; got {method!r}")
@@ -157,7 +160,8 @@ def _check_rtol(rtol):
     return r
 
 
-def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True, samples=None):
+def stokes_estimate(system: LocomotionSystem, gait: GaitLike, *, rtol: float = 1e-11, method: str = "auto",
+                    check: bool = True, samples: int | None = None) -> FloatArray:
     """Area integral (3,) of the constraint curvature over the region the gait encloses.
 
     The region is counted with its winding number, so a clockwise gait gives the negative
@@ -190,13 +194,14 @@ def stokes_estimate(system, gait, *, rtol=1e-11, method="auto", check=True, samp
         prev = cur
 
 
-def body_velocity_integral(system, gait, *, rtol=1e-12, check=True, samples=None):
+def body_velocity_integral(system: LocomotionSystem, gait: GaitLike, *, rtol: float = 1e-12, check: bool = True,
+                           samples: int | None = None) -> FloatArray:
     """The naive estimate (3,): ``int_0^T xi dt = -oint A(r) dr`` (ignores the Lie bracket).
 
     Trapezoidal rule over the period (spectrally accurate for smooth periodic gaits), doubled
     until two results agree to ``rtol``; ``samples=n`` uses n equal time steps once instead.
     """
-    check_system(system)
+    trusted_dimension(system)
     gait = closed_gait(gait, system)
     if check:
         check_gait(system, gait)
@@ -232,7 +237,7 @@ def _fixed_samples(samples, count):
     return [int(v) for v in vals]
 
 
-def closed_gait(gait, system=None, name="gait"):
+def closed_gait(gait: GaitLike, system: LocomotionSystem | None = None, name: str = "gait") -> Gait:
     """``gait`` as a :class:`Gait` after checking it is closed (r(T) = r(0)) and matches ``system``."""
     gait = as_gait(gait)
     p0, p1 = gait(np.array([0.0, gait.period]))

@@ -15,15 +15,20 @@
 from __future__ import annotations
 
 import functools
+from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.geometry.curvature import body_velocity_integral, constraint_curvature, stokes_estimate
-from gm_core.geometry.optimal import fourier_gait
-from gm_core.systems.motion import check_system, net_displacement
-from gm_core.validation import SingularShapeError, as_array, check_int, positive_number, real_number
+from gm_core.geometry.optimal import FourierGait, fourier_gait
+from gm_core.systems.base import LocomotionSystem
+from gm_core.systems.gaits import GaitLike
+from gm_core.systems.motion import net_displacement, trusted_dimension
+from gm_core.validation import FloatArray, SingularShapeError, as_array, check_int, positive_number, real_number
 
 __all__ = ["FRAMES", "INTERACTIVE", "Estimates", "shaped_gait", "displacement_estimates", "row_scaled",
            "field_rms", "square_grid", "frames_of", "curvature_grid"]
@@ -35,10 +40,11 @@ FRAMES = ("middle link", "centre of mass", "minimum perturbation")
 #: fourth-order Magnus steps; Stokes: (64, 12) radial-quadrature points; body-velocity integral:
 #: 256 trapezoid steps. For the panel's gaits all three agree with the refined values to 1e-7
 #: (tests/test_geometry_estimates.py checks it).
-INTERACTIVE = MappingProxyType({"exact_steps": 128, "stokes_samples": (64, 12), "bvi_samples": 256})
+INTERACTIVE: Mapping[str, Any] = MappingProxyType({"exact_steps": 128, "stokes_samples": (64, 12), "bvi_samples": 256})
 
 
-def shaped_gait(c1=0.0, c2=0.0, a=1.0, b=1.0, tilt=0.0, bend=0.0, period=1.0):
+def shaped_gait(c1: float = 0.0, c2: float = 0.0, a: float = 1.0, b: float = 1.0, tilt: float = 0.0, bend: float = 0.0,
+                period: float = 1.0) -> FourierGait:
     """An ellipse gait bent into a bean: semi-axes ``a`` (along the tilted u axis) and ``b``,
     turned by ``tilt`` (radians), centred at (c1, c2), plus ``bend`` times cos(2 w t) along v.
 
@@ -66,12 +72,12 @@ class Estimates:
     #: names of the three, in the order of :meth:`as_array`
     NAMES = ("exact g(T)", "Stokes ∬D(−A)", "∫ξ dt")
 
-    def as_array(self):
+    def as_array(self) -> FloatArray:
         """(3 methods, 3 rows): exact, Stokes, body-velocity integral."""
         return np.array([self.exact, self.stokes, self.body_velocity_integral])
 
 
-def displacement_estimates(system, gait, *, interactive=False):
+def displacement_estimates(system: LocomotionSystem, gait: GaitLike, *, interactive: bool = False) -> Estimates:
     """:class:`Estimates` of ``gait`` on ``system``: exact g(T) (``net_displacement``), the Stokes
     estimate and the body-velocity integral.
 
@@ -95,7 +101,7 @@ def displacement_estimates(system, gait, *, interactive=False):
     return Estimates(np.asarray(exact, float), np.asarray(stokes, float), np.asarray(bvi, float))
 
 
-def row_scaled(values, floor=0.05):
+def row_scaled(values: ArrayLike, floor: float = 0.05) -> FloatArray:
     """``values`` (k methods, m rows) divided row by row by the largest |value| of that row.
 
     A row whose values are all below ``floor`` times the largest value of any row is divided by
@@ -113,13 +119,13 @@ def row_scaled(values, floor=0.05):
     return vals / np.where(scale > 0, scale, 1.0)
 
 
-def field_rms(system, grid):
+def field_rms(system: LocomotionSystem, grid: ArrayLike) -> FloatArray:
     """Root-mean-square size (3,) of the rows x, y, θ of A over the shapes ``grid`` (..., 2).
 
     Row i contributes sqrt(mean over the grid of |A_i(r)|^2), |.| the Euclidean norm of the row
     (both columns); shapes where A is undefined are left out.
     """
-    check_system(system)
+    trusted_dimension(system)
     grid = as_array(grid, "grid", (system.n_shape,), what=f" (shapes of {system.name})")
     if grid.size == 0:
         raise ValueError("grid must hold at least one shape")
@@ -131,7 +137,7 @@ def field_rms(system, grid):
     return np.sqrt(sq[ok].mean(axis=0))
 
 
-def square_grid(limits, n):
+def square_grid(limits: Any, n: int) -> FloatArray:
     """Shapes (n, n, 2) at the nodes of an n x n grid over ``limits`` ((lo1, hi1), (lo2, hi2));
     index [j, i] = (alpha1_i, alpha2_j), the order of an image with origin "lower"."""
     (lo1, hi1), (lo2, hi2) = _limits(limits)
@@ -147,7 +153,7 @@ def _limits(limits):
     return tuple(tuple(map(float, row)) for row in lim)
 
 
-def frames_of(system, limits, n=33):
+def frames_of(system: LocomotionSystem, limits: Any, n: int = 33) -> Mapping[str, LocomotionSystem]:
     """The same system in the three :data:`FRAMES` (a read-only mapping), the minimum-perturbation
     frame solved over the rectangle ``limits`` with an n x n mesh; cached (about 0.5 s the first
     time for the swimmer, free after)."""
@@ -156,11 +162,11 @@ def frames_of(system, limits, n=33):
 
 @functools.lru_cache(maxsize=8)
 def _frames(system, limits, n):
-    check_system(system)
+    trusted_dimension(system)
     return MappingProxyType(system.body_frames(limits, n=n))
 
 
-def curvature_grid(system, limits, n):
+def curvature_grid(system: LocomotionSystem, limits: Any, n: int) -> FloatArray:
     """Constraint curvature D(-A) (n, n, 3) on :func:`square_grid` (limits, n), cached and read-only."""
     return _curvature(system, _limits(limits), check_int(n, "n", 2, 2001))
 

@@ -12,17 +12,22 @@ the metric used by Hatton and co-workers (sysplotter: drag per unit length 1 alo
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.geometry.curvature import closed_gait
 from gm_core.systems.base import LocomotionSystem
-from gm_core.systems.motion import check_gait, check_system, net_displacement
-from gm_core.validation import as_array
+from gm_core.systems.gaits import GaitLike
+from gm_core.systems.motion import check_gait, net_displacement, trusted_dimension
+from gm_core.validation import FloatArray, as_array
 
 __all__ = ["dissipation_metric", "path_length", "efficiency", "metric_function"]
 
 
-def dissipation_metric(system, r):
+def dissipation_metric(system: LocomotionSystem, r: ArrayLike) -> FloatArray:
     """Shape-space cost metric M(r) (..., n, n) = [-A; I]^T D [-A; I] (power or kinetic energy).
 
     ``D`` is the system's drag matrix (low Re: the power is ``r_dot^T M r_dot``) or its mass
@@ -31,7 +36,7 @@ def dissipation_metric(system, r):
     frame, so a system seen from other coordinates gives its base's. TypeError for a system
     with no physical cost.
     """
-    n = check_system(system)
+    n = trusted_dimension(system)
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     if not isinstance(system, LocomotionSystem):
         raise TypeError(f"system {getattr(system, 'name', system)!r} has no physical cost metric; pass "
@@ -39,7 +44,7 @@ def dissipation_metric(system, r):
     return system.shape_metric(r)
 
 
-def metric_function(system, metric=None):
+def metric_function(system: LocomotionSystem, metric: Any = None) -> Callable[[Any], FloatArray]:
     """A callable r -> M(r) (..., n, n): the system's own metric (None), the identity ('euclidean'), or ``metric``."""
     if metric is None:
         dissipation_metric(system, np.zeros(system.n_shape))      # fails early if there is none
@@ -54,13 +59,14 @@ def metric_function(system, metric=None):
     return metric
 
 
-def path_length(system, gait, *, metric=None, samples=None, check=True):
+def path_length(system: LocomotionSystem, gait: GaitLike, *, metric: Any = None, samples: int | None = None,
+                check: bool = True) -> float:
     """Length (float) of the gait in the cost metric: ``int_0^T sqrt(r_dot^T M(r) r_dot) dt``.
 
     ``metric=None`` uses :func:`dissipation_metric`; ``'euclidean'`` the identity. Trapezoidal
     rule over the period (spectral for smooth periodic gaits): 4096 samples unless given.
     """
-    check_system(system)
+    trusted_dimension(system)
     gait = closed_gait(gait, system)
     Mf = metric_function(system, metric)
     if check:
@@ -75,14 +81,15 @@ def path_length(system, gait, *, metric=None, samples=None, check=True):
     return float(np.sqrt(np.maximum(speed2, 0.0)).sum() * gait.period / n)
 
 
-def efficiency(system, gait, *, metric=None, check=True, samples=None, displacement=None):
+def efficiency(system: LocomotionSystem, gait: GaitLike, *, metric: Any = None, check: bool = True,
+               samples: int | None = None, displacement: ArrayLike | None = None) -> float:
     """Efficiency (float): translation ``|(x, y) of g(T)|`` per unit path length in the cost metric.
 
     ``samples`` as for :func:`path_length`. ``displacement``: g(T) (3,) when it is already known
     (the last pose of a :func:`~gm_core.systems.motion.trajectory` a live panel draws), instead of
     :func:`~gm_core.systems.motion.net_displacement`.
     """
-    check_system(system)
+    trusted_dimension(system)
     gait = closed_gait(gait, system)
     L = path_length(system, gait, metric=metric, check=check, samples=samples)
     if displacement is None:

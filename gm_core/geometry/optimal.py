@@ -14,18 +14,31 @@ tests/test_geometry_optimal.py compares this gradient with finite differences.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
+from typing_extensions import override
 
 from gm_core.geometry.curvature import connection_derivative
 from gm_core.geometry.metrics import metric_function, path_length
 from gm_core.groups import SE2, matvec
-from gm_core.systems.gaits import Gait
+from gm_core.systems.base import LocomotionSystem
+from gm_core.systems.gaits import Gait, GaitLike
 from gm_core.systems.minimum_perturbation import MAX_DIMENSION, MinimumPerturbationFrame, too_many_dimensions
 from gm_core.systems.motion import check_gait, check_system, net_displacement, trajectory
 from gm_core.systems.reframed import Reframed
-from gm_core.validation import SingularShapeError, as_array, check_int, check_option, positive_number, real_number
+from gm_core.validation import (
+    FloatArray,
+    SingularShapeError,
+    as_array,
+    check_int,
+    check_option,
+    positive_number,
+    real_number,
+)
 
 __all__ = ["FourierGait", "fourier_gait", "travelling_wave", "optimize_gait", "OptimalGait", "gait_objective"]
 
@@ -36,7 +49,9 @@ _REJECT = 1e3
 class FourierGait(Gait):
     """A :class:`Gait` given by Fourier coefficients: ``center (n,)``, ``a, b (n, order)`` (cos, sin)."""
 
-    def __init__(self, a, b, center, period, name="Fourier gait"):
+    def __init__(self, a: ArrayLike, b: ArrayLike, center: ArrayLike, period: float,
+                 name: str = "Fourier gait") -> None:
+        a, b, center = np.asarray(a, dtype=float), np.asarray(b, dtype=float), np.asarray(center, dtype=float)
         self.a, self.b, self.center = a, b, center
         self.order = a.shape[1]
         k = np.arange(1, self.order + 1)
@@ -54,17 +69,18 @@ class FourierGait(Gait):
         super().__init__(shape, period, vel, name=name)
 
     @property
-    def parameters(self):
+    def parameters(self) -> FloatArray:
         """Flat coefficient vector ``[center, a.ravel(), b.ravel()]``, length n (1 + 2 order)."""
         return np.concatenate([self.center, self.a.ravel(), self.b.ravel()])
 
     @classmethod
-    def from_parameters(cls, p, n_shape, order, period=2 * np.pi, name="Fourier gait"):
+    def from_parameters(cls, p: ArrayLike, n_shape: int, order: int, period: float = 2 * np.pi,
+                        name: str = "Fourier gait") -> FourierGait:
         p = np.asarray(p, dtype=float)
         n, K = n_shape, order
         return cls(p[n:n + n * K].reshape(n, K), p[n + n * K:].reshape(n, K), p[:n].copy(), float(period), name)
 
-    def basis(self, t):
+    def basis(self, t: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """Per-joint basis values and time derivatives at t (N,): two arrays (1 + 2 order, N)."""
         kt = self._w * np.asarray(t, dtype=float)[None, :] * self._k[:, None]
         wk = (self._w * self._k)[:, None]
@@ -73,7 +89,8 @@ class FourierGait(Gait):
         return phi, dphi
 
 
-def fourier_gait(a, b=None, center=None, *, period=2 * np.pi, name="Fourier gait"):
+def fourier_gait(a: ArrayLike, b: ArrayLike | None = None, center: ArrayLike | None = None, *,
+                 period: float = 2 * np.pi, name: str = "Fourier gait") -> FourierGait:
     """A closed gait whose joints are truncated Fourier series (any order, any centre).
 
     ``a``: cosine coefficients (n, order) (``a[j, k-1]`` multiplies cos(k w t) in joint j);
@@ -93,7 +110,8 @@ def fourier_gait(a, b=None, center=None, *, period=2 * np.pi, name="Fourier gait
     return FourierGait(a.copy(), b.copy(), center.copy(), T, name)
 
 
-def travelling_wave(n_joints, amplitude=0.8, lag=np.pi / 2, *, period=2 * np.pi):
+def travelling_wave(n_joints: int, amplitude: float = 0.8, lag: float = np.pi / 2, *,
+                    period: float = 2 * np.pi) -> FourierGait:
     """The travelling wave ``alpha_j(t) = A sin(w t - (j - 1) lag)`` in joints j = 1..n (a Fourier gait of order 1).
 
     Each joint lags its neighbour towards the head by ``lag``: the wave runs from link 1
@@ -129,7 +147,8 @@ def _check_intervals(intervals):
     return n
 
 
-def gait_objective(system, gait, objective="displacement", *, intervals=512, metric=None, gradient=True):
+def gait_objective(system: LocomotionSystem, gait: GaitLike, objective: str = "displacement", *, intervals: int = 512,
+                   metric: Any = None, gradient: bool = True) -> tuple[float, FloatArray | None, dict[str, Any]]:
     """Objective value and gradient with respect to ``gait.parameters`` (to be *maximised*).
 
     ``objective``: ``"displacement"`` (|(x, y) of g(T)|) or ``"efficiency"`` (that over the path
@@ -187,6 +206,7 @@ def gait_objective(system, gait, objective="displacement", *, intervals=512, met
         quad = 0.5 * np.einsum("ti,tik,tk->t", v, dM[..., j], v)
         gl.append((phi0 @ (quad / sp) + dphi0 @ (Mv[:, j] / sp)) * T / N)
     grad_L = _to_parameter_order(gl, gait.order)
+    assert L is not None                                 # the efficiency objective measured the length
     return value, grad_d / L - d / L ** 2 * grad_L, dict(g=gT, length=L)
 
 
@@ -214,7 +234,8 @@ class OptimalGait:
     message: str = ""
     nit: int = 0
 
-    def __repr__(self):
+    @override
+    def __repr__(self) -> str:
         eff = "n/a" if self.efficiency is None else f"{self.efficiency:.5f}"
         return (f"OptimalGait({self.objective}: displacement {self.displacement:.5f}, efficiency {eff}, "
                 f"{self.nit} iterations)")
@@ -240,9 +261,10 @@ def _start_gait(system, order, start, period):
     raise TypeError(f"start must be None (a circle) or a FourierGait from fourier_gait(); got {type(start).__name__}")
 
 
-def optimize_gait(system, objective="displacement", order=3, start=None, *, coordinates="minimum perturbation",
-                  bounds=None, metric=None, period=2 * np.pi, maxiter=200, gtol=1e-7, intervals=512, callback=None,
-                  singular_margin=1e-3):
+def optimize_gait(system: LocomotionSystem, objective: str = "displacement", order: int = 3, start: Any = None, *,
+                  coordinates: str = "minimum perturbation", bounds: Any = None, metric: Any = None,
+                  period: float = 2 * np.pi, maxiter: int = 200, gtol: float = 1e-7, intervals: int = 512,
+                  callback: Callable[[int, float], Any] | None = None, singular_margin: float = 1e-3) -> OptimalGait:
     """Fourier gait (of ``order`` harmonics per joint) maximising ``objective``; an :class:`OptimalGait`.
 
     ``objective``: ``"displacement"`` (|(x, y) of g(T)|) or ``"efficiency"`` (that per unit

@@ -8,15 +8,17 @@ drag ratio 2. Only the coefficients are used here (numbers, not code).
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
-from gm_core.geometry.optimal import fourier_gait
+from gm_core.geometry.optimal import FourierGait, fourier_gait
 from gm_core.systems import LowReSwimmer
 
 __all__ = ["SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer"]
 
 #: (a1, b1, a3, b3, a5, b5) and the values our model gives them (displacement, path length, efficiency).
-SYSPLOTTER_STROKES = {
+SYSPLOTTER_STROKES: dict[str, dict[str, Any]] = {
     "displacement": dict(coefficients=(2.017955906441066, 1.353385144748382, 0.013112519773635,
                                        0.263823759269392, -0.031456173657342, -0.003626287235861),
                          displacement=0.10352, path_length=1.0959),
@@ -26,12 +28,12 @@ SYSPLOTTER_STROKES = {
 }
 
 
-def sysplotter_swimmer():
+def sysplotter_swimmer() -> LowReSwimmer:
     """The swimmer those strokes were optimised for: LowReSwimmer(lengths=(1/3,)*3, drag_ratio=2)."""
     return LowReSwimmer(lengths=(1 / 3, 1 / 3, 1 / 3), drag_ratio=2.0)
 
 
-def sysplotter_stroke(which="displacement"):
+def sysplotter_stroke(which: str = "displacement") -> FourierGait:
     """sysplotter's max-displacement or max-efficiency stroke as a :func:`fourier_gait` (order 5).
 
     Substituting -t and rotating by 45 degrees: alpha1 = (u - v)/sqrt 2 and

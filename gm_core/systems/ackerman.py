@@ -2,9 +2,11 @@
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
+from typing_extensions import override
 
 from gm_core.systems.base import LocomotionSystem, SystemPart, rectangle_outline
-from gm_core.validation import positive_number
+from gm_core.validation import FloatArray, positive_number
 
 __all__ = ["Ackerman"]
 
@@ -26,11 +28,12 @@ class Ackerman(LocomotionSystem):
     singular_description = "the steering angle is +-pi/2, front wheel perpendicular to the car"
     shape_limits = ((-np.pi, np.pi), (-1.3, 1.3))
 
-    def __init__(self, wheel_radius=1.0, wheelbase=1.0):
+    def __init__(self, wheel_radius: float = 1.0, wheelbase: float = 1.0) -> None:
         self.wheel_radius = positive_number(wheel_radius, "wheel_radius")
         self.wheelbase = positive_number(wheelbase, "wheelbase")
 
-    def pfaffian(self, r):
+    @override
+    def pfaffian(self, r: ArrayLike) -> FloatArray:
         """Pfaffian (..., 3, 5): rear no-slip, rear no-slide, front no-slide."""
         r = self._shape(r)
         R, L = self.wheel_radius, self.wheelbase
@@ -44,7 +47,8 @@ class Ackerman(LocomotionSystem):
         om[..., 2, 2] = L * np.cos(a2)
         return om
 
-    def connection_derivative(self, r):
+    @override
+    def connection_derivative(self, r: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """``(A (..., 3, 2), dA (..., 3, 2, 2))`` with ``dA[..., i, j, k] = d A_ij / d r_k``; NaN where A is.
 
         Only A_theta,1 = -(R/L) tan(a2) depends on the shape: d/d a2 = -(R/L) / cos(a2)^2.
@@ -58,13 +62,15 @@ class Ackerman(LocomotionSystem):
         dA[~np.isfinite(A).all(axis=(-1, -2))] = np.nan
         return A, dA
 
-    def parts(self):
+    @override
+    def parts(self) -> list[SystemPart]:
         R, L = self.wheel_radius, self.wheelbase
         return [SystemPart("chassis", rectangle_outline(1.3 * L, 0.45 * L), "chassis"),
                 SystemPart("rear wheel", rectangle_outline(min(2 * R, 0.4 * L), 0.12 * L), "wheel"),
                 SystemPart("front wheel", rectangle_outline(min(2 * R, 0.4 * L), 0.12 * L), "wheel")]
 
-    def part_poses(self, r):
+    @override
+    def part_poses(self, r: ArrayLike) -> FloatArray:
         r = self._shape(r)
         L = self.wheelbase
         P = np.zeros(r.shape[:-1] + (3, 3))
@@ -73,5 +79,6 @@ class Ackerman(LocomotionSystem):
         P[..., 2, 2] = r[..., 1]
         return P
 
-    def __repr__(self):
+    @override
+    def __repr__(self) -> str:
         return f"Ackerman(wheel_radius={self.wheel_radius:g}, wheelbase={self.wheelbase:g})"

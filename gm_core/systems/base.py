@@ -7,17 +7,25 @@ frame) and where they sit in the system's body frame at a shape (:meth:`part_pos
 """
 from __future__ import annotations
 
+from abc import ABCMeta, abstractmethod
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike
+from typing_extensions import override
 
 from gm_core.systems.connection import SINGULAR_TOL, connection_from_pfaffian, pfaffian_determinant
-from gm_core.systems.motion import body_velocity, curvature_form, fd_connection_derivative
+from gm_core.systems.motion import (
+    CheckedSystem,
+    body_velocity,
+    curvature_form,
+    fd_connection_derivative,
+    validate_system,
+)
 from gm_core.validation import BoolArray, FloatArray, as_array
 
-__all__ = ["LocomotionSystem", "SystemPart", "ellipse_outline", "rectangle_outline"]
+__all__ = ["LocomotionSystem", "SystemPart", "SystemMeta", "ellipse_outline", "rectangle_outline"]
 
 
 @dataclass(frozen=True)
@@ -41,35 +49,64 @@ def ellipse_outline(a: float, b: float, n: int = 48) -> FloatArray:
     return np.stack([a * np.cos(s), b * np.sin(s)], -1)
 
 
-class LocomotionSystem:
-    """A symmetric linear-kinematic locomotor on SE(2) with an n-dimensional shape space."""
+class SystemMeta(ABCMeta):
+    """The metaclass of :class:`LocomotionSystem`: a system is checked once, when it is built.
 
-    name = "system"
-    n_shape = 2
-    shape_names: tuple = ("alpha1", "alpha2")
+    After ``__init__`` returns, :func:`gm_core.systems.motion.validate_system` checks the new
+    instance (an integer ``n_shape`` >= 1, a callable ``connection``, ``singularity`` if it
+    ``may_be_singular``) and its ``shape_names`` and ``shape_limits`` have one entry per shape
+    variable (TypeError or ValueError naming the class). From then on
+    :func:`~gm_core.systems.motion.check_system` trusts the instance and returns at once.
+    """
+
+    @override
+    def __call__(cls, *args: Any, **kwargs: Any) -> Any:
+        system = super().__call__(*args, **kwargs)
+        n = validate_system(system, f"{cls.__name__}(...)")
+        for attr in ("shape_names", "shape_limits"):
+            value = getattr(system, attr)
+            if len(value) != n:
+                raise ValueError(f"{cls.__name__}(...): {attr} has {len(value)} entries for {n} shape variables")
+        return system
+
+
+class LocomotionSystem(CheckedSystem, metaclass=SystemMeta):
+    """A symmetric linear-kinematic locomotor on SE(2) with an n-dimensional shape space.
+
+    An abstract base class: a system gives its Pfaffian (:meth:`pfaffian`) and its rigid parts for
+    drawing (:meth:`parts`, :meth:`part_poses`); everything else has a default built on them.
+    It is checked once when it is built (:class:`SystemMeta`).
+    """
+
+    name: str = "system"
+    #: Dimension of the position group SE(2) (the rows of the connection), the same for every system.
+    n_position: ClassVar[int] = 3
+    #: Dimension n of the shape space (fixed per class for most systems, set per instance for chains).
+    n_shape: int = 2
+    shape_names: tuple[str, ...] = ("alpha1", "alpha2")
     #: True when det(omega_xi) can vanish, so gaits must be checked for singular shapes.
-    may_be_singular = False
-    singular_description = "never singular"
+    may_be_singular: bool = False
+    singular_description: str = "never singular"
     #: Suggested shape-space window for plots, ((lo1, hi1), (lo2, hi2)).
-    shape_limits = ((-np.pi, np.pi), (-np.pi, np.pi))
+    shape_limits: tuple[tuple[float, float], ...] = ((-np.pi, np.pi), (-np.pi, np.pi))
     #: Row labels of the connection: body x (longitudinal), y (lateral), theta (rotation).
-    row_names = ("x", "y", "theta")
+    row_names: tuple[str, ...] = ("x", "y", "theta")
 
     # -- to implement -----------------------------------------------------------------------
+    @abstractmethod
     def pfaffian(self, r: ArrayLike) -> FloatArray:
         """Pfaffian ``omega(r)`` (..., 3, 3 + n): ``omega [xi; r_dot] = 0`` on allowed motions."""
-        raise NotImplementedError
 
+    @abstractmethod
     def parts(self) -> list[SystemPart]:
         """The rigid parts to draw (list of :class:`SystemPart`)."""
-        raise NotImplementedError
 
+    @abstractmethod
     def part_poses(self, r: ArrayLike) -> FloatArray:
         """Poses (..., P, 3) of the parts relative to the system body frame at shape r."""
-        raise NotImplementedError
 
     # -- shared -----------------------------------------------------------------------------
-    def _shape(self, r, name="r"):
+    def _shape(self, r: ArrayLike, name: str = "r") -> FloatArray:
         names = ", ".join(self.shape_names)
         return as_array(r, name, (self.n_shape,), what=f" (the shape ({names}) of {self.name})")
 
@@ -123,5 +160,6 @@ class LocomotionSystem:
         """Boolean (...,): True where the local connection does not exist (det omega_xi = 0)."""
         return ~(np.abs(self.singularity(r)) > SINGULAR_TOL)
 
+    @override
     def __repr__(self) -> str:
         return f"{type(self).__name__}()"

@@ -11,8 +11,9 @@
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from gm_core.validation import as_array, check_int
+from gm_core.validation import FloatArray, as_array, check_int
 
 __all__ = ["SINGULAR_TOL", "pfaffian_determinant", "connection_from_pfaffian", "metric_from_jacobians",
            "connection_from_mass_matrix", "shape_space_metric"]
@@ -45,7 +46,7 @@ def _hadamard(m):
     return np.prod(np.sqrt(np.einsum("...ij,...ij->...i", m, m)), axis=-1)
 
 
-def pfaffian_determinant(omega_xi):
+def pfaffian_determinant(omega_xi: ArrayLike) -> FloatArray:
     """Scaled determinant of the body block ``omega_xi (..., 3, 3)``: det / prod(row norms).
 
     The scaling (Hadamard's bound) makes the number dimensionless and in [-1, 1], so one
@@ -67,7 +68,7 @@ def pfaffian_determinant(omega_xi):
         return np.where(norms > 0, det / np.where(norms > 0, norms, 1.0), np.where(np.isnan(norms), np.nan, 0.0))
 
 
-def connection_from_pfaffian(omega, *, n_position=3):
+def connection_from_pfaffian(omega: ArrayLike, *, n_position: int = 3) -> FloatArray:
     """Local connection ``A = omega_xi^-1 omega_r`` (..., 3, n) from a Pfaffian (..., 3, 3 + n), (3.17).
 
     The Pfaffian's first three columns multiply the body velocity xi and the rest multiply the
@@ -95,10 +96,11 @@ def connection_from_pfaffian(omega, *, n_position=3):
     A = np.linalg.solve(w_xi, w_r)
     if np.any(bad):
         A[bad] = np.nan
-    return A
+    return np.asarray(A, dtype=float)
 
 
-def metric_from_jacobians(jacobians, inertias, *, rows=None):
+def metric_from_jacobians(jacobians: ArrayLike, inertias: ArrayLike, *,
+                          rows: tuple[int, ...] | None = None) -> FloatArray:
     """Sum of ``J_i^T M_i J_i``: the (3 + n) x (3 + n) mass (or drag) matrix of a chain, (3.39), (3.47).
 
     ``jacobians``: sequence of ``(..., 3, 3 + n)`` link Jacobians mapping ``(xi, r_dot)`` to each
@@ -142,7 +144,7 @@ def metric_from_jacobians(jacobians, inertias, *, rows=None):
     return np.swapaxes(left, -1, -2) @ (M @ J)
 
 
-def connection_from_mass_matrix(M, *, n_position=3):
+def connection_from_mass_matrix(M: ArrayLike, *, n_position: int = 3) -> FloatArray:
     """Local connection ``A = I^-1 (I A)`` (..., 3, n) read off a mass matrix (..., 3 + n, 3 + n), (3.40).
 
     For a system whose Lagrangian is its kinetic energy ``1/2 [xi r_dot] M [xi r_dot]^T`` (3.39),
@@ -156,7 +158,7 @@ def connection_from_mass_matrix(M, *, n_position=3):
     return connection_from_pfaffian(M[..., :n_position, :], n_position=n_position)
 
 
-def shape_space_metric(D, A):
+def shape_space_metric(D: ArrayLike, A: ArrayLike) -> FloatArray:
     """Cost metric on shape space ``M = [-A; I]^T D [-A; I]`` (..., n, n), symmetrised.
 
     ``D`` (..., 3 + n, 3 + n) is a drag or mass matrix on the full velocity (xi, r_dot) and ``A``
@@ -164,6 +166,7 @@ def shape_space_metric(D, A):
     power dissipated (low Re) or twice the kinetic energy (floating, high Re) as r_dot^T M r_dot
     (the metric of Hatton and co-workers). It does not depend on the choice of body frame.
     """
+    A, D = np.asarray(A, dtype=float), np.asarray(D, dtype=float)
     n = A.shape[-1]
     P = np.concatenate([-A, np.broadcast_to(np.eye(n), A.shape[:-2] + (n, n))], axis=-2)
     M = np.swapaxes(P, -1, -2) @ D @ P

@@ -17,9 +17,11 @@ when b(-a) = -b(a) (3.iii): (a), (b), (c); only (a) and (b) do both.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
-from gm_core.validation import positive_number, real_number
+from gm_core.validation import FloatArray, positive_number, real_number
 
 __all__ = ["RATE_MAPS", "rate_map", "replay", "rate_map_properties"]
 
@@ -42,7 +44,7 @@ RATE_MAPS = {
 }
 
 
-def rate_map(name):
+def rate_map(name: str) -> Callable[[FloatArray], FloatArray]:
     """The map b (callable on (..., 2) arrays) of example ``name``, a key of :data:`RATE_MAPS`."""
     if name not in RATE_MAPS:
         raise ValueError(f"name must be one of {list(RATE_MAPS)}; got {name!r}")
@@ -61,7 +63,8 @@ def _unit_path(s):
     return r, rd
 
 
-def replay(name, pace=1.0, reverse=False, x0=0.0, n=2000):
+def replay(name: str, pace: float = 1.0, reverse: bool = False, x0: float = 0.0,
+           n: int = 2000) -> tuple[FloatArray, FloatArray]:
     """(s, x): position x of the toy locomotor ``name`` along the demo shape path at ``pace``.
 
     The shape path r(s), s in [0, 1], is run in time 1 / pace (so r_dot = pace * dr/ds), forwards
@@ -84,7 +87,8 @@ def replay(name, pace=1.0, reverse=False, x0=0.0, n=2000):
     return s, x0 + np.concatenate([[0.0], np.cumsum(dx)])
 
 
-def rate_map_properties(name, rng=None, samples=200):
+def rate_map_properties(name: str, rng: np.random.Generator | None = None,
+                        samples: int = 200) -> dict[str, float]:
     """Largest violations (dict) over random shape velocities of (3.ii) positive scaling,
     (3.iii) odd symmetry and additivity; 0 (to rounding) where the property holds."""
     b = rate_map(name)

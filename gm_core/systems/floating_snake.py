@@ -1,9 +1,15 @@
 """Floating snake: a three-link chain in free space conserving zero momentum, book section 3.4.3."""
 from __future__ import annotations
 
+from typing import Any
+
+from numpy.typing import ArrayLike
+from typing_extensions import override
+
+from gm_core.systems.base import LocomotionSystem
 from gm_core.systems.link_chain import LinkChain
 from gm_core.systems.three_link import three_lengths
-from gm_core.validation import as_array
+from gm_core.validation import FloatArray, as_array
 
 __all__ = ["FloatingSnake"]
 
@@ -42,22 +48,25 @@ class FloatingSnake(LinkChain):
       rows vanish too, its third is (3.38)'s minus the rate of the mean orientation.
     """
 
-    def __init__(self, lengths=(1.0, 1.0, 1.0), masses=(1.0, 1.0, 1.0), inertias=None, frame="com middle"):
+    def __init__(self, lengths: ArrayLike = (1.0, 1.0, 1.0), masses: ArrayLike = (1.0, 1.0, 1.0),
+                 inertias: ArrayLike | None = None, frame: Any = "com middle") -> None:
         masses = _three(masses, "masses", " (the three link masses)")
         inertias = _three(inertias, "inertias", " (the links' moments of inertia about their centres)")
         super().__init__(three_lengths(lengths), "floating", masses=masses, inertias=inertias, frame=frame)
         self.name = "floating snake"
 
-    def mass_matrix(self, r):
+    def mass_matrix(self, r: ArrayLike) -> FloatArray:
         """Mass matrix (..., 5, 5) of (3.39): sum of J_i^T diag(m_i, m_i, I_i) J_i."""
         return self.metric(r)
 
-    def body_frames(self, bounds=None, *, n=None, centre_of_mass=True, minimum_perturbation=True):
+    @override
+    def body_frames(self, bounds: Any = None, *, n: int | None = None, centre_of_mass: bool = True,
+                    minimum_perturbation: bool = True) -> dict[str, LocomotionSystem]:
         """{name: system}: this frame and the other one of section 3.4.3 (the centre of mass with
         the middle link's axes, or the middle link), always listed, as the frames its physics
         defines; if asked, the centre of mass with the mean orientation (``centre_of_mass``) and
         minimum perturbation over ``bounds``."""
-        own = {FRAME_NAMES[self.frame]: self}
+        own: dict[str, LocomotionSystem] = {FRAME_NAMES[self.frame]: self}
         for frame in ("com middle", "middle"):
             if frame != self.frame:
                 own[FRAME_NAMES[frame]] = self.with_frame(frame)
@@ -67,6 +76,7 @@ class FloatingSnake(LinkChain):
             own[FRAME_NAMES["minimum perturbation"]] = self.with_frame("minimum perturbation", bounds, n)
         return own
 
-    def __repr__(self):
+    @override
+    def __repr__(self) -> str:
         return (f"FloatingSnake(lengths={self.lengths}, masses={self.masses}, "
                 f"inertias={self.inertias}, frame={self.frame!r})")

@@ -17,13 +17,14 @@ Conventions: a link's frame sits at its centre with x along the link; poses ``(.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from gm_core.validation import as_array, check_int, check_positive, positive_number
+from gm_core.validation import FloatArray, as_array, check_int, check_positive, positive_number
 
 __all__ = ["slender_link_drag", "drag_wrench", "ellipse_added_mass", "added_mass_bem"]
 
 # --------------------------------------------------------------------------- low Reynolds number
-def slender_link_drag(length, drag_ratio=2.0):
+def slender_link_drag(length: float, drag_ratio: float = 2.0) -> FloatArray:
     """Drag matrix ``diag(l, k l, k l^3 / 12)`` (3, 3) of a slender link, in its centre frame; (3.41)-(3.43).
 
     The wrench on the link is ``-D xi`` for the link's body velocity xi (longitudinal coefficient
@@ -34,7 +35,8 @@ def slender_link_drag(length, drag_ratio=2.0):
     return np.diag([length, k * length, k * length ** 3 / 12])
 
 
-def drag_wrench(poses, velocities, lengths, drag_ratio=2.0, *, nodes=5):
+def drag_wrench(poses: ArrayLike, velocities: ArrayLike, lengths: ArrayLike, drag_ratio: float = 2.0, *,
+                nodes: int | None = 5) -> FloatArray:
     """Total resistive-force drag (F_x, F_y, M) ``(..., 3)`` on a set of slender links, by quadrature.
 
     poses ``(..., k, 3)``: the link centres (x, y, theta) in some frame; velocities ``(..., k, 3)``:
@@ -88,7 +90,7 @@ def _semi_axes(a, b, allow_zero=False):
     return float(a), float(b)
 
 
-def ellipse_added_mass(a, b, fluid_density=1.0):
+def ellipse_added_mass(a: float, b: float, fluid_density: float = 1.0) -> FloatArray:
     """Added-mass matrix (3, 3) of an ellipse (semi-axes a along x, b) in an ideal 2-D fluid.
 
     ``diag(pi rho b^2, pi rho a^2, pi rho (a^2 - b^2)^2 / 8)``: the corrected (3.46) (the
@@ -114,7 +116,7 @@ def _source_curve(a, b, m):
     return np.stack([a / 2 * np.cos(u), b / 2 * np.sin(u)], -1)
 
 
-def added_mass_bem(a, b, fluid_density=1.0, *, n=600, m=300):
+def added_mass_bem(a: float, b: float, fluid_density: float = 1.0, *, n: int = 600, m: int = 300) -> FloatArray:
     """Added-mass matrix (3, 3) of an ellipse computed from the potential flow, for motions (x, y, theta).
 
     For each unit rigid motion of the body (translation along x, along y, rotation about the

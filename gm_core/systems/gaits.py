@@ -13,12 +13,25 @@ callable on an unknown scale (then checks sample densely, see
 from __future__ import annotations
 
 import warnings
+from collections.abc import Callable
+from typing import Any, Union
 
 import numpy as np
+from numpy.typing import ArrayLike
+from typing_extensions import override
 
-from gm_core.validation import as_array, check_int, check_option, check_positive, positive_number, real_number
+from gm_core.validation import (
+    FloatArray,
+    as_array,
+    check_int,
+    check_option,
+    check_positive,
+    positive_number,
+    real_number,
+)
 
 __all__ = [
+    "GaitLike",
     "Gait", "CircleGait", "circle_gait", "as_gait", "GaitWarning", "CLOSURE_RTOL", "ellipse_gait",
     "serpenoid_gait", "GAIT_FAMILIES", "family_gait",
 ]
@@ -29,6 +42,9 @@ CLOSURE_RTOL = 1e-8
 # Eighth-order central difference weights for f'(t) with offsets 1..4.
 _FD8 = np.array([4 / 5, -1 / 5, 4 / 105, -1 / 280])
 
+
+#: What :func:`as_gait` accepts: a :class:`Gait`, a callable ``t -> r`` or closed-path samples ``(K, n)``.
+GaitLike = Union["Gait", Callable[[Any], ArrayLike], ArrayLike]
 
 class GaitWarning(UserWarning):
     """A gait was accepted but something about it is probably not what was meant (e.g. an open path)."""
@@ -62,7 +78,8 @@ class Gait:
     appreciably, if known (None: unknown, so singularity checks sample densely).
     """
 
-    def __init__(self, shape, period=1.0, velocity=None, *, name="gait", knots=None, feature_time=None):
+    def __init__(self, shape: Any, period: float = 1.0, velocity: Any = None, *, name: str = "gait",
+                 knots: ArrayLike | None = None, feature_time: float | None = None) -> None:
         if not callable(shape):
             raise TypeError(f"shape must be a callable t -> r(t); got {type(shape).__name__} "
                             "(use Gait.from_samples for an array of points)")
@@ -102,11 +119,11 @@ class Gait:
             raise ValueError("the gait returned NaN or infinite shapes; every shape must be finite")
         return out.reshape(t.shape + out.shape[-1:])
 
-    def __call__(self, t):
+    def __call__(self, t: ArrayLike) -> FloatArray:
         """Shape r(t), ``(..., n)`` for times ``(...)``."""
         return self._eval(self._shape, as_array(t, "t", what=" (times)"))
 
-    def velocity(self, t):
+    def velocity(self, t: ArrayLike) -> FloatArray:
         """Shape velocity r_dot(t), ``(..., n)``: exact if given, else an 8th-order central difference."""
         t = as_array(t, "t", what=" (times)")
         if self._velocity is not None:
@@ -117,18 +134,18 @@ class Gait:
             return out
         t = np.asarray(t, dtype=float)
         h = 1e-3 * (self.period if self.feature_time is None else self.feature_time)
-        out = 0.0
+        out = np.zeros(t.shape + (self.n_shape,))
         for k, w in enumerate(_FD8, start=1):
             out = out + w * (self(t + k * h) - self(t - k * h))
         return out / h
 
-    def is_closed(self, rtol=CLOSURE_RTOL):
+    def is_closed(self, rtol: float = CLOSURE_RTOL) -> bool:
         """True when r(T) = r(0) to ``rtol`` relative to max(1, |r(0)|, |r(T)|)."""
         r0 = self(np.array([0.0]))[0]
         scale = max(1.0, float(np.max(np.abs(r0))), float(np.max(np.abs(r0 + self.closure_gap))))
         return float(np.max(np.abs(self.closure_gap))) <= rtol * scale
 
-    def require_closed(self, what):
+    def require_closed(self, what: str) -> None:
         """Raise ValueError naming the gap when the gait is open; ``what`` says who needs it closed."""
         if not self.is_closed():
             gap = ", ".join(f"{v:.3g}" for v in self.closure_gap)
@@ -137,7 +154,7 @@ class Gait:
                 f"{float(np.linalg.norm(self.closure_gap)):.3g}; {what} needs a closed loop in shape space")
 
     @classmethod
-    def from_samples(cls, points, period=1.0, *, name="sampled gait"):
+    def from_samples(cls, points: ArrayLike, period: float = 1.0, *, name: str = "sampled gait") -> Gait:
         """A gait through the closed path ``points (K, n)`` visited at equal time steps.
 
         The path is closed automatically (a last point equal to the first is dropped) and
@@ -168,7 +185,8 @@ class Gait:
         return cls(lambda t: spline(phase(t)), T, lambda t: d(phase(t)) / T, name=name,
                    knots=T * np.linspace(0.0, 1.0, K + 1), feature_time=T / K)
 
-    def reparameterized(self, tau, tau_dot=None, *, name=None):
+    def reparameterized(self, tau: Callable[[Any], Any], tau_dot: Callable[[Any], Any] | None = None, *,
+                        name: str | None = None) -> Gait:
         """The same path with a new pacing: ``r'(t) = r(tau(t))``, for a map tau of [0, T] onto itself.
 
         ``tau`` must be increasing with tau(0) = 0 and tau(T) = T; ``tau_dot`` is its derivative
@@ -182,23 +200,23 @@ class Gait:
         if not (abs(float(tau(0.0))) <= 1e-12 * T and abs(float(tau(T)) - T) <= 1e-12 * T):
             raise ValueError("tau must map [0, T] onto itself with tau(0) = 0 and tau(T) = T")
         base = self
-        if tau_dot is None:
-            vel = None
-        else:
-            def vel(t):
+        vel: Callable[[Any], Any] | None = None
+        if tau_dot is not None:
+            def vel(t: Any) -> Any:
                 t = np.asarray(t, dtype=float)
                 return base.velocity(tau(t)) * np.asarray(tau_dot(t), dtype=float)[..., None]
         return Gait(lambda t: base(tau(np.asarray(t, dtype=float))), T, vel,
                     name=name or f"{self.name} (repaced)")
 
-    def __repr__(self):
+    @override
+    def __repr__(self) -> str:
         return f"{type(self).__name__}({self.name!r}, period={self.period:g}, n_shape={self.n_shape})"
 
 
 class CircleGait(Gait):
     """``r(t) = c + R (cos 2 pi t / T, sin 2 pi t / T)``: see :func:`circle_gait`."""
 
-    def __init__(self, amplitude, center=(0.0, 0.0), period=1.0):
+    def __init__(self, amplitude: ArrayLike, center: ArrayLike = (0.0, 0.0), period: float = 1.0) -> None:
         R = check_positive(amplitude, "amplitude")
         if R.ndim > 1 or R.size not in (1, 2):
             raise ValueError(f"amplitude must be a number or a pair of semi-axes; got shape {R.shape}")
@@ -225,7 +243,7 @@ class CircleGait(Gait):
         return (2 * np.pi / self.period) * self.amplitude * np.stack([-np.sin(w), np.cos(w)], -1)
 
 
-def circle_gait(amplitude, center=(0.0, 0.0), period=1.0):
+def circle_gait(amplitude: ArrayLike, center: ArrayLike = (0.0, 0.0), period: float = 1.0) -> CircleGait:
     """Circular gait ``r(t) = c + R (cos 2 pi t / T, sin 2 pi t / T)`` in a 2-D shape space.
 
     ``amplitude`` is the radius R (a positive number, or two positive semi-axes for an ellipse);
@@ -234,7 +252,7 @@ def circle_gait(amplitude, center=(0.0, 0.0), period=1.0):
     return CircleGait(amplitude, center, period)
 
 
-def ellipse_gait(a, b, tilt=0.0, center=(0.0, 0.0), period=1.0):
+def ellipse_gait(a: float, b: float, tilt: float = 0.0, center: ArrayLike = (0.0, 0.0), period: float = 1.0) -> Gait:
     """Tilted ellipse ``r(t) = c + R(tilt) (a cos w, b sin w)``, w = 2 pi t / T, with exact velocity.
 
     ``a``, ``b`` are the semi-axes (positive), ``tilt`` the angle of the a-axis from the alpha1
@@ -261,7 +279,8 @@ def ellipse_gait(a, b, tilt=0.0, center=(0.0, 0.0), period=1.0):
     return Gait(r, T, r_dot, name=f"ellipse {a:g} x {b:g} tilted {tilt:g}", feature_time=T)
 
 
-def serpenoid_gait(amplitude, phase=np.pi / 2, frequency=1, center=(0.0, 0.0), period=1.0):
+def serpenoid_gait(amplitude: ArrayLike, phase: float = np.pi / 2, frequency: int = 1, center: ArrayLike = (0.0, 0.0),
+                   period: float = 1.0) -> Gait:
     """Serpenoid family ``r(t) = c + A (sin w, sin(k w + phase))``, w = 2 pi t / T, exact velocity.
 
     The joint angles of a serpenoid wave are two sinusoids with a phase lag. With ``frequency``
@@ -299,7 +318,8 @@ def serpenoid_gait(amplitude, phase=np.pi / 2, frequency=1, center=(0.0, 0.0), p
 GAIT_FAMILIES = ("circle", "ellipse", "serpenoid", "figure eight")
 
 
-def family_gait(family, size, center=(0.0, 0.0), aspect=1.0, angle=0.0, period=1.0):
+def family_gait(family: str, size: float, center: ArrayLike = (0.0, 0.0), aspect: float = 1.0, angle: float = 0.0,
+                period: float = 1.0) -> Gait:
     """A gait of one of :data:`GAIT_FAMILIES` from three common parameters (for panels).
 
     ``circle``: radius ``size``; ``ellipse``: semi-axes (size, aspect * size) tilted by
@@ -319,7 +339,7 @@ def family_gait(family, size, center=(0.0, 0.0), aspect=1.0, angle=0.0, period=1
     return serpenoid_gait((size, aspect * size), angle, 2, center, period)
 
 
-def as_gait(gait, period=1.0):
+def as_gait(gait: GaitLike, period: float = 1.0) -> Gait:
     """A :class:`Gait` from a Gait, a callable ``t -> r`` (period ``period``) or samples ``(K, n)``."""
     if isinstance(gait, Gait):
         return gait

@@ -1,8 +1,12 @@
 """Three-link swimmer at high Reynolds number (ideal fluid, added mass), book section 3.4.5."""
 from __future__ import annotations
 
+from numpy.typing import ArrayLike
+from typing_extensions import override
+
 from gm_core.systems.link_chain import LinkChain
 from gm_core.systems.three_link import three_lengths
+from gm_core.validation import FloatArray
 
 __all__ = ["HighReSwimmer"]
 
@@ -19,15 +23,17 @@ class HighReSwimmer(LinkChain):
     snake, (3.39)-(3.40).
     """
 
-    def __init__(self, lengths=(1.0, 1.0, 1.0), aspect_ratio=10.0, fluid_density=1.0, body_density=0.0):
+    def __init__(self, lengths: ArrayLike = (1.0, 1.0, 1.0), aspect_ratio: float = 10.0, fluid_density: float = 1.0,
+                 body_density: float = 0.0) -> None:
         super().__init__(three_lengths(lengths), "high_re", aspect_ratio=aspect_ratio,
                          fluid_density=fluid_density, body_density=body_density)
         self.name = "high-Reynolds swimmer"
 
-    def mass_matrix(self, r):
+    def mass_matrix(self, r: ArrayLike) -> FloatArray:
         """Mass matrix (..., 5, 5) of body plus fluid, (3.39) with (3.47)."""
         return self.metric(r)
 
-    def __repr__(self):
+    @override
+    def __repr__(self) -> str:
         return (f"HighReSwimmer(lengths={self.lengths}, aspect_ratio={self.aspect_ratio:g}, "
                 f"fluid_density={self.fluid_density:g}, body_density={self.body_density:g})")

@@ -2,10 +2,13 @@
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
+from typing_extensions import override
 
-from gm_core.chains.kernels import batch_last, middle_frame_kernel
+from gm_core.chains.kernels import flatten_batch, middle_frame_kernel
 from gm_core.systems.base import SystemPart, rectangle_outline
 from gm_core.systems.three_link import ThreeLinkSystem
+from gm_core.validation import FloatArray
 
 __all__ = ["KinematicSnake"]
 
@@ -30,14 +33,15 @@ class KinematicSnake(ThreeLinkSystem):
     singular_description = ("the three link centres lie on one circle, so the three no-slide "
                             "lines meet in a point; for equal links this is the line alpha1 = alpha2")
 
-    def pfaffian(self, r):
+    @override
+    def pfaffian(self, r: ArrayLike) -> FloatArray:
         """Pfaffian (..., 3, 5): the lateral (y) rows of J1, J2, J3, i.e. no link slides sideways.
 
         Only those rows are computed, and the result is a view of the kernel's batch-last array
         (shapes on the last axis in memory), the layout in which :func:`connection_from_pfaffian`
         reads each entry of the many 3 x 3 blocks as one contiguous row."""
         r = self._shape(r)
-        a, batch = (r, ()) if r.ndim == 1 else batch_last(r)       # one shape: the kernel's rows are scalars
+        a, batch = (r, ()) if r.ndim == 1 else flatten_batch(r)       # one shape: the kernel's rows are scalars
         _, J = middle_frame_kernel(a, self._L, (1,))          # J (row, column, link[, M])
         return J[0].T.reshape(batch + (3, 5))
 
@@ -60,14 +64,15 @@ class KinematicSnake(ThreeLinkSystem):
         dN[..., 2, 1, 0] = l3 * np.cos(a1)
         return N, D, dN, dD
 
-    def connection_closed_form(self, r):
+    def connection_closed_form(self, r: ArrayLike) -> FloatArray:
         """The closed form of the class docstring, (..., 3, 2) (an independent check of the solve)."""
         N, D, _, _ = self._closed_form_parts(self._shape(r))
         with np.errstate(divide="ignore", invalid="ignore"):
             A = N / D[..., None, None]
         return np.where(np.isfinite(A), A, np.nan)      # NaN at singular shapes, like connection
 
-    def connection_derivative(self, r):
+    @override
+    def connection_derivative(self, r: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """``(A (..., 3, 2), dA (..., 3, 2, 2))`` with ``dA[..., i, j, k] = d A_ij / d r_k``: the
         quotient rule on the closed form N / D; A is :meth:`connection` (the solve), NaN at
         singular shapes, where dA is NaN too."""
@@ -79,13 +84,15 @@ class KinematicSnake(ThreeLinkSystem):
         dA[~np.isfinite(A).all(axis=(-1, -2))] = np.nan
         return A, dA
 
-    def parts(self):
+    @override
+    def parts(self) -> list[SystemPart]:
         out = super().parts()
         w = self._link_width()
         # A wheel (drawn across the link) under each link centre: it rolls along the link only.
         out += [SystemPart(f"wheel {i + 1}", rectangle_outline(2.5 * w, 0.8 * w), "wheel") for i in range(3)]
         return out
 
-    def part_poses(self, r):
+    @override
+    def part_poses(self, r: ArrayLike) -> FloatArray:
         P = self.link_poses(r)
         return np.concatenate([P, P], axis=-2)

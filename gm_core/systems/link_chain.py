@@ -37,15 +37,18 @@ covariance, ``D(-A~) = Ad_{beta^-1} D(-A)`` (:mod:`gm_core.systems.reframed`).
 from __future__ import annotations
 
 import copy
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
+from typing_extensions import override
 
-from gm_core.chains.kernels import batch_last, chain_jacobians_batch_last, chain_poses_batch_last, with_trig
+from gm_core.chains.kernels import chain_jacobians_T, chain_poses_T, flatten_batch, with_trig
 from gm_core.groups import SE2
 from gm_core.systems.base import LocomotionSystem, SystemPart, ellipse_outline, rectangle_outline
 from gm_core.systems.connection import connection_from_pfaffian, shape_space_metric
 from gm_core.systems.fluids import ellipse_added_mass, slender_link_drag
-from gm_core.validation import as_array, check_int, check_option, check_positive, positive_number
+from gm_core.validation import FloatArray, as_array, check_int, check_option, check_positive, positive_number
 
 __all__ = ["LinkChain", "PHYSICS", "FRAMES", "MAX_LINKS"]
 
@@ -79,12 +82,14 @@ class LinkChain(LocomotionSystem):
     ``body_frames()``.
     """
 
-    def __init__(self, lengths=(1.0, 1.0, 1.0), physics="low_re", *, drag_ratio=2.0, masses=None, inertias=None,
-                 aspect_ratio=10.0, fluid_density=1.0, body_density=0.0, frame="middle", bounds=None, nodes=None):
+    def __init__(self, lengths: ArrayLike = (1.0, 1.0, 1.0), physics: str = "low_re", *, drag_ratio: float = 2.0,
+                 masses: ArrayLike | None = None, inertias: ArrayLike | None = None, aspect_ratio: float = 10.0,
+                 fluid_density: float = 1.0, body_density: float = 0.0, frame: Any = "middle", bounds: Any = None,
+                 nodes: int | None = None) -> None:
         if isinstance(lengths, (str, bytes)) or np.ndim(lengths) != 1 or not 2 <= np.size(lengths) <= MAX_LINKS:
             raise ValueError(f"lengths must be a sequence of N positive link lengths, 2 <= N <= {MAX_LINKS}; "
                              f"got {lengths!r:.80}")
-        N = len(lengths)
+        N = np.size(lengths)
         self.lengths = _per_link(lengths, "lengths", N, " (the link lengths)")
         self.physics = check_option(physics, "physics", PHYSICS)
         self.n_links, self.n_shape = N, N - 1
@@ -130,7 +135,8 @@ class LinkChain(LocomotionSystem):
 
     # -- construction helpers ----------------------------------------------------------------
     @classmethod
-    def tapered(cls, links, physics="low_re", *, total_length=3.0, taper=0.0, **options):
+    def tapered(cls, links: int, physics: str = "low_re", *, total_length: float = 3.0, taper: float = 0.0,
+                **options: Any) -> LinkChain:
         """``links`` links of total length ``total_length`` shrinking linearly from head to tail:
         link i (1-based) ~ 1 - taper (i - 1) / (N - 1), ``0 <= taper < 1`` (0: equal links)."""
         N = check_int(links, "links", minimum=2, maximum=MAX_LINKS, what=" (the number of links)")
@@ -145,7 +151,7 @@ class LinkChain(LocomotionSystem):
         return dict(physics=self.physics, drag_ratio=self.drag_ratio, masses=self.masses, inertias=self.inertias,
                     aspect_ratio=self.aspect_ratio, fluid_density=self.fluid_density, body_density=self.body_density)
 
-    def with_frame(self, frame, bounds=None, nodes=None):
+    def with_frame(self, frame: Any, bounds: Any = None, nodes: int | None = None) -> LinkChain:
         """The same chain (same class, same physics) seen from another body frame (one of
         :data:`FRAMES`); its name gains the suffix of :data:`FRAME_SUFFIX`."""
         new = copy.copy(self)
@@ -154,14 +160,16 @@ class LinkChain(LocomotionSystem):
             new.name = self.name.removesuffix(FRAME_SUFFIX.get(self.frame, "")) + FRAME_SUFFIX.get(new.frame, "")
         return new
 
-    def body_frames(self, bounds=None, *, n=None, centre_of_mass=True, minimum_perturbation=True):
+    @override
+    def body_frames(self, bounds: Any = None, *, n: int | None = None, centre_of_mass: bool = True,
+                    minimum_perturbation: bool = True) -> dict[str, LocomotionSystem]:
         """{name: system}: the middle link (or joint), the centre of mass and, if asked and feasible
         (at most MAX_DIMENSION joints), minimum perturbation over ``bounds`` (default
         ``shape_limits``; ``n`` nodes per axis)."""
         from gm_core.systems.minimum_perturbation import MAX_DIMENSION
 
         middle = "middle link" if self.n_links % 2 else "middle joint"
-        out = {middle: self if self.frame == "middle" else self.with_frame("middle")}
+        out: dict[str, LocomotionSystem] = {middle: self if self.frame == "middle" else self.with_frame("middle")}
         if centre_of_mass:
             out["centre of mass"] = self.with_frame("com")
         if minimum_perturbation and self.n_shape <= MAX_DIMENSION:
@@ -169,7 +177,7 @@ class LinkChain(LocomotionSystem):
         return out
 
     # -- physics -------------------------------------------------------------------------------
-    def link_matrices(self):
+    def link_matrices(self) -> list[FloatArray]:
         """The (3, 3) link matrices in the links' centre frames: drag, or mass plus added mass."""
         if self.physics == "low_re":
             return [slender_link_drag(l, self.drag_ratio) for l in self.lengths]
@@ -181,20 +189,20 @@ class LinkChain(LocomotionSystem):
             out.append(np.diag([m, m, m * (a ** 2 + b ** 2) / 4]) + ellipse_added_mass(a, b, self.fluid_density))
         return out
 
-    def semi_axes(self):
+    def semi_axes(self) -> list[tuple[float, float]]:
         """[(a_i, b_i)]: the semi-axes l_i / 2 and l_i / (2 aspect_ratio) of the links as ellipses (high Re)."""
         return [(l / 2, l / 2 / self.aspect_ratio) for l in self.lengths]
 
-    def link_weights(self):
+    def link_weights(self) -> FloatArray:
         """Normalised link weights for the centre of mass: masses if floating, else lengths."""
         w = np.array(self.masses if self.physics == "floating" else self.lengths)
         return w / w.sum()
 
-    # -- kinematics (batch-last arrays, see gm_core.chains.kernels.chain_poses_batch_last) ----------------------
+    # -- kinematics (batch-last arrays, see gm_core.chains.kernels.chain_poses_T) ----------------------
     def _frame_pose(self, P, B, a, frame=None):
         """Pose ``(x, y, theta, cos theta, sin theta)`` (each (M,)) of the body frame (or of ``frame``)
         relative to the kernels' base link (``self._base``) and its body Jacobian ``(Bx, By, Btheta)``
-        (each (n, M)), from the kernel's ``P, B`` (:func:`gm_core.chains.kernels.chain_poses_batch_last`); ``a (n, M)``
+        (each (n, M)), from the kernel's ``P, B`` (:func:`gm_core.chains.kernels.chain_poses_T`); ``a (n, M)``
         the joint angles."""
         frame = frame or self.frame
         if frame == "minimum perturbation":
@@ -240,23 +248,23 @@ class LinkChain(LocomotionSystem):
         return beta, (Bx, By, Bt)
 
     def _kinematics_T(self, r):
-        """(r, batch shape, Q, J) in the batch-last layout of :func:`gm_core.chains.kernels.chain_jacobians_batch_last`.
+        """(r, batch shape, Q, J) in the batch-last layout of :func:`gm_core.chains.kernels.chain_jacobians_T`.
 
-        The kernels walk the chain out from its middle link (the base of :func:`chain_poses_batch_last`,
+        The kernels walk the chain out from its middle link (the base of :func:`chain_poses_T`,
         held still), so in the middle frame of an odd chain nothing is re-expressed."""
         r = self._shape(r)
-        a, batch = batch_last(r)
-        P, B = chain_poses_batch_last(a, self._L, self._base)
+        a, batch = flatten_batch(r)
+        P, B = chain_poses_T(a, self._L, self._base)
         frame = (None, None) if self.frame == "middle" and self.n_links % 2 else self._frame_pose(P, B, a)
-        Q, J = chain_jacobians_batch_last(P, B, *frame)
+        Q, J = chain_jacobians_T(P, B, *frame)
         return r, batch, Q, J
 
-    def link_poses(self, r):
+    def link_poses(self, r: ArrayLike) -> FloatArray:
         """Poses (..., N, 3) of the link centres in the body frame."""
         r, batch, Q, J = self._kinematics_T(r)
         return np.stack(Q[:3]).T.reshape(batch + (self.n_links, 3))
 
-    def link_jacobians(self, r):
+    def link_jacobians(self, r: ArrayLike) -> FloatArray:
         """Link Jacobians (..., N, 3, 3 + n) from (xi, r_dot) to each link's body velocity, in the body frame."""
         r, batch, Q, J = self._kinematics_T(r)
         return J.transpose(3, 2, 0, 1).reshape(batch + (self.n_links, 3, 3 + self.n_shape))
@@ -269,7 +277,7 @@ class LinkChain(LocomotionSystem):
             self._middle = self.with_frame("middle")
         return self._middle
 
-    def middle_link_jacobians(self, r):
+    def middle_link_jacobians(self, r: ArrayLike) -> tuple[FloatArray, ...]:
         """(J_1, ..., J_N), each (..., 3, 3 + n): the link Jacobians from (xi_middle, r_dot), with the
         middle link (or joint) as body frame whatever this chain's frame; (2.57)-(2.59) for N = 3."""
         return tuple(np.moveaxis(self._middle_chain().link_jacobians(r), -3, 0))
@@ -280,21 +288,24 @@ class LinkChain(LocomotionSystem):
         X = np.einsum("rkim,rjim->mkj", J[:, :rows] * self._diag.T[:, None, :, None], J)
         return X.reshape(batch + X.shape[1:])
 
-    def metric(self, r):
+    def metric(self, r: ArrayLike) -> FloatArray:
         """System matrix (..., 3 + n, 3 + n): ``sum J_i^T M_i J_i`` over the links (drag or mass matrix)."""
         r, batch, Q, J = self._kinematics_T(r)
         return self._masked(r, self._weighted(J, 3 + self.n_shape, batch))
 
-    def pfaffian(self, r):
+    @override
+    def pfaffian(self, r: ArrayLike) -> FloatArray:
         """Pfaffian (..., 3, 3 + n): the top rows of :meth:`metric` (total wrench or momentum = 0)."""
         r, batch, Q, J = self._kinematics_T(r)
         return self._masked(r, self._weighted(J, 3, batch))
 
-    def connection(self, r):
+    @override
+    def connection(self, r: ArrayLike) -> FloatArray:
         """Local connection (..., 3, n): xi = -A r_dot (3.10) from the Pfaffian, (3.40)."""
         return connection_from_pfaffian(self.pfaffian(r))
 
-    def constraint_curvature(self, r):
+    @override
+    def constraint_curvature(self, r: ArrayLike) -> FloatArray:
         """Constraint curvature D(-A) ((..., 3) for two joints, else (..., 3, n, n)): in the middle
         frame from the connection's derivative, in any other frame moved there by gauge covariance
         ``D(-A~) = Ad_{beta^-1} D(-A)`` with beta the frame's pose in the middle frame."""
@@ -302,14 +313,15 @@ class LinkChain(LocomotionSystem):
             return super().constraint_curvature(r)
         r = self._shape(r)
         F = self._middle_chain().constraint_curvature(r)
-        a, batch = batch_last(r)
-        P, B = chain_poses_batch_last(a, self._L, self._base)
+        a, batch = flatten_batch(r)
+        P, B = chain_poses_T(a, self._L, self._base)
         pose = lambda frame: np.stack(self._frame_pose(P, B, a, frame)[0][:3], -1).reshape(batch + (3,))  # noqa: E731
         Ad = SE2.Ad_inv(SE2.compose(SE2.inverse(pose("middle")), pose(self.frame)))
         F = (Ad @ F[..., None])[..., 0] if self.n_shape == 2 else np.einsum("...ij,...jkl->...ikl", Ad, F)
         return self._masked(r, F)
 
-    def shape_metric(self, r):
+    @override
+    def shape_metric(self, r: ArrayLike) -> FloatArray:
         """Cost metric on shape space M(r) = [-A; I]^T D [-A; I] (..., n, n) (power or twice kinetic energy)."""
         D = self.metric(r)
         return shape_space_metric(D, connection_from_pfaffian(D[..., :3, :]))
@@ -321,13 +333,15 @@ class LinkChain(LocomotionSystem):
         inside = self._mp.contains(r)
         return np.where(inside.reshape(inside.shape + (1,) * (X.ndim - inside.ndim)), X, np.nan)
 
-    def singularity(self, r):
+    @override
+    def singularity(self, r: ArrayLike) -> FloatArray:
         """Scaled det(omega_xi) (...,): never zero (the locked block is positive definite), except
         outside a minimum-perturbation frame's box, where it is 0."""
         return self._masked(self._shape(r), super().singularity(r))
 
     # -- drawing -------------------------------------------------------------------------------
-    def parts(self):
+    @override
+    def parts(self) -> list[SystemPart]:
         if self.physics == "low_re":
             return [SystemPart(f"link {i + 1}", ellipse_outline(l / 2, l / 24), "link") for i, l in enumerate(self.lengths)]
         if self.physics == "high_re":
@@ -335,10 +349,12 @@ class LinkChain(LocomotionSystem):
         w = 0.08 * sum(self.lengths) / 3
         return [SystemPart(f"link {i + 1}", rectangle_outline(l, w), "link") for i, l in enumerate(self.lengths)]
 
-    def part_poses(self, r):
+    @override
+    def part_poses(self, r: ArrayLike) -> FloatArray:
         return self.link_poses(r)
 
-    def __repr__(self):
+    @override
+    def __repr__(self) -> str:
         extra = {"low_re": f"drag_ratio={self.drag_ratio:g}", "high_re": f"aspect_ratio={self.aspect_ratio:g}",
                  "floating": f"masses={self.masses}"}[self.physics]
         return f"LinkChain(lengths={self.lengths}, physics={self.physics!r}, {extra}, frame={self.frame!r})"

@@ -1,8 +1,12 @@
 """Three-link swimmer at low Reynolds number (resistive force theory), book section 3.4.4."""
 from __future__ import annotations
 
+from numpy.typing import ArrayLike
+from typing_extensions import override
+
 from gm_core.systems.link_chain import LinkChain
 from gm_core.systems.three_link import three_lengths
+from gm_core.validation import FloatArray
 
 __all__ = ["LowReSwimmer"]
 
@@ -29,13 +33,14 @@ class LowReSwimmer(LinkChain):
     is what lets them swim.
     """
 
-    def __init__(self, lengths=(1.0, 1.0, 1.0), drag_ratio=2.0):
+    def __init__(self, lengths: ArrayLike = (1.0, 1.0, 1.0), drag_ratio: float = 2.0) -> None:
         super().__init__(three_lengths(lengths), "low_re", drag_ratio=drag_ratio)
         self.name = "low-Reynolds swimmer"
 
-    def drag_matrix(self, r):
+    def drag_matrix(self, r: ArrayLike) -> FloatArray:
         """Drag matrix (..., 5, 5): sum of J_i^T D_i J_i; its top rows map (xi, r_dot) to -(net wrench)."""
         return self.metric(r)
 
-    def __repr__(self):
+    @override
+    def __repr__(self) -> str:
         return f"LowReSwimmer(lengths={self.lengths}, drag_ratio={self.drag_ratio:g})"

@@ -17,12 +17,16 @@ says why (a 9^4 grid for a five-link chain works but takes about two minutes her
 from __future__ import annotations
 
 import itertools
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
+from typing_extensions import override
 
-from gm_core.systems.motion import check_system
+from gm_core.systems.base import LocomotionSystem
+from gm_core.systems.motion import trusted_dimension
 from gm_core.systems.reframed import BodyFrame, body_jacobian
-from gm_core.validation import SingularShapeError, as_array
+from gm_core.validation import BoolArray, FloatArray, SingularShapeError, as_array
 
 __all__ = ["MinimumPerturbationFrame", "MAX_NODES", "MAX_DIMENSION", "default_nodes", "too_many_dimensions"]
 
@@ -32,7 +36,7 @@ MAX_DIMENSION = 3
 _GAUSS = ((1 - 1 / np.sqrt(3)) / 2, (1 + 1 / np.sqrt(3)) / 2)
 
 
-def too_many_dimensions(argument, name, d):
+def too_many_dimensions(argument: str, name: str, d: int) -> str:
     """The message that refuses minimum-perturbation coordinates on a box of dimension d > MAX_DIMENSION."""
     return (f"{argument}: minimum-perturbation coordinates are feasible here for at most {MAX_DIMENSION} shape "
             f"variables (chains of up to {MAX_DIMENSION + 1} links): {name} has {d}, and the finite-element problem "
@@ -41,7 +45,7 @@ def too_many_dimensions(argument, name, d):
             "(gm_core.systems.shape_slice)")
 
 
-def default_nodes(dim):
+def default_nodes(dim: int) -> int:
     """Default nodes per axis for a box of dimension ``dim``: 33, 13, 9, then the largest within MAX_NODES."""
     return {1: 129, 2: 33, 3: 13, 4: 9}.get(dim, max(4, int(MAX_NODES ** (1 / dim))))
 
@@ -131,12 +135,13 @@ class MinimumPerturbationFrame(BodyFrame):
     domain_description = "outside the rectangle (the box) where the minimum-perturbation coordinates were computed"
 
     @classmethod
-    def fit(cls, system, bounds=None, n=None, *, reference=None):
+    def fit(cls, system: LocomotionSystem, bounds: Any = None, n: int | None = None, *,
+            reference: ArrayLike | None = None) -> MinimumPerturbationFrame:
         """Solve the two finite-element problems for ``system`` over ``bounds`` with ``n`` nodes per axis."""
         import scipy.sparse as sp
         import scipy.sparse.linalg as spla
 
-        d = check_system(system)
+        d = trusted_dimension(system)
         if d > MAX_DIMENSION:
             raise ValueError(too_many_dimensions("system", system.name, d))
         bounds = system.shape_limits if bounds is None else bounds
@@ -154,7 +159,7 @@ class MinimumPerturbationFrame(BodyFrame):
                              f"axis need {int(n) ** d} nodes; at most {MAX_NODES} are feasible here (n <= "
                              f"{int(MAX_NODES ** (1 / d))} for {d} shape variables)")
         n = int(n)
-        axes = [np.linspace(*B[k], n) for k in range(d)]
+        axes = [np.linspace(B[k][0], B[k][1], n) for k in range(d)]
         pts, w, Phi, G = _fem_operators(axes)
         A = system.connection(pts)
         if not np.all(np.isfinite(A)):
@@ -188,14 +193,15 @@ class MinimumPerturbationFrame(BodyFrame):
         bn = np.stack([bxy[:N], bxy[N:], bt], -1)  # (N, 3)
         return cls(system, B, axes, bn, iref, (A, w, G))
 
-    def __init__(self, system, bounds, axes, beta_nodes, iref, quadrature):
+    def __init__(self, system: LocomotionSystem, bounds: Any, axes: Any, beta_nodes: ArrayLike, iref: int,
+                 quadrature: Any) -> None:
         self.system_name = system.name
         self.bounds = tuple(tuple(float(v) for v in row) for row in bounds)
         self.nodes = axes
         n = len(axes[0])
-        self.beta_nodes = beta_nodes.reshape((n,) * len(axes) + (3,))
+        self.beta_nodes = np.asarray(beta_nodes, dtype=float).reshape((n,) * len(axes) + (3,))
         self.reference = np.array([axes[k][i] for k, i in enumerate(np.unravel_index(iref, (n,) * len(axes)))])
-        self._quad, self._bn = quadrature, beta_nodes
+        self._quad, self._bn = quadrature, np.asarray(beta_nodes, dtype=float)
         self._spline = _TensorSpline(axes, self.beta_nodes)
         self._lo, self._hi = np.array(bounds)[:, 0], np.array(bounds)[:, 1]
 
@@ -203,24 +209,28 @@ class MinimumPerturbationFrame(BodyFrame):
         flat = np.clip(r.reshape(-1, r.shape[-1]), self._lo, self._hi)
         return self._spline(flat, derivative).reshape(r.shape[:-1] + (3,))
 
-    def pose(self, r):
+    @override
+    def pose(self, r: ArrayLike) -> FloatArray:
         return self._eval(np.asarray(r, dtype=float))
 
-    def jacobian(self, r):
+    @override
+    def jacobian(self, r: ArrayLike) -> FloatArray:
         return self.pose_and_jacobian(r)[1]
 
-    def pose_and_jacobian(self, r):
+    @override
+    def pose_and_jacobian(self, r: ArrayLike) -> tuple[FloatArray, FloatArray]:
         r = np.asarray(r, dtype=float)
         beta = self._eval(r)
         d = np.stack([self._eval(r, k) for k in range(r.shape[-1])], -1)
         return beta, body_jacobian(beta, d)
 
-    def contains(self, r):
+    @override
+    def contains(self, r: ArrayLike) -> BoolArray:
         r = np.asarray(r, dtype=float)
         tol = 1e-12 * float(np.max(self._hi - self._lo))
         return np.all((r >= self._lo - tol) & (r <= self._hi + tol), axis=-1)
 
-    def discrete_divergence(self, of="frame"):
+    def discrete_divergence(self, of: str = "frame") -> FloatArray:
         """Weak divergence (N,) of the theta row at every node, ``sum_k G_k^T W A_theta,k``.
 
         ``of="frame"``: of the new theta row A~_theta (zero at the optimum: at interior nodes the

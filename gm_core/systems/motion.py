@@ -4,7 +4,8 @@ A symmetric linear-kinematic locomotor moves with body velocity ``xi = -A(r) r_d
 where ``A`` is the *local connection*. This module holds the parts shared by every system in
 :mod:`gm_core.systems` (which import it; it never imports them):
 
-* :func:`check_system` (the one validator of systems), :func:`body_velocity`;
+* :func:`check_system` (the one validator of systems at the boundary; a
+  :class:`CheckedSystem` was checked when built and is trusted), :func:`body_velocity`;
 * :func:`fd_connection_derivative`, :func:`curvature_form`: the connection's
   derivative (one difference routine), its curvature 2-form and curl;
 * :func:`check_gait`: does a gait meet a singular shape?
@@ -29,16 +30,19 @@ import math
 import numbers
 import warnings
 from dataclasses import dataclass
+from typing import Any, Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.groups import SE2, matvec
-from gm_core.systems.gaits import Gait, as_gait
+from gm_core.systems.gaits import Gait, GaitLike, as_gait
 from gm_core.systems.pacing import constant_rate_path
-from gm_core.validation import SingularShapeError, as_array, check_int, positive_number, real_number
+from gm_core.validation import FloatArray, SingularShapeError, as_array, check_int, positive_number, real_number
 
 __all__ = [
-    "body_velocity", "check_system", "fd_connection_derivative", "curvature_form",
+    "CheckedSystem", "SystemLike", "validate_system", "check_system", "trusted_dimension", "body_velocity",
+    "fd_connection_derivative", "curvature_form",
     "exterior_derivative", "FD_STEP", "check_gait", "net_displacement", "trajectory", "displacement_until",
     "Trajectory", "drive", "AccuracyWarning",
 ]
@@ -48,12 +52,38 @@ class AccuracyWarning(UserWarning):
     """A result was returned without meeting its requested tolerance; the message gives the estimate."""
 
 
-def check_system(system, name="system"):
+class CheckedSystem:
+    """Base of the systems checked once, when they are built (every :class:`gm_core.systems.LocomotionSystem`).
+
+    :func:`check_system` returns at once for an instance, and the functions of :mod:`gm_core.systems`
+    and :mod:`gm_core.geometry` read its ``n_shape`` without checking it again
+    (:func:`trusted_dimension`); any other object is checked by :func:`check_system` wherever it
+    enters.
+    """
+
+    name: str
+    n_shape: int
+
+
+class SystemLike(Protocol):
+    """What the functions of this module use of a system (every :class:`CheckedSystem`
+    and any object shaped like one): a ``name``, ``n_shape`` and ``connection(r)``, and
+    ``singularity(r)`` where the system ``may_be_singular``."""
+
+    name: str
+    n_shape: int
+
+    def connection(self, r: ArrayLike) -> FloatArray: ...
+
+    def singularity(self, r: ArrayLike) -> FloatArray: ...
+
+
+def validate_system(system: Any, name: str = "system") -> int:
     """n_shape of ``system`` after checking it looks like a locomotion system (TypeError naming ``name``).
 
-    The one validator of systems: an object with an integer ``n_shape`` >= 1 and a callable
-    ``connection(r)`` (every :class:`gm_core.systems.LocomotionSystem`, or any object shaped
-    like one); one that ``may_be_singular`` must also have ``singularity(r)``.
+    The full check, whatever ``system`` is: an object with an integer ``n_shape`` >= 1 and a
+    callable ``connection(r)``; one that ``may_be_singular`` must also have ``singularity(r)``.
+    A :class:`gm_core.systems.LocomotionSystem` runs it once, when it is built.
     """
     n = getattr(system, "n_shape", None)
     if (isinstance(system, (str, bytes, type)) or not isinstance(n, numbers.Integral) or isinstance(n, bool)
@@ -65,14 +95,35 @@ def check_system(system, name="system"):
     return int(n)
 
 
+def check_system(system: Any, name: str = "system") -> int:
+    """n_shape of ``system`` after checking it looks like a locomotion system (TypeError naming ``name``).
+
+    The one validator of systems at the boundary: a :class:`CheckedSystem` (every
+    :class:`gm_core.systems.LocomotionSystem`, checked when it was built) is trusted and its
+    ``n_shape`` returned at once; any other object, shaped like a system or not, gets the full
+    check of :func:`validate_system`.
+    """
+    if isinstance(system, CheckedSystem):
+        return system.n_shape
+    return validate_system(system, name)
+
+
+def trusted_dimension(system: Any, name: str = "system") -> int:
+    """n_shape of ``system`` inside the library: read directly from a :class:`CheckedSystem`
+    (checked once, when it was built), else :func:`check_system` (a duck-typed system, checked
+    wherever it enters). Public functions call this, so that a system handed from one to another
+    is not checked again at every step."""
+    if isinstance(system, CheckedSystem):
+        return system.n_shape
+    return check_system(system, name)
 
 
 # ---------------------------------------------------------------------------------------------
 # Body velocity, the connection's derivative, curl and curvature
 # ---------------------------------------------------------------------------------------------
-def body_velocity(system, r, r_dot):
+def body_velocity(system: SystemLike, r: ArrayLike, r_dot: ArrayLike) -> FloatArray:
     """Body velocity ``xi = -A(r) r_dot`` (..., 3) of ``system`` at shape r moving at r_dot, (3.10)."""
-    n = check_system(system)
+    n = trusted_dimension(system)
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     r_dot = as_array(r_dot, "r_dot", (n,), what=f" (a shape velocity of {system.name})")
     try:
@@ -91,7 +142,7 @@ def body_velocity(system, r, r_dot):
 FD_STEP = 6e-6
 
 
-def fd_connection_derivative(system, r, step=FD_STEP):
+def fd_connection_derivative(system: SystemLike, r: ArrayLike, step: float = FD_STEP) -> tuple[FloatArray, FloatArray]:
     """``(A (..., 3, n), dA (..., 3, n, n))`` by central differences, ``dA[..., i, j, k] = d A_ij / d r_k``.
 
     The one difference route to the connection's derivative (systems without a closed form use
@@ -99,7 +150,7 @@ def fd_connection_derivative(system, r, step=FD_STEP):
     ``max(1, |r|)``; A itself is the mean of the stencil values (error O(h^2), about 1e-11), all
     2n stencil points in one batched call.
     """
-    n = check_system(system)
+    n = trusted_dimension(system)
     r = as_array(r, "r", (n,), what=f" (a shape of {system.name})")
     step = positive_number(step, "h")
     h = step * np.maximum(1.0, np.abs(r))
@@ -109,23 +160,25 @@ def fd_connection_derivative(system, r, step=FD_STEP):
         offsets[2 * k + 1, ..., k] = -h[..., k]
     vals = system.connection(r[None] + offsets)  # (2n, ..., 3, n)
     dA = np.stack([(vals[2 * k] - vals[2 * k + 1]) / (2 * h[..., k, None, None]) for k in range(n)], -1)
-    return vals.mean(axis=0), dA
+    return np.asarray(vals.mean(axis=0), dtype=float), dA
 
 
-def exterior_derivative(dA):
+def exterior_derivative(dA: ArrayLike) -> FloatArray:
     """``dA_j/dr_i - dA_i/dr_j`` (..., 3, n, n) from dA (..., 3, n, n) (index order of :func:`fd_connection_derivative`)."""
+    dA = np.asarray(dA, dtype=float)
     return np.swapaxes(dA, -1, -2) - dA
 
 
-def curvature_form(A, dA):
+def curvature_form(A: ArrayLike, dA: ArrayLike) -> FloatArray:
     """Constraint curvature 2-form D(-A) (..., 3, n, n) from A (..., 3, n) and its derivative dA (..., 3, n, n).
 
     ``F[..., :, i, j] = -(d_i A_j - d_j A_i) + [A_i, A_j]`` (Hatton & Choset 2015, with the book's
     sign xi = -A r_dot), antisymmetric in (i, j): one se(2) component per pair of shape
     directions. NaN where A or dA is not finite.
     """
+    A = np.asarray(A, dtype=float)
     ext = exterior_derivative(dA)
-    ok = np.isfinite(A).all(axis=(-1, -2)) & np.isfinite(ext).all(axis=(-1, -2, -3))
+    ok = np.asarray(np.isfinite(A).all(axis=(-1, -2)) & np.isfinite(ext).all(axis=(-1, -2, -3)))
     if not ok.all():  # singular shapes: NaN out, and keep NaN away from the bracket's input check
         A = np.where(ok[..., None, None], A, 0.0)
         ext = np.where(ok[..., None, None, None], ext, np.nan)
@@ -148,7 +201,7 @@ _CHUNK = 8192
 
 
 def _check_shapes(system, gait):
-    n = check_system(system)
+    n = trusted_dimension(system)
     if gait.n_shape != n:
         raise ValueError(f"gait has {gait.n_shape} shape variables but {system.name} has {n}")
 
@@ -182,7 +235,7 @@ def _scan(system, gait, s, d):
                                                    xtol=1e-15), "crosses")
 
 
-def check_gait(system, gait, *, samples=None):
+def check_gait(system: SystemLike, gait: GaitLike, *, samples: int | None = None) -> None:
     """Raise SingularShapeError if the gait crosses or touches a singular shape of ``system``.
 
     Samples the scaled ``det omega_xi`` (``system.singularity``, never zero at regular shapes) at
@@ -350,7 +403,8 @@ def _adaptive(system, gait, rtol, with_det):
         lo, hi, full, Ea, Eb = lo[order], hi[order], full[order], Ea[order], Eb[order]
 
 
-def net_displacement(system, gait, *, steps=None, check=True, rtol=1e-10):
+def net_displacement(system: SystemLike, gait: GaitLike, *, steps: int | None = None, check: bool = True,
+                     rtol: float = 1e-10) -> FloatArray:
     """Net displacement g(T) (3,) over one period of ``gait``, starting from g(0) = e.
 
     Integrates the reconstruction equation g_dot = T_e L_g xi with xi = -A(r) r_dot (3.10)
@@ -409,7 +463,8 @@ class Trajectory:
     r: np.ndarray
 
 
-def trajectory(system, gait, n_frames=101, *, cycles=1, g0=(0.0, 0.0, 0.0), substeps=None, check=True):
+def trajectory(system: SystemLike, gait: GaitLike, n_frames: int = 101, *, cycles: int = 1, g0: ArrayLike = (0.0, 0.0, 0.0),
+               substeps: int | None = None, check: bool = True) -> Trajectory:
     """Position trajectory g(t) at ``n_frames`` equally spaced times over ``cycles`` periods.
 
     For animations: frames are spaced evenly in time from 0 to ``cycles * T`` inclusive. Between
@@ -448,7 +503,8 @@ def trajectory(system, gait, n_frames=101, *, cycles=1, g0=(0.0, 0.0, 0.0), subs
     return Trajectory(t=t, g=g, r=gait(t))
 
 
-def displacement_until(system, gait, t, *, steps=256, g0=(0.0, 0.0, 0.0)):
+def displacement_until(system: SystemLike, gait: GaitLike, t: ArrayLike, *, steps: int | None = 256,
+                       g0: ArrayLike = (0.0, 0.0, 0.0)) -> FloatArray:
     """Position g(t) (3,) after the first ``t`` time units of ``gait``, from g(0) = g0.
 
     Takes ``steps`` equal fourth-order Magnus steps over [0, t] (no error control; the gait
@@ -471,7 +527,7 @@ def displacement_until(system, gait, t, *, steps=256, g0=(0.0, 0.0, 0.0)):
     return SE2.compose(g0, _product(SE2.exp(om)))
 
 
-def drive(system, r0, r_dot, duration, n_frames=81):
+def drive(system: SystemLike, r0: ArrayLike, r_dot: ArrayLike, duration: float, n_frames: int = 81) -> Trajectory:
     """Trajectory of ``system`` when its shape moves at the constant rate r_dot from r0 for ``duration``.
 
     The shape path is :func:`gm_core.systems.pacing.constant_rate_path` (open, not a gait); returns a

@@ -5,7 +5,11 @@ the re-timings the pacing panel and :func:`gm_core.systems.motion.drive` use. nu
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.systems.gaits import Gait
 from gm_core.validation import as_array, positive_number, real_number
@@ -15,7 +19,7 @@ __all__ = [
 ]
 
 
-def sine_pacing(a, period=1.0):
+def sine_pacing(a: float, period: float = 1.0) -> tuple[Callable[[Any], Any], Callable[[Any], Any]]:
     """(tau, tau_dot): the pacing ``tau(t) = t - a T/(2 pi) sin(2 pi t / T)`` of [0, T] onto itself.
 
     Increasing for |a| < 1 (its rate 1 - a cos(2 pi t / T) stays positive); a > 0 lingers near
@@ -36,7 +40,7 @@ def sine_pacing(a, period=1.0):
     return tau, tau_dot
 
 
-def constant_rate_path(r0, r_dot, duration, *, name="constant rate"):
+def constant_rate_path(r0: ArrayLike, r_dot: ArrayLike, duration: float, *, name: str = "constant rate") -> Gait:
     """The open shape path ``r(t) = r0 + t r_dot`` for 0 <= t <= duration, as a :class:`Gait`.
 
     For driving a system at a constant shape rate (e.g. both wheels of a car turning steadily)

@@ -13,11 +13,16 @@ has shape q and, by the chain rule, connection ``A_q(q) = A(r0 + S q) S``, Pfaff
 """
 from __future__ import annotations
 
-import numpy as np
+from collections.abc import Sequence
+from typing import Any, cast
 
-from gm_core.systems.base import LocomotionSystem
-from gm_core.systems.motion import check_system
-from gm_core.validation import as_array, check_int
+import numpy as np
+from numpy.typing import ArrayLike
+from typing_extensions import override
+
+from gm_core.systems.base import LocomotionSystem, SystemPart
+from gm_core.systems.motion import trusted_dimension
+from gm_core.validation import BoolArray, FloatArray, as_array, check_int
 
 __all__ = ["AffineRestriction", "shape_slice"]
 
@@ -25,8 +30,9 @@ __all__ = ["AffineRestriction", "shape_slice"]
 class AffineRestriction(LocomotionSystem):
     """``base`` with its shape confined to ``r = offset + matrix @ q``; shape q (m,)."""
 
-    def __init__(self, base, matrix, offset=None, *, shape_names=None, shape_limits=None, name=None):
-        n = check_system(base, "base")
+    def __init__(self, base: LocomotionSystem, matrix: ArrayLike, offset: ArrayLike | None = None, *,
+                 shape_names: Sequence[str] | None = None, shape_limits: Any = None, name: str | None = None) -> None:
+        n = trusted_dimension(base, "base")
         S = as_array(matrix, "matrix", what=f" (an (n, m) map from the new shapes to the {n} shapes of {base.name})")
         if S.ndim != 2 or S.shape[0] != n or S.shape[1] < 1:
             raise ValueError(f"matrix must have shape ({n}, m) with m >= 1; got shape {S.shape}")
@@ -41,18 +47,20 @@ class AffineRestriction(LocomotionSystem):
         self.singular_description = base.singular_description
         self.name = name or f"{base.name} (restricted)"
 
-    def full_shape(self, q):
+    def full_shape(self, q: ArrayLike) -> FloatArray:
         """The base system's shape (..., n) at restricted shapes q (..., m)."""
         q = self._shape(q, "q")
         return self.offset + q @ self.matrix.T
 
-    def connection(self, r):
+    @override
+    def connection(self, r: ArrayLike) -> FloatArray:
         return self.base_system.connection(self.full_shape(r)) @ self.matrix
 
     def _base_has_closed_form(self):
         return type(self.base_system).connection_derivative is not LocomotionSystem.connection_derivative
 
-    def connection_derivative(self, r):
+    @override
+    def connection_derivative(self, r: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """(A_q, dA_q): the base's closed form pulled back, else central differences of
         :meth:`connection` along the m directions of the restriction (not the base's n)."""
         if not self._base_has_closed_form():
@@ -61,7 +69,8 @@ class AffineRestriction(LocomotionSystem):
         S = self.matrix
         return A @ S, np.einsum("...ijk,ja,kb->...iab", dA, S, S)
 
-    def constraint_curvature(self, r):
+    @override
+    def constraint_curvature(self, r: ArrayLike) -> FloatArray:
         """The pull-back of the base's curvature 2-form, ``F_q,ab = S_ia S_jb F_ij``; computed as the
         curvature of the restricted connection (the same thing: curvature commutes with pull-back),
         which needs differences along the m directions only, unless the base has a closed-form
@@ -75,37 +84,45 @@ class AffineRestriction(LocomotionSystem):
         F = np.einsum("...kij,ia,jb->...kab", F, S, S)
         return F[..., 0, 1] if self.n_shape == 2 else F
 
-    def pfaffian(self, r):
+    @override
+    def pfaffian(self, r: ArrayLike) -> FloatArray:
         om = self.base_system.pfaffian(self.full_shape(r))
         return np.concatenate([om[..., :3], om[..., 3:] @ self.matrix], -1)
 
-    def shape_metric(self, r):
+    @override
+    def shape_metric(self, r: ArrayLike) -> FloatArray:
         M = self.base_system.shape_metric(self.full_shape(r))
         return self.matrix.T @ M @ self.matrix
 
-    def singularity(self, r):
+    @override
+    def singularity(self, r: ArrayLike) -> FloatArray:
         return self.base_system.singularity(self.full_shape(r))
 
-    def is_singular(self, r):
+    @override
+    def is_singular(self, r: ArrayLike) -> BoolArray:
         return self.base_system.is_singular(self.full_shape(r))
 
-    def parts(self):
+    @override
+    def parts(self) -> list[SystemPart]:
         return self.base_system.parts()
 
-    def part_poses(self, r):
+    @override
+    def part_poses(self, r: ArrayLike) -> FloatArray:
         return self.base_system.part_poses(self.full_shape(r))
 
-    def link_poses(self, r):
-        return self.base_system.link_poses(self.full_shape(r))
+    def link_poses(self, r: ArrayLike) -> FloatArray:
+        return cast(Any, self.base_system).link_poses(self.full_shape(r))
 
-    def link_weights(self):
-        return self.base_system.link_weights()
+    def link_weights(self) -> FloatArray:
+        return cast(Any, self.base_system).link_weights()
 
-    def __repr__(self):
+    @override
+    def __repr__(self) -> str:
         return f"AffineRestriction({self.base_system!r}, matrix shape {self.matrix.shape})"
 
 
-def shape_slice(system, through=None, axes=(0, 1), *, limits=None):
+def shape_slice(system: LocomotionSystem, through: ArrayLike | None = None, axes: Any = (0, 1), *,
+                limits: Any = None) -> AffineRestriction:
     """The two-dimensional slice of ``system``'s shape space through ``through`` along ``axes``.
 
     ``axes``: a pair of shape indices (i, j) (0-based): then the slice's shapes are (r_i, r_j)
@@ -114,7 +131,7 @@ def shape_slice(system, through=None, axes=(0, 1), *, limits=None):
     The result is a system with two shape variables (an :class:`AffineRestriction`); a gait
     drawn in it is a gait of the full system lying in the slice.
     """
-    n = check_system(system)
+    n = trusted_dimension(system)
     r0 = np.zeros(n) if through is None else as_array(through, "through", (n,), what=f" (a shape of {system.name})")
     if r0.ndim != 1:
         raise ValueError(f"through must be one shape ({n},); got shape {r0.shape}")

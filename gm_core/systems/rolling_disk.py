@@ -18,9 +18,10 @@ start, and the point never leaves its circle |q| = R, the level set (3.ix).
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.groups import SE2
-from gm_core.validation import as_array, positive_number, real_number
+from gm_core.validation import FloatArray, as_array, positive_number, real_number
 
 __all__ = ["DISK_DRIVE", "DISK_TURN", "disk_body_velocity", "disk_constraint_world", "disk_moves_path",
            "parallel_park_moves", "parallel_park_displacement", "bracket_estimate", "radial_point_path",
@@ -31,7 +32,7 @@ DISK_DRIVE = np.array([1.0, 0.0, 0.0])
 DISK_TURN = np.array([0.0, 0.0, 1.0])
 
 
-def disk_body_velocity(v, w):
+def disk_body_velocity(v: ArrayLike, w: ArrayLike) -> FloatArray:
     """Body velocity (..., 3) of the disk rolling at speed v and turning at rate w: (v, 0, w), (3.vi)."""
     v = as_array(v, "v", what=" (the rolling speed)")
     w = as_array(w, "w", what=" (the turning rate)")
@@ -39,7 +40,7 @@ def disk_body_velocity(v, w):
     return np.stack([v, np.zeros_like(v), w], -1)
 
 
-def disk_constraint_world(g, g_dot):
+def disk_constraint_world(g: ArrayLike, g_dot: ArrayLike) -> FloatArray:
     """c_world = y' cos(theta) - x' sin(theta) (...,) of (3.v): zero for every allowed disk motion."""
     g = as_array(g, "g", (3,), what=" (a pose (x, y, theta))")
     g_dot = as_array(g_dot, "g_dot", (3,), what=" (a world velocity (x', y', theta'))")
@@ -55,7 +56,8 @@ def _moves(moves):
     return m
 
 
-def disk_moves_path(moves, g0=(0.0, 0.0, 0.0), n_per_move=25):
+def disk_moves_path(moves: ArrayLike, g0: ArrayLike = (0.0, 0.0, 0.0),
+                    n_per_move: int = 25) -> tuple[FloatArray, FloatArray]:
     """Poses (k * n_per_move + 1, 3) of the disk along the moves (v, w, duration), exact.
 
     Within a move the body velocity is constant, so g(t) = g_start exp(t (v, 0, w)); the
@@ -77,7 +79,7 @@ def disk_moves_path(moves, g0=(0.0, 0.0, 0.0), n_per_move=25):
     return np.concatenate(ts), np.vstack(gs)
 
 
-def parallel_park_moves(d, phi, speed=1.0, turn_rate=1.0):
+def parallel_park_moves(d: float, phi: float, speed: float = 1.0, turn_rate: float = 1.0) -> FloatArray:
     """The cycle drive d, turn phi, drive back d, turn back phi as moves (4, 3) of (v, w, duration)."""
     d = real_number(d, "d", what=" (the drive distance)")
     phi = real_number(phi, "phi", what=" (the turn angle)")
@@ -88,7 +90,7 @@ def parallel_park_moves(d, phi, speed=1.0, turn_rate=1.0):
     return np.array([[sd * v, 0.0, Td], [0.0, sp * w, Tp], [-sd * v, 0.0, Td], [0.0, -sp * w, Tp]])
 
 
-def parallel_park_displacement(d, phi):
+def parallel_park_displacement(d: float, phi: float) -> FloatArray:
     """Net displacement (3,) of one parallel-parking cycle, exp(d X) exp(phi Y) exp(-d X) exp(-phi Y).
 
     X = :data:`DISK_DRIVE`, Y = :data:`DISK_TURN`; each factor is one allowed move (its body
@@ -103,7 +105,7 @@ def parallel_park_displacement(d, phi):
     return g
 
 
-def bracket_estimate(d, phi):
+def bracket_estimate(d: float, phi: float) -> FloatArray:
     """The small-loop estimate d phi [X_drive, X_turn] (3,) of the cycle's net displacement.
 
     The loop (d, phi) -> (d, phi) in the plane of move amounts encloses the signed area d phi;
@@ -114,14 +116,14 @@ def bracket_estimate(d, phi):
     return d * phi * SE2.bracket(DISK_DRIVE, DISK_TURN)
 
 
-def radial_loop_moves(a, b):
+def radial_loop_moves(a: float, b: float) -> FloatArray:
     """The loop 'a along X1, b along X2, back a along X1, back b along X2' for (3.viii), as (4, 2) rows (field, amount)."""
     a = real_number(a, "a", what=" (the amount along X1)")
     b = real_number(b, "b", what=" (the amount along X2)")
     return np.array([[1.0, a], [2.0, b], [1.0, -a], [2.0, -b]])
 
 
-def radial_point_path(moves, q0=(1.0, 0.0), n_per_move=25):
+def radial_point_path(moves: ArrayLike, q0: ArrayLike = (1.0, 0.0), n_per_move: int = 25) -> FloatArray:
     """Points (k * n_per_move + 1, 2) of a point obeying x x' + y y' = 0 (3.viii), exact.
 
     ``moves`` rows (field, amount): field 1 is X1 = (-y, x), whose flow for time s turns the

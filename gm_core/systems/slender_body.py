@@ -20,18 +20,23 @@ rule). A chain of N links whose joint angles sample the same curvature,
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike
+from typing_extensions import override
 
 from gm_core.groups import SE2
 from gm_core.systems.base import LocomotionSystem, SystemPart, rectangle_outline
 from gm_core.systems.connection import connection_from_pfaffian, shape_space_metric
 from gm_core.systems.reframed import body_jacobian
-from gm_core.validation import as_array, check_int, check_option, positive_number
+from gm_core.systems.restricted import AffineRestriction
+from gm_core.validation import FloatArray, as_array, check_int, check_option, positive_number
 
 __all__ = ["SlenderBody", "serpenoid_modes", "chain_approximation"]
 
 
-def serpenoid_modes(length=1.0):
+def serpenoid_modes(length: float = 1.0) -> tuple[Any, Any]:
     """The serpenoid pair (cos(2 pi s / L), sin(2 pi s / L)) and their integrals from L/2 (exact)."""
     L = positive_number(length, "length")
     w = 2 * np.pi / L
@@ -45,8 +50,8 @@ class SlenderBody(LocomotionSystem):
 
     may_be_singular = False
 
-    def __init__(self, length=1.0, modes="serpenoid", *, drag_ratio=2.0, frame="middle", panels=8, order=8,
-                 segments=40):
+    def __init__(self, length: float = 1.0, modes: Any = "serpenoid", *, drag_ratio: float = 2.0, frame: Any = "middle",
+                 panels: int = 8, order: int = 8, segments: int = 40) -> None:
         self.length = positive_number(length, "length", maximum=1e6)
         self.drag_ratio = positive_number(drag_ratio, "drag_ratio", maximum=1e6, what=" (lateral over longitudinal drag)")
         self.frame = check_option(frame, "frame", ("middle", "com"))
@@ -57,7 +62,7 @@ class SlenderBody(LocomotionSystem):
         if isinstance(modes, str):
             check_option(modes, "modes", ("serpenoid",))
             self.modes, integrals = serpenoid_modes(L)
-            self.mode_names = ("cos", "sin")
+            self.mode_names: tuple[str, ...] = ("cos", "sin")
         else:
             if isinstance(modes, (bytes, dict)) or not hasattr(modes, "__len__") or len(modes) < 1 \
                     or not all(callable(m) for m in modes):
@@ -128,7 +133,7 @@ class SlenderBody(LocomotionSystem):
                                 (w @ self._Phi[:Q])[None, :] + np.zeros(th.shape[:-1] + (1, n))], -2)
         return beta, body_jacobian(beta, dbeta)
 
-    def link_poses(self, r):
+    def link_poses(self, r: ArrayLike) -> FloatArray:
         """Poses (..., segments, 3) of the drawn pieces' centres in the body frame."""
         r = self._shape(r)
         th, p, dp = self._curve(r, draw=True)
@@ -139,10 +144,10 @@ class SlenderBody(LocomotionSystem):
         beta = self._frame(th, p, dp)[0]
         return SE2.compose(SE2.inverse(beta)[..., None, :], P)
 
-    def link_weights(self):
+    def link_weights(self) -> FloatArray:
         return np.full(self.segments, 1.0 / self.segments)
 
-    def curvature(self, r, s):
+    def curvature(self, r: ArrayLike, s: ArrayLike) -> FloatArray:
         """Curvature kappa(s) (..., len(s)) at arc lengths s (k,) for shapes r (..., n)."""
         r = self._shape(r)
         s = as_array(s, "s", what=" (arc lengths along the body)")
@@ -152,7 +157,7 @@ class SlenderBody(LocomotionSystem):
         return r @ phi.T
 
     # -- physics ---------------------------------------------------------------------------------
-    def metric(self, r):
+    def metric(self, r: ArrayLike) -> FloatArray:
         """Drag matrix (..., 3 + n, 3 + n): ``int W^T (t t^T + k n n^T) W ds`` by the body quadrature.
 
         Computed in the middle frame; in the centre-of-mass frame it is ``T^T D T`` with
@@ -183,18 +188,23 @@ class SlenderBody(LocomotionSystem):
         T[..., 3:, 3:] = np.eye(n)
         return np.swapaxes(T, -1, -2) @ D @ T
 
-    def pfaffian(self, r):
+    @override
+    def pfaffian(self, r: ArrayLike) -> FloatArray:
         """Pfaffian (..., 3, 3 + n): the net drag wrench, the top rows of :meth:`metric`."""
         return self.metric(r)[..., :3, :]
 
-    def connection(self, r):
+    @override
+    def connection(self, r: ArrayLike) -> FloatArray:
         return connection_from_pfaffian(self.pfaffian(r))
 
-    def shape_metric(self, r):
+    @override
+    def shape_metric(self, r: ArrayLike) -> FloatArray:
         D = self.metric(r)
         return shape_space_metric(D, connection_from_pfaffian(D[..., :3, :]))
 
-    def body_frames(self, bounds=None, *, n=None, centre_of_mass=True, minimum_perturbation=True):
+    @override
+    def body_frames(self, bounds: Any = None, *, n: int | None = None, centre_of_mass: bool = True,
+                    minimum_perturbation: bool = True) -> dict[str, LocomotionSystem]:
         """{name: system}: the middle of the body and, if asked, the centre of mass (mean
         orientation) and minimum perturbation over ``bounds``."""
         out = {"middle of the body": self._twin("middle")}
@@ -215,20 +225,23 @@ class SlenderBody(LocomotionSystem):
                            order=self.order, segments=self.segments)
 
     # -- drawing ---------------------------------------------------------------------------------
-    def parts(self):
+    @override
+    def parts(self) -> list[SystemPart]:
         piece = self.length / self.segments
         return [SystemPart(f"piece {i + 1}", rectangle_outline(piece * 1.02, self.length / 30), "link")
                 for i in range(self.segments)]
 
-    def part_poses(self, r):
+    @override
+    def part_poses(self, r: ArrayLike) -> FloatArray:
         return self.link_poses(r)
 
-    def __repr__(self):
+    @override
+    def __repr__(self) -> str:
         return (f"SlenderBody(length={self.length:g}, modes={self.mode_names}, drag_ratio={self.drag_ratio:g}, "
                 f"frame={self.frame!r})")
 
 
-def chain_approximation(body, n_links):
+def chain_approximation(body: SlenderBody, n_links: int) -> AffineRestriction:
     """A chain of ``n_links`` equal links of total length L whose joint angles sample ``body``'s curvature.
 
     Link i's centre sits at s_i = (i - 1/2) L / N and is turned by theta(s_i); joint j therefore
@@ -238,7 +251,6 @@ def chain_approximation(body, n_links):
     body's shape variables), in the matching frame (middle link or joint).
     """
     from gm_core.systems.link_chain import LinkChain
-    from gm_core.systems.restricted import AffineRestriction
 
     if not isinstance(body, SlenderBody):
         raise TypeError(f"body must be a SlenderBody; got {type(body).__name__}")
