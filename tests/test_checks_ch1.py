@@ -8,7 +8,7 @@ from scipy.linalg import expm
 
 from gm_core import SE2
 from gm_core.checks.ex1 import ex1_2, ex1_3, ex1_4, ex1_5
-from gm_core.checks.exp_routes import EXP_METHODS, _exp_ref, _helix_ref
+from gm_core.checks.exp_routes import EXP_METHODS, _exp_ref, helix_ref
 
 pytestmark = pytest.mark.usefixtures("clean")
 
@@ -32,7 +32,7 @@ def test_helix_reference_against_the_sampled_path():
         period = 2 * np.pi / abs(w)
         t = np.linspace(0, period, 4001)
         path = np.array([SE2.exp(s * xi) for s in t])
-        pitch, diameter, arclength = _helix_ref(xi)
+        pitch, diameter, arclength = helix_ref(xi)
         assert np.isclose(path[-1, 2] - path[0, 2], pitch)
         span = np.max(np.linalg.norm(path[:, None, :2] - path[None, ::40, :2], axis=-1))
         assert np.isclose(span, diameter, rtol=1e-3, atol=1e-9)

@@ -11,12 +11,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from gm_core.calculus.arguments import (
-    _SIDES,
-    _check_int,
-    _check_n_list,
-    _check_scalar,
-    _check_side,
-    _check_xi,
+    SIDES,
+    check_n_list,
+    check_scalar,
+    check_side,
+    check_steps,
+    check_xi,
 )
 from gm_core.calculus.products import element_from_matrix
 from gm_core.groups import SE2, LieGroup, check_group
@@ -96,7 +96,7 @@ class ExpHistory:
 
     def path(self, n=None):
         """Intermediate values of the evaluation with ``n`` steps/terms (default: the largest n)."""
-        n = int(self.n[-1]) if n is None else _check_int(n, "n")
+        n = int(self.n[-1]) if n is None else check_steps(n, "n")
         return _PATHS[self.method](self.group, self.xi, n, self.side)
 
 
@@ -117,7 +117,7 @@ def convergence_order(n, error, floor=1e-13):
     error = as_array(error, "error")
     if n.shape != error.shape or n.ndim != 1:
         raise ValueError(f"n and error must be 1-D arrays of one length; got {n.shape} and {error.shape}")
-    floor = _check_scalar(floor, "floor")
+    floor = check_scalar(floor, "floor")
     if floor < 0:
         raise ValueError(f"floor must be a non-negative error level; got {floor!r}")
     if np.any(error < 0) or np.any(n <= 0):
@@ -222,9 +222,9 @@ def exp_history(group, xi, n=DEFAULT_N, method="product", side="left"):
     for ``side="right"``). Returns an :class:`ExpHistory`.
     """
     group = check_group(group)
-    xi = _check_xi(group, xi)
-    ns = _check_n_list(n)
-    side = _check_side(side)
+    xi = check_xi(group, xi)
+    ns = check_n_list(n)
+    side = check_side(side)
     method = check_option(method, "method", EXP_METHODS)
     exact = group.exp(xi)
     exact_matrix = group.matrix(exact)
@@ -285,11 +285,11 @@ def se2_exp_study(thetadots=(0.5, 1.0, 2.0, 4.0), n=DEFAULT_N, speed=1.0):
     td = as_array(thetadots, "thetadots", what=" (rotation rates)")
     if td.ndim > 1:
         raise ValueError(f"thetadots must be a number or a 1-D array; got shape {td.shape}")
-    speed = _check_scalar(speed, "speed")
-    _check_n_list(n)
+    speed = check_scalar(speed, "speed")
+    check_n_list(n)
     xis = [np.array([speed, 0.0, w]) for w in np.atleast_1d(td)]
     try:
         return {side: {m: [exp_history(SE2, xi, n, m, side) for xi in xis] for m in EXP_METHODS}
-                for side in _SIDES}
+                for side in SIDES}
     except ValueError as exc:
         raise ValueError(f"thetadots and speed are too large: {exc}") from None

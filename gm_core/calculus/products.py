@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gm_core.calculus.arguments import _check_int, _check_scalar, _check_side, _matrix_value
+from gm_core.calculus.arguments import check_scalar, check_side, check_steps, matrix_value
 from gm_core.groups import check_group
 from gm_core.validation import SingularShapeError, as_array, check_option
 
@@ -64,10 +64,10 @@ def product_integral(v, a, b, n, side="right", *, point="end", history=False):
 
     For a constant matrix A on [0, 1] this is (I + A/n)^n, which tends to expm(A), (1.49).
     """
-    a = _check_scalar(a, "a")
-    b = _check_scalar(b, "b")
-    n = _check_int(n, "n")
-    side = _check_side(side)
+    a = check_scalar(a, "a")
+    b = check_scalar(b, "b")
+    n = check_steps(n, "n")
+    side = check_side(side)
     point = check_option(point, "point", ("end", "start", "mid"))
     if not isinstance(history, (bool, np.bool_)):
         raise TypeError(f"history must be True or False; got {history!r:.40}")
@@ -81,11 +81,11 @@ def product_integral(v, a, b, n, side="right", *, point="end", history=False):
 
     if callable(v):
         def factor_value(k):
-            return _matrix_value(v(float(nodes[k])), "v(x)")
+            return matrix_value(v(float(nodes[k])), "v(x)")
         V0, scalar = factor_value(0)
         constant = None
     else:
-        V0, scalar = _matrix_value(v, "v")
+        V0, scalar = matrix_value(v, "v")
         constant = V0
     size = V0.shape[-1]
     eye = np.eye(size)
@@ -156,19 +156,19 @@ def quotient_derivative(F, x, side="right", h=None, *, method="central"):
     """
     if not callable(F):
         raise TypeError(f"F must be a callable x -> matrix; got {type(F).__name__}")
-    side = _check_side(side)
+    side = check_side(side)
     method = check_option(method, "method", ("central", "quotient"))
     xs = as_array(x, "x", what=" (a number or a 1-D array of numbers)")
     if xs.ndim > 1 or xs.size == 0:
         raise ValueError(f"x must be a number or a non-empty 1-D array; got shape {xs.shape}")
     if h is not None:
-        h_val = _check_scalar(h, "h")
+        h_val = check_scalar(h, "h")
         if h_val <= 0:
             raise ValueError(f"h must be a positive step size; got {h!r}")
 
     def one(x0):
         step = h_val if h is not None else _default_step(x0, method)
-        Fx, scalar = _matrix_value(F(x0), "F(x)")
+        Fx, scalar = matrix_value(F(x0), "F(x)")
         try:
             Finv = np.linalg.inv(Fx)
         except np.linalg.LinAlgError:
@@ -177,9 +177,9 @@ def quotient_derivative(F, x, side="right", h=None, *, method="central"):
             ) from None
         if not np.all(np.isfinite(Finv)):
             raise SingularShapeError(f"F(x) is singular at x={x0:g}: its inverse is not finite")
-        Fp, _ = _matrix_value(F(x0 + step), "F(x)")
+        Fp, _ = matrix_value(F(x0 + step), "F(x)")
         if method == "central":
-            Fm, _ = _matrix_value(F(x0 - step), "F(x)")
+            Fm, _ = matrix_value(F(x0 - step), "F(x)")
             dF = (Fp - Fm) / (2.0 * step)
             out = Finv @ dF if side == "right" else dF @ Finv
         else:
@@ -214,8 +214,8 @@ def binomial_terms(n, k):
     each term of the binomial expansion of (I + A/n)^n tends to A^k/k!. (The draft's
     coefficient n^k / k! is the large-n approximation of C(n, k), not equal to it.)
     """
-    n = _check_int(n, "n", minimum=0, maximum=10**9)
-    k = _check_int(k, "k", minimum=0, maximum=1000)
+    n = check_steps(n, "n", minimum=0, maximum=10**9)
+    k = check_steps(k, "k", minimum=0, maximum=1000)
     if k > n:
         raise ValueError(f"k must be between 0 and n={n}; got {k}")
     c = math.comb(n, k)
@@ -228,7 +228,7 @@ def binomial_table(ns=(5, 10, 100, 1000), kmax=5):
     Uses :func:`binomial_terms`; the last column is the draft's coefficient in (1.50), which is
     *not* C(n, k).
     """
-    kmax = _check_int(kmax, "kmax", minimum=0, maximum=1000)
+    kmax = check_steps(kmax, "kmax", minimum=0, maximum=1000)
     rows = []
     for n in ns:
         for k in range(kmax + 1):

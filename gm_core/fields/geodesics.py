@@ -7,9 +7,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from gm_core.fields.vector_fields import (
-    _check_side,
-    _check_solve_ivp_kw,
-    _time,
+    check_flow_side,
+    check_solve_ivp_kw,
+    check_time,
     integral_curve,
     left_invariant_field,
     right_invariant_field,
@@ -34,16 +34,16 @@ def group_geodesic(group, xi, t, side="left", g0=None, *, method="exp", **solve_
     ``group.isclose``). ``xi`` must be a single vector ``(dim,)``; ``g0`` an element ``(dim,)``.
     """
     group = check_group(group)
-    side = _check_side(side)
+    side = check_flow_side(side)
     method = check_option(method, "method", ("exp", "integrate"))
-    _check_solve_ivp_kw(solve_ivp_kw, "group_geodesic")
+    check_solve_ivp_kw(solve_ivp_kw, "group_geodesic")
     if method == "exp" and solve_ivp_kw:
         raise TypeError(f"group_geodesic got solve_ivp option(s) {', '.join(sorted(solve_ivp_kw))}, "
                         f"which only apply with method='integrate'")
     xi = as_array(xi, "xi", (group.dim,), what=f", a Lie-algebra vector of {group.name}")
     if xi.ndim != 1:
         raise ValueError(f"xi must be one vector of shape ({group.dim},); got shape {xi.shape}")
-    t = _time(t)
+    t = check_time(t)
     g0 = group.identity() if g0 is None else group._element(g0, "g0")
     if g0.ndim != 1:
         raise ValueError(f"g0 must be one element of shape ({group.dim},); got shape {g0.shape}")
@@ -115,7 +115,7 @@ def se2_helix(xi, side="left", g0=None):
     distance from there to g0's position. See the module docstring for the derivation.
     """
     xi = as_array(xi, "xi", (3,), what=", an se(2) velocity (vx, vy, w)")
-    side = _check_side(side)
+    side = check_flow_side(side)
     vx, vy, w = xi[..., 0], xi[..., 1], xi[..., 2]
     # |w| tiny but nonzero overflows to radius = inf, which is the right limit: silence it
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
@@ -151,7 +151,7 @@ def se2_helices(thetadot, t, speed=1.0):
     (0, speed/thetadot)).
     """
     thetadot = as_array(thetadot, "thetadot", what=" (rotation rates)")
-    t = _time(t)
+    t = check_time(t)
     speed = as_array(speed, "speed", what=" (forward speed)")
     batch_shape(("thetadot", thetadot, 0), ("speed", speed, 0))
     xi = np.stack(np.broadcast_arrays(speed * np.ones_like(thetadot), np.zeros_like(thetadot),
@@ -182,7 +182,7 @@ class PuckVsArc:
 
 def puck_vs_arc(t, xi=(1.0, 1.0, 1.0)):
     """(R^2 x S^1, +) versus SE(2) geodesics from e with the same generator ``xi``, fig. 1.19."""
-    t = _time(t)
+    t = check_time(t)
     xi = as_array(xi, "xi", (3,), what=", a velocity (vx, vy, w)")
     if xi.ndim != 1:
         raise ValueError(f"xi must be a single vector of shape (3,); got shape {xi.shape}")
@@ -203,7 +203,7 @@ def rplus_geodesics(xi, t, g0=1.0):
     coincide because (R+, x) is commutative, (1.24)-(1.25).
     """
     xi = as_array(xi, "xi", what=" (generating velocities)")
-    t = _time(t)
+    t = check_time(t)
     g0 = check_positive(g0, "g0")
     if g0.ndim != 0:
         raise ValueError(f"g0 must be a single positive number (an element of (R+, x)); got shape {g0.shape}")

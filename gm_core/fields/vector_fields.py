@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from typing_extensions import override
 
 from gm_core.groups import check_group, matvec
 from gm_core.validation import as_array, check_int
@@ -19,7 +20,7 @@ SOLVE_IVP_OPTIONS = frozenset({"method", "rtol", "atol", "dense_output", "events
 
 __all__ = [
     "VectorField", "IntegralCurve", "integral_curve", "left_invariant_field", "right_invariant_field",
-    "FIELDS", "DEFAULT_RTOL", "DEFAULT_ATOL",
+    "FIELDS", "DEFAULT_RTOL", "DEFAULT_ATOL", "check_flow_side", "check_solve_ivp_kw", "check_time",
 ]
 
 #: solve_ivp defaults used by :func:`integral_curve` (override with rtol=..., atol=...).
@@ -30,7 +31,7 @@ DEFAULT_METHOD = "DOP853"
 MAX_EVALUATIONS = 50_000
 
 
-def _check_side(side):
+def check_flow_side(side):
     if not isinstance(side, str) or side not in ("left", "right"):  # a longer message than check_option's
         raise ValueError(
             f"side must be 'left' (left-invariant field, body velocity, (1.46)) or 'right' "
@@ -39,14 +40,14 @@ def _check_side(side):
     return side
 
 
-def _check_solve_ivp_kw(kw, where):
+def check_solve_ivp_kw(kw, where):
     unknown = sorted(set(kw) - SOLVE_IVP_OPTIONS)
     if unknown:
         raise TypeError(f"{where} got unknown keyword argument(s) {', '.join(unknown)}; "
                         f"solve_ivp options are {', '.join(sorted(SOLVE_IVP_OPTIONS))}")
 
 
-def _time(t, name="t"):
+def check_time(t, name="t"):
     t = as_array(t, name, what=" (times)")
     return t
 
@@ -84,6 +85,7 @@ class VectorField:
         self.vectorized = bool(vectorized)
         self.group = group
 
+    @override
     def __repr__(self):
         return f"VectorField({self.name!r}, dim={self.dim})"
 
@@ -227,7 +229,7 @@ def integral_curve(field, q0, t_span, t_eval=None, *, max_evaluations=MAX_EVALUA
             raise _TooManyEvaluations
         return X._eval(y.reshape(shape), t).ravel()
 
-    _check_solve_ivp_kw(solve_ivp_kw, "integral_curve")
+    check_solve_ivp_kw(solve_ivp_kw, "integral_curve")
     max_evaluations = check_int(max_evaluations, "max_evaluations", minimum=1, maximum=10**9)
     kw = {"method": DEFAULT_METHOD, "rtol": DEFAULT_RTOL, "atol": DEFAULT_ATOL}
     kw.update(solve_ivp_kw)
