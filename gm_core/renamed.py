@@ -15,6 +15,8 @@ import warnings
 from collections.abc import Sequence
 from typing import Any
 
+from typing_extensions import override
+
 #: Old module path -> the module that holds its contents now.
 MOVED_MODULES: dict[str, str] = {
     "gm_core.gaits": "gm_core.systems.gaits",
@@ -63,6 +65,7 @@ class _MovedFinder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
             return None
         return importlib.machinery.ModuleSpec(fullname, self)
 
+    @override
     def create_module(self, spec: importlib.machinery.ModuleSpec) -> types.ModuleType:
         return _OldModule(spec.name)
 

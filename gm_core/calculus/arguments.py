@@ -18,7 +18,6 @@ MAX_STEPS = 10**5
 
 
 def check_steps(n, name, minimum=1, maximum=MAX_STEPS):
-    """A count of steps, factors or terms: an int in [minimum, maximum] (at most MAX_STEPS by default)."""
     return check_int(n, name, minimum=minimum, maximum=maximum)
 
 

@@ -6,6 +6,7 @@ from collections.abc import Callable, Iterable
 from typing import Any
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.checks.answers import describe, is_starter
 from gm_core.checks.parts import Part, outcome_error
@@ -50,6 +51,7 @@ class ChoicePart(Part):
             return str(answer)[:500]
         raise Wrong(f"your answer is {describe(answer)}; give one of the option letters.")
 
+    @override
     def probes(self) -> list[Callable[[Any], Any]]:
         return [self._read]
 
@@ -69,6 +71,7 @@ class ChoicePart(Part):
                 return hits[0]
         return None
 
+    @override
     def judge(self, outcomes: list[dict[str, Any]]) -> str:
         o = outcomes[0] if outcomes else {"k": "crash", "m": ""}
         if o["k"] != "ok":

@@ -1,6 +1,9 @@
 """Checkers for the chapter 1 exercises (1.1-1.5): configuration spaces, lifted actions, exp."""
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 
 from gm_core.checks.answers import is_starter, is_sympy, to_numbers
@@ -8,11 +11,11 @@ from gm_core.checks.choice import ChoicePart
 from gm_core.checks.exercise import Exercise
 from gm_core.checks.exp_routes import (
     EXP_METHODS,
-    d_judge,
-    d_probes,
     exp_part,
     helix_inputs,
     helix_ref,
+    routes_judge,
+    routes_probes,
 )
 from gm_core.checks.parts import CustomPart, FunctionPart, TuplePart, outcome_error, probe_rng, rng_inputs
 from gm_core.checks.sandbox import Unattempted, Wrong
@@ -198,6 +201,13 @@ _PRODUCT_LABELS = ("T_g L_{g^-1} T_e L_g on (R+, x)", "T_g R_{g^-1} T_e R_g on (
                    "T_g L_{g^-1} T_e L_g on SE(2)", "T_g R_{g^-1} T_e R_g on SE(2)")
 
 
+def _product_probes() -> list[Callable[[Any], Any]]:
+    """One probe per product of part (c)."""
+    def probe_of(i: int) -> Callable[[Any], Any]:
+        return lambda ans: _product_probe(ans, i)
+    return [probe_of(i) for i in range(4)]
+
+
 def _product_probe(answer, i):
     """Student side: the i-th product as given: (symbols left in it, its numbers or None)."""
     if is_starter(answer):
@@ -275,7 +285,7 @@ ex1_3 = Exercise("1.3", "T_g L_{g^-1} = (T_e L_g)^-1 and T_g R_{g^-1} = (T_e R_g
     CustomPart(
         "c", "Show the identities: the four products, simplified: (T_g L_{g^-1} T_e L_g, "
              "T_g R_{g^-1} T_e R_g) on (R+, x), then the same two on SE(2)",
-        lambda: [lambda ans, i=i: _product_probe(ans, i) for i in range(4)], _product_judge,
+        _product_probes, _product_judge,
         hints=["Multiply the pairs from parts (a) and (b) in the order T_g L_{g^-1} times T_e L_g.",
                "sp.simplify(M1 * M2) on SE(2): the sines and cosines combine through "
                "cos^2 + sin^2 = 1."],
@@ -309,7 +319,7 @@ ex1_4 = Exercise("1.4", "The exponential map on SE(2)", [
         solution_text="pitch = 2 pi sign(w) (theta rises one full turn per loop), diameter = "
                       "2 |(vx, vy)| / |w|, xy arclength in unit time = |(vx, vy)|."),
     CustomPart(
-        "d", "Four numerical routes to exp: dict of functions f(xi, n)", d_probes, d_judge,
+        "d", "Four numerical routes to exp: dict of functions f(xi, n)", routes_probes, routes_judge,
         hints=["Euler on the left field: g <- g + (1/n) T_e L_g xi, n times. On the right field use "
                "T_e R_g instead.",
                "Cumulative product: multiply n copies of (I + xi_hat / n). Taylor: sum xi_hat^k / k! "

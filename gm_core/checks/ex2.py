@@ -9,6 +9,7 @@ import functools
 import inspect
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.chains.three_link import com_frame, com_frame_jacobians, three_link_jacobians
 from gm_core.checks import channel
@@ -438,9 +439,11 @@ class ShowThatPart(FunctionPart):
                         "simplified sympy matrix (a function would hide the simplification).")
         return sorted({str(x) for x in getattr(_as_matrix(answer), "free_symbols", ())})
 
+    @override
     def probes(self):
         return [self._symbols] + super().probes()
 
+    @override
     def judge(self, outcomes):
         if not outcomes:
             raise Wrong("the check could not evaluate your answer.")

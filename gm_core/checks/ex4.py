@@ -10,6 +10,7 @@ from __future__ import annotations
 import functools
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.checks import gait_samples
 from gm_core.checks.answers import describe, fmt_value, is_starter, to_numbers
@@ -205,6 +206,7 @@ class _CircleGait:
 
         return circle_gait(self.radius, self.centre)(t)
 
+    @override
     def __repr__(self):
         return f"circle_gait({self.radius}, {self.centre})"
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 import functools
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.checks import gait_samples
 from gm_core.checks.answers import fmt_value
@@ -79,6 +80,7 @@ class _Wave:
         g = travelling_wave(_JOINTS, self.amplitude, self.lag, period=1.0)
         return g(t)
 
+    @override
     def __repr__(self):
         return f"travelling_wave(3, {self.amplitude}, {self.lag}, period=1)"
 

@@ -7,6 +7,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
+from typing_extensions import override
+
 from gm_core.checks import store
 from gm_core.checks.display import show
 from gm_core.checks.store import FAILED
@@ -37,6 +39,7 @@ class _MissingPart:
 
     check = hint = solution = widget = _say
 
+    @override
     def __repr__(self) -> str:
         return f"<exercise {self.exercise.id} has no part {self.name!r} (course updated)>"
 
@@ -76,6 +79,7 @@ class Exercise:
             return self.parts[new]
         return _MissingPart(self, name)
 
+    @override
     def __repr__(self) -> str:
         return f"<exercise {self.id}: {self.title}; parts {', '.join(self.parts)}>"
 

@@ -127,13 +127,14 @@ def _d_call(answer, k, xi, n):
     return _se2_vec(out, None, nan_ok=True)
 
 
-def d_probes():
+def routes_probes():
     return [_d_structure] + [lambda ans, c=c: _d_call(ans, *c) for c in _d_calls()]
 
 
 def _d_close(got, want):
     d = np.asarray(got, dtype=float) - np.asarray(want, dtype=float)
-    d[2] = (d[2] + np.pi) % (2 * np.pi) - np.pi
+    if np.isfinite(d[2]):   # a NaN or infinite difference stays so, and fails
+        d[2] = wrap_angle(d[2])
     return bool(np.all(np.abs(d) <= 1e-9 + 1e-7 * np.abs(want)))
 
 
@@ -157,7 +158,7 @@ def _d_mistakes(k):
     return out
 
 
-def d_judge(outcomes):
+def routes_judge(outcomes):
     if not outcomes or outcomes[0]["k"] != "ok":
         outcome_error(outcomes[0] if outcomes else {"k": "crash", "m": ""}, "your dict", "")
     calls = _d_calls()

@@ -18,10 +18,12 @@ numpy only at import time; sympy is imported only when an answer is a sympy obje
 from __future__ import annotations
 
 import copy
+from abc import ABC, abstractmethod
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.checks import channel, store
 from gm_core.checks.answers import (
@@ -37,6 +39,7 @@ from gm_core.checks.display import show
 from gm_core.checks.exercise import Exercise
 from gm_core.checks.sandbox import Unattempted, Wrong, collect, decode_outcome, safe_text
 from gm_core.checks.store import FAILED, PASSED, UNATTEMPTED
+from gm_core.groups import wrap_angle
 
 
 class Verdict:
@@ -63,6 +66,7 @@ class Verdict:
         if not self._shown:
             self.show()
 
+    @override
     def __repr__(self) -> str:
         return f"Verdict({self.part}: {self.status} - {self.message})"
 
@@ -88,7 +92,7 @@ def outcome_error(o, what, label):
 
 
 # ------------------------------------------------------------------------------ parts
-class Part:
+class Part(ABC):
     """One checkable part. Subclasses implement :meth:`probes` and :meth:`judge`.
 
     Attributes used by the tests: ``reference`` (a correct answer), ``wrong`` (plausible wrong
@@ -124,14 +128,17 @@ class Part:
     def title(self) -> str:
         return f"exercise {self.id}"
 
+    @override
     def __repr__(self) -> str:
         return f"<check for exercise {self.id}: {self.prompt}>"
 
     # -- the two halves
+    @abstractmethod
     def probes(self) -> list[Callable[[Any], Any]]:
         """Functions probe(answer) -> plain data; the only code that touches the answer."""
         raise NotImplementedError
 
+    @abstractmethod
     def judge(self, outcomes: list[dict[str, Any]]) -> str:
         """Return the success message, or raise Wrong / Unattempted, from the probes' outcomes."""
         raise NotImplementedError
@@ -302,6 +309,7 @@ class FunctionPart(Part):
         got = to_numbers(out, f"the value {what} returned for {self._label(args)}")
         return match_shape(got, self.shape, f"the value {what} returned")
 
+    @override
     def probes(self) -> list[Callable[[Any], Any]]:
         def probe(args: tuple) -> Callable[[Any], Any]:
             return lambda ans: self.student_value(ans, args)
@@ -316,10 +324,12 @@ class FunctionPart(Part):
         diff = got - expected
         if self.angles and diff.ndim == 1:
             for i in self.angles:
-                diff[i] = (diff[i] + np.pi) % (2 * np.pi) - np.pi
+                if np.isfinite(diff[i]):   # a NaN or infinite difference stays so, and fails
+                    diff[i] = wrap_angle(diff[i])
         with np.errstate(all="ignore"):
             return bool(np.all(np.abs(diff) <= self.atol + self.rtol * np.abs(expected)))
 
+    @override
     def judge(self, outcomes: list[dict[str, Any]]) -> str:
         all_args = list(self.inputs())
         what = self.what
@@ -430,6 +440,7 @@ class TuplePart(Part):
                 raise Wrong(f"{label} is still None; the other components were given.")
         return values
 
+    @override
     def probes(self) -> list[Callable[[Any], Any]]:
         def probe(i: int, part: FunctionPart, args: tuple) -> Callable[[Any], Any]:
             return lambda ans: part.student_value(self._values(ans)[i], args)
@@ -438,6 +449,7 @@ class TuplePart(Part):
             out += [probe(i, part, args) for args in part.inputs()]
         return out
 
+    @override
     def judge(self, outcomes: list[dict[str, Any]]) -> str:
         if not outcomes:
             raise Wrong("the check could not evaluate your answer.")
@@ -466,9 +478,11 @@ class CustomPart(Part):
         self._make_probes, self._judge = make_probes, judge
         self.kind = kind
 
+    @override
     def probes(self) -> list[Callable[[Any], Any]]:
         return list(self._make_probes())
 
+    @override
     def judge(self, outcomes: list[dict[str, Any]]) -> str:
         return self._judge(outcomes)
 

@@ -61,7 +61,7 @@ from gm_core.checks.proctree import Adoption, become_subreaper, how_it_ended, ki
 try:
     import resource
 except ImportError:  # pragma: no cover - Windows
-    resource = None
+    resource = None  # type: ignore[assignment]  # checked before every use
 
 #: Seconds each probe may take before the child is stopped; change with set_time_limit().
 TIME_LIMIT = [5.0]

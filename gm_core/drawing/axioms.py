@@ -8,6 +8,7 @@ The verdicts and counterexamples are mathematics in :mod:`gm_core.groups.axioms`
 from __future__ import annotations
 
 from matplotlib.patches import Rectangle
+from typing_extensions import override
 
 from gm_core.drawing.toolkit.style import PALETTE, PathText, Scene, text_panel
 from gm_core.groups.axioms import GROUP_AXIOMS, STRUCTURES, check_axioms, try_elements
@@ -35,6 +36,7 @@ class GroupOrNotScene(Scene):
     FIGSIZE = (8.6, 3.9)
     MARGINS = dict(left=0.01, right=0.99, bottom=0.01, top=0.99)
 
+    @override
     def decorate(self):
         (ax,) = self.axes
         text_panel(ax)
@@ -43,6 +45,7 @@ class GroupOrNotScene(Scene):
                  weight="bold", color="0.35")
         self._cache = {}
 
+    @override
     def create(self):
         (ax,) = self.axes
         self.badges, self.marks, self.names, self.whys, self.tries = [], [], [], [], []
@@ -59,6 +62,7 @@ class GroupOrNotScene(Scene):
                                        color=PALETTE["blue"], family="monospace"))
         self.title = PathText(ax, 0.012, 0.955, "", size=10.5, weight="bold", va="top")
 
+    @override
     def set(self, structure="(ℤ, ×)", a=2.0, b=3.0, c=-1.0):
         S = find_structure(structure)
         if S.name not in self._cache:

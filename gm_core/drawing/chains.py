@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.patches import Polygon
+from typing_extensions import override
 
 from gm_core.chains import chain as C
 from gm_core.chains.arms import rp_arm_body_jacobians
@@ -21,7 +22,7 @@ from gm_core.groups import SE2
 
 __all__ = ["link_outline", "ChainArtist", "ArrowsArtist", "draw_chain_naive", "draw_accessible_manifold",
            "ArmScene", "OffsetRPArmScene", "MobileChainScene", "BetaFrameScene",
-           "ThreeLinkVelocityScene", "JacobianMethodsScene"]
+           "ThreeLinkVelocityScene", "JacobianMethodsScene", "ThreeLinkScene"]
 
 
 def link_outline(p, q, width):
@@ -176,14 +177,17 @@ class _ChainScene(Scene):
 
     figsize = (5.5, 4.5)
 
+    @override
     def make_figure(self):
         fig, ax = new_figure(figsize=self.figsize)
         self.ax = ax
         return fig, [ax]
 
+    @override
     def decorate(self):
         square_axes(self.ax, self.lim)
 
+    @override
     def replot(self, **values):
         """Naive baseline: clear and plot the chain from scratch (see :func:`draw_chain_naive`)."""
         self.ax.clear()
@@ -205,6 +209,7 @@ class ArmScene(_ChainScene):
         self.names, self.frames_shown, self.lim = tuple(names), tuple(frames_shown), float(lim)
         super().__init__(**options)
 
+    @override
     def create(self):
         ax = self.ax
         self.art = ChainArtist(ax, self.chain.n_links, frames_shown=self.frames_shown, pivot=True,
@@ -221,6 +226,7 @@ class ArmScene(_ChainScene):
         J = self.chain.jacobians(q, method="body")["h"][-1]
         return fr, J @ qd, J
 
+    @override
     def set(self, **values):
         fr, v, J = self.compute(**values)
         self.art.set(fr)
@@ -242,6 +248,7 @@ class ArmScene(_ChainScene):
 class OffsetRPArmScene(ArmScene):
     """The offset rotary-prismatic arm (fig. 2.10, exercise 2.2), also checked by its closed form."""
 
+    @override
     def compute(self, **values):
         fr, v, J = super().compute(**values)
         q = np.array([values[n] for n in self.names])
@@ -263,6 +270,7 @@ class MobileChainScene(_ChainScene):
         self.lim = 0.75 * sum(self.lengths) + 0.5
         super().__init__(**options)
 
+    @override
     def create(self):
         self.art = ChainArtist(self.ax, self.n, frames_shown=("f", "g", "h"), frame_length=0.25)
         self.body = FrameArtist(self.ax, length=0.5, colors=("darkred", "darkgreen"), zorder=7)
@@ -282,6 +290,7 @@ class MobileChainScene(_ChainScene):
         b = int(values["base_link"])
         return self.chains[b].frames(self.shape(values), g), g, b
 
+    @override
     def set(self, **values):
         fr, g, b = self.compute(**values)
         self.art.set(fr)
@@ -306,6 +315,7 @@ class ThreeLinkScene(_ChainScene):
         self.lim = 0.75 * sum(self.lengths)
         super().__init__(**options)
 
+    @override
     def create(self):
         self.art = ChainArtist(self.ax, 3, frames_shown=("g",), frame_length=0.25, base_link=1)
 
@@ -313,6 +323,7 @@ class ThreeLinkScene(_ChainScene):
 class BetaFrameScene(ThreeLinkScene):
     """A body frame g = g_2 beta placed by values (fig. 2.7) or at the centre of mass (fig. 2.9)."""
 
+    @override
     def create(self):
         super().create()
         self.beta_art = FrameArtist(self.ax, length=0.5, colors=("k", PALETTE["sky"]), zorder=8)
@@ -328,6 +339,7 @@ class BetaFrameScene(ThreeLinkScene):
             beta = np.array([values["beta_x"], values["beta_y"], values["beta_theta"]])
         return fr, beta
 
+    @override
     def set(self, **values):
         fr, beta = self.compute(**values)
         self.art.set(fr)
@@ -345,6 +357,7 @@ class BetaFrameScene(ThreeLinkScene):
 class ThreeLinkVelocityScene(ThreeLinkScene):
     """Body velocities of the three links from (xi, alpha_dot) through the corrected (2.57)-(2.59)."""
 
+    @override
     def create(self):
         super().create()
         self.arrows = ArrowsArtist(self.ax, 3, color=PALETTE["purple"], scale=0.5, label="link velocity (x 0.5)")
@@ -358,6 +371,7 @@ class ThreeLinkVelocityScene(ThreeLinkScene):
         xis = np.stack([J @ u for J in three_link_jacobians(a, self.lengths)])
         return fr, xis, SE2.body_to_world(fr["g"], xis)
 
+    @override
     def set(self, **values):
         fr, xis, world = self.compute(**values)
         self.art.set(fr)
@@ -383,6 +397,7 @@ class JacobianMethodsScene(_ChainScene):
         self._at = None
         super().__init__(**options)
 
+    @override
     def create(self):
         ax = self.ax
         self.art = ChainArtist(ax, self.chain.n_joints, frames_shown=("h",), pivot=True, frame_length=0.25)
@@ -403,6 +418,7 @@ class JacobianMethodsScene(_ChainScene):
             self._at = key
         return self._fr, {m: J @ qd for m, J in self._J.items()}
 
+    @override
     def set(self, **values):
         fr, v = self.compute(**values)
         self.art.set(fr)

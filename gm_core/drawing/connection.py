@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.patches import Rectangle
+from typing_extensions import override
 
 from gm_core.drawing.motion import SystemArtist, VelocityArtist, draw_system_naive, style_world_axes, system_extent
 from gm_core.drawing.toolkit.primitives import SingularFlag
@@ -376,6 +377,7 @@ class FieldGridScene(Scene):
     window): ``self.field_axes`` (the three connection rows over shape space) and ``self.ax``
     (the world)."""
 
+    @override
     def make_figure(self):
         system = getattr(self, "system", None)
         fig, self.field_axes, self.ax = field_grid_axes(limits=getattr(system, "shape_limits", None))
@@ -414,6 +416,7 @@ class ConnectionFieldScene(FieldGridScene):
         self.system, self.n, self.velocity_scale = system, n, velocity_scale
         super().__init__(**options)
 
+    @override
     def decorate(self):
         s = self.system
         for i, ax in enumerate(self.field_axes):
@@ -423,6 +426,7 @@ class ConnectionFieldScene(FieldGridScene):
         self.ax.set_title("body at this shape; arrow: body velocity")
         thin_labels(self.field_axes, self.ax, body_labels=False)
 
+    @override
     def create(self):
         s = self.system
         self.fields = [ConnectionFieldArtist(ax, s, i, n=self.n, color="0.35") for i, ax in enumerate(self.field_axes)]
@@ -432,6 +436,7 @@ class ConnectionFieldScene(FieldGridScene):
         self.flag = SingularFlag(self.ax)
         self.text = readout(self.ax, 0.02, 0.02)
 
+    @override
     def set(self, alpha1=0.0, alpha2=0.0, alpha1_dot=1.0, alpha2_dot=0.0):
         r = np.array([alpha1, alpha2])
         rd = np.array([alpha1_dot, alpha2_dot])
@@ -450,6 +455,7 @@ class ConnectionFieldScene(FieldGridScene):
             self.vel.set(np.zeros(3), self.xi)
             self.text.set_text(_fmt(self.xi))
 
+    @override
     def replot(self, alpha1=0.0, alpha2=0.0, alpha1_dot=1.0, alpha2_dot=0.0):
         r = np.array([alpha1, alpha2])
         rd = np.array([alpha1_dot, alpha2_dot])

@@ -13,6 +13,7 @@ import html
 import matplotlib
 import numpy as np
 from matplotlib.patches import Patch
+from typing_extensions import override
 
 from gm_core.drawing.connection import ConnectionFieldArtist, shape_grid, style_shape_axes
 from gm_core.drawing.motion import SystemArtist
@@ -192,11 +193,13 @@ class GaitStokesScene(Scene):
         self.frames = frames_of(self.system, limits)
         super().__init__(**options)
 
+    @override
     def make_figure(self):
         fig, (self.ax, self.axb) = new_figure(1, 2, figsize=(9, 3.3), layout="compressed",
                                               gridspec_kw=dict(width_ratios=[1.1, 1]))
         return fig, [self.ax, self.axb]
 
+    @override
     def decorate(self):
         _map_axes(self.ax, self.system, self.limits)
         axb = self.axb
@@ -215,6 +218,7 @@ class GaitStokesScene(Scene):
 
     COLORS = ("k", PALETTE["vermillion"], PALETTE["grey"])
 
+    @override
     def create(self):
         self.map = CurvatureMapArtist(self.ax, self.frames["middle link"], 0, limits=self.limits)
         self._map_key = ("middle link", 0)
@@ -225,6 +229,7 @@ class GaitStokesScene(Scene):
                      for k, (name, color) in enumerate(zip(Estimates.NAMES, self.COLORS))}
         self.estimates, self.table = None, ""
 
+    @override
     def set(self, c1=0.0, c2=0.0, a=1.0, b=0.6, tilt=0.78, bend=0.0, row=0, frame="middle link"):
         if frame not in self.frames:
             raise ValueError(f"frame must be one of {list(self.frames)}; got {frame!r}")
@@ -266,10 +271,12 @@ class FrameFieldsScene(Scene):
         self.frames = frames_of(self.system, limits)
         super().__init__(**options)
 
+    @override
     def decorate(self):
         for i, ax in enumerate(self.axes):
             style_shape_axes(ax, self.system, f"row {ROWS[i]} of −A", limits=self.limits)
 
+    @override
     def create(self):
         base = self.frames["middle link"]
         self.fields = [ConnectionFieldArtist(ax, base, i, limits=self.limits) for i, ax in enumerate(self.axes)]
@@ -278,6 +285,7 @@ class FrameFieldsScene(Scene):
         self.grid = np.stack([a1, a2], -1)                   # the arrows' shapes
         self.rms = None
 
+    @override
     def set(self, frame="middle link"):
         if frame not in self.frames:
             raise ValueError(f"frame must be one of {list(self.frames)}; got {frame!r}")

@@ -8,6 +8,7 @@ from __future__ import annotations
 import warnings
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.connection import (
     ROW_LABELS,
@@ -71,6 +72,7 @@ class GaitScene(FieldGridScene):
         self.on_edit = None
         super().__init__(**options)
 
+    @override
     def decorate(self):
         s = self.system
         self.fields = []
@@ -80,6 +82,7 @@ class GaitScene(FieldGridScene):
             draw_singular_set(ax, s)
         thin_labels(self.field_axes, self.ax)
 
+    @override
     def create(self):
         s = self.system
         self.paths, self.handles = [], []
@@ -173,6 +176,7 @@ class GaitScene(FieldGridScene):
         # the motion in the upper part of the window: the readout's two lines below it stay clear
         self.view.set((lo + hi) / 2 - [0.0, 0.17 * half], half)
 
+    @override
     def set(self, family="circle", amplitude=1.0, center1=0.0, center2=0.0, aspect=0.6, angle=0.0, frame=None):
         v = dict(family=family, amplitude=amplitude, center1=center1, center2=center2, aspect=aspect,
                  angle=angle, frame=frame)
@@ -259,6 +263,7 @@ class GaitScene(FieldGridScene):
         """A kernel-free animation (FuncAnimation) of the current gait in the world: see :func:`animate_gait`."""
         return animate_gait(self.system, self.gait(self._values), n_frames=n_frames, cycles=cycles, row=row)
 
+    @override
     def replot(self, family="circle", amplitude=1.0, center1=0.0, center2=0.0, aspect=0.6, angle=0.0, frame=None):
         self._use_frame(frame)
         v = dict(family=family, amplitude=amplitude, center1=center1, center2=center2, aspect=aspect, angle=angle)

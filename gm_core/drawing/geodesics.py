@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.collections import LineCollection
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
+from typing_extensions import override
 
 from gm_core.calculus import exp_history
 from gm_core.drawing.groups import BODY
@@ -16,7 +17,6 @@ from gm_core.drawing.toolkit.primitives import BodyArtist, FrameArtist, TrailArt
 from gm_core.drawing.toolkit.style import (
     MATH_PT,
     PALETTE,
-    TWO_PI,
     PathText,
     Scene,
     arrow,
@@ -32,6 +32,7 @@ from gm_core.drawing.toolkit.style import (
 )
 from gm_core.fields import puck_vs_arc, rplus_geodesics, se2_helices, se2_helix
 from gm_core.groups import SE2, RPlus
+from gm_core.groups.base import TWO_PI
 from gm_core.manifolds.spaces import cylinder_xyz, sphere_xyz, wrap_segments
 from gm_core.manifolds.tangent import cylinder_geodesic, great_circle, sphere_tangent_basis
 
@@ -53,9 +54,11 @@ class SurfaceGeodesicsScene(Scene):
     H = 3.0            # the drawn piece of the cylinder: heights |s| <= H (it goes on forever)
     N = 300
 
+    @override
     def make_figure(self):
         return axes_row((9, 3.6), ("3d", None, "3d"), left=0.0, right=1.0, bottom=0.12, top=0.9, wspace=0.08)
 
+    @override
     def decorate(self):
         ax_c, ax_f, ax_s = self.axes
         A, S = np.meshgrid(np.linspace(0, TWO_PI, 19), np.linspace(-self.H, self.H, 7))
@@ -84,6 +87,7 @@ class SurfaceGeodesicsScene(Scene):
         ax_s.view_init(elev=18, azim=-60)
         title(ax_s, "sphere: a great circle")
 
+    @override
     def create(self):
         ax_c, ax_f, ax_s = self.axes
         col = PALETTE["blue"]
@@ -98,6 +102,7 @@ class SurfaceGeodesicsScene(Scene):
         (self.sph_start,) = ax_s.plot([], [], [], "o", color="k", ms=5, zorder=4)
         self.readout = readout(ax_f, 0.07, 1.0, "", size=7.5, va="top", offset=(0, -4))
 
+    @override
     def set(self, heading_deg=15.0, length=3 * np.pi):
         h = np.deg2rad(heading_deg)
         t = np.linspace(0.0, length, self.N)
@@ -146,9 +151,11 @@ class HelixScene(Scene):
     FAMILY = (-2.0, -1.0, -0.5, 0.5, 1.0, 2.0)
     T = np.linspace(-np.pi, np.pi, 121)
 
+    @override
     def make_figure(self):
         return axes_row((9, 4.2), ("3d", None), left=0.0, right=0.98, bottom=0.04, top=0.9, wspace=0.05)
 
+    @override
     def decorate(self):
         ax3, ax2 = self.axes
         plain_3d(ax3, lim=3.2, labels=("x", "y", "θ"))
@@ -162,6 +169,7 @@ class HelixScene(Scene):
         ax3.add_collection3d(Line3DCollection(segs3, colors="0.7", linewidths=0.8))
         ax2.add_collection(LineCollection([p[:, :2] for p in paths], colors="0.75", linewidths=0.8))
 
+    @override
     def create(self):
         ax3, ax2 = self.axes
         (self.helix,) = ax3.plot([], [], [], color=PALETTE["vermillion"], lw=2.2)
@@ -171,6 +179,7 @@ class HelixScene(Scene):
         self.title3 = PathText(ax3, 0.5, 0.98, "", size=9, ha="center", va="top", coords="axes")
         self.info = PathText(ax2, 0.03, 0.03, "", size=8, va="bottom", coords="axes")
 
+    @override
     def set(self, thetadot=1.0):
         paths, _ = se2_helices(np.array([thetadot]), self.T)
         self.path = paths[0]
@@ -199,11 +208,13 @@ class PuckArcScene(Scene):
 
     T_MAX = 2 * np.pi
 
+    @override
     def make_figure(self):
         fig, axes = new_figure(1, 3, figsize=(10, 3.6), gridspec_kw=dict(width_ratios=[1, 1, 1.1]))
         margins(fig, left=0.02, right=0.98, bottom=0.15, top=0.88, wspace=0.12)
         return fig, list(axes)
 
+    @override
     def decorate(self):
         a, b, c = self.axes
         plane(a, 4.5)
@@ -217,6 +228,7 @@ class PuckArcScene(Scene):
         yticks(c, [-1, 0, 1], ["−1", "0", "1"])
         title(c, "forward speed seen by the body")
 
+    @override
     def create(self):
         a, b, c = self.axes
         self.paths = [TrailArtist(ax, color=col, lw=1.2, alpha=0.6) for ax, col in
@@ -230,6 +242,7 @@ class PuckArcScene(Scene):
         (self.now,) = c.plot([], [], color="k", lw=1)
         self._w = None
 
+    @override
     def set(self, t=1.0, w=1.0):
         if w != self._w:
             ts = np.linspace(0, self.T_MAX, 181)
@@ -274,6 +287,7 @@ class RPlusGeodesicScene(Scene):
     FIGSIZE = (6.4, 4.2)
     MARGINS = dict(left=0.15, right=0.97, bottom=0.14, top=0.9)
 
+    @override
     def decorate(self):
         (ax,) = self.axes
         ax.set_xlim(0, 3)
@@ -286,6 +300,7 @@ class RPlusGeodesicScene(Scene):
         g, _ = rplus_geodesics(np.array([-1.0, -0.5, 0.5, 1.0]), self.T)
         ax.add_collection(LineCollection([np.c_[self.T, gi] for gi in g], colors="0.8", linewidths=1))
 
+    @override
     def create(self):
         (ax,) = self.axes
         (self.curve,) = ax.plot([], [], color=PALETTE["vermillion"], lw=2.2)
@@ -295,6 +310,7 @@ class RPlusGeodesicScene(Scene):
         self.title = title(ax)
         self.info = PathText(ax, 0.03, 0.93, "", size=8, va="top", coords="axes")
 
+    @override
     def set(self, xi=1.0):
         g, g_dot = rplus_geodesics(np.array(xi), self.T)
         self.g = g
@@ -330,6 +346,7 @@ class ExpFourWaysScene(Scene):
     NCOLS = 2
     MARGINS = dict(left=0.08, right=0.98, bottom=0.11, top=0.9, wspace=0.15)
 
+    @override
     def decorate(self):
         a, b = self.axes
         a.set_xlim(-0.2, 6.3)
@@ -349,6 +366,7 @@ class ExpFourWaysScene(Scene):
         b.axvline(0, color="0.85", lw=0.8, zorder=0)
         title(b, "intermediate values in the xy plane", size=MATH_PT)
 
+    @override
     def create(self):
         a, b = self.axes
         self.err_lines, self.err_marks, self.path_lines = {}, {}, {}
@@ -362,6 +380,7 @@ class ExpFourWaysScene(Scene):
         self.info = PathText(b, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes", family="monospace")
         self._key = None
 
+    @override
     def set(self, thetadot=1.0, n=8, side="left"):
         n = int(n)
         xi = np.array([1.0, 0.0, thetadot])

@@ -7,12 +7,14 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
+from typing_extensions import override
 
 from gm_core.drawing.toolkit.axes import plane
 from gm_core.drawing.toolkit.primitives import BodyArtist, FrameArtist
-from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, TWO_PI, ArrowSet, PathText, Scene, arrow, set_arrows, title
+from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, ArrowSet, PathText, Scene, arrow, set_arrows, title
 from gm_core.groups import S1, SE2, R2xS1
 from gm_core.groups.axioms import powers
+from gm_core.groups.base import TWO_PI
 
 __all__ = ["BODY", "SlideRuleScene", "CircleIsoScene",
            "LeftRightActionScene", "ForwardLeftScene", "BodyPointsScene"]
@@ -48,6 +50,7 @@ class SlideRuleScene(Scene):
         segs = np.stack([np.stack([x, np.full_like(x, y0)], -1), np.stack([x, y0 + length], -1)], 1)
         return vals, x, segs, major
 
+    @override
     def decorate(self):
         (ax,) = self.axes
         ax.set_xlim(-0.08, 2.05)  # room for the scale letter "D" left of 1
@@ -63,6 +66,7 @@ class SlideRuleScene(Scene):
         vals, x, segs, major = self._ticks(1, 0.0, True)
         self._c_vals, self._c_x, self._c_segs, self._c_major = vals, x, segs, major
 
+    @override
     def create(self):
         (ax,) = self.axes
         self.slide = LineCollection(self._c_segs, colors=PALETTE["blue"], linewidths=1)
@@ -76,6 +80,7 @@ class SlideRuleScene(Scene):
         self.add_b = arrow(ax, color=PALETTE["green"], width=0.006)
         self.readout = PathText(ax, 1.0, 0.75, "", size=9, ha="center")
 
+    @override
     def set(self, a=2.0, b=3.0):
         la, lb = np.log10(a), np.log10(b)
         segs = self._c_segs.copy()
@@ -105,6 +110,7 @@ class CircleIsoScene(Scene):
     NCOLS = 2
     MARGINS = dict(left=0.01, right=0.99, bottom=0.02, top=0.88, wspace=0.04)
 
+    @override
     def decorate(self):
         t = np.linspace(0, TWO_PI, 120)
         for ax in self.axes:
@@ -116,6 +122,7 @@ class CircleIsoScene(Scene):
         title(self.axes[0], r"circle $(\mathbb{S}^1$, + mod 1): add cycles", size=MATH_PT)
         title(self.axes[1], r"SO(2): multiply matrices, act on $e_1$", size=MATH_PT)
 
+    @override
     def create(self):
         ax_s, ax_r = self.axes
         self.pts = ax_s.scatter([0, 0, 0], [0, 0, 0], c=[PALETTE["blue"], PALETTE["orange"], PALETTE["vermillion"]],
@@ -131,6 +138,7 @@ class CircleIsoScene(Scene):
         self.names = [[PathText(ax, 0, 0, n, size=MATH_PT, color=c, ha="center", va="center")
                        for n, c in zip(names, colors)] for ax in (ax_s, ax_r)]
 
+    @override
     def set(self, a1=0.2, a2=0.35):
         G = self.G
         g1, g2 = np.array([a1]), np.array([a2])
@@ -166,6 +174,7 @@ class LeftRightActionScene(Scene):
     NCOLS = 2
     MARGINS = dict(left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
 
+    @override
     def decorate(self):
         for ax in self.axes:
             plane(ax, self.LIM)
@@ -173,6 +182,7 @@ class LeftRightActionScene(Scene):
         title(self.axes[0], "left action: hg (fig. 1.8)")
         title(self.axes[1], "right action: gh (fig. 1.9)")
 
+    @override
     def create(self):
         ax_l, ax_r = self.axes
         self.g_body = [BodyArtist(ax, BODY, facecolor="0.6") for ax in self.axes]
@@ -199,6 +209,7 @@ class LeftRightActionScene(Scene):
         for name in [*self.names["g"], self.names["hg"], self.names["h"], self.names["gh"]]:
             name.collection.set_clip_on(True)     # a body near the edge never pushes its name outside
 
+    @override
     def set(self, x=1.5, y=0.5, theta=0.5, u=-1.0, v=1.0, beta=0.9):
         g = np.array([x, y, theta])
         h = np.array([u, v, beta])
@@ -246,12 +257,14 @@ class ForwardLeftScene(Scene):
     NCOLS = 2
     MARGINS = dict(left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
 
+    @override
     def decorate(self):
         for ax in self.axes:
             plane(ax, self.LIM)
         title(self.axes[0], r"$(\mathbb{R}^2 \times \mathbb{S}^1, +)$:  g + g + …", size=MATH_PT)
         title(self.axes[1], "SE(2):  g ∘ g ∘ …", size=MATH_PT)
 
+    @override
     def create(self):
         self.bodies, self.frames, self.steps, self.texts = [], [], [], []
         for ax, color in zip(self.axes, (PALETTE["purple"], PALETTE["blue"])):
@@ -279,6 +292,7 @@ class ForwardLeftScene(Scene):
         side = "to the left" if d[1] > 1e-9 else ("to the right" if d[1] < -1e-9 else "")
         return " and ".join(w for w in (fwd, side) if w) or "no move"
 
+    @override
     def set(self, x=1.0, y=1.0, theta=np.pi / 2, n=2):
         n = int(n)
         g = np.array([x, y, theta])
@@ -308,11 +322,13 @@ class BodyPointsScene(Scene):
     FIGSIZE = (5, 4.4)
     MARGINS = dict(left=0.1, right=0.98, bottom=0.1, top=0.9)
 
+    @override
     def decorate(self):
         (ax,) = self.axes
         plane(ax, 3.0)
         FrameArtist(ax, (0, 0, 0), length=0.6, colors=("0.55", "0.55"), zorder=2)
 
+    @override
     def create(self):
         (ax,) = self.axes
         self.body = BodyArtist(ax, self.OUTLINE, facecolor=PALETTE["blue"], alpha=0.3)
@@ -321,6 +337,7 @@ class BodyPointsScene(Scene):
         (self.point,) = ax.plot([], [], "o", color=PALETTE["vermillion"], ms=7, zorder=7)
         self.text = title(ax, size=8)
 
+    @override
     def set(self, x=0.5, y=0.3, theta=0.6, px=0.6, py=0.3):
         g = np.array([x, y, theta])
         pb = np.array([px, py])

@@ -9,6 +9,7 @@ numbers in a text-only axes on the right (:func:`plane_and_notes`).
 from __future__ import annotations
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.chains import chain as C
 from gm_core.chains.holonomic import pin_constraints, pinned_pair
@@ -61,9 +62,11 @@ class PinnedBodiesScene(Scene):
 
     FIGSIZE = (5.0, 4.6)
 
+    @override
     def decorate(self):
         square_axes(self.ax, self.lim)
 
+    @override
     def create(self):
         ax = self.ax
         self.bodies = [BodyArtist(ax, BODY_OUTLINE, facecolor=c, alpha=0.45, zorder=2) for c in self.COLORS]
@@ -82,6 +85,7 @@ class PinnedBodiesScene(Scene):
             g = np.stack([g1, np.array([values["x2"], values["y2"], values["theta2"]], float)])
         return g, pin_constraints(g[0], g[1])
 
+    @override
     def set(self, **values):
         g, f = self.compute(**values)
         pinned = bool(values.get("pinned", False))
@@ -122,15 +126,18 @@ class RelativePoseScene(Scene):
         self.chain = C.Chain("RR", lengths)
         super().__init__(**options)
 
+    @override
     def make_figure(self):
         fig, self.ax, self.notes = plane_and_notes(figsize=(8.4, 4.4))
         return fig, [self.ax, self.notes]
 
+    @override
     def decorate(self):
         square_axes(self.ax, self.lim)
         self.ax.set_xlim(-self.lim + 0.6, self.lim + 0.6)
         self.notes.set_axis_off()
 
+    @override
     def create(self):
         ax = self.ax
         self.art = ChainArtist(ax, 2, width=0.1, frames_shown=("g", "h"), pivot=True, frame_length=0.35,
@@ -159,6 +166,7 @@ class RelativePoseScene(Scene):
         swapped = C.relative_pose(b, a)                                   # g_{b,a}
         return P, rel, chained, swapped
 
+    @override
     def set(self, **values):
         P, rel, chained, swapped = self.compute(**values)
         self.P, self.rel, self.chained, self.swapped = P, rel, chained, swapped
@@ -235,15 +243,18 @@ class BetaVelocityScene(ThreeLinkScene):
            "thin blue: link 2's velocity; arrows: world velocity × {SCALE}")
     COLORS = {"carried": PALETTE["blue"], "shape": PALETTE["orange"], "body": "k"}
 
+    @override
     def make_figure(self):
         fig, self.ax, self.notes = plane_and_notes(figsize=self.figsize)
         return fig, [self.ax, self.notes]
 
+    @override
     def decorate(self):
         self.lim = 0.55 * sum(self.lengths)
         square_axes(self.ax, self.lim)
         self.notes.set_axis_off()
 
+    @override
     def create(self):
         ax = self.ax
         self.art = ChainArtist(ax, 3, frames_shown=(), base_link=1, colors=["0.75", PALETTE["sky"], "0.75"])
@@ -273,6 +284,7 @@ class BetaVelocityScene(ThreeLinkScene):
         parts = beta_frame_velocity(beta, dbeta, xi, ad)
         return a, ad, xi, beta, parts
 
+    @override
     def set(self, **values):
         a, ad, xi, beta, parts = self.compute(**values)
         fr = self.chain.frames(a)                     # middle link at e: g = g_2 beta = beta
@@ -299,5 +311,6 @@ class BetaVelocityScene(ThreeLinkScene):
             text = text.replace("{" + k + "}", v)
         self.text.set_text(text)
 
+    @override
     def replot(self, **values):
         Scene.replot(self, **values)

@@ -9,6 +9,7 @@ head to tail and their sum grows towards J q_dot (grey), reached at the last ste
 from __future__ import annotations
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.chains import chain as C
 from gm_core.drawing.chains import ChainArtist
@@ -46,14 +47,17 @@ class JacobianStepScene(Scene):
         self.lim = 0.55 * float(self.chain.lengths.sum() + 1.0) + 0.9
         super().__init__(**options)
 
+    @override
     def make_figure(self):
         fig, self.ax, self.notes = plane_and_notes(figsize=(8.6, 4.2), ratio=(1, 1))
         return fig, [self.ax, self.notes]
 
+    @override
     def decorate(self):
         square_axes(self.ax, self.lim, center=(0.4, 0.4))
         self.notes.set_axis_off()
 
+    @override
     def create(self):
         ax, n = self.ax, self.n
         colors = [COLUMN_COLORS[j % len(COLUMN_COLORS)] for j in range(n)]
@@ -78,6 +82,7 @@ class JacobianStepScene(Scene):
         full = self.chain.jacobians(q, method="body", velocity="body")["h"][-1] @ qd
         return frames, cols * qd[:, None, None], full
 
+    @override
     def set(self, **values):
         frames, cols, full = self.compute(**values)
         n, k = self.n, int(values["step"])

@@ -17,6 +17,7 @@ The scenes compute by calling the math (:mod:`gm_core.systems`, :mod:`gm_core.sy
 from __future__ import annotations
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.connection import ROW_LABELS, ConnectionFieldArtist, math_title, style_shape_axes
 from gm_core.drawing.curvature import CurvatureMapArtist
@@ -97,11 +98,13 @@ class ChainSliceScene(Scene):
             return
         self.slice = shape_slice(self.system, None, (i, j), limits=self.limits)
 
+    @override
     def decorate(self):
         ax0, ax1, ax2 = self.axes
         style_world_axes(ax0, 0.62 * self.total_length)
         title(ax0, "the chain: slice joints bent (dots)", size=MATH_PT)
 
+    @override
     def create(self):
         self._build(4, "low_re", 1, 2)
         ax0, ax1, ax2 = self.axes
@@ -116,6 +119,7 @@ class ChainSliceScene(Scene):
         self.titles = (title(ax1, size=MATH_PT), title(ax2, size=MATH_PT))
         self._key = None
 
+    @override
     def set(self, links=4, physics="low_re", row=2, axis1=1, axis2=2):
         links = check_int(links, "links", minimum=3, maximum=7, what=" (a slice needs two joints)")
         physics = check_option(PHYSICS_LABELS.get(physics, physics), "physics", tuple(PHYSICS_LABELS.values()))
@@ -189,10 +193,12 @@ class WaveGaitScene(Scene):
         self.total_length, self.taper = total_length, taper
         super().__init__(**options)
 
+    @override
     def decorate(self):
         _gait_and_motion_axes(self.axes, self.total_length, "the gait: one wave along the body",
                               "one cycle: start (faint) and end")
 
+    @override
     def create(self):
         ax0, ax1 = self.axes
         self.lines = [ax0.plot([], [], color=c, lw=1.8)[0] for c in JOINT_COLOURS[:6]]
@@ -212,6 +218,7 @@ class WaveGaitScene(Scene):
         # physics of design_chain has a cost metric (drag or kinetic energy).
         self.efficiency = efficiency(self.system, self.gait, check=False, samples=1024, displacement=self.g)
 
+    @override
     def set(self, links=4, physics="low_re", amplitude=0.8, lag=1.2):
         links = check_int(links, "links", minimum=2, maximum=7)
         physics = check_option(PHYSICS_LABELS.get(physics, physics), "physics", tuple(PHYSICS_LABELS.values()))
@@ -249,10 +256,12 @@ class OptimalGaitScene(Scene):
         self._results = {}
         super().__init__(**options)
 
+    @override
     def decorate(self):
         _gait_and_motion_axes(self.axes, self.total_length, "the gait: start wave (dashed), best (solid)",
                               "one cycle of the start wave")
 
+    @override
     def create(self):
         ax0, ax1 = self.axes
         colours = JOINT_COLOURS[:self.MAX_JOINTS]
@@ -268,6 +277,7 @@ class OptimalGaitScene(Scene):
     def _key(links, physics, taper, order):
         return (int(links), physics, round(float(taper), 6), int(order))
 
+    @override
     def set(self, links=4, physics="low_re", taper=0.0, order=1):
         links = check_int(links, "links", minimum=3, maximum=self.MAX_JOINTS + 1)
         physics = check_option(PHYSICS_LABELS.get(physics, physics), "physics", tuple(PHYSICS_LABELS.values()))

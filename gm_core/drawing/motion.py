@@ -7,6 +7,7 @@ The physics (poses of the parts, trajectories) lives in :mod:`gm_core.systems` a
 from __future__ import annotations
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.toolkit.axes import square_axes
 from gm_core.drawing.toolkit.primitives import BodyArtist, FrameArtist, SingularFlag, TrailArtist
@@ -253,9 +254,11 @@ class CarScene(Scene):
 
     FIGSIZE = (5.5, 5.0)
 
+    @override
     def decorate(self):
         style_world_axes(self.ax, self.lim)
 
+    @override
     def create(self):
         ax = self.ax
         self.trail = TrailArtist(ax, color=PALETTE["green"], lw=2)
@@ -271,6 +274,7 @@ class CarScene(Scene):
         traj = drive(self.system, r0, rd, T)
         return traj, rd, self.system.body_velocity(traj.r[-1], rd)
 
+    @override
     def set(self, **values):
         self.flag.text.stale = True  # may appear on any change: a moving artist from the first frame
         self.text.stale = True
@@ -295,6 +299,7 @@ class CarScene(Scene):
         g = self.traj.g[-1]
         self.text.set_text(f"{_fmt(self.xi)}\ng(T) = ({g[0]:+.2f}, {g[1]:+.2f}, {g[2]:+.2f})")
 
+    @override
     def replot(self, **values):
         ax = self.ax
         ax.clear()
@@ -311,9 +316,11 @@ class CarScene(Scene):
 class DiffDriveScene(CarScene):
     """Differential-drive car (3.8), (3.29): values ``wheel1_speed``, ``wheel2_speed``, ``duration``."""
 
+    @override
     def make_system(self):
         return DifferentialDrive(wheel_radius=0.3, half_width=0.5)
 
+    @override
     def shape_path(self, v):
         return np.zeros(2), np.array([v["wheel1_speed"], v["wheel2_speed"]]), v["duration"]
 
@@ -321,9 +328,11 @@ class DiffDriveScene(CarScene):
 class AckermanScene(CarScene):
     """Kinematic-bicycle car (3.9): values ``wheel_speed``, ``steering``, ``steering_speed``, ``duration``."""
 
+    @override
     def make_system(self):
         return Ackerman(wheel_radius=0.3, wheelbase=1.0)
 
+    @override
     def shape_path(self, v):
         return (np.array([0.0, v["steering"]]), np.array([v["wheel_speed"], v["steering_speed"]]),
                 v["duration"])

@@ -8,6 +8,7 @@ flagged in words, never handed to matplotlib as inf.
 from __future__ import annotations
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.chains.jacobians import relative_pose
 from gm_core.drawing.groups import BODY
@@ -56,11 +57,13 @@ class ObserverScene(Scene):
     FAR = 6.0          # an ICR farther than this from the view's centre is reported, not drawn
     SCALE = 1.0        # arrow length per unit velocity
 
+    @override
     def make_figure(self):
         fig, axes = new_figure(1, 2, figsize=(9, 4.6), gridspec_kw=dict(width_ratios=[1, 0.95]))
         margins(fig, left=0.01, right=0.99, bottom=0.01, top=0.93, wspace=0.04)
         return fig, list(axes)
 
+    @override
     def decorate(self):
         ax, tx = self.axes
         plane(ax, self.LIM)
@@ -75,6 +78,7 @@ class ObserverScene(Scene):
         PathText(tx, 0.02, 0.40, r"$g\,\hat\xi\,g^{-1}$  (products)", size=MATH_PT, weight="bold")
         PathText(tx, 0.52, 0.40, r"$(\mathrm{Ad}_g\,\xi)^\wedge$  (1.43)", size=MATH_PT, weight="bold")
 
+    @override
     def create(self):
         ax, tx = self.axes
         self.body = BodyArtist(ax, BODY * 1.5, self.G, facecolor=PALETTE["blue"], alpha=0.45)
@@ -95,6 +99,7 @@ class ObserverScene(Scene):
                                        (0.02, 0.35, PALETTE["blue"]), (0.52, 0.35, PALETTE["green"]))]
         self.check = PathText(tx, 0.02, 0.04, "", size=8, va="bottom", family="monospace")
 
+    @override
     def set(self, hx=-1.5, hy=-1.0, htheta=0.0, vx=0.8, vy=0.3, w=0.6):
         g = self.G
         h = np.array([hx, hy, htheta])
@@ -167,6 +172,7 @@ class FramesScene(Scene):
     FIGSIZE = (6.2, 5.2)
     MARGINS = dict(left=0.01, right=0.99, bottom=0.01, top=0.94)
 
+    @override
     def decorate(self):
         (ax,) = self.axes
         plane(ax, self.LIM, grid=False)
@@ -177,6 +183,7 @@ class FramesScene(Scene):
         ax.plot(path[:, 0], path[:, 1], color="0.8", lw=1, zorder=1)
         title(ax, "one page (reference frame), coordinate frames A and B")
 
+    @override
     def create(self):
         (ax,) = self.axes
         self.frame_b = FrameArtist(ax, length=0.6, colors=(PALETTE["purple"], PALETTE["purple"]), zorder=3)
@@ -191,6 +198,7 @@ class FramesScene(Scene):
         self.tip_velocity = ArrowSet(ax, color="k", width=0.011)
         self.readout = readout(ax, 0.02, 0.02, "", size=7.5)
 
+    @override
     def set(self, t=1.2, bx=-1.8, by=1.2, btheta=-0.5):
         b = np.array([bx, by, btheta])
         self.frame_b.set(b)

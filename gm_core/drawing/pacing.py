@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.patches import ConnectionPatch
+from typing_extensions import override
 
 from gm_core.drawing.toolkit.primitives import FrameArtist
 from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, Scene, new_figure, readout
@@ -49,6 +50,7 @@ class PacingSquareScene(Scene):
         self._cache = {}
         super().__init__(**options)
 
+    @override
     def make_figure(self):
         # h_pad pads the suptitle too (0.25 in left a 50 px band under it): the room between the
         # rows for the "repace" arrows comes from hspace instead
@@ -56,6 +58,7 @@ class PacingSquareScene(Scene):
         fig.get_layout_engine().set(w_pad=0.3, h_pad=0.05, wspace=0.12, hspace=0.2)
         return fig, list(axes.ravel())
 
+    @override
     def decorate(self):
         ax_s, ax_g, ax_s2, ax_g2 = self.axes
         path = self.base.r
@@ -85,6 +88,7 @@ class PacingSquareScene(Scene):
         fig.suptitle("→ reconstruct the motion, ξ = −A(r) ṙ (3.10)     ↓ repace the clock, t ↦ τ(t) (3.3)",
                      fontsize=10)
 
+    @override
     def create(self):
         col = (PALETTE["blue"], PALETTE["orange"])
         self.dots = []
@@ -108,6 +112,7 @@ class PacingSquareScene(Scene):
             self._cache[a] = hit
         return hit
 
+    @override
     def set(self, unevenness=0.7, t=0.4):
         a, t = float(unevenness), float(t)
         tau, rep, tr = self._repaced(a)
@@ -141,10 +146,12 @@ class DirectionalScene(Scene):
     ``pace``.
     """
 
+    @override
     def make_figure(self):
         fig, (self.ax_b, self.ax_x) = new_figure(1, 2, figsize=(8.6, 3.9))
         return fig, [self.ax_b, self.ax_x]
 
+    @override
     def decorate(self):
         ax = self.ax_b
         ax.set(xlim=(-1, 1), ylim=(-1, 1), aspect="equal", title="b(ṙ) over shape velocities")
@@ -158,6 +165,7 @@ class DirectionalScene(Scene):
         ax.set_ylabel("x", labelpad=1)
         ax.grid(True, alpha=0.3)
 
+    @override
     def create(self):
         g = np.linspace(-1, 1, 121)
         self.grid = np.stack(np.meshgrid(g, g), -1)
@@ -175,6 +183,7 @@ class DirectionalScene(Scene):
         self.text = readout(self.ax_x, 0.03, 0.03)
         self._example = None
 
+    @override
     def set(self, example="(a) directionally linear", pace=2.0):
         if example != self._example:
             self.image.set_data(rate_map(example)(self.grid))

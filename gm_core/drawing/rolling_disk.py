@@ -6,6 +6,7 @@ The math is :mod:`gm_core.systems.rolling_disk`; this module only draws it.
 from __future__ import annotations
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.toolkit.axes import plane
 from gm_core.drawing.toolkit.primitives import BodyArtist, FrameArtist, TrailArtist
@@ -38,10 +39,12 @@ class ParallelParkScene(Scene):
 
     lim = 1.6
 
+    @override
     def make_figure(self):
         fig, (self.ax, self.ax2) = new_figure(1, 2, figsize=(8.6, 4.4))
         return fig, [self.ax, self.ax2]
 
+    @override
     def decorate(self):
         plane(self.ax, self.lim, step=0.5)
         self.ax.set_title("rolling disk: drive, turn, back, turn back")
@@ -51,6 +54,7 @@ class ParallelParkScene(Scene):
         self.ax2.plot(np.cos(s), np.sin(s), ls="--", color="0.5", lw=1)
         self.ax2.plot([0], [0], "+", color="k", ms=8)
 
+    @override
     def create(self):
         ax, ax2 = self.ax, self.ax2
         self.segments = [ax.plot([], [], color=c, lw=2.5, label=lab)[0]
@@ -68,6 +72,7 @@ class ParallelParkScene(Scene):
         self.text2 = readout(ax2, 0.03, 0.03)
         self.disk_scale = 1.0
 
+    @override
     def set(self, d=0.8, phi=0.6):
         moves = parallel_park_moves(d, phi)
         t, g = disk_moves_path(moves, g0=(0.0, -0.4, 0.0), n_per_move=30)
@@ -94,6 +99,7 @@ class ParallelParkScene(Scene):
         gap = float(np.hypot(*(q[-1] - q[0])))
         self.text2.set_text(f"gap to the start  {gap:.1e}\nradius varies by  {np.ptp(r):.1e}")
 
+    @override
     def replot(self, d=0.8, phi=0.6):
         for ax in self.axes:
             ax.clear()

@@ -9,13 +9,13 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.collections import LineCollection
+from typing_extensions import override
 
 from gm_core.drawing.toolkit.axes import plain_3d, wire
 from gm_core.drawing.toolkit.primitives import SingularFlag
 from gm_core.drawing.toolkit.style import (
     MATH_PT,
     PALETTE,
-    TWO_PI,
     PathText,
     Scene,
     arrow,
@@ -29,6 +29,7 @@ from gm_core.drawing.toolkit.style import (
     xticks,
     yticks,
 )
+from gm_core.groups.base import TWO_PI
 from gm_core.manifolds.spaces import (
     chart_speed,
     cylinder_xyz,
@@ -204,9 +205,11 @@ class TorusPathScene(Scene):
 
     N = 360
 
+    @override
     def make_figure(self):
         return axes_row((8, 3.6), ("3d", None), left=0.02, right=0.97, bottom=0.14, top=0.9, wspace=0.15)
 
+    @override
     def decorate(self):
         ax3, ax2 = self.axes
         u = np.linspace(0, TWO_PI, 21)
@@ -224,6 +227,7 @@ class TorusPathScene(Scene):
         axis_label(ax2, "x", "a (round the hole)", ticks=xticks(ax2, [0, np.pi, TWO_PI], ["0", "π", "2π"]))
         axis_label(ax2, "y", "b", ticks=yticks(ax2, [0, np.pi, TWO_PI], ["0", "π", "2π"]))
 
+    @override
     def create(self):
         ax3, ax2 = self.axes
         (self.curve3d,) = ax3.plot([], [], [], color=PALETTE["purple"], lw=1.8)
@@ -237,6 +241,7 @@ class TorusPathScene(Scene):
         t = np.linspace(0.0, turns * TWO_PI, self.N)
         return a0 + t, b0 + slope * t
 
+    @override
     def set(self, a0=0.0, b0=0.0, slope=0.5, turns=2.0):
         a, b = self.path(a0, b0, slope, turns)
         P = torus_xyz(a, b)
@@ -266,9 +271,11 @@ class LoopsScene(Scene):
 
     R, r, rho = 2.0, 0.7, 1.6
 
+    @override
     def make_figure(self):
         return axes_row((8, 2.9), ("3d", "3d"), left=0.0, right=1.0, bottom=-0.14, top=0.93, wspace=0.0)
 
+    @override
     def decorate(self):
         ax_t, ax_s = self.axes
         for ax, kind in ((ax_t, "torus"), (ax_s, "sphere")):
@@ -285,6 +292,7 @@ class LoopsScene(Scene):
         L = torus_xyz(u, 0.0 * u + np.pi / 2)  # the loop round the hole, drawn fixed for reference
         ax_t.plot(L[:, 0], L[:, 1], L[:, 2], color=PALETTE["blue"], lw=1.2, alpha=0.6)
 
+    @override
     def create(self):
         ax_t, ax_s = self.axes
         (self.torus_loop,) = ax_t.plot([], [], [], color=PALETTE["vermillion"], lw=2.5)
@@ -293,6 +301,7 @@ class LoopsScene(Scene):
         self.t_title = PathText(ax_t, 0.5, 0.97, "", size=9, ha="center", va="top", coords="axes")
         self.s_title = PathText(ax_s, 0.5, 0.97, "", size=9, ha="center", va="top", coords="axes")
 
+    @override
     def set(self, s=0.0):
         u = np.linspace(0, TWO_PI, 90)
         T = torus_xyz(TWO_PI * s + 0 * u, u, self.R, self.r)
@@ -326,11 +335,13 @@ class PoleChartScene(Scene):
     WARN_SPEED = 50.0
     ARROW = 0.25  # radians drawn per unit coordinate speed
 
+    @override
     def make_figure(self):
         fig, axes = new_figure(1, 3, figsize=(10, 3.4), gridspec_kw=dict(width_ratios=[1.5, 1, 1.1]))
         margins(fig, left=0.06, right=0.98, bottom=0.2, top=0.88, wspace=0.35)
         return fig, list(axes)
 
+    @override
     def decorate(self):
         ax_c, ax_p, ax_v = self.axes
         ax_c.set_xlim(-np.pi, np.pi)
@@ -357,6 +368,7 @@ class PoleChartScene(Scene):
         title(ax_v, "chart speed (log scale)")
         self._lat_grid = lat
 
+    @override
     def create(self):
         ax_c, ax_p, ax_v = self.axes
         (self.pt_c,) = ax_c.plot([], [], "o", color=PALETTE["blue"], ms=7, zorder=7)
@@ -370,6 +382,7 @@ class PoleChartScene(Scene):
         self.readout = PathText(ax_c, 0.02, 0.03, "", size=8, coords="axes")
         self._heading = None
 
+    @override
     def set(self, lat_deg=45.0, heading_deg=45.0):
         lat = np.deg2rad(lat_deg)
         h = np.deg2rad(heading_deg)

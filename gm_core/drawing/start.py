@@ -8,6 +8,7 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.toolkit.primitives import BodyArtist, FrameArtist
 from gm_core.drawing.toolkit.style import Scene
@@ -24,6 +25,7 @@ class FrameScene(Scene):
     FIGSIZE = (4.5, 4.5)
     LIM = 2.5
 
+    @override
     def decorate(self) -> None:
         ax = self.ax
         ax.set_xlim(-self.LIM, self.LIM)
@@ -34,11 +36,13 @@ class FrameScene(Scene):
         ax.set_ylabel("y")
         FrameArtist(ax, (0.0, 0.0, 0.0), length=0.5, colors=("0.6", "0.6"))  # the world frame
 
+    @override
     def create(self) -> None:
         self.body = BodyArtist(self.ax, BodyArtist.triangle(0.5))
         self.frame = FrameArtist(self.ax, length=0.6)
         self.label = self.ax.set_title("")
 
+    @override
     def set(self, **values: Any) -> None:
         x, y, theta = (float(values[k]) for k in ("x", "y", "theta"))
         g = np.array([x, y, theta])

@@ -9,20 +9,12 @@ from __future__ import annotations
 
 import numpy as np
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
+from typing_extensions import override
 
 from gm_core.drawing.toolkit.axes import plain_3d, wire
-from gm_core.drawing.toolkit.style import (
-    MATH_PT,
-    PALETTE,
-    TWO_PI,
-    ArrowSet,
-    PathText,
-    Scene,
-    axes_row,
-    readout,
-    set_arrows,
-)
+from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, ArrowSet, PathText, Scene, axes_row, readout, set_arrows
 from gm_core.drawing.vector_fields import vec_text
+from gm_core.groups.base import TWO_PI
 from gm_core.manifolds.spaces import sphere_xyz
 from gm_core.manifolds.tangent import circle_point_velocity, sphere_tangent_basis, sphere_velocity
 
@@ -62,9 +54,11 @@ class TangentSpaceScene(Scene):
     LINE_Y = -1.45      # where the line R^1 is drawn, below the circle
     LINE_RATE = 0.6     # the point on R^1 sits at x = LINE_RATE (s - pi)
 
+    @override
     def make_figure(self):
         return axes_row((9, 4.3), (None, "3d"), left=0.01, right=0.99, bottom=0.01, top=0.92, wspace=0.02)
 
+    @override
     def decorate(self):
         ax2, ax3 = self.axes
         ax2.set_xlim(-2.5, 2.5)
@@ -90,6 +84,7 @@ class TangentSpaceScene(Scene):
         C = sphere_xyz(self.AMP * np.sin(2 * t), t)
         ax3.plot(C[:, 0], C[:, 1], C[:, 2], color=PALETTE["blue"], lw=1.4, zorder=1)
 
+    @override
     def create(self):
         ax2, ax3 = self.axes
         (self.tangent_line,) = ax2.plot([], [], color=PALETTE["sky"], lw=2.5, alpha=0.8, zorder=2)
@@ -106,6 +101,7 @@ class TangentSpaceScene(Scene):
         self.label_plane = ax3.text(0, 0, 0, r"$T_p\mathbb{S}^2$", fontsize=MATH_PT, color=PALETTE["blue"], zorder=6)
         self.readout3 = readout(ax3, 0.02, 0.02, "", size=7.5)
 
+    @override
     def set(self, s=0.8, speed=1.0):
         ax2, ax3 = self.axes
         # circle and line (fig. 1.11)

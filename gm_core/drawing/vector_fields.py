@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.collections import LineCollection
+from typing_extensions import override
 
 from gm_core.drawing.groups import BODY
 from gm_core.drawing.toolkit.axes import plane
@@ -50,11 +51,13 @@ class VectorFieldScene(Scene):
     FIGSIZE = (5.2, 5.0)
     MARGINS = dict(left=0.03, right=0.97, bottom=0.03, top=0.93)
 
+    @override
     def decorate(self):
         (ax,) = self.axes
         plane(ax, self.LIM, grid=False)
         self._field = None
 
+    @override
     def create(self):
         (ax,) = self.axes
         g = np.linspace(-self.LIM + 0.25, self.LIM - 0.25, 13)
@@ -88,6 +91,7 @@ class VectorFieldScene(Scene):
         """
         return [_flow(FIELDS[name], [x0, y0], self.T, self.N, 3 * self.LIM, sign) for sign in (1.0, -1.0)]
 
+    @override
     def set(self, field="spiral sink", x0=1.5, y0=1.0):
         if field != self._field:
             v = FIELDS[field](self._grid)
@@ -136,11 +140,13 @@ class LiftedScalarScene(Scene):
     G_RP = 1.5
     V_RP = 0.6
 
+    @override
     def make_figure(self):
         fig, axes = new_figure(1, 2, figsize=(9, 3.6), gridspec_kw=dict(width_ratios=[1, 1.5]))
         margins(fig, left=0.03, right=0.98, bottom=0.14, top=0.88, wspace=0.12)
         return fig, list(axes)
 
+    @override
     def decorate(self):
         ax2, ax1 = self.axes
         plane(ax2, 2.5)
@@ -152,6 +158,7 @@ class LiftedScalarScene(Scene):
         xticks(ax1, [0, 1, 4, 6, 8, 10], ["0", "1 = e", "4", "6", "8", "10"])
         title(ax1, r"$(\mathbb{R}^+, \times)$: $T_gL_h$ = h scales the arrow", size=MATH_PT)
 
+    @override
     def create(self):
         ax2, ax1 = self.axes
         (self.pts2,) = ax2.plot([], [], "o", color="k", ms=6)
@@ -161,6 +168,7 @@ class LiftedScalarScene(Scene):
         self.arrows1 = arrow(ax1, color=[PALETTE["blue"], PALETTE["orange"]], n=2, width=0.008)
         self.text1 = PathText(ax1, 0.02, 0.05, "", size=MATH_PT, coords="axes", va="bottom")
 
+    @override
     def set(self, hx=1.5, hy=1.0, h=2.5):
         g2 = self.G_R2
         hg2 = g2 + np.array([hx, hy])
@@ -203,10 +211,12 @@ class LiftedSE2Scene(Scene):
     FIGSIZE = (5.8, 5.4)
     MARGINS = dict(left=0.02, right=0.98, bottom=0.12, top=0.93)
 
+    @override
     def decorate(self):
         (ax,) = self.axes
         plane(ax, 3.5)
 
+    @override
     def create(self):
         (ax,) = self.axes
         colors = ("0.45", PALETTE["blue"], PALETTE["orange"])
@@ -217,6 +227,7 @@ class LiftedSE2Scene(Scene):
         # below the plane, where no body or arrow can run under it
         self.text = PathText(ax, 0.0, -0.015, "", size=7.5, va="top", coords="axes", family="monospace")
 
+    @override
     def set(self, theta=0.3, u=2.0, v=1.5, beta=1.0):
         g = np.array([self.G_XY[0], self.G_XY[1], theta])
         h = np.array([u, v, beta])
@@ -245,11 +256,13 @@ class VelocityScene(Scene):
 
     LIM = 3.0
 
+    @override
     def make_figure(self):
         fig, axes = new_figure(2, 2, figsize=(6.2, 5.9))
         margins(fig, left=0.02, right=0.98, bottom=0.02, top=0.95, wspace=0.06, hspace=0.12)
         return fig, list(np.ravel(axes))
 
+    @override
     def decorate(self):
         names = ["(a) world velocity ġ", "(b) body velocity ξ, in the body frame",
                  "(c) ξ after moving the body to e", r"(d) spatial velocity $\xi^s$ at the origin"]
@@ -257,6 +270,7 @@ class VelocityScene(Scene):
             plane(ax, self.LIM)
             title(ax, name, size=MATH_PT)
 
+    @override
     def create(self):
         a, b, c, d = self.axes
         self.bodies = [BodyArtist(ax, BODY * 1.5, facecolor=PALETTE["blue"], alpha=0.4) for ax in self.axes]
@@ -273,6 +287,7 @@ class VelocityScene(Scene):
         self.texts = [PathText(ax, 0.03, 0.02, "", size=MATH_PT, coords="axes", va="bottom")
                       for k, ax in enumerate(self.axes)]
 
+    @override
     def set(self, x=1.2, y=0.6, theta=0.7, vx=0.8, vy=0.3, w=0.6):
         g = np.array([x, y, theta])
         xi = np.array([vx, vy, w])
@@ -323,6 +338,7 @@ class AdjointScene(Scene):
     FIGSIZE = (7.6, 2.05)
     MARGINS = dict(left=0.0, right=1.0, bottom=0.0, top=1.0)
 
+    @override
     def decorate(self):
         (ax,) = self.axes
         text_panel(ax)
@@ -331,6 +347,7 @@ class AdjointScene(Scene):
         for k, s in enumerate(heads):
             PathText(ax, 0.02 + 0.33 * k, 0.9, s, size=MATH_PT, weight="bold")
 
+    @override
     def create(self):
         (ax,) = self.axes
         self.blocks = [PathText(ax, 0.02 + 0.33 * k, 0.8, "", size=8.5, va="top", color=c, family="monospace")
@@ -343,6 +360,7 @@ class AdjointScene(Scene):
             r"$\xi^s$ from $d/dt\,(g(t)\,g^{-1})$ by finite differences, $g(t) = g\,\exp(t\xi)$",
             r"back again: $\mathrm{Ad}_g^{-1}\,\xi^s = \xi$")), size=MATH_PT, va="top", offset=(0, -1.3 * MATH_PT))
 
+    @override
     def set(self, x=1.0, y=-0.5, theta=0.8, vx=0.5, vy=0.2, w=0.7):
         g = np.array([x, y, theta])
         xi = np.array([vx, vy, w])

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gm_core.fields.vector_fields import (
-    check_side,
+    check_flow_side,
     check_solve_ivp_kw,
     check_time,
     integral_curve,
@@ -34,7 +34,7 @@ def group_geodesic(group, xi, t, side="left", g0=None, *, method="exp", **solve_
     ``group.isclose``). ``xi`` must be a single vector ``(dim,)``; ``g0`` an element ``(dim,)``.
     """
     group = check_group(group)
-    side = check_side(side)
+    side = check_flow_side(side)
     method = check_option(method, "method", ("exp", "integrate"))
     check_solve_ivp_kw(solve_ivp_kw, "group_geodesic")
     if method == "exp" and solve_ivp_kw:
@@ -115,7 +115,7 @@ def se2_helix(xi, side="left", g0=None):
     distance from there to g0's position. See the module docstring for the derivation.
     """
     xi = as_array(xi, "xi", (3,), what=", an se(2) velocity (vx, vy, w)")
-    side = check_side(side)
+    side = check_flow_side(side)
     vx, vy, w = xi[..., 0], xi[..., 1], xi[..., 2]
     # |w| tiny but nonzero overflows to radius = inf, which is the right limit: silence it
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):

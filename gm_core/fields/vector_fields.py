@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from typing_extensions import override
 
 from gm_core.groups import check_group, matvec
 from gm_core.validation import as_array, check_int
@@ -19,7 +20,7 @@ SOLVE_IVP_OPTIONS = frozenset({"method", "rtol", "atol", "dense_output", "events
 
 __all__ = [
     "VectorField", "IntegralCurve", "integral_curve", "left_invariant_field", "right_invariant_field",
-    "FIELDS", "DEFAULT_RTOL", "DEFAULT_ATOL",
+    "FIELDS", "DEFAULT_RTOL", "DEFAULT_ATOL", "check_flow_side", "check_solve_ivp_kw", "check_time",
 ]
 
 #: solve_ivp defaults used by :func:`integral_curve` (override with rtol=..., atol=...).
@@ -30,7 +31,7 @@ DEFAULT_METHOD = "DOP853"
 MAX_EVALUATIONS = 50_000
 
 
-def check_side(side):
+def check_flow_side(side):
     if not isinstance(side, str) or side not in ("left", "right"):  # a longer message than check_option's
         raise ValueError(
             f"side must be 'left' (left-invariant field, body velocity, (1.46)) or 'right' "
@@ -84,6 +85,7 @@ class VectorField:
         self.vectorized = bool(vectorized)
         self.group = group
 
+    @override
     def __repr__(self):
         return f"VectorField({self.name!r}, dim={self.dim})"
 

@@ -7,11 +7,15 @@ numpy only. Nothing here asks which group it is: membership is the group's own
 from __future__ import annotations
 
 import itertools
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
+from typing_extensions import override
 
 from gm_core.groups import check_group
-from gm_core.validation import check_int
+from gm_core.groups.base import LieGroup
+from gm_core.validation import FloatArray, check_int
 
 __all__ = ["AXIOMS", "axiom_residuals", "powers", "GROUP_AXIOMS", "Structure", "AxiomReport",
            "STRUCTURES", "structure", "group_structure", "check_axioms", "find_identity", "is_group",
@@ -21,7 +25,7 @@ __all__ = ["AXIOMS", "axiom_residuals", "powers", "GROUP_AXIOMS", "Structure", "
 AXIOMS = ("associativity", "identity", "inverse")
 
 
-def axiom_residuals(G, rng, n=20, scale=1.0):
+def axiom_residuals(G: LieGroup, rng: np.random.Generator | int, n: int = 20, scale: float = 1.0) -> dict[str, Any]:
     """Worst-case residuals of the group axioms (1.ii)-(1.v) over ``n`` random triples of G.
 
     Returns a dict: ``closure`` (bool: every product and inverse is again an element, by
@@ -44,7 +48,7 @@ def axiom_residuals(G, rng, n=20, scale=1.0):
             "identity": float(np.max(ident)), "inverse": float(np.max(inv))}
 
 
-def powers(G, g, n):
+def powers(G: LieGroup, g: ArrayLike, n: int) -> FloatArray:
     """``(n + 1, dim)``: e, g, g o g, ..., g^n (the repeated step of fig. 1.10)."""
     G = check_group(G, "G")
     numeric = isinstance(n, (int, float, np.integer, np.floating)) and not isinstance(n, (bool, np.bool_))
@@ -89,10 +93,11 @@ class Structure:
         self.fmt = fmt or _fmt_number
         self.element = element or (lambda s, k: float(s))
 
+    @override
     def __repr__(self):
         return f"Structure({self.name!r})"
 
-    def show(self, a, b):
+    def show(self, a: Any, b: Any) -> str:
         """``'a o b'`` with both elements written out."""
         return f"{self.fmt(a)} {self.symbol} {self.fmt(b)}"
 
@@ -105,6 +110,7 @@ class AxiomReport:
     def __init__(self, axiom, holds, why, witness=()):
         self.axiom, self.holds, self.why, self.witness = axiom, bool(holds), why, tuple(witness)
 
+    @override
     def __repr__(self):
         return f"AxiomReport({self.axiom!r}, holds={self.holds}, why={self.why!r})"
 
@@ -131,7 +137,8 @@ def _number_structure(name, set_name, symbol, op, member, pool, solve_right, sol
     return Structure(name, set_name, symbol, op, member, pool, solve_right, solve_left, integer=integer)
 
 
-def group_structure(G, name=None, set_name=None, seed=0, n=4):
+def group_structure(G: LieGroup, name: str | None = None, set_name: str | None = None, seed: int = 0,
+                    n: int = 4) -> Structure:
     """A :class:`Structure` made from one of gm_core's Lie groups (compose, inverse, contains).
 
     The pool is ``n`` random elements (seeded); a user's slider value ``s`` becomes the element
@@ -185,7 +192,7 @@ def _structures():
 STRUCTURES = _structures()
 
 
-def structure(name):
+def structure(name: str | Structure) -> Structure:
     """The :class:`Structure` called ``name`` (a key of :data:`STRUCTURES`)."""
     if isinstance(name, Structure):
         return name
@@ -217,7 +224,7 @@ def _associativity(S):
     return AxiomReport("associativity", True, "(a∘b)∘c = a∘(b∘c) for every triple tried".replace("∘", S.symbol))
 
 
-def find_identity(S):
+def find_identity(S: Structure) -> tuple[Any, AxiomReport]:
     """``(e, verdict)``: the two-sided identity of ``S`` (None if it has none) and its AxiomReport.
 
     For each pool element a, the only right identity candidate is the solution of a o x = a and
@@ -269,7 +276,7 @@ def _inverse(S, e, identity):
     return AxiomReport("inverse", True, f"every a tried has an a⁻¹ with a {sym} a⁻¹ = a⁻¹ {sym} a = e")
 
 
-def check_axioms(S):
+def check_axioms(S: str | Structure) -> dict[str, AxiomReport]:
     """Verdicts ``{axiom: AxiomReport}`` of the four group axioms (1.ii)-(1.v) on a :class:`Structure`
     (or a name from :data:`STRUCTURES`), each failing one with a concrete counterexample from
     the structure's pool. A structure is a group when every verdict holds.
@@ -280,12 +287,12 @@ def check_axioms(S):
             "inverse": _inverse(S, e, ident)}
 
 
-def is_group(S):
+def is_group(S: str | Structure) -> bool:
     """True if every axiom of :func:`check_axioms` holds on the pool of ``S``."""
     return all(v.holds for v in check_axioms(S).values())
 
 
-def try_elements(S, a, b, c):
+def try_elements(S: str | Structure, a: Any, b: Any, c: Any) -> dict[str, str]:
     """The axioms written out at the user's elements ``a, b, c`` (slider values turned into
     elements by ``S.element``): a dict of one-line strings, each led by "✓" or "✗"."""
     S = structure(S)

@@ -19,21 +19,27 @@ behaviour is a method or attribute of the group.
 from __future__ import annotations
 
 import abc
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike
+from typing_extensions import override
 
 from gm_core.validation import BoolArray, FloatArray, as_array, batch_shape, check_option, check_shape, real_number
 
-__all__ = ["LieGroup", "wrap_angle", "wrap_periodic", "matvec", "check_group", "TWO_PI"]
+__all__ = [
+    "LieGroup", "wrap_angle", "wrap_periodic", "matvec", "check_group", "TWO_PI",
+    # unchecked helpers the groups' modules share
+    "wrap_unchecked", "mod_period", "eye_batch", "as_rng", "check_scale", "rotation_matrix",
+    "angle_of_block", "check_rotation", "check_entries",
+]
 
 TWO_PI = 2.0 * np.pi
 _PI = np.pi
 
 
 # ---------------------------------------------------------------------------------- angles
-def wrap(t: Any) -> FloatArray:
+def wrap_unchecked(t: FloatArray) -> FloatArray:
     """Unchecked :func:`wrap_angle` for a float array (returns ``t`` itself when already in range)."""
     if t.size == 0 or (t.max() <= _PI and t.min() > -_PI):
         return t
@@ -56,7 +62,7 @@ def wrap_angle(theta: ArrayLike) -> FloatArray:
     angles (1e8, 1e300) are reduced exactly, not with a rounded 2 pi.
     """
     t = as_array(theta, "theta", what=" (angles in radians)")
-    out = wrap(t)
+    out = wrap_unchecked(t)
     return out.copy() if out is t else out
 
 
@@ -67,7 +73,7 @@ def wrap_periodic(x: ArrayLike, period: float) -> FloatArray:
     other period the reduction is by that double, exactly (``np.remainder``).
     """
     if period == TWO_PI:
-        return wrap(x)
+        return wrap_unchecked(np.asarray(x, dtype=float))
     r = np.remainder(x, period)
     return np.where(r > 0.5 * period, r - period, r)
 
@@ -75,7 +81,7 @@ def wrap_periodic(x: ArrayLike, period: float) -> FloatArray:
 def mod_period(x: FloatArray, period: float) -> FloatArray:
     """Unchecked representative of ``x`` modulo ``period`` in [0, period)."""
     if period == TWO_PI:
-        r = wrap(x)
+        r = wrap_unchecked(x)
         r = np.where(r < 0, r + TWO_PI, r)
     else:
         r = np.remainder(x, period)
@@ -98,8 +104,8 @@ def _matvec(M, v):
     return np.einsum("...ij,...j->...i", M, v)
 
 
-def eye(n: int, batch: tuple[int, ...]) -> FloatArray:
-    """Identity matrices ``(*batch, n, n)``, writable."""
+def eye_batch(n: int, batch: tuple[int, ...]) -> FloatArray:
+    """``batch`` copies of the n x n identity, shape ``batch + (n, n)``."""
     return np.broadcast_to(np.eye(n), tuple(batch) + (n, n)).copy()
 
 
@@ -125,9 +131,9 @@ class LieGroup(abc.ABC):
     label: str = "G"            # short label for plots, e.g. "R⁺"
     coords: tuple = ()
     periods: tuple = ()
-    param_dim: int = 0
-    tangent_dim: int = 0
-    matrix_size: int = 0
+    param_dim: ClassVar[int] = 0
+    tangent_dim: ClassVar[int] = 0
+    matrix_size: ClassVar[int] = 0
 
     def __init__(self) -> None:
         ok = (self.param_dim >= 1 and self.tangent_dim >= 1 and self.matrix_size >= 1
@@ -149,6 +155,7 @@ class LieGroup(abc.ABC):
         """Which coordinates are periodic (compared modulo their period), a tuple of bools."""
         return tuple(p is not None for p in self.periods)
 
+    @override
     def __repr__(self) -> str:
         return self.name
 
@@ -370,7 +377,7 @@ class LieGroup(abc.ABC):
         one period (-k/2, k/2). ``rng`` is a numpy Generator (or an int seed); ``scale`` stretches
         the coordinates (groups whose coordinates are not a vector space override it).
         """
-        rng = as_generator(rng)
+        rng = as_rng(rng)
         size = check_shape(size, "size")
         scale = check_scale(scale)
         out = rng.uniform(-3.0, 3.0, size + (self.param_dim,))
@@ -411,8 +418,8 @@ class LieGroup(abc.ABC):
         return self._numerical_jacobian(lambda x: self.compose(x, h), g, eps)
 
 
-def as_generator(rng: object) -> np.random.Generator:
-    """``rng`` as a numpy Generator (a Generator, or a non-negative int seed); TypeError otherwise."""
+def as_rng(rng: np.random.Generator | int | None) -> np.random.Generator:
+    """``rng`` itself, or a Generator seeded with the non-negative int ``rng`` (TypeError otherwise)."""
     if isinstance(rng, np.random.Generator):
         return rng
     if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool) and rng >= 0:
@@ -421,8 +428,8 @@ def as_generator(rng: object) -> np.random.Generator:
                     f"non-negative int seed; got {type(rng).__name__}")
 
 
-def check_scale(scale: object) -> float:
-    """``scale`` as a single positive number (at most 1e100); ValueError otherwise."""
+def check_scale(scale: Any) -> float:
+    """``scale`` as a float after checking it is one positive number (at most 1e100)."""
     s = as_array(scale, "scale", what=" (a positive size factor)")
     if s.ndim != 0 or s <= 0 or s > 1e100:
         raise ValueError(f"scale must be a single positive number (at most 1e100); got {scale!r:.40}")
@@ -430,8 +437,8 @@ def check_scale(scale: object) -> float:
 
 
 # ---------------------------------------------------------------------------------- shared pieces
-def rot(theta: FloatArray) -> FloatArray:
-    """Rotation matrices ``(..., 2, 2)`` of the angles ``theta``."""
+def rotation_matrix(theta: ArrayLike) -> FloatArray:
+    """Rotation matrices ``(..., 2, 2)`` by the angles ``theta`` (unchecked)."""
     c, s = np.cos(theta), np.sin(theta)
     return np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
 
@@ -446,7 +453,7 @@ MATRIX_ATOL = 1e-8
 
 
 def check_rotation(Rm: FloatArray, name: str) -> None:
-    """ValueError naming ``name`` unless ``Rm (..., 2, 2)`` are rotations (orthonormal, det +1)."""
+    """ValueError unless every 2x2 block of ``Rm`` is a rotation to within :data:`MATRIX_ATOL`."""
     with np.errstate(over="ignore", invalid="ignore"):     # huge entries fail the check below
         RtR = np.swapaxes(Rm, -1, -2) @ Rm
         det = Rm[..., 0, 0] * Rm[..., 1, 1] - Rm[..., 0, 1] * Rm[..., 1, 0]
@@ -458,6 +465,6 @@ def check_rotation(Rm: FloatArray, name: str) -> None:
 
 
 def check_entries(M: FloatArray, expected: FloatArray | float, name: str, what: str) -> None:
-    """ValueError naming ``name`` unless ``M`` matches ``expected`` entry by entry."""
+    """ValueError unless ``M`` equals ``expected`` entrywise to within :data:`MATRIX_ATOL`."""
     if not np.all(np.abs(M - expected) <= MATRIX_ATOL):
         raise ValueError(f"{name} must be {what} (entries within {MATRIX_ATOL:g})")

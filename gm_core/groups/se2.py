@@ -5,10 +5,13 @@ half-angle form V(w) = (sin h / h) R(h), h = w/2, which has no cancellation at a
 """
 from __future__ import annotations
 
+from typing import ClassVar
+
 import numpy as np
 from numpy.typing import ArrayLike
+from typing_extensions import override
 
-from gm_core.groups.base import TWO_PI, LieGroup, angle_of_block, check_entries, check_rotation, wrap
+from gm_core.groups.base import TWO_PI, LieGroup, angle_of_block, check_entries, check_rotation, wrap_unchecked
 from gm_core.validation import FloatArray, as_array
 
 __all__ = ["SE2"]
@@ -24,12 +27,15 @@ class _SE2(LieGroup):
     label = "SE(2)"
     coords = ("x", "y", "theta")
     periods = (None, None, TWO_PI)
-    param_dim = tangent_dim = 3
-    matrix_size = 3
+    param_dim: ClassVar[int] = 3
+    tangent_dim: ClassVar[int] = 3
+    matrix_size: ClassVar[int] = 3
 
+    @override
     def _identity_coords(self):
         return np.zeros(3)
 
+    @override
     def compose(self, g: ArrayLike, h: ArrayLike) -> FloatArray:
         """g o h = (x + u cos th - v sin th, y + u sin th + v cos th, th + beta), book (1.7)-(1.9)."""
         g = self._element(g)
@@ -44,6 +50,7 @@ class _SE2(LieGroup):
         out[..., 2] = t + b
         return out
 
+    @override
     def bracket(self, xi1: ArrayLike, xi2: ArrayLike) -> FloatArray:
         """[xi1, xi2] = (w2 v1y - w1 v2y, w1 v2x - w2 v1x, 0), the vee of X1 X2 - X2 X1 with (1.54)."""
         xi1 = self._algebra(xi1, "xi1")
@@ -55,6 +62,7 @@ class _SE2(LieGroup):
         out[..., 1] = w1 * v2x - w2 * v1x
         return out
 
+    @override
     def inverse(self, g: ArrayLike) -> FloatArray:
         """g^-1 = (-x cos th - y sin th, x sin th - y cos th, -th), so g^-1 g = e, book (1.10)."""
         g = self._element(g)
@@ -66,6 +74,7 @@ class _SE2(LieGroup):
         out[..., 2] = -t
         return out
 
+    @override
     def left_lifted_action(self, h: ArrayLike, g: ArrayLike) -> FloatArray:
         """T_g L_h = [[cos b, -sin b, 0], [sin b, cos b, 0], [0, 0, 1]] for h = (u, v, b), book (1.31)."""
         h = self._element(h, "h")
@@ -80,6 +89,7 @@ class _SE2(LieGroup):
         M[..., 2, 2] = 1.0
         return M
 
+    @override
     def right_lifted_action(self, h: ArrayLike, g: ArrayLike) -> FloatArray:
         """T_g R_h = [[1, 0, -(u sin th + v cos th)], [0, 1, u cos th - v sin th], [0, 0, 1]], book (1.37)."""
         h = self._element(h, "h")
@@ -95,6 +105,7 @@ class _SE2(LieGroup):
         M[..., 1, 2] = u * c - v * s
         return M
 
+    @override
     def Ad(self, g: ArrayLike) -> FloatArray:
         """Ad_g = [[cos th, -sin th, y], [sin th, cos th, -x], [0, 0, 1]], book (1.43)."""
         g = self._element(g)
@@ -109,6 +120,7 @@ class _SE2(LieGroup):
         M[..., 2, 2] = 1.0
         return M
 
+    @override
     def Ad_inv(self, g: ArrayLike) -> FloatArray:
         """Ad_g^-1 = [[c, s, x s - y c], [-s, c, x c + y s], [0, 0, 1]], book (1.45)."""
         g = self._element(g)
@@ -129,6 +141,7 @@ class _SE2(LieGroup):
         M[..., 2, 2] = 1.0
         return M
 
+    @override
     def hat(self, xi: ArrayLike) -> FloatArray:
         """xi^ = [[0, -w, vx], [w, 0, vy], [0, 0, 0]] for xi = (vx, vy, w), ``(..., 3, 3)``; book (1.54)."""
         xi = self._algebra(xi)
@@ -139,6 +152,7 @@ class _SE2(LieGroup):
         X[..., 1, 2] = xi[..., 1]
         return X
 
+    @override
     def vee(self, X: ArrayLike) -> FloatArray:
         """(vx, vy, w) from an se(2) matrix; raises ValueError if X is not of the form (1.54)."""
         X = self._square(X, "X")
@@ -146,6 +160,7 @@ class _SE2(LieGroup):
         check_entries(X, self.hat(out), "X", "an se(2) matrix [[0, -w, vx], [w, 0, vy], [0, 0, 0]] as in (1.54)")
         return out
 
+    @override
     def exp(self, xi: ArrayLike) -> FloatArray:
         """exp(xi) = (V(w) (vx, vy), w) with V(w) = (sin h / h) R(h), h = w/2; exercise 1.4a.
 
@@ -165,6 +180,7 @@ class _SE2(LieGroup):
         out[..., 2] = w
         return out
 
+    @override
     def log(self, g: ArrayLike) -> FloatArray:
         """log(g) = (V(th)^-1 (x, y), th) with th wrapped to (-pi, pi], inverse of :meth:`exp`.
 
@@ -172,7 +188,7 @@ class _SE2(LieGroup):
         """
         g = self._element(g)
         x, y = g[..., 0], g[..., 1]
-        t = wrap(g[..., 2])
+        t = wrap_unchecked(g[..., 2])
         h = 0.5 * t
         c, s = np.cos(h), np.sin(h)
         k = s / h if h.all() else np.divide(s, h, out=np.ones_like(h), where=h != 0)
@@ -182,6 +198,7 @@ class _SE2(LieGroup):
         out[..., 2] = t
         return out
 
+    @override
     def matrix(self, g: ArrayLike) -> FloatArray:
         """Homogeneous matrix [[cos th, -sin th, x], [sin th, cos th, y], [0, 0, 1]], book (1.2)."""
         g = self._element(g)
@@ -197,6 +214,7 @@ class _SE2(LieGroup):
         G[..., 2, 2] = 1.0
         return G
 
+    @override
     def from_matrix(self, G: ArrayLike) -> FloatArray:
         """(x, y, th) from a homogeneous matrix; ValueError unless it is a proper rigid motion (1.2)."""
         G = self._square(G, "G")
@@ -205,6 +223,7 @@ class _SE2(LieGroup):
         check_rotation(G[..., :2, :2], "G")
         return np.stack([G[..., 0, 2], G[..., 1, 2], np.arctan2(G[..., 1, 0], G[..., 0, 0])], -1)
 
+    @override
     def nearest_element(self, M: ArrayLike) -> FloatArray:
         """(x, y) from the translation column and the angle of the nearest rotation to the 2x2 block."""
         M = self._square(M, "M")

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from gm_core.groups.base import TWO_PI
 from gm_core.validation import as_array, batch_shape, positive_number
 
 __all__ = [
@@ -29,8 +30,6 @@ __all__ = [
     "cylinder_xyz", "torus_xyz", "sphere_xyz", "wrap_segments", "chart_speed",
     "polar_chart_velocity",
 ]
-
-TWO_PI = 2.0 * np.pi
 
 
 def broadcast_pair(u, v, nu, nv):

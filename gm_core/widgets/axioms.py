@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import ipywidgets as W
+from typing_extensions import override
 
 from gm_core.drawing.axioms import CHOICES, GroupOrNotScene, integer_structure
 from gm_core.widgets.base import ScenePanel, register, slider
@@ -19,6 +20,7 @@ class GroupAxiomsPanel(ScenePanel):
     title = "Group or not? The four axioms, with a counterexample when one fails"
     scene_class = GroupOrNotScene
 
+    @override
     def controls_spec(self):
         return {"structure": W.Dropdown(options=CHOICES, value="(ℤ, ×)", description="set, operation",
                                  style={"description_width": "initial"}),
@@ -26,6 +28,7 @@ class GroupAxiomsPanel(ScenePanel):
                 "b": slider(3.0, -4.0, 4.0, step=0.5, description="b", readout_format=".1f"),
                 "c": slider(-1.0, -4.0, 4.0, step=0.5, description="c", readout_format=".1f")}
 
+    @override
     def update(self, **values):
         # whole numbers for a set of integers: the sliders step by 1 and a value between
         # integers moves to the nearest one (so (ℤ, ×) never offers a = -0.5)

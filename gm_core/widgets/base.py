@@ -1,14 +1,34 @@
 """The Panel protocol shared by every interactive figure of the course.
 
-A subclass implements
+**The pattern: a ScenePanel.** Every panel of the course is a :class:`ScenePanel` that pairs a
+drawing :class:`~gm_core.drawing.toolkit.style.Scene` with the controls that drive it; the model
+to copy is ``gm_core/drawing/start.py`` (the scene) and ``gm_core/widgets/start.py`` (the panel)::
 
-* ``build()``: create the figure (``gm_core.drawing.new_figure``), its artists and
-  ``self.controls`` (an ordered dict of ipywidgets value widgets, e.g. FloatSlider);
-* ``update(**values)``: recompute and move artists in place, then ``self.redraw()``;
-* ``naive_update(**values)``: the baseline a beginner would write (clear the axes and re-plot
-  everything); used only by ``benchmarks/widget_latency.py`` to show what in-place updates save;
-* optionally ``sample_values(rng)``: random control values for the benchmark (defaults to a
-  uniform draw inside each slider's range).
+    class FrameScene(Scene):                     # gm_core/drawing/<topic>.py
+        FIGSIZE = (4.5, 4.5)
+        def decorate(self) -> None: ...          # limits, labels, static artists (once)
+        def create(self) -> None: ...            # the moving artists (once)
+        def set(self, **values) -> None: ...     # move them in place
+
+    @register
+    class FrameDemo(ScenePanel):                 # gm_core/widgets/<topic>.py
+        title = "A rigid body at g = (x, y, θ)"
+        scene_class = FrameScene
+        def controls_spec(self) -> dict[str, W.ValueWidget]:
+            return {"x": slider(1.0, -2.0, 2.0, description="x"), ...}
+
+``Scene`` and ``Panel`` are abstract base classes: a scene must implement ``create`` and ``set``,
+a ScenePanel must set ``scene_class`` and implement ``controls_spec``; ``scene_options()``
+(keywords for the scene, default the panel's options) and ``sample_values(rng)`` (random control
+values for ``benchmarks/widget_latency.py``, default a uniform draw inside each slider's range)
+are optional. :func:`register` puts the panel in the blitting test, the figure-standard test and
+the latency benchmark.
+
+A ScenePanel's ``update(**values)`` hands the control values to ``scene.set`` and asks for a
+redraw; ``naive_update(**values)`` is the scene's clear-and-replot baseline (``Scene.replot``),
+used only by the latency benchmark to show what in-place updates save. A bare :class:`Panel`
+(rare) implements ``build()`` (the figure, its artists and ``self.controls``), ``update`` and
+``naive_update`` itself.
 
 Changing a control calls ``update`` with the values of all controls, so a test can set
 ``panel.controls["theta"].value = 1.0`` and then inspect the artists, with no browser.
@@ -26,11 +46,13 @@ from __future__ import annotations
 import importlib
 import pkgutil
 import time
+from abc import ABC, abstractmethod
 from contextlib import AbstractContextManager
 from typing import TYPE_CHECKING, Any, TypeVar
 
 import ipywidgets as W
 import numpy as np
+from typing_extensions import override
 
 if TYPE_CHECKING:   # matplotlib is imported by the drawing layer, only when a panel is built
     from matplotlib.figure import Figure
@@ -63,7 +85,7 @@ def all_panels() -> dict[str, type[Panel]]:
     return dict(PANELS)
 
 
-class Panel:
+class Panel(ABC):
     """Controls plus a live figure; display it by leaving the panel as the last line of a cell."""
 
     title: str = ""
@@ -111,12 +133,15 @@ class Panel:
                 self.keyframes = KeyFrames(self.fig)
 
     # -- to implement -------------------------------------------------------------
+    @abstractmethod
     def build(self) -> None:
         raise NotImplementedError
 
+    @abstractmethod
     def update(self, **values: Any) -> None:
         raise NotImplementedError
 
+    @abstractmethod
     def naive_update(self, **values: Any) -> None:
         raise NotImplementedError
 
@@ -313,6 +338,7 @@ class ScenePanel(Panel):
     scene: Scene
     fig: Figure
 
+    @abstractmethod
     def controls_spec(self) -> dict[str, W.ValueWidget]:
         raise NotImplementedError
 
@@ -320,6 +346,7 @@ class ScenePanel(Panel):
         """Keyword arguments for ``scene_class`` (default: the panel's options)."""
         return dict(self.options)
 
+    @override
     def build(self) -> None:
         if self.scene_class is None:
             raise NotImplementedError(f"{type(self).__name__} must set scene_class")
@@ -327,6 +354,7 @@ class ScenePanel(Panel):
         self.fig = self.scene.fig
         self.controls = self.controls_spec()
 
+    @override
     def update(self, **values: Any) -> None:
         self.scene.set(**values)
         self.after_update(values)
@@ -335,6 +363,7 @@ class ScenePanel(Panel):
     def after_update(self, values: dict[str, Any]) -> None:
         """Hook for control-side effects of a change (e.g. disabling sliders); nothing by default."""
 
+    @override
     def naive_update(self, **values: Any) -> None:
         self.scene.replot(**values)
         self.redraw()

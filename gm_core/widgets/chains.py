@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import ipywidgets as W
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.chains import (
     ArmScene,
@@ -40,20 +41,22 @@ class _ArmPanel(ScenePanel):
 
     scene_class = ArmScene
     joints = "R"
-    lengths = (1.0,)
-    offsets = None
-    names = ("alpha",)
-    ranges = ((-PI, PI),)
-    start = (0.6,)
+    lengths: tuple[float, ...] = (1.0,)
+    offsets: tuple[float, ...] | None = None
+    names: tuple[str, ...] = ("alpha",)
+    ranges: tuple[tuple[float, float], ...] = ((-PI, PI),)
+    start: tuple[float, ...] = (0.6,)
     frames_shown = ("f", "h")
     lim = 1.4
 
+    @override
     def scene_options(self):
         o = self.options
         return dict(joints=o.get("joints", self.joints), lengths=o.get("lengths", self.lengths),
                     offsets=o.get("offsets", self.offsets), names=self.names, frames_shown=self.frames_shown,
                     lim=o.get("lim", self.lim))
 
+    @override
     def controls_spec(self):
         c = {name: slider(v, lo, hi, description=_joint_label(name))
              for name, (lo, hi), v in zip(self.names, self.ranges, self.start)}
@@ -116,11 +119,13 @@ class MobileChainPanel(ScenePanel):
 
     title = "Mobile articulated system (figs. 2.5, 2.6, 2.8): base link, shape and symmetry"
     scene_class = MobileChainScene
-    default_lengths = (1.0, 1.0, 1.0)
+    default_lengths: tuple[float, ...] = (1.0, 1.0, 1.0)
 
+    @override
     def scene_options(self):
         return dict(lengths=tuple(self.options.get("lengths", self.default_lengths)))
 
+    @override
     def controls_spec(self):
         n = len(self.options.get("lengths", self.default_lengths))
         c = {"x": slider(0.0, -1.0, 1.0, description="x"), "y": slider(0.0, -1.0, 1.0, description="y"),
@@ -133,6 +138,7 @@ class MobileChainPanel(ScenePanel):
         c["all_frames"] = W.Checkbox(value=False, description="show f and h frames")
         return c
 
+    @override
     def after_update(self, values):
         if "alpha2" in self.controls:
             self.controls["alpha2"].disabled = values.get("shape", "free") != "free"
@@ -160,6 +166,7 @@ class BetaFramePanel(ScenePanel):
     title = "Generalized body frame β (figs. 2.7, 2.9)"
     scene_class = BetaFrameScene
 
+    @override
     def controls_spec(self):
         return {
             "alpha1": slider(0.8, -2.5, 2.5, description="α₁"),
@@ -171,6 +178,7 @@ class BetaFramePanel(ScenePanel):
             "beta_theta": slider(0.0, -PI, PI, description="βᶿ"),
         }
 
+    @override
     def after_update(self, values):
         for k in ("beta_x", "beta_y", "beta_theta"):
             self.controls[k].disabled = values["frame"] != "sliders"
@@ -184,6 +192,7 @@ class JacobianMethodsPanel(ScenePanel):
     scene_class = JacobianMethodsScene
     COLORS = JacobianMethodsScene.COLORS
 
+    @override
     def controls_spec(self):
         c = {}
         joints = self.scene.chain.joints
@@ -203,6 +212,7 @@ class ThreeLinkVelocityPanel(ScenePanel):
     title = "Three-link system: link body velocities from ξ and the joint speeds (2.57)-(2.59)"
     scene_class = ThreeLinkVelocityScene
 
+    @override
     def controls_spec(self):
         return {
             "alpha1": slider(0.6, -2.5, 2.5, description="α₁"),

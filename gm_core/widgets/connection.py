@@ -3,6 +3,8 @@
 """
 from __future__ import annotations
 
+from typing_extensions import override
+
 from gm_core.drawing.connection import ConnectionFieldScene
 from gm_core.systems import KinematicSnake
 from gm_core.widgets.base import ScenePanel, register, slider
@@ -23,12 +25,14 @@ class ConnectionFieldPanel(ScenePanel):
     title = "Connection vector fields and a shape cursor"
     scene_class = ConnectionFieldScene
 
+    @override
     def scene_options(self):
         o = self.options
         self.system = o.get("system") or KinematicSnake()
         self.title = f"Connection vector fields: {self.system.name}"
         return dict(system=self.system, n=o.get("n"), velocity_scale=o.get("velocity_scale", 1.0))
 
+    @override
     def controls_spec(self):
         (lo1, hi1), (lo2, hi2) = self.system.shape_limits
         return {

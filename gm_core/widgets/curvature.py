@@ -7,6 +7,7 @@ pattern, CONTRIBUTING.md); the numbers come from :mod:`gm_core.geometry`.
 from __future__ import annotations
 
 import ipywidgets as W
+from typing_extensions import override
 
 from gm_core.drawing import curvature as D
 from gm_core.geometry import optimize_gait
@@ -35,6 +36,7 @@ class GaitStokesPanel(ScenePanel):
     title = "A gait on the curvature map: exact displacement, Stokes estimate, body-velocity integral"
     scene_class = D.GaitStokesScene
 
+    @override
     def controls_spec(self):
         self.numbers = W.HTML()
         return {"c1": slider(0.0, -1.5, 1.5, description="centre α₁"),
@@ -47,10 +49,12 @@ class GaitStokesPanel(ScenePanel):
                                        description="map row", style={"button_width": "3.5em"}),
                 "frame": _frame_buttons()}
 
+    @override
     def after_update(self, values):
         self.numbers.value = self.scene.table
 
     @property
+    @override
     def widget(self):
         """The panel's box with the table of numbers under it."""
         if getattr(self, "_with_numbers", None) is None:
@@ -65,6 +69,7 @@ class FrameFieldsPanel(ScenePanel):
     title = "The connection seen from three body frames"
     scene_class = D.FrameFieldsScene
 
+    @override
     def controls_spec(self):
         return {"frame": _frame_buttons()}
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import ipywidgets as W
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.gaits import GAIT_SHAPES, GaitScene
 from gm_core.drawing.toolkit.primitives import jshtml
@@ -30,6 +31,7 @@ class GaitPanel(ScenePanel):
     title = "Gaits on the connection fields"
     scene_class = GaitScene
 
+    @override
     def scene_options(self):
         o = self.options
         self.system = o.get("system") or KinematicSnake()
@@ -38,10 +40,12 @@ class GaitPanel(ScenePanel):
         frames = self.system.body_frames(centre_of_mass=False, minimum_perturbation=False)
         return dict(system=self.system, frames=frames if len(frames) > 1 else {}, n=o.get("n"), lim=o.get("lim"))
 
+    @override
     def build(self):
         super().build()
         self.scene.on_edit = self.refresh     # mouse edits of a drawn loop redraw like a slider
 
+    @override
     def controls_spec(self):
         (lo1, hi1), (lo2, hi2) = self.system.shape_limits
         o = self.options
@@ -60,6 +64,7 @@ class GaitPanel(ScenePanel):
             spec["frame"] = W.Dropdown(options=frames, value=frames[0], description="body frame")
         return spec
 
+    @override
     def after_update(self, values):
         self.system = self.scene.system       # the body frame may have changed
         fam = values.get("family", "circle")

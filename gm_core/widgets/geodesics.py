@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import ipywidgets as W
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.geodesics import (
     ExpFourWaysScene,
@@ -29,6 +30,7 @@ class SurfaceGeodesicsPanel(ScenePanel):
     # curves wind behind the surfaces' wireframes: only a full 3D draw sorts them by depth
     blit = False
 
+    @override
     def controls_spec(self):
         return {"heading_deg": slider(15.0, -90.0, 90.0, step=1.0, description="heading (° up from around)",
                                       readout_format=".0f"),
@@ -42,6 +44,7 @@ class HelixPanel(ScenePanel):
     title = "SE(2) geodesics are helices (fig. 1.18)"
     scene_class = HelixScene
 
+    @override
     def controls_spec(self):
         return {"thetadot": slider(1.0, -3.0, 3.0, description="dθ/dt (turning rate)")}
 
@@ -53,6 +56,7 @@ class PuckArcPanel(ScenePanel):
     title = "Spinning puck vs SE(2) arc (fig. 1.19)"
     scene_class = PuckArcScene
 
+    @override
     def controls_spec(self):
         return {"t": slider(1.5, 0.0, 2 * PI, description="time t"),
                 "w": slider(1.0, 0.2, 2.0, description="ξᶿ")}
@@ -65,6 +69,7 @@ class RPlusGeodesicPanel(ScenePanel):
     title = "Geodesics of (R⁺, ×) (fig. 1.17)"
     scene_class = RPlusGeodesicScene
 
+    @override
     def controls_spec(self):
         return {"xi": slider(1.0, -1.5, 1.5, description="ξ")}
 
@@ -76,6 +81,7 @@ class ExpFourWaysPanel(ScenePanel):
     title = "exp(ξ) on SE(2), four ways"
     scene_class = ExpFourWaysScene
 
+    @override
     def controls_spec(self):
         return {"thetadot": slider(1.0, -3.0, 3.0, description="dθ/dt in ξ = (1, 0, dθ/dt)"),
                 "n": int_slider(8, 1, 64, description="steps / terms n"),

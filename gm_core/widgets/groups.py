@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.groups import (
     BodyPointsScene,
@@ -26,6 +27,7 @@ class SlideRulePanel(ScenePanel):
     title = "A slide rule multiplies by adding logarithms"
     scene_class = SlideRuleScene
 
+    @override
     def controls_spec(self):
         return {"a": slider(2.0, 1.0, 10.0, description="a"),
                 "b": slider(3.0, 1.0, 10.0, description="b")}
@@ -38,6 +40,7 @@ class CircleIsoPanel(ScenePanel):
     title = "Adding on the circle = multiplying rotations"
     scene_class = CircleIsoScene
 
+    @override
     def controls_spec(self):
         return {"a1": slider(0.2, 0.0, 0.99, description="a₁ (cycles)"),
                 "a2": slider(0.35, 0.0, 0.99, description="a₂ (cycles)")}
@@ -50,6 +53,7 @@ class LeftRightActionPanel(ScenePanel):
     title = "SE(2): left action (move by h) vs right action (h relative to g)"
     scene_class = LeftRightActionScene
 
+    @override
     def controls_spec(self):
         c = se2_sliders(1.5, 0.5, 0.5, labels=("g: x", "g: y", "g: θ"))
         c.update(se2_sliders(-1.0, 1.0, 0.9, names=("u", "v", "beta"), labels=("h: u", "h: v", "h: β")))
@@ -63,6 +67,7 @@ class ForwardLeftPanel(ScenePanel):
     title = "“Forward and to the left”, again and again (fig. 1.10)"
     scene_class = ForwardLeftScene
 
+    @override
     def controls_spec(self):
         c = se2_sliders(1.0, 1.0, PI / 2, lim=2.0, labels=("g: x", "g: y", "g: θ"))
         c["n"] = int_slider(2, 1, ForwardLeftScene.N_MAX, description="steps n")
@@ -76,6 +81,7 @@ class BodyPointsPanel(ScenePanel):
     title = "Points on a rigid body"
     scene_class = BodyPointsScene
 
+    @override
     def controls_spec(self):
         c = se2_sliders(0.5, 0.3, 0.6, lim=2.0, labels=("g: x", "g: y", "g: θ"))
         c["px"] = slider(0.6, -0.8, 0.8, description="body point pᵇ: x")

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import ipywidgets as W
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.holonomic import BetaVelocityScene, PinnedBodiesScene, RelativePoseScene
 from gm_core.widgets.base import ScenePanel, register, slider
@@ -21,6 +22,7 @@ class PinnedBodiesPanel(ScenePanel):
     title = "Two bodies pinned together (fig. 2.1): the pin's two constraints remove two numbers"
     scene_class = PinnedBodiesScene
 
+    @override
     def controls_spec(self):
         return {
             "pinned": W.Checkbox(value=True, description="pin the frame origins together"),
@@ -30,6 +32,7 @@ class PinnedBodiesPanel(ScenePanel):
             "theta2": slider(1.6, -PI, PI, description="θ₂"),
         }
 
+    @override
     def after_update(self, values):
         for k in ("x2", "y2"):
             self.controls[k].disabled = bool(values["pinned"])
@@ -42,6 +45,7 @@ class RelativePosePanel(ScenePanel):
     title = "The notation box of section 2.2: the pose of one frame seen from another, <i>g</i><sub><i>a,b</i></sub> = <i>b</i>⁻¹<i>a</i>"
     scene_class = RelativePoseScene
 
+    @override
     def controls_spec(self):
         names = list(RelativePoseScene.NAMES)
         return {
@@ -61,6 +65,7 @@ class BetaVelocityPanel(ScenePanel):
              "Ad<sub>β</sub><sup>−1</sup> (<i>ξ</i><sub>2</sub> + <i>v</i><sub>β</sub>)")
     scene_class = BetaVelocityScene
 
+    @override
     def controls_spec(self):
         return {
             "alpha1": slider(0.8, -2.5, 2.5, description="α₁"),

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.jacobians import JacobianStepScene
 from gm_core.widgets.base import ScenePanel, int_slider, register, slider
@@ -20,6 +21,7 @@ class JacobianStepPanel(ScenePanel):
     title = "The Jacobian one column at a time: step k moves joint k alone, (2.33)-(2.37)"
     scene_class = JacobianStepScene
 
+    @override
     def controls_spec(self):
         joints = self.scene.chain.joints
         c = {"step": int_slider(1, 0, len(joints), description="step k")}

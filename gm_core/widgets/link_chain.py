@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import ipywidgets as W
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.connection import ROW_LABELS
 from gm_core.drawing.link_chain import PHYSICS_LABELS, ChainSliceScene, OptimalGaitScene, WaveGaitScene
@@ -31,6 +32,7 @@ class ChainSlicePanel(ScenePanel):
     title = "A chain you design, on a slice of its shape space"
     scene_class = ChainSliceScene
 
+    @override
     def controls_spec(self):
         o = self.options
         return {
@@ -41,6 +43,7 @@ class ChainSlicePanel(ScenePanel):
             "axis2": int_slider(o.get("axis2", 2), 1, 6, description="slice joint 2"),
         }
 
+    @override
     def after_update(self, values):
         n = int(values.get("links", 4)) - 1
         for k in ("axis1", "axis2"):
@@ -54,6 +57,7 @@ class WaveGaitPanel(ScenePanel):
     title = "A travelling wave along a chain"
     scene_class = WaveGaitScene
 
+    @override
     def controls_spec(self):
         o = self.options
         return {
@@ -73,6 +77,7 @@ class OptimalGaitPanel(ScenePanel):
     title = "Design a chain and optimise its gait"
     scene_class = OptimalGaitScene
 
+    @override
     def controls_spec(self):
         o = self.options
         return {
@@ -82,6 +87,7 @@ class OptimalGaitPanel(ScenePanel):
             "order": int_slider(o.get("order", 1), 1, 2, description="Fourier order"),
         }
 
+    @override
     def build(self):
         super().build()
         self.button = W.Button(description="optimise", button_style="primary", icon="play",
@@ -91,6 +97,7 @@ class OptimalGaitPanel(ScenePanel):
         self.movie = W.Output()
         self.button.on_click(lambda _: self.run())
 
+    @override
     def after_update(self, values):
         if getattr(self, "_shown", None) != self.scene.key:      # the animation belongs to another design
             self.movie.clear_output()
@@ -128,6 +135,7 @@ class OptimalGaitPanel(ScenePanel):
         return res
 
     @property
+    @override
     def widget(self):
         if getattr(self, "_box", None) is None:
             self._box = W.VBox([super().widget, W.HBox([self.button, self.bar, self.status],

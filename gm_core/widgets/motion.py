@@ -3,6 +3,8 @@
 """
 from __future__ import annotations
 
+from typing_extensions import override
+
 from gm_core.drawing.motion import AckermanScene, DiffDriveScene
 from gm_core.widgets.base import ScenePanel, register, slider
 
@@ -16,6 +18,7 @@ class DiffDriveCarPanel(ScenePanel):
     title = "Differential-drive car: wheel speeds in, motion out"
     scene_class = DiffDriveScene
 
+    @override
     def controls_spec(self):
         return {
             "wheel1_speed": slider(2.0, -4.0, 4.0, description="wheel 1 (left) rate"),
@@ -31,6 +34,7 @@ class AckermanCarPanel(ScenePanel):
     title = "Ackerman car: drive and steering in, motion out"
     scene_class = AckermanScene
 
+    @override
     def controls_spec(self):
         return {
             "wheel_speed": slider(3.0, -4.0, 4.0, description="drive wheel rate"),

@@ -3,6 +3,8 @@
 """
 from __future__ import annotations
 
+from typing_extensions import override
+
 from gm_core.drawing.observers import FramesScene, ObserverScene
 from gm_core.widgets.base import ScenePanel, register, se2_sliders, slider, xi_sliders
 
@@ -16,6 +18,7 @@ class ObserverPanel(ScenePanel):
     title = "Change the observer: the body velocity stays, the spatial velocity changes"
     scene_class = ObserverScene
 
+    @override
     def controls_spec(self):
         c = se2_sliders(-1.5, -1.0, 0.0, names=("hx", "hy", "htheta"), lim=2.5,
                          labels=("observer h: x", "observer h: y", "observer h: θ"))
@@ -30,6 +33,7 @@ class FramesPanel(ScenePanel):
     title = "Reference frame, coordinate frames, and the instantaneous body frame"
     scene_class = FramesScene
 
+    @override
     def controls_spec(self):
         c = {"t": slider(1.2, 0.0, 6.0, description="time t")}
         c.update(se2_sliders(-1.8, 1.2, -0.5, names=("bx", "by", "btheta"), lim=2.5,

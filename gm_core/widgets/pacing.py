@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import ipywidgets as W
+from typing_extensions import override
 
 from gm_core.drawing.pacing import DirectionalScene, PacingSquareScene
 from gm_core.systems.directional import RATE_MAPS
@@ -23,6 +24,7 @@ class PacingSquarePanel(ScenePanel):
     title = "Fig. 3.1: repace the shape path, the position path follows"
     scene_class = PacingSquareScene
 
+    @override
     def controls_spec(self):
         return {"unevenness": slider(0.7, -0.9, 0.9, description="pacing unevenness a"),
                 "t": slider(0.4, 0.0, 1.0, description="time t")}
@@ -35,6 +37,7 @@ class DirectionalLinearityPanel(ScenePanel):
     title = "Directional linearity: four examples"
     scene_class = DirectionalScene
 
+    @override
     def controls_spec(self):
         return {"example": W.Dropdown(options=list(RATE_MAPS), value=list(RATE_MAPS)[0], description="example"),
                 "pace": slider(2.0, 0.25, 3.0, description="pace k")}

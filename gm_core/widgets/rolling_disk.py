@@ -3,6 +3,8 @@
 """
 from __future__ import annotations
 
+from typing_extensions import override
+
 from gm_core.drawing.rolling_disk import ParallelParkScene
 from gm_core.widgets.base import ScenePanel, register, slider
 
@@ -19,6 +21,7 @@ class ParallelParkPanel(ScenePanel):
     title = "Nonholonomy: parallel parking a rolling disk"
     scene_class = ParallelParkScene
 
+    @override
     def controls_spec(self):
         return {"d": slider(0.8, -1.2, 1.2, description="drive distance d"),
                 "phi": slider(0.6, -1.5, 1.5, description="turn angle φ")}

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.spaces import LoopsScene, PoleChartScene, TorusPathScene
 from gm_core.widgets.base import ScenePanel, register, slider
@@ -22,6 +23,7 @@ class TorusPathPanel(ScenePanel):
     # The path winds behind the torus's wireframe; only a full 3D draw sorts them by depth.
     blit = False
 
+    @override
     def controls_spec(self):
         return {"a0": slider(0.5, 0.0, 2 * PI, description="start a₀"),
                 "b0": slider(1.0, 0.0, 2 * PI, description="start b₀"),
@@ -36,6 +38,7 @@ class LoopsPanel(ScenePanel):
     title = "Loops on the torus and on the sphere (fig. 1.6)"
     scene_class = LoopsScene
 
+    @override
     def controls_spec(self):
         return {"s": slider(0.0, 0.0, 1.0, description="shrink s")}
 
@@ -47,6 +50,7 @@ class PoleChartPanel(ScenePanel):
     title = "Charts on the sphere and the pole singularity"
     scene_class = PoleChartScene
 
+    @override
     def controls_spec(self):
         return {"lat_deg": slider(45.0, -90.0, 90.0, step=0.5, description="latitude φ (°)",
                                   readout_format=".1f"),

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import ipywidgets as W
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.start import FrameScene
 from gm_core.widgets.base import ScenePanel, register, slider
@@ -20,6 +21,7 @@ class FrameDemo(ScenePanel):
     title = "A rigid body at g = (x, y, θ)"
     scene_class = FrameScene
 
+    @override
     def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {
             "x": slider(1.0, -2.0, 2.0, description="x"),

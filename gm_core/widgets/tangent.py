@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.tangent import TangentSpaceScene
 from gm_core.widgets.base import ScenePanel, register, slider
@@ -21,6 +22,7 @@ class TangentSpacePanel(ScenePanel):
     # the 3D view turns with the point: only a full draw sorts the sphere's curve by depth
     blit = False
 
+    @override
     def controls_spec(self):
         return {"s": slider(0.8, 0.0, 2 * PI, description="where along the curve s"),
                 "speed": slider(1.0, -2.0, 2.0, description="speed ds/dt")}

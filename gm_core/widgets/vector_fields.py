@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import ipywidgets as W
 import numpy as np
+from typing_extensions import override
 
 from gm_core.drawing.vector_fields import (
     AdjointScene,
@@ -28,6 +29,7 @@ class VectorFieldPanel(ScenePanel):
     title = "Vector fields and integral curves"
     scene_class = VectorFieldScene
 
+    @override
     def controls_spec(self):
         return {"field": W.Dropdown(options=list(FIELDS), value="spiral sink", description="field"),
                 "x0": slider(1.5, -2.9, 2.9, description="start x₀"),
@@ -41,6 +43,7 @@ class LiftedScalarPanel(ScenePanel):
     title = "Lifted actions carry velocities between tangent spaces"
     scene_class = LiftedScalarScene
 
+    @override
     def controls_spec(self):
         return {"hx": slider(1.5, -1.0, 3.0, description="R²: h (x part)"),
                 "hy": slider(1.0, -1.0, 2.5, description="R²: h (y part)"),
@@ -54,6 +57,7 @@ class LiftedSE2Panel(ScenePanel):
     title = "SE(2): <i>T<sub>g</sub>L<sub>h</sub></i> keeps the body velocity, <i>T<sub>g</sub>R<sub>h</sub></i> keeps the spatial velocity"
     scene_class = LiftedSE2Scene
 
+    @override
     def controls_spec(self):
         return {"theta": slider(0.3, -PI, PI, description="g: θ"),
                 "u": slider(2.0, -1.5, 3.0, description="h: u"),
@@ -68,6 +72,7 @@ class VelocityPanel(ScenePanel):
     title = "Four views of one velocity (fig. 1.15)"
     scene_class = VelocityScene
 
+    @override
     def controls_spec(self):
         c = se2_sliders(1.2, 0.6, 0.7, lim=2.0, labels=("g: x", "g: y", "g: θ"))
         c.update(xi_sliders(0.8, 0.3, 0.6))
@@ -81,6 +86,7 @@ class AdjointPanel(ScenePanel):
     title = "The adjoint Ad<sub><i>g</i></sub> = <i>T<sub>g</sub>R<sub>g⁻¹</sub> T<sub>e</sub>L<sub>g</sub></i>, checked live"
     scene_class = AdjointScene
 
+    @override
     def controls_spec(self):
         c = se2_sliders(1.0, -0.5, 0.8, lim=2.5, labels=("g: x", "g: y", "g: θ"))
         c.update(xi_sliders(0.5, 0.2, 0.7))

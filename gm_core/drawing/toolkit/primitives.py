@@ -13,6 +13,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.animation import AbstractMovieWriter, FuncAnimation
 from matplotlib.patches import Polygon
+from typing_extensions import override
 
 from gm_core.drawing.toolkit.style import DPI, PALETTE
 from gm_core.groups import SE2
@@ -153,12 +154,15 @@ class _FrameCollector(AbstractMovieWriter):
         self.frames: list[str] = []
         self.palette = palette
 
+    @override
     def setup(self, fig, outfile, dpi=None):
         super().setup(fig, outfile, dpi=dpi)
 
+    @override
     def grab_frame(self, **savefig_kwargs):
         self.frames.append(_png_data_url(self.fig, self.dpi, self.palette, **savefig_kwargs))
 
+    @override
     def finish(self):
         pass
 

@@ -23,6 +23,7 @@
 from __future__ import annotations
 
 import re
+from abc import ABC, abstractmethod
 from typing import Any
 
 import matplotlib as mpl
@@ -36,6 +37,7 @@ from matplotlib.layout_engine import ConstrainedLayoutEngine, PlaceHolderLayoutE
 from matplotlib.path import Path
 from matplotlib.textpath import TextPath
 from matplotlib.transforms import blended_transform_factory as _blend
+from typing_extensions import override
 
 from gm_core.drawing.toolkit.blit import hold_pictures_until_view
 from gm_core.printing import shown
@@ -45,10 +47,8 @@ __all__ = [
     "DPI", "MAX_WIDTH_IN", "MIN_TEXT_PX", "MIN_TEXT_PT", "MATH_PT", "PALETTE", "STYLE", "apply_style",
     "new_figure", "figure", "margins", "freeze_layout", "PathText", "readout", "ArrowSet", "arrow", "set_arrows",
     "title",
-    "xticks", "yticks", "axis_label", "axes_row", "text_panel", "Scene", "TWO_PI",
+    "xticks", "yticks", "axis_label", "axes_row", "text_panel", "Scene",
 ]
-
-TWO_PI = 2.0 * np.pi
 
 # ------------------------------------------------------------------------- the figure standard
 #: Figure resolution: 1 inch = DPI pixels on screen (ipympl, inline and to_jshtml frames).
@@ -121,11 +121,13 @@ class CourseFigure(Figure):
       a save.
     """
 
+    @override
     def tight_layout(self, *, pad=1.08, h_pad=None, w_pad=None, rect=None):
         if isinstance(self.get_layout_engine(), ConstrainedLayoutEngine):
             self.set_layout_engine("none")   # a placeholder: positions kept until the tight layout runs
         super().tight_layout(pad=pad, h_pad=h_pad, w_pad=w_pad, rect=rect)
 
+    @override
     def savefig(self, fname, *, transparent=None, **kwargs):
         engine = self.get_layout_engine()
         if (not isinstance(engine, PlaceHolderLayoutEngine) or mpl.rcParams["figure.autolayout"]
@@ -510,7 +512,7 @@ def text_panel(ax):
 
 
 # ------------------------------------------------------------------------------------ figures and scenes
-class Scene:
+class Scene(ABC):
     """Base of every live drawing: it owns its figure; ``set`` moves, ``replot`` rebuilds.
 
     Subclasses implement ``make_figure()`` (returns the figure and a list of axes),
@@ -545,12 +547,14 @@ class Scene:
         self.ax = axes
         return fig, [axes]
 
-    def decorate(self) -> None:
-        pass
+    def decorate(self) -> None:  # noqa: B027 (an optional hook: most scenes have static artists)
+        """Limits, labels and static artists, drawn once (optional; nothing by default)."""
 
+    @abstractmethod
     def create(self) -> None:
         raise NotImplementedError
 
+    @abstractmethod
     def set(self, **values: Any) -> None:
         raise NotImplementedError
 
