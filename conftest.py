@@ -1,7 +1,6 @@
 """Root pytest configuration: test-mode flag for notebooks, a headless matplotlib backend, and the
 plumbing that makes nbval's one execution of every notebook the record every other test reads
 (tests/nbrun.py)."""
-import gc
 import os
 import sys
 from pathlib import Path
@@ -18,16 +17,6 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 # 10-100x slower on two loaded cores). The results are the same.
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
-# Python's cyclic garbage collector in the test processes (the controller and each xdist worker;
-# notebooks' kernels are separate processes and keep Python's defaults). A worker holds 0.25-0.85
-# million long-lived objects (sympy, scipy, matplotlib, IPython, the course), and with the
-# default thresholds (700, 10, 10) it walked all of them ~60 times a run, 0.2-0.5 s each (~15 CPU-s
-# in a run on two cores). Collecting the young generation every 5000 allocations and the older
-# ones every 20 young collections leaves garbage the same, found a little later: on nine
-# unit-test files in one process the collector's time went from 8.5 to 3.6 s, peak memory unchanged
-# (526 -> 534 MB). Tests that need garbage gone call gc.collect() themselves.
-gc.set_threshold(5000, 20, 20)
-
 sys.path.insert(0, str(Path(__file__).resolve().parent / "tests"))
 import nbrun  # noqa: E402
 

@@ -42,6 +42,8 @@ COURSE_DIRS = ("book", "exercises", "solutions")
 KEEP_RUNS = 3
 MARK = "nbrecord"
 ENV = "GM_NBRUN_DIR"
+#: in config.stash: this process made the run folder (the controller, or a run without xdist)
+OWNER = pytest.StashKey[bool]()
 #: scheduling groups (group_of): "nb:<notebook>" holds a notebook's nbval cells and the tests that
 #: read its record (its browser test among them); BROWSER holds the browser self-checks
 NOTEBOOK_GROUP = "nb:"
@@ -94,7 +96,7 @@ def configure(config):
         d = BUILD / f"run-{time.strftime('%Y%m%d-%H%M%S')}-{os.getpid()}"
         d.mkdir()
         os.environ[ENV] = str(d)
-        config._gm_nbrun_owner = True
+        config.stash[OWNER] = True
     if hasattr(config.option, "loadscopereorder"):
         config.option.loadscopereorder = False   # our order: longest groups first (modify_items)
 
@@ -459,7 +461,7 @@ def logreport(report):
 
 
 def session_finish(config):
-    if not getattr(config, "_gm_nbrun_owner", False) or not _DURATIONS:
+    if not config.stash.get(OWNER, False) or not _DURATIONS:
         return
     d = run_dir()
     rounded = {g: round(s, 2) for g, s in sorted(_DURATIONS.items(), key=lambda kv: -kv[1])}
