@@ -1,9 +1,36 @@
-"""Shared fixtures for the unit tests."""
+"""Shared fixtures for the unit tests, and the rule that under CI a missing tool is a failure."""
 import contextlib
+import os
 import sys
 import weakref
 
 import pytest
+
+#: CI=true (GitHub Actions and most CI services set it): every tool the suite needs is installed
+CI = os.environ.get("CI", "").strip().lower() in ("true", "1", "yes")
+#: words of the skip reasons that mean "a tool the tests need is missing or cannot run here":
+#: bubblewrap (the grader's and the checkers' sandbox tests: gm_grader.isolate.sandbox_problem,
+#: tests/test_progress.py, tests/test_workspace.py) and Chromium (tests/browser/, tests/test_site.py)
+MISSING_TOOL = ("bubblewrap", "bwrap", "no sandbox", "chromium")
+
+
+def missing_tool(reason: str) -> bool:
+    low = reason.lower()
+    return any(word in low for word in MISSING_TOOL)
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_makereport(item, call):
+    """Under CI a test skipped because bubblewrap or Chromium is missing (or cannot run) FAILS:
+    there the sandbox and browser tests must run. Elsewhere they skip, the reason saying what to
+    install."""
+    report = yield
+    if CI and report.skipped and not hasattr(report, "wasxfail"):
+        reason = report.longrepr[2] if isinstance(report.longrepr, tuple) else str(report.longrepr)
+        if missing_tool(reason):
+            report.outcome = "failed"
+            report.longrepr = f"CI=true, where this test must run, but: {reason}"
+    return report
 
 
 @pytest.fixture(autouse=True)
