@@ -1,6 +1,6 @@
 # The two commands a new user needs (see README.md):
 #   make lab    set up .venv, install the course, open JupyterLab on the start page
-#   make test   the same set-up, then every unit test and every notebook (pytest + nbval)
+#   make test   the same set-up, then every unit test and every notebook (pytest)
 SHELL := /bin/bash
 PYTHON ?= python3
 VENV ?= .venv
@@ -10,11 +10,10 @@ LAB_ARGS ?=
 # Jupyter refuses to start as root unless told; only then (containers, CI) is the flag added.
 ROOT_FLAG := $(if $(filter 0,$(shell id -u)),--ServerApp.allow_root=True,)
 PYTEST_ARGS ?=
-# make test runs on this many pytest-xdist workers (a notebook's cells and the tests reading its
-# record stay on one worker: tests/nbrun.py); TEST_WORKERS=0 runs in one process. Four on two
-# cores: two run the notebooks and their browser tests, whose waits for the page and the kernel
-# the other two workers' unit tests fill; two, so that one's waits (the grader's time limits,
-# the site's and kits' subprocesses) are filled by the other (tests/nbrun.py: next_group).
+# make test runs on this many pytest-xdist workers, `--dist loadgroup`: a notebook and the tests
+# reading its record share an xdist_group, so it is executed once (tests/nbrun.py);
+# TEST_WORKERS=0 runs in one process. More workers than cores: the notebook and browser tests
+# spend much of their time waiting for a kernel or the page, and the other workers fill those waits.
 TEST_WORKERS ?= 4
 
 .PHONY: setup test-tools lab lab-settings test test-kits exercises workspace bench screenshots gradescope kits site clean help
@@ -70,12 +69,12 @@ test-tools: setup
 # Python may cache compiled modules here even where the machine sets PYTHONDONTWRITEBYTECODE:
 # else each of the run's ~150 kernels and helper processes compiles the course from source.
 test: setup test-tools
-	env -u PYTHONDONTWRITEBYTECODE $(PY) -m pytest -n $(TEST_WORKERS) $(PYTEST_ARGS)
+	env -u PYTHONDONTWRITEBYTECODE $(PY) -m pytest -n $(TEST_WORKERS) --dist loadgroup $(PYTEST_ARGS)
 
 # Every exercise through every grading kit (otter-grader, nbgrader, Gradescope), as each
 # instructor's tool runs it: tests/kits/, collected only here (each tool runs every notebook).
 test-kits: setup test-tools
-	GM_TEST_KITS=1 env -u PYTHONDONTWRITEBYTECODE $(PY) -m pytest -n 2 -p no:nbval tests/kits
+	GM_TEST_KITS=1 env -u PYTHONDONTWRITEBYTECODE $(PY) -m pytest -n 2 tests/kits
 
 exercises: setup
 	$(PY) tools/make_exercises.py

@@ -142,31 +142,13 @@ def clean(monkeypatch, tmp_path):
 
 
 @pytest.fixture(scope="session")
-def notebook_record(request):
-    """``get(path)`` -> the record of that notebook's one execution in this run (tests/nbrun.py).
-
-    Under ``make test`` nbval has just executed the notebook (its cells run right before the tests
-    that read it, on the same worker). When the session does not execute it (a test file run on
-    its own, ``-p no:nbval``), the first call executes every notebook the session's readers need,
-    through nbval, in one pytest subprocess."""
+def notebook_record():
+    """``get(path)`` -> the record of that notebook's one execution in this run (tests/nbrun.py):
+    executed at the first call in this process; the notebook's xdist group keeps its readers on
+    the worker that executed it."""
     import nbrun
 
-    session = request.session
-    ran = {"done": False, "log": ""}
-
-    def get(path):
-        rec = nbrun.recorded(path)
-        if rec is None and not ran["done"]:
-            ran["done"] = True
-            ran["log"] = nbrun.run_missing(session, nbrun.wanted_by(session) + [nbrun.rel_of(path)])
-            rec = nbrun.recorded(path)
-        if rec is None:
-            rec = nbrun.any_record(path)   # incomplete: its errors say why
-        if rec is None:
-            pytest.fail(f"no record of {nbrun.rel_of(path)} in {nbrun.run_dir()}:\n{ran['log']}")
-        return rec
-
-    return get
+    return nbrun.record
 
 
 @pytest.fixture(scope="session")
@@ -198,23 +180,18 @@ SELFCHECK_NOTEBOOKS = {
 
 @pytest.fixture(scope="session")
 def selfcheck_records():
-    """Records of generated notebooks executed exactly as the course's are (nbval + the recorder),
-    so the tests reading records can prove they fail on a bad notebook."""
+    """Records of generated notebooks executed exactly as the course's are (tests/nbrun.py), so
+    the tests reading records can prove they fail on a bad notebook. Its readers are marked
+    ``nbrun.SELFCHECK``, so they share one execution."""
     import nbformat
     import nbrun
 
     d = nbrun.run_dir() / "selfcheck"
     d.mkdir(parents=True, exist_ok=True)
-    paths = []
+    out = {}
     for name, cells in SELFCHECK_NOTEBOOKS.items():
         nb = nbformat.v4.new_notebook()
         nb.cells = [nbformat.v4.new_code_cell(src) for src in cells]
         nbformat.write(nb, d / name)
-        paths.append(d / name)
-    log = nbrun.execute(paths)
-    out = {}
-    for p in paths:
-        rec = nbrun.recorded(p)
-        assert rec is not None, f"no record of the generated {p.name}:\n{log}"
-        out[p.name] = rec
+        out[name] = nbrun.record(d / name)
     return out

@@ -3,14 +3,12 @@
 :func:`run_notebook` executes the code cells of one notebook in a fresh IPython namespace with
 the Agg backend (the ``%matplotlib widget`` / ``%matplotlib inline`` lines are dropped: the
 figures are the same matplotlib figures, measured at their own size and dpi), watched by the same
-:class:`nbrecord.Recorder` that watches the nbval kernels of ``make test``: each figure after the
-cell that made it and in its final state, every frame of every animation shown through
+:class:`nbrecord.Recorder` that watches the notebooks' kernels under ``make test``: each figure
+after the cell that made it and in its final state, every frame of every animation shown through
 ``to_jshtml``. This is the one in-process notebook runner; under ``make test`` the figure standard
-reads the record of nbval's execution instead (tests/nbrun.py), and a call with an ``epilogue``
-is answered from that record when the same run holds it, or will within minutes because nbval is
-executing that notebook on another worker (no second execution).
+reads the record of the run's one execution of each notebook instead (tests/nbrun.py).
 
-Used by tools/screenshots.py (``visit`` callback) and the browser tests' cell-by-cell reference.
+Used by tools/screenshots.py (``visit`` callback) and the figure standard's self-checks.
 """
 from __future__ import annotations
 
@@ -65,18 +63,11 @@ def _shell():
 def run_notebook(path: Path, visit=None, root: Path = ROOT, epilogue: str | None = None) -> NotebookFigures:
     """Execute ``path`` and check its figures; ``visit(where, fig_or_anim, kind)`` sees each one
     in its final state (kind "figure" or "animation"). ``epilogue`` is code run after the last
-    cell in the notebook's namespace; what it prints is kept in ``.epilogue`` (the browser tests
-    compare the kernel state after Run All in JupyterLab with this cell-by-cell run)."""
+    cell in the notebook's namespace; what it prints is kept in ``.epilogue``."""
     from IPython.utils.capture import capture_output
 
     path = Path(path).resolve()
     rel = path.relative_to(root).as_posix() if path.is_relative_to(root) else path.name
-    if epilogue is not None and visit is None:
-        import nbrun
-
-        record = nbrun.wait_for_record(path, epilogue=epilogue)
-        if record is not None:   # this run's nbval execution already ran the same epilogue
-            return NotebookFigures.from_record(record)
     plt.close("all")
     shell = _shell()
     cwd = os.getcwd()

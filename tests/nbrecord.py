@@ -5,10 +5,10 @@ A :class:`Recorder` watches an IPython shell while a notebook's code cells run i
 ``pre_run_cell`` / ``post_run_cell`` events, public API). It is installed in two places, with the
 same checks:
 
-* in the **kernel nbval starts** for every notebook of book/, exercises/ and solutions/ during
-  ``make test`` (tests/nbrun.py installs it before the first cell and finishes it after the last):
-  this is THE execution of each notebook, shared by nbval's own checks, the figure standard, the
-  exercise tests and the quiet-output test;
+* in the **kernel** of the one execution of every notebook of book/, exercises/ and solutions/
+  during ``make test`` (tests/nbrun.py installs it before the first cell and finishes it after the
+  last), shared by the notebook's own test item, the figure standard, the exercise tests, the
+  quiet-output test and the browser tests' reference;
 * in a **plain in-process shell** by :func:`nbfigures.run_notebook` (tools/screenshots.py and the
   browser tests' cell-by-cell reference run).
 
@@ -68,7 +68,7 @@ def strip_magics(src: str) -> str:
 def empty_record(rel: str, host: str) -> dict:
     return {
         "path": rel,            # relative to the repository root
-        "host": host,           # "kernel" (nbval) or "in-process" (nbfigures.run_notebook)
+        "host": host,           # "kernel" (tests/nbrun.py) or "in-process" (nbfigures.run_notebook)
         "complete": False,      # finish() ran: every cell was run and the final state checked
         "cells_run": [],        # k of every code cell that ran (Run All numbering)
         "errors": [],           # "<rel> In[k] raised Name: message" (cells not tagged raises-exception)
@@ -86,7 +86,7 @@ class Recorder:
     """Checks the figures of one notebook's execution in ``shell`` (see the module docstring).
 
     ``match_cells=True`` (in a kernel) finds which code cell is running by its source, so code
-    that is not one of the notebook's cells (nbval's or this recorder's own requests) is ignored;
+    that is not one of the notebook's cells (the recorder's own install and finish) is ignored;
     otherwise the host calls :meth:`begin_cell` before each cell."""
 
     def __init__(self, shell, path: Path, rel: str, host: str, match_cells: bool, visit=None):

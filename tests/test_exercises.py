@@ -1,7 +1,7 @@
 """exercises/ is generated from solutions/ by tools/make_exercises.py and must stay in sync.
 
 Also: the generator's marker rules, its determinism, and that every untouched exercise notebook
-runs without error and leaves its exercise "unattempted" (read from the record of nbval's one
+runs without error and leaves its exercise "unattempted" (read from the record of the one
 execution of the notebook, which includes progress() at its end: tests/nbrun.py)."""
 import importlib.util
 import re
@@ -130,7 +130,7 @@ def test_script_runs_from_the_command_line():
 
 @pytest.mark.parametrize("path", nbrun.params(EXERCISES, id_of=lambda p: p.name))
 def test_untouched_exercise_runs_and_is_unattempted(path, notebook_record):
-    """From the record of nbval's one execution of the exercise notebook in this run (tests/nbrun.py):
+    """From the record of the one execution of the exercise notebook in this run (tests/nbrun.py):
     every cell ran without raising, and progress() at the end calls every exercise unattempted."""
     rec = notebook_record(path)
     assert not rec["errors"], "the untouched exercise raised:\n  " + "\n  ".join(rec["errors"])

@@ -5,13 +5,13 @@
 * ``test_panel_initial_state``: every registered Panel (gm_core.widgets.base.all_panels()) as it
   first appears.
 * ``test_notebook_figures``: every notebook of book/, exercises/ and solutions/, from the record of
-  its one execution by nbval in this run (tests/nbrun.py, tests/nbrecord.py): each figure after the
+  its one execution in this run (tests/nbrun.py, tests/nbrecord.py): each figure after the
   cell that made it and in its final state, and every frame of every animation shown through
-  ``to_jshtml``, measured in nbval's kernel. One test per notebook, so a failure names the
+  ``to_jshtml``, measured in the notebook's kernel. One test per notebook, so a failure names the
   notebook; each message names the cell (``In[k]``, as numbered by Run All), the figure and the
-  text. Run alone, this file has the notebooks executed by nbval first (one subprocess).
+  text. Run alone, this file has the notebooks executed as it reads them.
 * ``test_notebook_runner_catches_animation_frames`` / ``test_kernel_recorder_*``: the in-process
-  runner and nbval's kernel both see every frame of an animation, on a generated notebook.
+  runner and the notebook's kernel both see every frame of an animation, on a generated notebook.
 
 ``python tests/test_figure_standard.py`` writes the current list of breaches (build/breaches.txt, git-ignored).
 """
@@ -306,8 +306,9 @@ def test_notebook_runner_catches_animation_frames(tmp_path):
     assert "anim.ipynb In[2] animation frame 0: " in text and "x-axis label 'small' is 8.3 px" in text
 
 
+@nbrun.SELFCHECK
 def test_kernel_recorder_catches_animation_frames(selfcheck_records):
-    """The same notebook executed by nbval: the recorder in its kernel sees every frame too."""
+    """The same notebook executed in a kernel, as the course's are: the recorder there sees every frame too."""
     res = selfcheck_records["anim.ipynb"]
     assert res["host"] == "kernel" and res["complete"] and res["errors"] == []
     assert res["animations"] == 1 and res["figures"] == 0
@@ -349,7 +350,7 @@ print(json.dumps(out))
 
 
 def test_recorder_loads_matplotlib_only_with_the_notebook_and_still_sees_every_animation(tmp_path):
-    """In a fresh process, as in nbval's kernel: recording a notebook that never uses matplotlib
+    """In a fresh process, as in a notebook's kernel: recording a notebook that never uses matplotlib
     does not import it, and an animation saved in the very cell that first imports
     matplotlib.animation is still caught frame by frame (the save is wrapped on import)."""
     import json

@@ -14,7 +14,7 @@ SELF = "tests/test_harness.py::test_a_missing_bubblewrap_fails_under_ci_and_skip
 def _run(ci):
     env = {k: v for k, v in os.environ.items() if k != "CI"}
     env.update(GM_HARNESS_SELFTEST="1", **({"CI": "true"} if ci else {}))
-    return subprocess.run([sys.executable, "-m", "pytest", SELF, "-q", "-p", "no:nbval", "-p", "no:xdist",
+    return subprocess.run([sys.executable, "-m", "pytest", SELF, "-q", "-p", "no:xdist",
                            "-p", "no:randomly"], cwd=ROOT, env=env, capture_output=True, text=True, timeout=120)
 
 

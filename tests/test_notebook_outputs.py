@@ -1,13 +1,13 @@
 """Quiet outputs (issue 19, point 7): no output of any executed notebook shows a warning.
 
-Read from the record of nbval's one execution of every notebook of book/, exercises/ and
-solutions/ in this run (tests/nbrun.py): every output nbval received from the kernel, cell by cell.
+Read from the record of the one execution of every notebook of book/, exercises/ and
+solutions/ in this run (tests/nbrun.py): every output the kernel sent, cell by cell.
 A warning is a stderr stream naming a ``...Warning`` (what Python's ``warnings`` module prints),
 or the ``file:line: SomeWarning:`` line of ``warnings.showwarning`` in any text output. The cause
 is fixed where it arises (gm_core), never filtered.
 
 ``test_warning_detector_*`` keeps the proof that the check can fail: a generated notebook that
-warns, executed by nbval like the course, is caught; a quiet one is not.
+warns, executed like the course's, is caught; a quiet one is not.
 """
 from __future__ import annotations
 
@@ -52,7 +52,8 @@ def test_no_output_shows_a_warning(path, notebook_record):
     assert not found, f"{len(found)} outputs show a warning:\n  " + "\n  ".join(found)
 
 
-def test_warning_detector_reads_the_outputs_nbval_received(selfcheck_records):
+@nbrun.SELFCHECK
+def test_warning_detector_reads_the_outputs_the_kernel_sent(selfcheck_records):
     noisy, quiet = selfcheck_records["warns.ipynb"], selfcheck_records["quiet.ipynb"]
     found = warnings_in(noisy)
     assert len(found) == 2, found

@@ -31,7 +31,7 @@ REPO2DOCKER_PYTHON = re.compile(r"python\s*=+\s*([\d\.]*)")
 # Peer libraries the SE(2) benchmark and one comparison test use when present (each guarded by an
 # ImportError / importorskip); never needed to run or test the course.
 OPTIONAL_PEERS = {"jax", "jaxlie", "geomstats"}
-TEST_TOOLS = {"pytest", "nbval", "hypothesis", "playwright", "ruff", "mpmath", "pyyaml"}
+TEST_TOOLS = {"pytest", "pytest-xdist", "hypothesis", "playwright", "ruff", "mpmath", "pyyaml"}
 # Back-ports imported only where the standard library lacks the module (``except
 # ModuleNotFoundError``), declared with a python_version marker: {module: the marker's Python}.
 BACKPORTS = {"tomli": "3.11"}

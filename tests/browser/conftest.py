@@ -23,11 +23,10 @@ TIMINGS_KEY = pytest.StashKey[dict]()
 
 @pytest.hookimpl(tryfirst=True)  # before -m selects (the module also sets pytestmark)
 def pytest_collection_modifyitems(config, items):
-    # Scheduling (tests/nbrun.py:group_of): a test of one course notebook is a reader of that
-    # notebook's record (nbrun.params), so under pytest-xdist it runs in the notebook's group,
-    # right after nbval executed it on the same worker: its cell-by-cell reference is that
-    # record, and the notebooks' browser tests spread over the workers. The self-checks form
-    # the "browser" group. Each worker starts its own server and Chromium when it first needs them.
+    # A test of one course notebook reads that notebook's record (nbrun.params), so it carries the
+    # notebook's xdist group: under `--dist loadgroup` it runs on the worker that executes the
+    # notebook. The self-checks share the group "browser" (nbrun.default_groups). Each
+    # worker starts its own server and Chromium when it first needs them.
     for item in items:
         if HERE in Path(str(item.path)).resolve().parents:
             item.add_marker(pytest.mark.browser)
@@ -118,35 +117,6 @@ def lab(lab_server, browser_context, request):
     lab = browserlab.LabBrowser(browser_context, lab_server)
     _on_cleanup(request, lab.close)
     return lab
-
-
-@pytest.fixture(scope="session")
-def cell_by_cell(request):
-    """``cell_by_cell(notebook)`` -> a future of labview.expected_panel_state(notebook): from this
-    run's record of the notebook when nbval has executed it (under ``make test``, just before, on
-    this worker), else run in one helper process, so the reference run overlaps with
-    JupyterLab's Run All."""
-    import multiprocessing
-    from concurrent.futures import Future, ProcessPoolExecutor
-
-    import nbrun
-
-    pool = []
-
-    def submit(notebook):
-        if nbrun.recorded(notebook, epilogue=labview.PANEL_STATE_CODE) is not None:
-            done = Future()   # read from the record (no execution)
-            try:
-                done.set_result(labview.expected_panel_state(notebook))
-            except Exception as e:  # noqa: BLE001 - raised where the test reads the result
-                done.set_exception(e)
-            return done
-        if not pool:
-            pool.append(ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("spawn")))
-            _on_cleanup(request, lambda: pool[0].shutdown(wait=False, cancel_futures=True))
-        return pool[0].submit(labview.expected_panel_state, notebook)
-
-    return submit
 
 
 @pytest.fixture

@@ -62,13 +62,14 @@ def parse_panel_state(text: str) -> dict:
 
 
 def expected_panel_state(path: Path) -> dict:
-    """The named panels' state after running ``path`` cell by cell (no browser, no echo)."""
-    import nbfigures
+    """The named panels' state after this run's one execution of ``path``, cell by cell in a
+    kernel of its own (tests/nbrun.py; its epilogue is :data:`PANEL_STATE_CODE`)."""
+    import nbrun
 
-    res = nbfigures.run_notebook(Path(path), epilogue=PANEL_STATE_CODE)
-    if res.errors:
-        raise AssertionError("the cell-by-cell run failed: " + "; ".join(res.errors))
-    return parse_panel_state(res.epilogue)
+    rec = nbrun.record(path)
+    if rec["errors"] or not rec["complete"]:
+        raise AssertionError("the cell-by-cell run failed: " + "; ".join(rec["errors"] or ["it did not finish"]))
+    return parse_panel_state(rec["epilogue"]["stdout"])
 
 
 _KERNEL_EXEC_JS = r"""

@@ -4,8 +4,8 @@ student uses it (issue 19): 1366 x 768 window, file browser open.
 For each ``book/*.ipynb`` containing ``%matplotlib widget`` (found when pytest collects, so new
 chapters are covered automatically), opened and run once: Run All, every code cell ran, no output
 shows a traceback or "Error displaying widget"; then on that one page (tests/browser/labview.py,
-tests/browser/student.py): layout and panel state against a cell-by-cell run (run in a helper
-process while JupyterLab runs the notebook), slider tracks >= 150 px, nothing cut, every panel
+tests/browser/student.py): layout and panel state against a cell-by-cell run (this run's one
+execution of the notebook, tests/nbrun.py), slider tracks >= 150 px, nothing cut, every panel
 with its controls on one screen, ▶ plays every animation, the first slider of every panel
 dragged quickly ends on the same picture as a slow drag to the same value, and no page error,
 failed request or request off the machine.
@@ -24,7 +24,9 @@ import nbrun
 import pytest
 import student
 
-pytestmark = pytest.mark.browser  # (each notebook's test runs in its notebook's xdist group: conftest.py)
+# each notebook's test runs in its notebook's xdist group (nbrun.params); the self-checks in "browser"
+# (tests/nbrun.py: default_groups)
+pytestmark = pytest.mark.browser
 
 NOTEBOOKS = browserlab.interactive_notebooks()
 
@@ -77,7 +79,7 @@ def test_student_checks_can_fail(lab, record_timing, prestart_next):
 
 
 @pytest.mark.parametrize("notebook", nbrun.params(NOTEBOOKS, id_of=lambda p: p.name))
-def test_interactive_notebook_as_a_student_uses_it(notebook, lab, record_timing, prestart_next, cell_by_cell):
+def test_interactive_notebook_as_a_student_uses_it(notebook, lab, record_timing, prestart_next):
     """Run All, then what a student sees and does (1366 x 768 window, file browser open):
 
     * nothing overflows its output area, every animation shows a picture, every named panel holds
@@ -94,7 +96,7 @@ def test_interactive_notebook_as_a_student_uses_it(notebook, lab, record_timing,
     """
     relpath = notebook.relative_to(browserlab.ROOT).as_posix()
     problems, info = [], {}
-    expected = cell_by_cell(notebook)   # the reference run, beside the browser's
+    expected = labview.expected_panel_state(notebook)   # the reference: this run's execution
     with browserlab.NotebookPage(lab, relpath) as nbp:
         nbp.open()
         prestart_next()
@@ -106,7 +108,7 @@ def test_interactive_notebook_as_a_student_uses_it(notebook, lab, record_timing,
         layout, info["counts"] = labview.layout_problems(nbp)
         problems += layout
         problems += [f"Run All differs from cell by cell: {d}" for d in
-                     labview.compare_panel_states(labview.kernel_panel_state(nbp), expected.result())]
+                     labview.compare_panel_states(labview.kernel_panel_state(nbp), expected)]
         problems += student.control_problems(nbp)
         t0 = nbp.timings.mark("look", t0)
         anim_problems, info["animations"] = student.play_animations(nbp)

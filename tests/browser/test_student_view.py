@@ -11,7 +11,7 @@
   test_notebooks_in_lab.py (exercises and solutions with ``%matplotlib inline``, static chapters),
   at 1366 x 768 with the file browser open: no output overflows its area, no image or canvas is
   wider than its area, every animation shows a picture. A notebook whose outputs hold no live
-  part (no widget, no named panel) is shown as this run's one execution of it left it (nbval's,
+  part (no widget, no named panel) is shown as this run's one execution of it left it (
   tests/nbrun.py: the outputs Run All gives, opened in JupyterLab as the student's notebook);
   one with live parts is run with Run All, and its named panels must hold what a cell-by-cell
   run gives.
@@ -26,6 +26,8 @@ import labview
 import nbrun
 import pytest
 
+# each notebook's test runs in its notebook's xdist group (nbrun.params); the self-checks in "browser"
+# (tests/nbrun.py: default_groups)
 pytestmark = pytest.mark.browser
 
 NOTEBOOKS = labview.figure_notebooks(exclude=set(browserlab.interactive_notebooks()))
@@ -97,12 +99,12 @@ def test_layout_detector(lab, record_timing):
 
 
 def _executed_form(notebook) -> dict | None:
-    """This run's executed form of ``notebook`` (tests/nbrun.py: nbval's one execution), when
-    Run All in JupyterLab shows exactly that: its outputs are pictures, text and HTML, with no
-    widget, which would need its kernel, and no named panel (its state after the run is
-    empty). None otherwise, or when this run has not executed it."""
-    record = nbrun.recorded(notebook, epilogue=labview.PANEL_STATE_CODE)
-    if record is None or record.get("errors") or labview.parse_panel_state(record["epilogue"]["stdout"]):
+    """This run's executed form of ``notebook`` (tests/nbrun.py: its one execution), when Run All
+    in JupyterLab shows exactly that: its outputs are pictures, text and HTML, with no widget,
+    which would need its kernel, and no named panel (its state after the run is empty). None
+    otherwise."""
+    record = nbrun.record(notebook)
+    if record.get("errors") or labview.parse_panel_state(record["epilogue"]["stdout"]):
         return None
     if any("application/vnd.jupyter.widget-view+json" in out.get("data", {})
            for outs in record["outputs"].values() for out in outs):
@@ -114,7 +116,7 @@ def _executed_form(notebook) -> dict | None:
 def test_figures_fit(notebook, lab, record_timing, prestart_next):
     """Run All's pictures at 1366 x 768 with the file browser open. A notebook whose outputs
     hold no live part is shown as this run executed it (the same kernel code that Run All runs,
-    nbval's one execution, written where the student's notebook is and opened in JupyterLab);
+    its one execution in this run, written where the student's notebook is and opened in JupyterLab);
     one with widgets or named panels is run in JupyterLab, and its panels' state must match the
     cell-by-cell run."""
     relpath = notebook.relative_to(browserlab.ROOT).as_posix()
