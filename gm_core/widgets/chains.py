@@ -3,6 +3,8 @@
 """
 from __future__ import annotations
 
+from typing import Any
+
 import ipywidgets as W
 import numpy as np
 from typing_extensions import override
@@ -50,14 +52,14 @@ class _ArmPanel(ScenePanel):
     lim = 1.4
 
     @override
-    def scene_options(self):
+    def scene_options(self) -> dict[str, Any]:
         o = self.options
         return dict(joints=o.get("joints", self.joints), lengths=o.get("lengths", self.lengths),
                     offsets=o.get("offsets", self.offsets), names=self.names, frames_shown=self.frames_shown,
                     lim=o.get("lim", self.lim))
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         c = {name: slider(v, lo, hi, description=_joint_label(name))
              for name, (lo, hi), v in zip(self.names, self.ranges, self.start)}
         for name in self.names:
@@ -122,11 +124,11 @@ class MobileChainPanel(ScenePanel):
     default_lengths: tuple[float, ...] = (1.0, 1.0, 1.0)
 
     @override
-    def scene_options(self):
+    def scene_options(self) -> dict[str, Any]:
         return dict(lengths=tuple(self.options.get("lengths", self.default_lengths)))
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         n = len(self.options.get("lengths", self.default_lengths))
         c = {"x": slider(0.0, -1.0, 1.0, description="x"), "y": slider(0.0, -1.0, 1.0, description="y"),
              "theta": slider(0.0, -PI, PI, description="θ")}
@@ -139,7 +141,7 @@ class MobileChainPanel(ScenePanel):
         return c
 
     @override
-    def after_update(self, values):
+    def after_update(self, values: dict[str, Any]) -> None:
         if "alpha2" in self.controls:
             self.controls["alpha2"].disabled = values.get("shape", "free") != "free"
 
@@ -167,7 +169,7 @@ class BetaFramePanel(ScenePanel):
     scene_class = BetaFrameScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {
             "alpha1": slider(0.8, -2.5, 2.5, description="α₁"),
             "alpha2": slider(0.8, -2.5, 2.5, description="α₂"),
@@ -179,7 +181,7 @@ class BetaFramePanel(ScenePanel):
         }
 
     @override
-    def after_update(self, values):
+    def after_update(self, values: dict[str, Any]) -> None:
         for k in ("beta_x", "beta_y", "beta_theta"):
             self.controls[k].disabled = values["frame"] != "sliders"
 
@@ -190,11 +192,12 @@ class JacobianMethodsPanel(ScenePanel):
 
     title = "Three ways to a Jacobian: direct (2.16), world iterative (2.31), body iterative (2.37)"
     scene_class = JacobianMethodsScene
+    scene: JacobianMethodsScene
     COLORS = JacobianMethodsScene.COLORS
 
     @override
-    def controls_spec(self):
-        c = {}
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
+        c: dict[str, W.ValueWidget] = {}
         joints = self.scene.chain.joints
         for i, jt in enumerate(joints):
             lo, hi = (-PI, PI) if jt.kind == "revolute" else (0.0, 1.0)
@@ -213,7 +216,7 @@ class ThreeLinkVelocityPanel(ScenePanel):
     scene_class = ThreeLinkVelocityScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {
             "alpha1": slider(0.6, -2.5, 2.5, description="α₁"),
             "alpha2": slider(-0.4, -2.5, 2.5, description="α₂"),
