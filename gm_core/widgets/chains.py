@@ -3,7 +3,7 @@
 """
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, ClassVar
 
 import ipywidgets as W
 import numpy as np
@@ -42,14 +42,14 @@ class _ArmPanel(ScenePanel):
     """A fixed-base arm with one slider per joint and per joint speed; the end effector's velocity arrow."""
 
     scene_class = ArmScene
-    joints = "R"
-    lengths: tuple[float, ...] = (1.0,)
-    offsets: tuple[float, ...] | None = None
-    names: tuple[str, ...] = ("alpha",)
-    ranges: tuple[tuple[float, float], ...] = ((-PI, PI),)
-    start: tuple[float, ...] = (0.6,)
-    frames_shown = ("f", "h")
-    lim = 1.4
+    joints: ClassVar[str] = "R"
+    lengths: ClassVar[tuple[float, ...]] = (1.0,)
+    offsets: ClassVar[tuple[float, ...] | None] = None
+    names: ClassVar[tuple[str, ...]] = ("alpha",)
+    ranges: ClassVar[tuple[tuple[float, float], ...]] = ((-PI, PI),)
+    start: ClassVar[tuple[float, ...]] = (0.6,)
+    frames_shown: ClassVar[tuple[str, ...]] = ("f", "h")
+    lim: ClassVar[float] = 1.4
 
     @override
     def scene_options(self) -> dict[str, Any]:
@@ -121,7 +121,7 @@ class MobileChainPanel(ScenePanel):
 
     title = "Mobile articulated system (figs. 2.5, 2.6, 2.8): base link, shape and symmetry"
     scene_class = MobileChainScene
-    default_lengths: tuple[float, ...] = (1.0, 1.0, 1.0)
+    default_lengths: ClassVar[tuple[float, ...]] = (1.0, 1.0, 1.0)
 
     @override
     def scene_options(self) -> dict[str, Any]:
@@ -193,7 +193,7 @@ class JacobianMethodsPanel(ScenePanel):
     title = "Three ways to a Jacobian: direct (2.16), world iterative (2.31), body iterative (2.37)"
     scene_class = JacobianMethodsScene
     scene: JacobianMethodsScene
-    COLORS = JacobianMethodsScene.COLORS
+    COLORS: ClassVar[dict[str, str]] = JacobianMethodsScene.COLORS
 
     @override
     def controls_spec(self) -> dict[str, W.ValueWidget]:
