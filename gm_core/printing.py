@@ -9,15 +9,21 @@ on the order in which a formula happens to be evaluated.
 from __future__ import annotations
 
 import math
+from typing import overload
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from gm_core.validation import as_array, check_int
+from gm_core.validation import FloatArray, as_array, check_int
 
 __all__ = ["shown"]
 
 
-def shown(x, decimals=4):
+@overload
+def shown(x: float, decimals: int = ...) -> float: ...
+@overload
+def shown(x: ArrayLike, decimals: int = ...) -> float | FloatArray: ...
+def shown(x: ArrayLike, decimals: int = 4) -> float | FloatArray:
     """``x`` rounded to ``decimals`` decimal places, with -0.0 as 0.0: the value as it is printed.
 
     A number gives a Python float, an array a float array of the same shape; every entry is
@@ -35,5 +41,5 @@ def shown(x, decimals=4):
     return np.array([_round(v, decimals) for v in value.ravel().tolist()], dtype=float).reshape(value.shape)
 
 
-def _round(v, decimals):
+def _round(v: float, decimals: int) -> float:
     return round(v, decimals) + 0.0 if math.isfinite(v) else v

@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.calculus.arguments import (
     SIDES,
@@ -20,7 +21,7 @@ from gm_core.calculus.arguments import (
 )
 from gm_core.calculus.products import element_from_matrix
 from gm_core.groups import SE2, LieGroup, check_group
-from gm_core.validation import as_array, check_option
+from gm_core.validation import FloatArray, as_array, check_option
 
 __all__ = ["ExpHistory", "ExpPath", "exp_closed_form", "exp_taylor", "exp_product", "exp_euler",
            "exp_four_ways", "exp_history", "convergence_order", "se2_exp_study", "EXP_METHODS",
@@ -52,7 +53,7 @@ class ExpPath:
     reference: np.ndarray
 
     @property
-    def error(self):
+    def error(self) -> FloatArray:
         """Frobenius distance of each intermediate matrix from the closed-form matrix at s."""
         return np.linalg.norm(self.matrices - self.reference, axis=(-2, -1))
 
@@ -78,23 +79,23 @@ class ExpHistory:
     exact_matrix: np.ndarray
     error: np.ndarray = field(init=False)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "error", _frobenius(self.matrices - self.exact_matrix))
 
     @property
-    def elements(self):
+    def elements(self) -> FloatArray:
         return element_from_matrix(self.group, self.matrices)
 
     @property
-    def element_error(self):
+    def element_error(self) -> FloatArray:
         """Coordinate error (angles wrapped), shape (m, dim)."""
         return self.group.difference(self.elements, self.exact)
 
-    def order(self, floor=1e-13):
+    def order(self, floor: float = 1e-13) -> float:
         """Fitted algebraic convergence order p in error ~ C n^-p (see :func:`convergence_order`)."""
         return convergence_order(self.n, self.error, floor=floor)
 
-    def path(self, n=None):
+    def path(self, n: int | None = None) -> ExpPath:
         """Intermediate values of the evaluation with ``n`` steps/terms (default: the largest n)."""
         n = int(self.n[-1]) if n is None else check_steps(n, "n")
         return _PATHS[self.method](self.group, self.xi, n, self.side)
@@ -107,7 +108,7 @@ def _frobenius(D):
     return np.linalg.norm(D / safe, axis=(-2, -1)) * big[..., 0, 0]
 
 
-def convergence_order(n, error, floor=1e-13):
+def convergence_order(n: ArrayLike, error: ArrayLike, floor: float = 1e-13) -> float:
     """Least-squares slope p of log(error) = c - p log(n), ignoring errors below ``floor``.
 
     Euler and (I + A/n)^n give p close to 1; a Taylor series converges faster than any power, so
@@ -212,7 +213,8 @@ _PATHS = {"closed": _path_closed, "euler": _path_euler, "product": _path_product
           "taylor": _path_taylor}
 
 
-def exp_history(group, xi, n=DEFAULT_N, method="product", side="left"):
+def exp_history(group: LieGroup, xi: ArrayLike, n: ArrayLike = DEFAULT_N, method: str = "product",
+                side: str = "left") -> ExpHistory:
     """Estimates of exp(xi) on ``group`` for each n in ``n`` by one of :data:`EXP_METHODS`.
 
     ``method``: ``"closed"`` (``group.exp``, error 0), ``"taylor"`` (first n terms of (1.51)),
@@ -247,34 +249,36 @@ def exp_history(group, xi, n=DEFAULT_N, method="product", side="left"):
                       exact=exact, exact_matrix=exact_matrix)
 
 
-def exp_closed_form(group, xi, n=DEFAULT_N, side="left"):
+def exp_closed_form(group: LieGroup, xi: ArrayLike, n: ArrayLike = DEFAULT_N, side: str = "left") -> ExpHistory:
     """The closed-form reference ``group.exp(xi)`` as an :class:`ExpHistory` (error 0); ex. 1.4a/b."""
     return exp_history(group, xi, n, "closed", side)
 
 
-def exp_taylor(group, xi, n=DEFAULT_N, side="left"):
+def exp_taylor(group: LieGroup, xi: ArrayLike, n: ArrayLike = DEFAULT_N, side: str = "left") -> ExpHistory:
     """Partial sums sum_{k<n} xi^^k / k! of the matrix series (1.51); error falls like |xi|^n / n!."""
     return exp_history(group, xi, n, "taylor", side)
 
 
-def exp_product(group, xi, n=DEFAULT_N, side="left"):
+def exp_product(group: LieGroup, xi: ArrayLike, n: ArrayLike = DEFAULT_N, side: str = "left") -> ExpHistory:
     """Cumulative products (I + xi^/n)^n of (1.49); error ~ 1/n. ``side`` orders the path factors."""
     return exp_history(group, xi, n, "product", side)
 
 
-def exp_euler(group, xi, n=DEFAULT_N, side="left"):
+def exp_euler(group: LieGroup, xi: ArrayLike, n: ArrayLike = DEFAULT_N, side: str = "left") -> ExpHistory:
     """n forward-Euler steps of g_dot = T_e L_g xi (``"left"``, (1.46)) or T_e R_g xi (``"right"``,
     (1.47)) from the identity over unit time; error ~ 1/n."""
     return exp_history(group, xi, n, "euler", side)
 
 
-def exp_four_ways(group, xi, n=DEFAULT_N, side="left"):
+def exp_four_ways(group: LieGroup, xi: ArrayLike, n: ArrayLike = DEFAULT_N,
+                  side: str = "left") -> dict[str, ExpHistory]:
     """``{"closed", "taylor", "product", "euler"} -> ExpHistory`` for one xi: exercise 1.4d."""
     return {m: exp_history(group, xi, n, m, side) for m in EXP_METHODS}
 
 
 
-def se2_exp_study(thetadots=(0.5, 1.0, 2.0, 4.0), n=DEFAULT_N, speed=1.0):
+def se2_exp_study(thetadots: ArrayLike = (0.5, 1.0, 2.0, 4.0), n: ArrayLike = DEFAULT_N, speed: float = 1.0
+                  ) -> dict[str, dict[str, list[ExpHistory]]]:
     """Exercise 1.4d in one call: every method and side for xi = (speed, 0, thetadot).
 
     Returns ``{side: {method: [ExpHistory for each thetadot]}}`` with sides ``"left"`` and

@@ -3,13 +3,16 @@ box ((1.xx)-(1.xxxii)) and (1.50)-(1.51) (numpy only). Re-exported by :mod:`gm_c
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
+from typing import Literal, overload
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.calculus.arguments import check_scalar, check_side, check_steps, matrix_value
-from gm_core.groups import check_group
-from gm_core.validation import SingularShapeError, as_array, check_option
+from gm_core.groups import LieGroup, check_group
+from gm_core.validation import FloatArray, SingularShapeError, as_array, check_option
 
 __all__ = ["product_integral", "RunningProduct", "quotient_derivative", "element_from_matrix",
            "binomial_terms", "binomial_table"]
@@ -30,15 +33,30 @@ class RunningProduct:
     side: str
 
     @property
-    def final(self):
+    def final(self) -> FloatArray | float:
         return self.products[-1]
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator[np.ndarray]:
         yield self.x
         yield self.products
 
 
-def product_integral(v, a, b, n, side="right", *, point="end", history=False):
+#: What :func:`product_integral` and :func:`quotient_derivative` integrate or differentiate: a
+#: function ``x -> (k, k) matrix`` (or ``x -> number``), or (for a product integral) a constant.
+MatrixFunction = Callable[[float], ArrayLike]
+
+
+@overload
+def product_integral(v: MatrixFunction | ArrayLike, a: float, b: float, n: int, side: str = ..., *,
+                     point: str = ..., history: Literal[False] = ...) -> FloatArray | float: ...
+@overload
+def product_integral(v: MatrixFunction | ArrayLike, a: float, b: float, n: int, side: str = ..., *,
+                     point: str = ..., history: Literal[True]) -> RunningProduct: ...
+@overload
+def product_integral(v: MatrixFunction | ArrayLike, a: float, b: float, n: int, side: str = ..., *,
+                     point: str = ..., history: bool) -> FloatArray | float | RunningProduct: ...
+def product_integral(v: MatrixFunction | ArrayLike, a: float, b: float, n: int, side: str = "right", *,
+                     point: str = "end", history: bool = False) -> FloatArray | float | RunningProduct:
     """Product integral of ``v`` from ``a`` to ``b`` with ``n`` factors (I + v(x_k) dx).
 
     Parameters
@@ -138,7 +156,8 @@ def _default_step(x, method):
     return (eps ** (1 / 3) if method == "central" else eps ** 0.5) * scale
 
 
-def quotient_derivative(F, x, side="right", h=None, *, method="central"):
+def quotient_derivative(F: MatrixFunction, x: ArrayLike, side: str = "right", h: float | None = None, *,
+                        method: str = "central") -> FloatArray | float:
     """Numerical quotient derivative of a matrix-valued (or positive scalar) function F at x.
 
     ``side="right"``: v_R(x) = F(x)^-1 F'(x), the right quotient derivative (1.xxviii), (1.xxx);
@@ -194,7 +213,7 @@ def quotient_derivative(F, x, side="right", h=None, *, method="central"):
 
 
 # ---------------------------------------------------------------------------------- matrices <-> elements
-def element_from_matrix(group, M):
+def element_from_matrix(group: LieGroup, M: ArrayLike) -> FloatArray:
     """Coordinates of the group element nearest a (possibly non-group) matrix ``M``.
 
     Truncated Taylor sums and the products (I + A/n)^k are not exactly group matrices (their
@@ -207,7 +226,7 @@ def element_from_matrix(group, M):
     return check_group(group).nearest_element(M)
 
 
-def binomial_terms(n, k):
+def binomial_terms(n: int, k: int) -> tuple[int, float]:
     """The binomial coefficient C(n, k) = n!/(k!(n-k)!) used between (1.50) and (1.51).
 
     Returns ``(C(n, k), C(n, k) / n^k)``: the second tends to 1/k! as n -> infinity, which is why
@@ -222,7 +241,8 @@ def binomial_terms(n, k):
     return c, c / n ** k if n else 1.0
 
 
-def binomial_table(ns=(5, 10, 100, 1000), kmax=5):
+def binomial_table(ns: Iterable[int] = (5, 10, 100, 1000), kmax: int = 5
+                   ) -> list[tuple[int, int, int, float, float, float]]:
     """Rows (n, k, C(n,k), C(n,k)/n^k, 1/k!, n^k/k!) showing why (I + A/n)^n -> sum A^k/k!.
 
     Uses :func:`binomial_terms`; the last column is the draft's coefficient in (1.50), which is

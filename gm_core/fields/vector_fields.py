@@ -2,14 +2,17 @@
 (numpy + scipy only). Re-exported by :mod:`gm_core.fields`, whose docstring is the map."""
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.integrate import solve_ivp
 from typing_extensions import override
 
-from gm_core.groups import check_group, matvec
-from gm_core.validation import as_array, check_int
+from gm_core.groups import LieGroup, check_group, matvec
+from gm_core.validation import FloatArray, as_array, check_int
 
 #: Largest configuration-space dimension of a :class:`VectorField`.
 MAX_FIELD_DIM = 10_000
@@ -30,8 +33,12 @@ DEFAULT_METHOD = "DOP853"
 #: Default cap on field evaluations in :func:`integral_curve` (DOP853 uses 12 per step).
 MAX_EVALUATIONS = 50_000
 
+#: A field as a function ``(q, t) -> q_dot``: ``q`` of shape (..., dim) (or (dim,) for a field that
+#: is not vectorized) and a float time ``t``; the result has the shape of ``q``.
+FieldFunction = Callable[[FloatArray, float], ArrayLike]
 
-def check_flow_side(side):
+
+def check_flow_side(side: str) -> str:
     if not isinstance(side, str) or side not in ("left", "right"):  # a longer message than check_option's
         raise ValueError(
             f"side must be 'left' (left-invariant field, body velocity, (1.46)) or 'right' "
@@ -40,14 +47,14 @@ def check_flow_side(side):
     return side
 
 
-def check_solve_ivp_kw(kw, where):
+def check_solve_ivp_kw(kw: Mapping[str, object], where: str) -> None:
     unknown = sorted(set(kw) - SOLVE_IVP_OPTIONS)
     if unknown:
         raise TypeError(f"{where} got unknown keyword argument(s) {', '.join(unknown)}; "
                         f"solve_ivp options are {', '.join(sorted(SOLVE_IVP_OPTIONS))}")
 
 
-def check_time(t, name="t"):
+def check_time(t: ArrayLike, name: str = "t") -> FloatArray:
     t = as_array(t, name, what=" (times)")
     return t
 
@@ -72,7 +79,8 @@ class VectorField:
     Calling ``X(q, t=0.0)`` validates ``q`` (shape ``(..., dim)``, finite) and returns ``q_dot``.
     """
 
-    def __init__(self, func, dim, *, name="X", vectorized=True, group=None):
+    def __init__(self, func: FieldFunction, dim: int, *, name: str = "X", vectorized: bool = True,
+                 group: LieGroup | None = None) -> None:
         if not callable(func):
             raise TypeError(f"func must be a callable (q, t) -> q_dot; got {type(func).__name__}")
         if isinstance(dim, bool) or not isinstance(dim, (int, np.integer)):
@@ -86,7 +94,7 @@ class VectorField:
         self.group = group
 
     @override
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"VectorField({self.name!r}, dim={self.dim})"
 
     def _eval(self, q, t):
@@ -111,14 +119,15 @@ class VectorField:
             )
         return out
 
-    def __call__(self, q, t=0.0):
+    def __call__(self, q: ArrayLike, t: float = 0.0) -> FloatArray:
         q = as_array(q, "q", (self.dim,), what=f", a configuration for field {self.name!r}")
         t = as_array(t, "t", what=" (a time)")
         if t.ndim != 0:
             raise ValueError(f"t must be a single time; got shape {t.shape}")
         return self._eval(q, float(t))
 
-    def on_grid(self, *axes_values, t=0.0, axes=None, at=None):
+    def on_grid(self, *axes_values: ArrayLike, t: float = 0.0, axes: Iterable[int] | None = None,
+                at: ArrayLike | None = None) -> tuple[FloatArray, ...]:
         """Evaluate the field on a grid for ``quiver``: returns ``(*meshes, *components)``.
 
         ``axes_values`` are 1-D arrays of coordinate values, one per plotted coordinate; ``axes``
@@ -177,7 +186,7 @@ class IntegralCurve:
     q: np.ndarray
     solution: object
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator[np.ndarray]:
         yield self.t
         yield self.q
 
@@ -186,7 +195,9 @@ class _TooManyEvaluations(Exception):
     pass
 
 
-def integral_curve(field, q0, t_span, t_eval=None, *, max_evaluations=MAX_EVALUATIONS, **solve_ivp_kw):
+def integral_curve(field: VectorField | FieldFunction, q0: ArrayLike, t_span: ArrayLike,
+                   t_eval: ArrayLike | None = None, *, max_evaluations: int = MAX_EVALUATIONS,
+                   **solve_ivp_kw: Any) -> IntegralCurve:
     """Integral curve of ``field`` from ``q0``: solves q_dot = X(q, t), q(t_span[0]) = q0, (1.15).
 
     ``field`` is a :class:`VectorField` (or a callable ``(q, t)`` if ``q0`` fixes the dimension).
@@ -258,7 +269,7 @@ def _field_value(v, g, name):
     return v
 
 
-def left_invariant_field(group, xi):
+def left_invariant_field(group: LieGroup, xi: ArrayLike) -> VectorField:
     """Left-invariant field X_L(g) = T_e L_g xi of the body velocity ``xi``, (1.46).
 
     ``xi`` is a Lie-algebra vector ``(dim,)`` (or a batch broadcasting against g). Its flows have
@@ -274,7 +285,7 @@ def left_invariant_field(group, xi):
     return VectorField(X_L, group.dim, name=f"X_L[{group.name}]", group=group)
 
 
-def right_invariant_field(group, xi_s):
+def right_invariant_field(group: LieGroup, xi_s: ArrayLike) -> VectorField:
     """Right-invariant field X_R(g) = T_e R_g xi_s of the spatial velocity ``xi_s``, (1.47).
 
     Its flows have constant spatial velocity xi_s; from g0 the flow is exp(t xi_s) o g0.

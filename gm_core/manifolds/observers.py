@@ -16,10 +16,11 @@ point_velocities       world velocities of world points carried by a moving body
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.chains.jacobians import relative_pose
 from gm_core.groups import SE2, matvec
-from gm_core.validation import as_array, batch_shape, positive_number
+from gm_core.validation import BoolArray, FloatArray, as_array, batch_shape, positive_number
 
 __all__ = ["observed_velocity", "icr", "point_in_frame", "conjugation",
            "point_velocities"]
@@ -29,7 +30,7 @@ def _se2(g, name):
     return as_array(g, name, (3,), what=" (an SE(2) element (x, y, theta))")
 
 
-def observed_velocity(g, xi, h=(0.0, 0.0, 0.0)):
+def observed_velocity(g: ArrayLike, xi: ArrayLike, h: ArrayLike = (0.0, 0.0, 0.0)) -> FloatArray:
     """Spatial velocity ``(..., 3)`` of a body at ``g`` with body velocity ``xi``, measured by an
     observer whose coordinate frame is at ``h``: Ad_{h^-1 g} xi, (1.43).
 
@@ -43,7 +44,7 @@ def observed_velocity(g, xi, h=(0.0, 0.0, 0.0)):
     return matvec(SE2.Ad(relative_pose(g, h)), xi)
 
 
-def icr(xi, tol=1e-9):
+def icr(xi: ArrayLike, tol: float = 1e-9) -> tuple[FloatArray, BoolArray]:
     """Instantaneous centre of rotation of the velocity ``xi = (v_x, v_y, w)``, in the frame
     ``xi`` is written in: ``(point (..., 2), at_infinity (...,) bool)``.
 
@@ -62,13 +63,13 @@ def icr(xi, tol=1e-9):
     return p, far
 
 
-def point_in_frame(g, p):
+def point_in_frame(g: ArrayLike, p: ArrayLike) -> FloatArray:
     """Coordinates ``(..., 2)`` of the world point ``p`` in the frame at ``g`` (inverse of (1.12))."""
     p = as_array(p, "p", (2,), what=" (a point (x, y))")
     return SE2.act_on_points(SE2.inverse(_se2(g, "g")), p)
 
 
-def conjugation(g, xi):
+def conjugation(g: ArrayLike, xi: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """Ad as conjugation, for display: ``(g xi^ g^-1, (Ad_g xi)^)``, two ``(..., 3, 3)`` matrices
     that agree (the first from matrix products, the second from the closed form (1.43))."""
     g = _se2(g, "g")
@@ -78,7 +79,7 @@ def conjugation(g, xi):
     return M @ SE2.hat(xi) @ np.linalg.inv(M), SE2.hat(matvec(SE2.Ad(g), xi))
 
 
-def point_velocities(g, g_dot, points):
+def point_velocities(g: ArrayLike, g_dot: ArrayLike, points: ArrayLike) -> FloatArray:
     """World velocities ``(..., k, 2)`` of world points ``(..., k, 2)`` carried by a body at g.
 
     The body's pose is ``g (..., 3)`` and its world velocity ``g_dot (..., 3)``; a point p moves

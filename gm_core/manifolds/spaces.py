@@ -21,9 +21,10 @@ cylinder_geodesic     geodesic of the cylinder: a helix, a loop or an axial line
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.groups.base import TWO_PI
-from gm_core.validation import as_array, batch_shape, positive_number
+from gm_core.validation import FloatArray, as_array, batch_shape, positive_number
 
 __all__ = [
     "broadcast_pair",
@@ -32,22 +33,23 @@ __all__ = [
 ]
 
 
-def broadcast_pair(u, v, nu, nv):
+def broadcast_pair(u: ArrayLike, v: ArrayLike, nu: str, nv: str) -> tuple[FloatArray, FloatArray]:
     """``u`` and ``v`` (named ``nu``, ``nv`` in errors) as float arrays of one broadcast shape."""
     u = as_array(u, nu)
     v = as_array(v, nv)
     batch_shape((nu, u, 0), (nv, v, 0))
-    return np.broadcast_arrays(u, v)
+    bu, bv = np.broadcast_arrays(u, v)
+    return bu, bv
 
 
-def cylinder_xyz(s, a, radius=1.0):
+def cylinder_xyz(s: ArrayLike, a: ArrayLike, radius: float = 1.0) -> FloatArray:
     """Points ``(..., 3)`` of the cylinder R^1 x S^1 of ``radius``: height ``s``, angle ``a``."""
     s, a = broadcast_pair(s, a, "s", "a")
     radius = positive_number(radius, "radius")
     return np.stack([radius * np.cos(a), radius * np.sin(a), s], -1)
 
 
-def torus_xyz(a, b, R=2.0, r=0.7):
+def torus_xyz(a: ArrayLike, b: ArrayLike, R: float = 2.0, r: float = 0.7) -> FloatArray:
     """Points ``(..., 3)`` of the torus S^1 x S^1: ``a`` round the hole, ``b`` round the tube.
 
     ``R`` is the distance from the centre to the tube's centre line, ``r`` the tube radius
@@ -62,7 +64,7 @@ def torus_xyz(a, b, R=2.0, r=0.7):
     return np.stack([rho * np.cos(a), rho * np.sin(a), r * np.sin(b)], -1)
 
 
-def sphere_xyz(lat, lon, radius=1.0):
+def sphere_xyz(lat: ArrayLike, lon: ArrayLike, radius: float = 1.0) -> FloatArray:
     """Point ``(..., 3)`` of the sphere S^2 of ``radius`` at latitude ``lat``, longitude ``lon`` (rad)."""
     lat, lon = broadcast_pair(lat, lon, "lat", "lon")
     radius = positive_number(radius, "radius")
@@ -70,7 +72,8 @@ def sphere_xyz(lat, lon, radius=1.0):
     return radius * np.stack([c * np.cos(lon), c * np.sin(lon), np.sin(lat)], -1)
 
 
-def wrap_segments(a, b, period_a=TWO_PI, period_b=TWO_PI):
+def wrap_segments(a: ArrayLike, b: ArrayLike, period_a: float = TWO_PI, period_b: float = TWO_PI
+                  ) -> list[FloatArray]:
     """Cut a path (a(t), b(t)) into pieces inside the square [0, pa) x [0, pb) of a flat torus.
 
     Returns a list of ``(k, 2)`` arrays, one per visit of the square (pieces of a single point
@@ -91,7 +94,7 @@ def wrap_segments(a, b, period_a=TWO_PI, period_b=TWO_PI):
     return [seg for seg in np.split(pts, cuts) if len(seg) > 1]
 
 
-def chart_speed(lat, heading):
+def chart_speed(lat: ArrayLike, heading: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """Coordinate speed ``(dlat/dt, dlon/dt)`` of a unit-speed walker at latitude ``lat`` (rad).
 
     ``heading`` is measured from north towards east. On the unit sphere the walker's velocity
@@ -110,7 +113,7 @@ def chart_speed(lat, heading):
     return dlat, dlon
 
 
-def polar_chart_velocity(lat, lon, heading):
+def polar_chart_velocity(lat: ArrayLike, lon: ArrayLike, heading: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """Position ``(X, Y)`` and velocity ``(dX, dY)`` of the walker of :func:`chart_speed` in the
     polar chart X = cos(lat) cos(lon), Y = cos(lat) sin(lon) of the northern half.
 

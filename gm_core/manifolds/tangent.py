@@ -6,9 +6,10 @@ numpy only; the embeddings themselves are :mod:`gm_core.manifolds.spaces`.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gm_core.manifolds.spaces import broadcast_pair, cylinder_xyz
-from gm_core.validation import as_array, batch_shape, positive_number, real_number
+from gm_core.validation import FloatArray, as_array, batch_shape, positive_number, real_number
 
 __all__ = [
     "circle_point_velocity", "cylinder_geodesic", "great_circle", "sphere_tangent_basis",
@@ -17,7 +18,8 @@ __all__ = [
 
 
 # ------------------------------------------------------------------ tangent spaces (figs 1.11-1.12)
-def circle_point_velocity(a, a_dot=1.0, radius=1.0):
+def circle_point_velocity(a: ArrayLike, a_dot: ArrayLike = 1.0, radius: float = 1.0
+                          ) -> tuple[FloatArray, FloatArray]:
     """Position and velocity ``(..., 2)`` of a point at angle ``a`` on a circle of ``radius``,
     turning at rate ``a_dot``: p = r (cos a, sin a), v = r a_dot (-sin a, cos a), which lies on
     the tangent line at p (v . p = 0), fig. 1.11."""
@@ -30,7 +32,7 @@ def circle_point_velocity(a, a_dot=1.0, radius=1.0):
     return radius * np.stack([c, s], -1), (radius * a_dot)[..., None] * np.stack([-s, c], -1)
 
 
-def sphere_tangent_basis(lat, lon):
+def sphere_tangent_basis(lat: ArrayLike, lon: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """Unit vectors ``(east, north)``, each ``(..., 3)``, spanning the tangent plane of the
     sphere at latitude ``lat``, longitude ``lon`` (fig. 1.12): east = d/dlon of
     :func:`sphere_xyz` divided by cos(lat), north = d/dlat. At a pole "east" and "north" lose
@@ -41,7 +43,8 @@ def sphere_tangent_basis(lat, lon):
     return east, north
 
 
-def sphere_velocity(lat, lon, lat_dot, lon_dot, radius=1.0):
+def sphere_velocity(lat: ArrayLike, lon: ArrayLike, lat_dot: ArrayLike, lon_dot: ArrayLike,
+                    radius: float = 1.0) -> FloatArray:
     """Velocity ``(..., 3)`` in T_pS^2 of a point moving with coordinate rates ``lat_dot``,
     ``lon_dot``: r (cos(lat) lon_dot east + lat_dot north), the chain rule on :func:`sphere_xyz`."""
     east, north = sphere_tangent_basis(lat, lon)
@@ -53,7 +56,8 @@ def sphere_velocity(lat, lon, lat_dot, lon_dot, radius=1.0):
 
 
 # -------------------------------------------------------------------------- geodesics (fig. 1.16)
-def great_circle(p, v, t, radius=1.0, tol=1e-9):
+def great_circle(p: ArrayLike, v: ArrayLike, t: ArrayLike, radius: float = 1.0, tol: float = 1e-9
+                 ) -> tuple[FloatArray, FloatArray]:
     """Points and velocities ``(len(t), 3)`` of the sphere's geodesic that starts at ``p`` (on the
     sphere of ``radius``) with tangent velocity ``v``: with speed c = |v| and unit direction u,
     p(t) = p cos(c t / r) + r u sin(c t / r), a great circle run at constant speed, fig. 1.16.
@@ -79,7 +83,8 @@ def great_circle(p, v, t, radius=1.0, tol=1e-9):
     return p * np.cos(k) + radius * u * np.sin(k), c * (u * np.cos(k) - p / radius * np.sin(k))
 
 
-def cylinder_geodesic(s0, a0, s_dot, a_dot, t, radius=1.0):
+def cylinder_geodesic(s0: float, a0: float, s_dot: float, a_dot: float, t: ArrayLike,
+                      radius: float = 1.0) -> FloatArray:
     """Points ``(len(t), 3)`` of the cylinder's geodesic from height ``s0``, angle ``a0`` with
     constant rates ``s_dot``, ``a_dot``: unrolled, the cylinder is flat, so a geodesic is a
     straight line in (r a, s) -- a loop (s_dot = 0), an axial line (a_dot = 0) or a helix,

@@ -3,6 +3,8 @@
 """
 from __future__ import annotations
 
+from typing import Any
+
 import ipywidgets as W
 from typing_extensions import override
 
@@ -21,7 +23,7 @@ class GroupAxiomsPanel(ScenePanel):
     scene_class = GroupOrNotScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"structure": W.Dropdown(options=CHOICES, value="(ℤ, ×)", description="set, operation",
                                  style={"description_width": "initial"}),
                 "a": slider(2.0, -4.0, 4.0, step=0.5, description="a", readout_format=".1f"),
@@ -29,7 +31,7 @@ class GroupAxiomsPanel(ScenePanel):
                 "c": slider(-1.0, -4.0, 4.0, step=0.5, description="c", readout_format=".1f")}
 
     @override
-    def update(self, **values):
+    def update(self, **values: Any) -> None:
         # whole numbers for a set of integers: the sliders step by 1 and a value between
         # integers moves to the nearest one (so (ℤ, ×) never offers a = -0.5)
         integer = integer_structure(values["structure"])

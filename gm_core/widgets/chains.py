@@ -3,6 +3,8 @@
 """
 from __future__ import annotations
 
+from typing import Any, ClassVar
+
 import ipywidgets as W
 import numpy as np
 from typing_extensions import override
@@ -40,24 +42,24 @@ class _ArmPanel(ScenePanel):
     """A fixed-base arm with one slider per joint and per joint speed; the end effector's velocity arrow."""
 
     scene_class = ArmScene
-    joints = "R"
-    lengths: tuple[float, ...] = (1.0,)
-    offsets: tuple[float, ...] | None = None
-    names: tuple[str, ...] = ("alpha",)
-    ranges: tuple[tuple[float, float], ...] = ((-PI, PI),)
-    start: tuple[float, ...] = (0.6,)
-    frames_shown = ("f", "h")
-    lim = 1.4
+    joints: ClassVar[str] = "R"
+    lengths: ClassVar[tuple[float, ...]] = (1.0,)
+    offsets: ClassVar[tuple[float, ...] | None] = None
+    names: ClassVar[tuple[str, ...]] = ("alpha",)
+    ranges: ClassVar[tuple[tuple[float, float], ...]] = ((-PI, PI),)
+    start: ClassVar[tuple[float, ...]] = (0.6,)
+    frames_shown: ClassVar[tuple[str, ...]] = ("f", "h")
+    lim: ClassVar[float] = 1.4
 
     @override
-    def scene_options(self):
+    def scene_options(self) -> dict[str, Any]:
         o = self.options
         return dict(joints=o.get("joints", self.joints), lengths=o.get("lengths", self.lengths),
                     offsets=o.get("offsets", self.offsets), names=self.names, frames_shown=self.frames_shown,
                     lim=o.get("lim", self.lim))
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         c = {name: slider(v, lo, hi, description=_joint_label(name))
              for name, (lo, hi), v in zip(self.names, self.ranges, self.start)}
         for name in self.names:
@@ -119,14 +121,14 @@ class MobileChainPanel(ScenePanel):
 
     title = "Mobile articulated system (figs. 2.5, 2.6, 2.8): base link, shape and symmetry"
     scene_class = MobileChainScene
-    default_lengths: tuple[float, ...] = (1.0, 1.0, 1.0)
+    default_lengths: ClassVar[tuple[float, ...]] = (1.0, 1.0, 1.0)
 
     @override
-    def scene_options(self):
+    def scene_options(self) -> dict[str, Any]:
         return dict(lengths=tuple(self.options.get("lengths", self.default_lengths)))
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         n = len(self.options.get("lengths", self.default_lengths))
         c = {"x": slider(0.0, -1.0, 1.0, description="x"), "y": slider(0.0, -1.0, 1.0, description="y"),
              "theta": slider(0.0, -PI, PI, description="θ")}
@@ -139,7 +141,7 @@ class MobileChainPanel(ScenePanel):
         return c
 
     @override
-    def after_update(self, values):
+    def after_update(self, values: dict[str, Any]) -> None:
         if "alpha2" in self.controls:
             self.controls["alpha2"].disabled = values.get("shape", "free") != "free"
 
@@ -167,7 +169,7 @@ class BetaFramePanel(ScenePanel):
     scene_class = BetaFrameScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {
             "alpha1": slider(0.8, -2.5, 2.5, description="α₁"),
             "alpha2": slider(0.8, -2.5, 2.5, description="α₂"),
@@ -179,7 +181,7 @@ class BetaFramePanel(ScenePanel):
         }
 
     @override
-    def after_update(self, values):
+    def after_update(self, values: dict[str, Any]) -> None:
         for k in ("beta_x", "beta_y", "beta_theta"):
             self.controls[k].disabled = values["frame"] != "sliders"
 
@@ -190,11 +192,12 @@ class JacobianMethodsPanel(ScenePanel):
 
     title = "Three ways to a Jacobian: direct (2.16), world iterative (2.31), body iterative (2.37)"
     scene_class = JacobianMethodsScene
-    COLORS = JacobianMethodsScene.COLORS
+    scene: JacobianMethodsScene
+    COLORS: ClassVar[dict[str, str]] = JacobianMethodsScene.COLORS
 
     @override
-    def controls_spec(self):
-        c = {}
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
+        c: dict[str, W.ValueWidget] = {}
         joints = self.scene.chain.joints
         for i, jt in enumerate(joints):
             lo, hi = (-PI, PI) if jt.kind == "revolute" else (0.0, 1.0)
@@ -213,7 +216,7 @@ class ThreeLinkVelocityPanel(ScenePanel):
     scene_class = ThreeLinkVelocityScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {
             "alpha1": slider(0.6, -2.5, 2.5, description="α₁"),
             "alpha2": slider(-0.4, -2.5, 2.5, description="α₂"),

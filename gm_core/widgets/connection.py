@@ -3,10 +3,13 @@
 """
 from __future__ import annotations
 
+from typing import Any
+
+import ipywidgets as W
 from typing_extensions import override
 
 from gm_core.drawing.connection import ConnectionFieldScene
-from gm_core.systems import KinematicSnake
+from gm_core.systems import KinematicSnake, LocomotionSystem
 from gm_core.widgets.base import ScenePanel, register, slider
 
 __all__ = ["ConnectionFieldPanel"]
@@ -24,16 +27,17 @@ class ConnectionFieldPanel(ScenePanel):
 
     title = "Connection vector fields and a shape cursor"
     scene_class = ConnectionFieldScene
+    system: LocomotionSystem
 
     @override
-    def scene_options(self):
+    def scene_options(self) -> dict[str, Any]:
         o = self.options
         self.system = o.get("system") or KinematicSnake()
         self.title = f"Connection vector fields: {self.system.name}"
         return dict(system=self.system, n=o.get("n"), velocity_scale=o.get("velocity_scale", 1.0))
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         (lo1, hi1), (lo2, hi2) = self.system.shape_limits
         return {
             "alpha1": slider(self.options.get("alpha1", 0.8), lo1, hi1, description="α₁"),

@@ -6,12 +6,15 @@ pattern, CONTRIBUTING.md); the numbers come from :mod:`gm_core.geometry`.
 """
 from __future__ import annotations
 
+from typing import Any
+
 import ipywidgets as W
 from typing_extensions import override
 
 from gm_core.drawing import curvature as D
-from gm_core.geometry import optimize_gait
+from gm_core.geometry import OptimalGait, optimize_gait
 from gm_core.geometry.estimates import FRAMES
+from gm_core.systems import LocomotionSystem
 from gm_core.widgets.base import ScenePanel, register, slider
 
 __all__ = ["GaitStokesPanel", "FrameFieldsPanel", "optimize_with_progress"]
@@ -21,7 +24,7 @@ __all__ = ["GaitStokesPanel", "FrameFieldsPanel", "optimize_with_progress"]
 FRAME_BUTTONS = {"button_width": "15em"}
 
 
-def _frame_buttons():
+def _frame_buttons() -> W.ToggleButtons:
     return W.ToggleButtons(options=list(FRAMES), value="middle link", description="frame", style=FRAME_BUTTONS)
 
 
@@ -35,9 +38,10 @@ class GaitStokesPanel(ScenePanel):
 
     title = "A gait on the curvature map: exact displacement, Stokes estimate, body-velocity integral"
     scene_class = D.GaitStokesScene
+    scene: D.GaitStokesScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         self.numbers = W.HTML()
         return {"c1": slider(0.0, -1.5, 1.5, description="centre α₁"),
                 "c2": slider(0.0, -1.5, 1.5, description="centre α₂"),
@@ -50,15 +54,15 @@ class GaitStokesPanel(ScenePanel):
                 "frame": _frame_buttons()}
 
     @override
-    def after_update(self, values):
+    def after_update(self, values: dict[str, Any]) -> None:
         self.numbers.value = self.scene.table
 
     @property
     @override
-    def widget(self):
+    def widget(self) -> W.Widget:
         """The panel's box with the table of numbers under it."""
         if getattr(self, "_with_numbers", None) is None:
-            self._with_numbers = W.VBox([ScenePanel.widget.fget(self), self.numbers])
+            self._with_numbers = W.VBox([super().widget, self.numbers])
         return self._with_numbers
 
 
@@ -70,11 +74,12 @@ class FrameFieldsPanel(ScenePanel):
     scene_class = D.FrameFieldsScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"frame": _frame_buttons()}
 
 
-def optimize_with_progress(system, objective="displacement", order=3, **kw):
+def optimize_with_progress(system: LocomotionSystem, objective: str = "displacement", order: int = 3,
+                           **kw: Any) -> OptimalGait:
     """Run :func:`gm_core.geometry.optimize_gait` showing a progress bar and the current value; returns the result."""
     from IPython.display import display
 
@@ -84,7 +89,7 @@ def optimize_with_progress(system, objective="displacement", order=3, **kw):
     label = W.HTML("starting ...")
     display(W.HBox([bar, label]))
 
-    def cb(it, val):
+    def cb(it: int, val: float) -> None:
         bar.value = min(it, maxiter)
         label.value = f"iteration {it}: {objective} = {val:.5f}"
 

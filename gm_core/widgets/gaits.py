@@ -3,16 +3,21 @@
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 import ipywidgets as W
 import numpy as np
 from typing_extensions import override
 
 from gm_core.drawing.gaits import GAIT_SHAPES, GaitScene
 from gm_core.drawing.toolkit.primitives import jshtml
-from gm_core.systems import KinematicSnake
+from gm_core.systems import KinematicSnake, LocomotionSystem
 from gm_core.widgets.base import ScenePanel, register, slider
 
 __all__ = ["GaitPanel"]
+
+if TYPE_CHECKING:
+    from IPython.display import HTML
 
 PI = float(np.pi)
 
@@ -30,9 +35,11 @@ class GaitPanel(ScenePanel):
 
     title = "Gaits on the connection fields"
     scene_class = GaitScene
+    scene: GaitScene
+    system: LocomotionSystem
 
     @override
-    def scene_options(self):
+    def scene_options(self) -> dict[str, Any]:
         o = self.options
         self.system = o.get("system") or KinematicSnake()
         self.title = f"Gaits: {self.system.name}"
@@ -41,12 +48,12 @@ class GaitPanel(ScenePanel):
         return dict(system=self.system, frames=frames if len(frames) > 1 else {}, n=o.get("n"), lim=o.get("lim"))
 
     @override
-    def build(self):
+    def build(self) -> None:
         super().build()
         self.scene.on_edit = self.refresh     # mouse edits of a drawn loop redraw like a slider
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         (lo1, hi1), (lo2, hi2) = self.system.shape_limits
         o = self.options
         c = o.get("center", (0.0, 0.0))
@@ -65,7 +72,7 @@ class GaitPanel(ScenePanel):
         return spec
 
     @override
-    def after_update(self, values):
+    def after_update(self, values: dict[str, Any]) -> None:
         self.system = self.scene.system       # the body frame may have changed
         fam = values.get("family", "circle")
         self.controls["aspect"].disabled = fam == "circle" or fam == "drawn"
@@ -73,7 +80,7 @@ class GaitPanel(ScenePanel):
         for k in ("amplitude", "center1", "center2"):
             self.controls[k].disabled = fam == "drawn"
 
-    def animation(self, n_frames=60, cycles=2, row=2):
+    def animation(self, n_frames: int = 60, cycles: int = 2, row: int = 2) -> HTML:
         """The current gait as a kernel-free animation (HTML): body in the world, cursor on row ``row``."""
         anim, fig, traj = self.scene.animation(n_frames=n_frames, cycles=cycles, row=row)
         return jshtml(anim)

@@ -31,7 +31,7 @@ class SurfaceGeodesicsPanel(ScenePanel):
     blit = False
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"heading_deg": slider(15.0, -90.0, 90.0, step=1.0, description="heading (° up from around)",
                                       readout_format=".0f"),
                 "length": slider(3 * PI, 0.1, 4 * PI, description="distance travelled")}
@@ -45,7 +45,7 @@ class HelixPanel(ScenePanel):
     scene_class = HelixScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"thetadot": slider(1.0, -3.0, 3.0, description="dθ/dt (turning rate)")}
 
 
@@ -57,7 +57,7 @@ class PuckArcPanel(ScenePanel):
     scene_class = PuckArcScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"t": slider(1.5, 0.0, 2 * PI, description="time t"),
                 "w": slider(1.0, 0.2, 2.0, description="ξᶿ")}
 
@@ -70,7 +70,7 @@ class RPlusGeodesicPanel(ScenePanel):
     scene_class = RPlusGeodesicScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"xi": slider(1.0, -1.5, 1.5, description="ξ")}
 
 
@@ -82,7 +82,7 @@ class ExpFourWaysPanel(ScenePanel):
     scene_class = ExpFourWaysScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"thetadot": slider(1.0, -3.0, 3.0, description="dθ/dt in ξ = (1, 0, dθ/dt)"),
                 "n": int_slider(8, 1, 64, description="steps / terms n"),
                 "side": W.Dropdown(options=["left", "right"], value="left", description="field")}

@@ -3,6 +3,7 @@
 """
 from __future__ import annotations
 
+import ipywidgets as W
 import numpy as np
 from typing_extensions import override
 
@@ -28,7 +29,7 @@ class SlideRulePanel(ScenePanel):
     scene_class = SlideRuleScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"a": slider(2.0, 1.0, 10.0, description="a"),
                 "b": slider(3.0, 1.0, 10.0, description="b")}
 
@@ -41,7 +42,7 @@ class CircleIsoPanel(ScenePanel):
     scene_class = CircleIsoScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"a1": slider(0.2, 0.0, 0.99, description="a₁ (cycles)"),
                 "a2": slider(0.35, 0.0, 0.99, description="a₂ (cycles)")}
 
@@ -54,7 +55,7 @@ class LeftRightActionPanel(ScenePanel):
     scene_class = LeftRightActionScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         c = se2_sliders(1.5, 0.5, 0.5, labels=("g: x", "g: y", "g: θ"))
         c.update(se2_sliders(-1.0, 1.0, 0.9, names=("u", "v", "beta"), labels=("h: u", "h: v", "h: β")))
         return c
@@ -68,7 +69,7 @@ class ForwardLeftPanel(ScenePanel):
     scene_class = ForwardLeftScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         c = se2_sliders(1.0, 1.0, PI / 2, lim=2.0, labels=("g: x", "g: y", "g: θ"))
         c["n"] = int_slider(2, 1, ForwardLeftScene.N_MAX, description="steps n")
         return c
@@ -82,7 +83,7 @@ class BodyPointsPanel(ScenePanel):
     scene_class = BodyPointsScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         c = se2_sliders(0.5, 0.3, 0.6, lim=2.0, labels=("g: x", "g: y", "g: θ"))
         c["px"] = slider(0.6, -0.8, 0.8, description="body point pᵇ: x")
         c["py"] = slider(0.3, -0.4, 0.4, description="body point pᵇ: y")

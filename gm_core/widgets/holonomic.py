@@ -3,6 +3,8 @@
 """
 from __future__ import annotations
 
+from typing import Any
+
 import ipywidgets as W
 import numpy as np
 from typing_extensions import override
@@ -23,7 +25,7 @@ class PinnedBodiesPanel(ScenePanel):
     scene_class = PinnedBodiesScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {
             "pinned": W.Checkbox(value=True, description="pin the frame origins together"),
             "x1": slider(-0.3, -1.5, 1.5, description="x₁"), "y1": slider(-0.2, -1.5, 1.5, description="y₁"),
@@ -33,7 +35,7 @@ class PinnedBodiesPanel(ScenePanel):
         }
 
     @override
-    def after_update(self, values):
+    def after_update(self, values: dict[str, Any]) -> None:
         for k in ("x2", "y2"):
             self.controls[k].disabled = bool(values["pinned"])
 
@@ -46,7 +48,7 @@ class RelativePosePanel(ScenePanel):
     scene_class = RelativePoseScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         names = list(RelativePoseScene.NAMES)
         return {
             "alpha1": slider(0.5, -PI, PI, description="α₁"),
@@ -66,7 +68,7 @@ class BetaVelocityPanel(ScenePanel):
     scene_class = BetaVelocityScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {
             "alpha1": slider(0.8, -2.5, 2.5, description="α₁"),
             "alpha2": slider(0.4, -2.5, 2.5, description="α₂"),

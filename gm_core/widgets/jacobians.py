@@ -3,6 +3,7 @@
 """
 from __future__ import annotations
 
+import ipywidgets as W
 import numpy as np
 from typing_extensions import override
 
@@ -20,9 +21,10 @@ class JacobianStepPanel(ScenePanel):
 
     title = "The Jacobian one column at a time: step k moves joint k alone, (2.33)-(2.37)"
     scene_class = JacobianStepScene
+    scene: JacobianStepScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         joints = self.scene.chain.joints
         c = {"step": int_slider(1, 0, len(joints), description="step k")}
         for i, jt in enumerate(joints):

@@ -2,6 +2,8 @@
 gait, optimise its gait live and watch it swim."""
 from __future__ import annotations
 
+from typing import Any
+
 import ipywidgets as W
 import numpy as np
 from typing_extensions import override
@@ -9,6 +11,7 @@ from typing_extensions import override
 from gm_core.drawing.connection import ROW_LABELS
 from gm_core.drawing.link_chain import PHYSICS_LABELS, ChainSliceScene, OptimalGaitScene, WaveGaitScene
 from gm_core.drawing.toolkit.primitives import jshtml
+from gm_core.geometry import OptimalGait
 from gm_core.widgets.base import ScenePanel, int_slider, register, slider
 
 __all__ = ["ChainSlicePanel", "WaveGaitPanel", "OptimalGaitPanel"]
@@ -19,7 +22,7 @@ _ROW_OPTIONS = [(label.replace("ξx", "ξˣ").replace("ξy", "ξʸ").replace("ξ
                 for i, label in enumerate(ROW_LABELS)]
 
 
-def _physics_dropdown(value="low_re"):
+def _physics_dropdown(value: str = "low_re") -> W.Dropdown:
     label = {v: k for k, v in PHYSICS_LABELS.items()}.get(value, value)
     return W.Dropdown(options=list(PHYSICS_LABELS), value=label, description="physics")
 
@@ -33,7 +36,7 @@ class ChainSlicePanel(ScenePanel):
     scene_class = ChainSliceScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         o = self.options
         return {
             "links": int_slider(o.get("links", 4), 3, 7, description="links"),
@@ -44,7 +47,7 @@ class ChainSlicePanel(ScenePanel):
         }
 
     @override
-    def after_update(self, values):
+    def after_update(self, values: dict[str, Any]) -> None:
         n = int(values.get("links", 4)) - 1
         for k in ("axis1", "axis2"):
             self.controls[k].max = n
@@ -58,7 +61,7 @@ class WaveGaitPanel(ScenePanel):
     scene_class = WaveGaitScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         o = self.options
         return {
             "links": int_slider(o.get("links", 4), 2, 7, description="links"),
@@ -76,9 +79,10 @@ class OptimalGaitPanel(ScenePanel):
 
     title = "Design a chain and optimise its gait"
     scene_class = OptimalGaitScene
+    scene: OptimalGaitScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         o = self.options
         return {
             "links": int_slider(o.get("links", 4), 3, 6, description="links"),
@@ -88,7 +92,7 @@ class OptimalGaitPanel(ScenePanel):
         }
 
     @override
-    def build(self):
+    def build(self) -> None:
         super().build()
         self.button = W.Button(description="optimise", button_style="primary", icon="play",
                                tooltip="find the most efficient gait of this chain (a few seconds)")
@@ -98,7 +102,7 @@ class OptimalGaitPanel(ScenePanel):
         self.button.on_click(lambda _: self.run())
 
     @override
-    def after_update(self, values):
+    def after_update(self, values: dict[str, Any]) -> None:
         if getattr(self, "_shown", None) != self.scene.key:      # the animation belongs to another design
             self.movie.clear_output()
             self._shown = None
@@ -106,14 +110,14 @@ class OptimalGaitPanel(ScenePanel):
         self.bar.value = self.bar.max if done else 0
         self.status.value = f"optimised: efficiency {self.scene.result.efficiency:.4f}" if done else ""
 
-    def run(self, animate=True):
+    def run(self, animate: bool = True) -> OptimalGait:
         """Optimise the design shown with a live progress bar, then show the gait and, if ``animate``,
         its animation below the panel. Returns the OptimalGait."""
         self.button.disabled = True
         self.bar.value = 0
         self.status.value = "optimising ..."
 
-        def progress(it, value):
+        def progress(it: int, value: float) -> None:
             self.bar.value = min(it, self.bar.max)
             self.status.value = f"step {it}: efficiency {value:.4f}"
 
@@ -136,7 +140,7 @@ class OptimalGaitPanel(ScenePanel):
 
     @property
     @override
-    def widget(self):
+    def widget(self) -> W.Widget:
         if getattr(self, "_box", None) is None:
             self._box = W.VBox([super().widget, W.HBox([self.button, self.bar, self.status],
                                                        layout=W.Layout(align_items="center", grid_gap="0 10px")),

@@ -3,6 +3,7 @@
 """
 from __future__ import annotations
 
+import ipywidgets as W
 from typing_extensions import override
 
 from gm_core.drawing.motion import AckermanScene, DiffDriveScene
@@ -19,7 +20,7 @@ class DiffDriveCarPanel(ScenePanel):
     scene_class = DiffDriveScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {
             "wheel1_speed": slider(2.0, -4.0, 4.0, description="wheel 1 (left) rate"),
             "wheel2_speed": slider(3.0, -4.0, 4.0, description="wheel 2 (right) rate"),
@@ -35,7 +36,7 @@ class AckermanCarPanel(ScenePanel):
     scene_class = AckermanScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {
             "wheel_speed": slider(3.0, -4.0, 4.0, description="drive wheel rate"),
             "steering": slider(0.3, -1.4, 1.4, description="steering angle at t=0"),

@@ -3,6 +3,7 @@
 """
 from __future__ import annotations
 
+import ipywidgets as W
 from typing_extensions import override
 
 from gm_core.drawing.observers import FramesScene, ObserverScene
@@ -19,7 +20,7 @@ class ObserverPanel(ScenePanel):
     scene_class = ObserverScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         c = se2_sliders(-1.5, -1.0, 0.0, names=("hx", "hy", "htheta"), lim=2.5,
                          labels=("observer h: x", "observer h: y", "observer h: θ"))
         c.update(xi_sliders(0.8, 0.3, 0.6))
@@ -34,7 +35,7 @@ class FramesPanel(ScenePanel):
     scene_class = FramesScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         c = {"t": slider(1.2, 0.0, 6.0, description="time t")}
         c.update(se2_sliders(-1.8, 1.2, -0.5, names=("bx", "by", "btheta"), lim=2.5,
                               labels=("frame B: x", "frame B: y", "frame B: θ")))

@@ -25,7 +25,7 @@ class PacingSquarePanel(ScenePanel):
     scene_class = PacingSquareScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"unevenness": slider(0.7, -0.9, 0.9, description="pacing unevenness a"),
                 "t": slider(0.4, 0.0, 1.0, description="time t")}
 
@@ -38,6 +38,6 @@ class DirectionalLinearityPanel(ScenePanel):
     scene_class = DirectionalScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"example": W.Dropdown(options=list(RATE_MAPS), value=list(RATE_MAPS)[0], description="example"),
                 "pace": slider(2.0, 0.25, 3.0, description="pace k")}

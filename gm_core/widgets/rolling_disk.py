@@ -3,6 +3,7 @@
 """
 from __future__ import annotations
 
+import ipywidgets as W
 from typing_extensions import override
 
 from gm_core.drawing.rolling_disk import ParallelParkScene
@@ -22,6 +23,6 @@ class ParallelParkPanel(ScenePanel):
     scene_class = ParallelParkScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"d": slider(0.8, -1.2, 1.2, description="drive distance d"),
                 "phi": slider(0.6, -1.5, 1.5, description="turn angle φ")}

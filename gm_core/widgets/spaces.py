@@ -3,6 +3,7 @@
 """
 from __future__ import annotations
 
+import ipywidgets as W
 import numpy as np
 from typing_extensions import override
 
@@ -24,7 +25,7 @@ class TorusPathPanel(ScenePanel):
     blit = False
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"a0": slider(0.5, 0.0, 2 * PI, description="start a₀"),
                 "b0": slider(1.0, 0.0, 2 * PI, description="start b₀"),
                 "slope": slider(0.5, -3.0, 3.0, description="slope db/da"),
@@ -39,7 +40,7 @@ class LoopsPanel(ScenePanel):
     scene_class = LoopsScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"s": slider(0.0, 0.0, 1.0, description="shrink s")}
 
 
@@ -51,7 +52,7 @@ class PoleChartPanel(ScenePanel):
     scene_class = PoleChartScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"lat_deg": slider(45.0, -90.0, 90.0, step=0.5, description="latitude φ (°)",
                                   readout_format=".1f"),
                 "heading_deg": slider(45.0, 0.0, 180.0, step=1.0, description="heading from north (°)",

@@ -2,6 +2,7 @@
 """
 from __future__ import annotations
 
+import ipywidgets as W
 import numpy as np
 from typing_extensions import override
 
@@ -23,6 +24,6 @@ class TangentSpacePanel(ScenePanel):
     blit = False
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"s": slider(0.8, 0.0, 2 * PI, description="where along the curve s"),
                 "speed": slider(1.0, -2.0, 2.0, description="speed ds/dt")}

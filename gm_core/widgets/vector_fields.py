@@ -30,7 +30,7 @@ class VectorFieldPanel(ScenePanel):
     scene_class = VectorFieldScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"field": W.Dropdown(options=list(FIELDS), value="spiral sink", description="field"),
                 "x0": slider(1.5, -2.9, 2.9, description="start x₀"),
                 "y0": slider(1.0, -2.9, 2.9, description="start y₀")}
@@ -44,7 +44,7 @@ class LiftedScalarPanel(ScenePanel):
     scene_class = LiftedScalarScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"hx": slider(1.5, -1.0, 3.0, description="R²: h (x part)"),
                 "hy": slider(1.0, -1.0, 2.5, description="R²: h (y part)"),
                 "h": slider(2.5, 0.2, 6.0, description="R⁺: h")}
@@ -58,7 +58,7 @@ class LiftedSE2Panel(ScenePanel):
     scene_class = LiftedSE2Scene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         return {"theta": slider(0.3, -PI, PI, description="g: θ"),
                 "u": slider(2.0, -1.5, 3.0, description="h: u"),
                 "v": slider(1.5, -1.5, 3.0, description="h: v"),
@@ -73,7 +73,7 @@ class VelocityPanel(ScenePanel):
     scene_class = VelocityScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         c = se2_sliders(1.2, 0.6, 0.7, lim=2.0, labels=("g: x", "g: y", "g: θ"))
         c.update(xi_sliders(0.8, 0.3, 0.6))
         return c
@@ -87,7 +87,7 @@ class AdjointPanel(ScenePanel):
     scene_class = AdjointScene
 
     @override
-    def controls_spec(self):
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
         c = se2_sliders(1.0, -0.5, 0.8, lim=2.5, labels=("g: x", "g: y", "g: θ"))
         c.update(xi_sliders(0.5, 0.2, 0.7))
         return c
