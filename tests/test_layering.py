@@ -286,7 +286,7 @@ def _package_all(pkg):
 def wrong_homes(source, importer=None, is_package=False):
     """``(line, module, name)`` for every ``from gm_core... import name`` whose module is not the
     name's home (it neither defines it nor, being a package, lists it in ``__all__``)."""
-    tree = ast.parse(re.sub(r"^(\s*)[%!].*$", r"\1pass", source, flags=re.M))
+    tree = ast.parse(re.sub(r"^(\s*)(?:%|!(?!=)).*$", r"\1pass", source, flags=re.M))
     bad = []
     for node in ast.walk(tree):
         if not isinstance(node, ast.ImportFrom):
@@ -391,7 +391,7 @@ def test_no_course_file_imports_an_old_module_path():
 
 def _private_imports(source):
     """``(line, module, name)`` for every ``from gm_core... import _name`` / ``from gm_grader... import _name``."""
-    tree = ast.parse(re.sub(r"^(\s*)[%!].*$", r"\1pass", source, flags=re.M))
+    tree = ast.parse(re.sub(r"^(\s*)(?:%|!(?!=)).*$", r"\1pass", source, flags=re.M))
     return [(n.lineno, n.module, a.name) for n in ast.walk(tree) if isinstance(n, ast.ImportFrom) and n.module
             and n.module.split(".")[0] in ("gm_core", "gm_grader") for a in n.names if a.name.startswith("_")]
 

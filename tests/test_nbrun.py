@@ -89,6 +89,6 @@ def test_every_test_has_exactly_one_group(request):
     bad = [it.nodeid for it in items if len(list(it.iter_markers("xdist_group"))) != 1]
     assert not bad, f"tests with no group or several: {bad[:10]}"
     readers = [it for it in items if it.get_closest_marker(nbrun.MARK) is not None]
-    wrong = [it.nodeid for it in readers if it.get_closest_marker("xdist_group").args[0]
-             != nbrun.NOTEBOOK_GROUP + it.get_closest_marker(nbrun.MARK).args[0]]
+    wrong = [it.nodeid for it in readers
+             if it.get_closest_marker("xdist_group").args[0] != nbrun.NOTEBOOK_GROUP + it.get_closest_marker(nbrun.MARK).args[0]]
     assert not wrong, f"readers outside their notebook's group: {wrong[:10]}"

@@ -78,7 +78,7 @@ def index() -> tuple[dict[str, set[str]], dict[str, set[str]], dict[str, list[st
 
 def _fix_source(src: str, defined, exported, homes) -> tuple[str, list[str]]:
     try:
-        tree = ast.parse(re.sub(r"^(\s*)[%!].*$", r"\1pass", src, flags=re.M))
+        tree = ast.parse(re.sub(r"^(\s*)(?:%|!(?!=)).*$", r"\1pass", src, flags=re.M))
     except SyntaxError:
         return src, []
     lines = src.splitlines(keepends=True)
