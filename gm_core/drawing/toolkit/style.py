@@ -26,7 +26,7 @@ import os
 import re
 from abc import ABC, abstractmethod
 from collections.abc import Sequence
-from typing import IO, Any, Literal, overload
+from typing import IO, Any, ClassVar, Literal, overload
 
 import matplotlib as mpl
 import matplotlib.pyplot as plt
@@ -570,9 +570,9 @@ class Scene(ABC):
     (a single axes is also ``self.ax``).
     """
 
-    FIGSIZE: tuple[float, float] | None = None
-    NCOLS: int = 1
-    MARGINS: dict[str, float] | None = None
+    FIGSIZE: ClassVar[tuple[float, float] | None] = None
+    NCOLS: ClassVar[int] = 1
+    MARGINS: ClassVar[dict[str, float] | None] = None
     ax: Axes
 
     def __init__(self, **options: Any) -> None:
@@ -608,8 +608,13 @@ class Scene(ABC):
         scene's ``set(theta: float = 0.3)`` is checked as an override of this one."""
         raise NotImplementedError
 
-    def replot(self, **values: Any) -> None:
-        """The naive baseline: clear every axes, draw everything again, then set the values."""
+    def replot(self, *args: Any, **values: Any) -> None:
+        """The naive baseline: clear every axes, draw everything again, then set the values.
+
+        It takes the keywords of the scene's ``set``, by keyword only; the signature is ``set``'s
+        "any signature", so that a scene's own ``replot`` may name them."""
+        if args:
+            raise TypeError(f"{type(self).__name__}.replot takes its values by keyword")
         for ax in self.axes:
             ax.clear()
         self.decorate()
