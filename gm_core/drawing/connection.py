@@ -78,7 +78,8 @@ def connection_field(system: LocomotionSystem, row: int, n: GridSize = 21, limit
 MIN_ARROW_PX = 25.0
 
 
-def auto_grid(ax: Axes, limits: Limits | None = None, lo: int = 5, hi: int = 15, inset: bool = False) -> tuple[int, int]:
+def auto_grid(ax: Axes, limits: Limits | None = None, lo: int = 5, hi: int = 15,
+              inset: bool = False) -> tuple[int, int]:
     """Grid points ``(n1, n2)`` for a field over ``limits`` ((lo1, hi1), (lo2, hi2)) drawn on
     ``ax`` with equal aspect: the same spacing both ways, at least MIN_ARROW_PX / 0.9 pixels
     (at least ``lo`` points along the longer side, at most ``hi`` along either).
@@ -375,7 +376,8 @@ def poor_pictures_figure(system: LocomotionSystem, row: int = 2, n: int = 6, fig
 WIDE_SHAPES = 1.6
 
 
-def field_grid_axes(figsize: Sequence[float] = (6.2, 5.9), limits: Limits | None = None) -> tuple[Figure, list[Axes], Axes]:
+def field_grid_axes(figsize: Sequence[float] = (6.2, 5.9),
+                    limits: Limits | None = None) -> tuple[Figure, list[Axes], Axes]:
     """Three shape-space axes (one per connection row) and a world axes: ``(fig, field_axes, ax)``.
 
     A square-ish shape window (``limits``, default square) gets a 2 x 2 grid. A wide one (width
@@ -485,7 +487,8 @@ class ConnectionFieldScene(FieldGridScene):
             self.text.set_text(_fmt(self.xi))
 
     @override
-    def replot(self, alpha1: float = 0.0, alpha2: float = 0.0, alpha1_dot: float = 1.0, alpha2_dot: float = 0.0) -> None:
+    def replot(self, alpha1: float = 0.0, alpha2: float = 0.0, alpha1_dot: float = 1.0,
+               alpha2_dot: float = 0.0) -> None:
         r = np.array([alpha1, alpha2])
         rd = np.array([alpha1_dot, alpha2_dot])
         for i, ax in enumerate(self.field_axes):

@@ -296,7 +296,8 @@ class GaitScene(FieldGridScene):
     def replot(self, family: str = "circle", amplitude: float = 1.0, center1: float = 0.0, center2: float = 0.0,
                aspect: float = 0.6, angle: float = 0.0, frame: str | None = None) -> None:
         self._use_frame(frame)
-        v: _GaitValues = dict(family=family, amplitude=amplitude, center1=center1, center2=center2, aspect=aspect, angle=angle)
+        v: _GaitValues = dict(family=family, amplitude=amplitude, center1=center1, center2=center2, aspect=aspect,
+                              angle=angle)
         gait = self.gait(v)
         path = gait(np.linspace(0.0, gait.period, 161))
         for i, ax in enumerate(self.field_axes):

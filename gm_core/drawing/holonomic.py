@@ -35,7 +35,8 @@ __all__ = ["plane_and_notes", "notes_text", "PinnedBodiesScene", "RelativePoseSc
 BODY_OUTLINE = np.array([[-0.18, -0.14], [1.1, -0.1], [1.25, 0.0], [1.1, 0.1], [-0.18, 0.14]])
 
 
-def plane_and_notes(figsize: Sequence[float] = (8.0, 4.4), ratio: Sequence[float] = (3, 2)) -> tuple[Figure, Axes, Axes]:
+def plane_and_notes(figsize: Sequence[float] = (8.0, 4.4),
+                    ratio: Sequence[float] = (3, 2)) -> tuple[Figure, Axes, Axes]:
     """``(fig, ax, notes)``: square world axes on the left, a text-only axes for readouts on the right."""
     fig, (ax, notes) = new_figure(1, 2, figsize=figsize, gridspec_kw=dict(width_ratios=list(ratio)))
     notes.set_axis_off()

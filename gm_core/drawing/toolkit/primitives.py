@@ -146,8 +146,8 @@ class _KeptAnimation(FuncAnimation):
     gm_palette: bool
 
 
-def animate(fig: Figure, update: Callable[[Any], Iterable[Artist] | None], frames: int | Iterable[Any], interval: float = 50,
-            palette: bool = False, **kw: Any) -> FuncAnimation:
+def animate(fig: Figure, update: Callable[[Any], Iterable[Artist] | None], frames: int | Iterable[Any],
+            interval: float = 50, palette: bool = False, **kw: Any) -> FuncAnimation:
     """A FuncAnimation calling ``update(frame)``; shortened under the test suite (see n_frames).
 
     ``palette=True`` lets :func:`jshtml` store the frames with 256 colours (about a third of the

@@ -540,7 +540,8 @@ def set_arrows(q: Quiver | ArrowSet, origins: ArrayLike, vectors: ArrayLike) -> 
     q.set_UVC(vectors[:, 0], vectors[:, 1])
 
 
-def axes_row(figsize: Sequence[float], projections: Sequence[str | None], **margin_kw: float) -> tuple[Figure, list[Axes]]:
+def axes_row(figsize: Sequence[float], projections: Sequence[str | None],
+             **margin_kw: float) -> tuple[Figure, list[Axes]]:
     """A figure with one row of axes, ``projections`` giving each one's kind (None or "3d"); the
     keywords go to :func:`margins`. Returns ``(fig, [axes...])``."""
     fig = figure(figsize=figsize)
