@@ -7,11 +7,13 @@ The verdicts and counterexamples are mathematics in :mod:`gm_core.groups.axioms`
 """
 from __future__ import annotations
 
+from typing import ClassVar
+
 from matplotlib.patches import Rectangle
 from typing_extensions import override
 
 from gm_core.drawing.toolkit.style import PALETTE, PathText, Scene, text_panel
-from gm_core.groups.axioms import GROUP_AXIOMS, STRUCTURES, check_axioms, try_elements
+from gm_core.groups.axioms import GROUP_AXIOMS, STRUCTURES, AxiomReport, Structure, check_axioms, try_elements
 from gm_core.groups.axioms import structure as find_structure
 
 __all__ = ["GroupOrNotScene", "integer_structure"]
@@ -30,25 +32,29 @@ class GroupOrNotScene(Scene):
     sample elements, and the axiom written out at the reader's a, b, c.
     """
 
-    ROW = 0.2            # height of one axiom row, axes units
-    TOP = 0.84
+    ROW: ClassVar[float] = 0.2            # height of one axiom row, axes units
+    TOP: ClassVar[float] = 0.84
 
     FIGSIZE = (8.6, 3.9)
     MARGINS = dict(left=0.01, right=0.99, bottom=0.01, top=0.99)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         (ax,) = self.axes
         text_panel(ax)
         PathText(ax, 0.085, self.TOP + 0.02, "axiom", size=8, weight="bold", color="0.35")
         PathText(ax, 0.33, self.TOP + 0.02, "search over sample elements   ·   at your a, b, c (blue)", size=8,
                  weight="bold", color="0.35")
-        self._cache = {}
+        self._cache: dict[str, dict[str, AxiomReport]] = {}
 
     @override
-    def create(self):
+    def create(self) -> None:
         (ax,) = self.axes
-        self.badges, self.marks, self.names, self.whys, self.tries = [], [], [], [], []
+        self.badges: list[Rectangle] = []
+        self.marks: list[PathText] = []
+        self.names: list[PathText] = []
+        self.whys: list[PathText] = []
+        self.tries: list[PathText] = []
         for k, axiom in enumerate(GROUP_AXIOMS):
             y = self.TOP - (k + 0.5) * self.ROW
             box = Rectangle((0.012, y - 0.06), 0.055, 0.12, facecolor=_HOLDS, edgecolor="none", zorder=2)
@@ -63,7 +69,7 @@ class GroupOrNotScene(Scene):
         self.title = PathText(ax, 0.012, 0.955, "", size=10.5, weight="bold", va="top")
 
     @override
-    def set(self, structure="(ℤ, ×)", a=2.0, b=3.0, c=-1.0):
+    def set(self, structure: str | Structure = "(ℤ, ×)", a: float = 2.0, b: float = 3.0, c: float = -1.0) -> None:
         S = find_structure(structure)
         if S.name not in self._cache:
             self._cache[S.name] = check_axioms(S)
@@ -87,7 +93,7 @@ class GroupOrNotScene(Scene):
             self.title.set_color(_FAILS)
 
 
-def integer_structure(name) -> bool:
+def integer_structure(name: str | Structure) -> bool:
     """True if every member of the structure ``name`` is an integer (its controls take whole numbers)."""
     return find_structure(name).integer
 

@@ -8,13 +8,24 @@ singular shape) are masked, never passed to matplotlib as NaN.
 """
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
+from typing import Any, ClassVar, cast
+
 import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.contour import QuadContourSet
+from matplotlib.figure import Figure
+from matplotlib.gridspec import SubplotSpec
 from matplotlib.patches import Rectangle
-from typing_extensions import override
+from matplotlib.typing import ColorType
+from numpy.typing import ArrayLike, NDArray
+from typing_extensions import Self, override
 
 from gm_core.drawing.motion import SystemArtist, VelocityArtist, draw_system_naive, style_world_axes, system_extent
 from gm_core.drawing.toolkit.primitives import SingularFlag
 from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, Scene, new_figure, readout, signed
+from gm_core.systems import LocomotionSystem
+from gm_core.validation import FloatArray
 
 __all__ = ["ROW_LABELS", "math_title", "shape_grid", "connection_field", "ConnectionFieldArtist", "draw_singular_set",
            "ShapeCursorArtist", "style_shape_axes", "singular_contour_grid", "SHAPE_PAD", "connection_fields_figure", "regimes_figure",
@@ -22,18 +33,25 @@ __all__ = ["ROW_LABELS", "math_title", "shape_grid", "connection_field", "Connec
 
 ROW_LABELS = ("ξx (forward)", "ξy (sideways)", "ξθ (turning)")  # plain text: no mathtext parse cost
 
+#: A window of shape space, ``((lo1, hi1), (lo2, hi2))`` (as a system's ``shape_limits``).
+Limits = Sequence[tuple[float, float]]
+#: Grid points of a field: ``n`` each way, or ``(n1, n2)`` along alpha1 and alpha2.
+GridSize = int | tuple[int, int]
+
 
 # ------------------------------------------------------------------------------ fields
-def shape_grid(system, n=21, limits=None):
+def shape_grid(system: LocomotionSystem, n: GridSize = 21,
+               limits: Limits | None = None) -> tuple[FloatArray, FloatArray, FloatArray]:
     """(a1, a2, r): a grid over the system's shape window, ``n`` points per side (or ``(n1, n2)``:
     n1 along alpha1, n2 along alpha2); r has shape (n2, n1, 2)."""
     (lo1, hi1), (lo2, hi2) = limits or system.shape_limits
-    n1, n2 = (n, n) if np.ndim(n) == 0 else n
+    n1, n2 = cast("tuple[int, int]", (n, n) if np.ndim(n) == 0 else n)   # one number: both ways
     a1, a2 = np.meshgrid(np.linspace(lo1, hi1, int(n1)), np.linspace(lo2, hi2, int(n2)), indexing="xy")
     return a1, a2, np.stack([a1, a2], -1)
 
 
-def connection_field(system, row, n=21, limits=None):
+def connection_field(system: LocomotionSystem, row: int, n: GridSize = 21, limits: Limits | None = None
+                     ) -> tuple[FloatArray, FloatArray, np.ma.MaskedArray, np.ma.MaskedArray]:
     """(a1, a2, U, V): the field -A^row over a shape grid, U and V masked where A is undefined.
 
     Entries below 1e-10 of the largest entry of A on the grid are set to exactly zero, so a row
@@ -60,14 +78,15 @@ def connection_field(system, row, n=21, limits=None):
 MIN_ARROW_PX = 25.0
 
 
-def auto_grid(ax, limits=None, lo=5, hi=15, inset=False):
+def auto_grid(ax: Axes, limits: Limits | None = None, lo: int = 5, hi: int = 15,
+              inset: bool = False) -> tuple[int, int]:
     """Grid points ``(n1, n2)`` for a field over ``limits`` ((lo1, hi1), (lo2, hi2)) drawn on
     ``ax`` with equal aspect: the same spacing both ways, at least MIN_ARROW_PX / 0.9 pixels
     (at least ``lo`` points along the longer side, at most ``hi`` along either).
 
     ``inset=True``: the points are the centres of n cells (see :func:`inset_limits`), so the
     spacing is span / n rather than span / (n - 1)."""
-    fig = ax.figure
+    fig = cast(Figure, ax.figure)   # the course's axes are on figures, never on subfigures
     bbox = ax.get_position(original=True)
     w, h = bbox.width * fig.get_figwidth() * fig.dpi, bbox.height * fig.get_figheight() * fig.dpi
     if limits is None:
@@ -84,11 +103,11 @@ def auto_grid(ax, limits=None, lo=5, hi=15, inset=False):
     return (n_long, n_short) if pa >= pb else (n_short, n_long)
 
 
-def inset_limits(limits, n):
+def inset_limits(limits: Limits, n: GridSize) -> tuple[tuple[float, float], ...]:
     """The window ``limits`` shrunk by half a cell on each side, for ``n`` (or ``(n1, n2)``) grid
     points at the centres of equal cells: an arrow of 0.9 spacings drawn about such a point
     (pivot "mid") stays inside the window, never sliced by the axes frame."""
-    n1, n2 = (n, n) if np.ndim(n) == 0 else n
+    n1, n2 = cast("tuple[int, int]", (n, n) if np.ndim(n) == 0 else n)   # one number: both ways
     out = []
     for (lo, hi), k in zip(limits, (n1, n2)):
         half = 0.5 * (hi - lo) / int(k)
@@ -110,9 +129,10 @@ class ConnectionFieldArtist:
     """
 
     #: a row whose longest arrow is below this fraction of the largest entry of A is "small"
-    SMALL = 0.05
+    SMALL: ClassVar[float] = 0.05
 
-    def __init__(self, ax, system, row, n=None, limits=None, clip=3.0, color="k", **kw):
+    def __init__(self, ax: Axes, system: LocomotionSystem, row: int, n: GridSize | None = None,
+                 limits: Limits | None = None, clip: float = 3.0, color: ColorType = "k", **kw: Any) -> None:
         n = auto_grid(ax, limits or system.shape_limits, inset=True) if n is None else n
         self.ax, self.n, self.limits, self.clip, self.row = ax, n, limits, float(clip), row
         #: the grid's own window: cell centres, half a cell inside the shape window
@@ -124,13 +144,13 @@ class ConnectionFieldArtist:
                                 headaxislength=4.0, pivot="mid", **kw)
         # a row that vanishes on the whole window is said in words, not drawn as a grid of dots;
         # a row much smaller than the largest entry of A is drawn enlarged and says by how much
-        note = dict(transform=ax.transAxes, fontsize=9, color="0.25", visible=False, zorder=6,
+        note: dict[str, Any] = dict(transform=ax.transAxes, fontsize=9, color="0.25", visible=False, zorder=6,
                     bbox=dict(boxstyle="round,pad=0.25", fc="white", ec="0.6", alpha=0.9))
         self.zero_note = ax.text(0.5, 0.96, "≡ 0: zero everywhere", ha="center", va="top", **note)
         self.scale_note = ax.text(0.97, 0.03, "", ha="right", va="bottom", **note)
         self.set(system, row)
 
-    def set(self, system=None, row=None, cap=None):
+    def set(self, system: LocomotionSystem | None = None, row: int | None = None, cap: float | None = None) -> Self:
         """Recompute the field for (system, row) and move the arrows in place (set_UVC).
 
         ``cap``: the size of -A^row drawn as the longest arrow (0.9 grid spacings); by default
@@ -156,7 +176,7 @@ class ConnectionFieldArtist:
         top = float(mag.max()) if mag.count() else 0.0
         # the longest drawn arrow is 0.9 grid spacings: the largest arrow, or clip x the median
         own = cap is None
-        if own:
+        if cap is None:
             cap = min(self.clip * med, top) if med > 0 else (top or 1.0)
         cap = float(cap) if cap > 0 else 1.0
         #: the size of -A^row drawn as the longest arrow
@@ -182,11 +202,12 @@ class ConnectionFieldArtist:
 SHAPE_PAD = 0.03
 
 
-def _padded(limits, pad):
+def _padded(limits: Limits, pad: float) -> tuple[tuple[float, float], ...]:
     return tuple((lo - pad * (hi - lo), hi + pad * (hi - lo)) for lo, hi in limits)
 
 
-def singular_contour_grid(system, n=161, limits=None, pad=2 * SHAPE_PAD):
+def singular_contour_grid(system: LocomotionSystem, n: GridSize = 161, limits: Limits | None = None,
+                          pad: float = 2 * SHAPE_PAD) -> tuple[FloatArray, FloatArray, FloatArray]:
     """(a1, a2, d): the scaled det omega_xi over the shape window widened by ``pad`` on each side.
 
     Sampling beyond the window matters: a singular line on the window's edge (the kinematic
@@ -197,7 +218,8 @@ def singular_contour_grid(system, n=161, limits=None, pad=2 * SHAPE_PAD):
     return a1, a2, system.singularity(r)
 
 
-def draw_singular_set(ax, system, n=161, limits=None, **style):
+def draw_singular_set(ax: Axes, system: LocomotionSystem, n: GridSize = 161, limits: Limits | None = None,
+                      **style: Any) -> QuadContourSet | None:
     """Draw every singular shape (det omega_xi = 0) as red lines; returns the contour set or None.
 
     The zero contour is taken over a slightly wider window than the axes show (see
@@ -220,13 +242,13 @@ def draw_singular_set(ax, system, n=161, limits=None, **style):
 class ShapeCursorArtist:
     """A marker at shape r on a shape-space axes and an arrow for the shape velocity r_dot."""
 
-    def __init__(self, ax, color=PALETTE["green"], arrow_scale=0.5):
+    def __init__(self, ax: Axes, color: ColorType = PALETTE["green"], arrow_scale: float = 0.5) -> None:
         (self.marker,) = ax.plot([0.0], [0.0], "o", color=color, ms=8, zorder=7)
         self.arrow = ax.quiver([0.0], [0.0], [0.0], [0.0], color=color, angles="xy", scale_units="xy",
                                scale=1.0, width=0.01, zorder=7)
         self.arrow_scale = arrow_scale
 
-    def set(self, r, r_dot=(0.0, 0.0)):
+    def set(self, r: ArrayLike, r_dot: ArrayLike = (0.0, 0.0)) -> None:
         r = np.asarray(r, float)
         d = np.asarray(r_dot, float) * self.arrow_scale
         self.marker.set_data([r[0]], [r[1]])
@@ -234,13 +256,14 @@ class ShapeCursorArtist:
         self.arrow.set_UVC([d[0]], [d[1]])
 
 
-def _tick_label(v):
+def _tick_label(v: float) -> str:
     if np.isclose(abs(v), np.pi):
         return "−π" if v < 0 else "π"
     return f"{v:g}".replace("-", "−")
 
 
-def style_shape_axes(ax, system, title=None, limits=None, pad=SHAPE_PAD):
+def style_shape_axes(ax: Axes, system: LocomotionSystem, title: str | None = None, limits: Limits | None = None,
+                     pad: float = SHAPE_PAD) -> None:
     """Shape-space axes: equal aspect, three ticks per axis (few labels keep redraws cheap).
 
     The window is ``limits`` (default: the system's ``shape_limits``) widened by ``pad`` of its
@@ -272,7 +295,8 @@ def math_title(text: str) -> str:
     return text
 
 
-def connection_fields_figure(system, n=None, figsize=(9, 3.3)):
+def connection_fields_figure(system: LocomotionSystem, n: GridSize | None = None, figsize: Sequence[float] = (9, 3.3)
+                             ) -> tuple[Figure, NDArray[np.object_], list[ConnectionFieldArtist]]:
     """A static figure: the three connection rows of ``system`` as vector fields, singular set in red."""
     fig, axes = new_figure(1, 3, figsize=figsize)
     arts = []
@@ -284,7 +308,8 @@ def connection_fields_figure(system, n=None, figsize=(9, 3.3)):
     return fig, axes, arts
 
 
-def regimes_figure(systems, n=None, figsize=(8.5, 11)):
+def regimes_figure(systems: Iterable[LocomotionSystem], n: GridSize | None = None,
+                   figsize: Sequence[float] = (8.5, 11)) -> tuple[Figure, NDArray[np.object_]]:
     """Static grid: one row per system, one column per connection row (x, y, theta)."""
     systems = list(systems)
     fig, axes = new_figure(len(systems), 3, figsize=figsize, squeeze=False)
@@ -299,7 +324,8 @@ def regimes_figure(systems, n=None, figsize=(8.5, 11)):
     return fig, axes
 
 
-def poor_pictures_figure(system, row=2, n=6, figsize=(9, 3.4)):
+def poor_pictures_figure(system: LocomotionSystem, row: int = 2, n: int = 6, figsize: Sequence[float] = (9, 3.4)
+                         ) -> tuple[Figure, list[Axes]]:
     """Three pictures of one connection row: a plane field, local contour lines, and arrows.
 
     (a) at each grid shape r0, a small tilted square: the graph of the linear function
@@ -350,7 +376,8 @@ def poor_pictures_figure(system, row=2, n=6, figsize=(9, 3.4)):
 WIDE_SHAPES = 1.6
 
 
-def field_grid_axes(figsize=(6.2, 5.9), limits=None):
+def field_grid_axes(figsize: Sequence[float] = (6.2, 5.9),
+                    limits: Limits | None = None) -> tuple[Figure, list[Axes], Axes]:
     """Three shape-space axes (one per connection row) and a world axes: ``(fig, field_axes, ax)``.
 
     A square-ish shape window (``limits``, default square) gets a 2 x 2 grid. A wide one (width
@@ -377,18 +404,21 @@ class FieldGridScene(Scene):
     window): ``self.field_axes`` (the three connection rows over shape space) and ``self.ax``
     (the world)."""
 
+    field_axes: list[Axes]
+
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         system = getattr(self, "system", None)
         fig, self.field_axes, self.ax = field_grid_axes(limits=getattr(system, "shape_limits", None))
         return fig, self.field_axes + [self.ax]
 
 
-def thin_labels(field_axes, body_ax, body_labels=True):
+def thin_labels(field_axes: Sequence[Axes], body_ax: Axes, body_labels: bool = True) -> None:
     """Fewer texts, faster redraws: tick labels only on the outer edges of the grid (2 x 2: the
     bottom row and the left column; stacked: the bottom field)."""
     top_left, top_right, bottom_left = field_axes
-    stacked = top_left.get_subplotspec().colspan == top_right.get_subplotspec().colspan
+    spec_left, spec_right = (cast(SubplotSpec, ax.get_subplotspec()) for ax in (top_left, top_right))   # subplots
+    stacked = spec_left.colspan == spec_right.colspan
     for ax in (top_left, top_right):
         ax.tick_params(labelbottom=False)
         ax.set_xlabel("")
@@ -399,7 +429,7 @@ def thin_labels(field_axes, body_ax, body_labels=True):
         body_ax.tick_params(labelbottom=False, labelleft=False)
 
 
-def _fmt(xi):
+def _fmt(xi: ArrayLike) -> str:
     return f"ξ = ({signed(xi)})"
 
 
@@ -412,12 +442,13 @@ class ConnectionFieldScene(FieldGridScene):
     ``n`` (field grid; default from the axes size), ``velocity_scale``.
     """
 
-    def __init__(self, system, n=None, velocity_scale=1.0, **options):
+    def __init__(self, system: LocomotionSystem, n: GridSize | None = None, velocity_scale: float = 1.0,
+                 **options: Any) -> None:
         self.system, self.n, self.velocity_scale = system, n, velocity_scale
         super().__init__(**options)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         s = self.system
         for i, ax in enumerate(self.field_axes):
             style_shape_axes(ax, s, f"row {i + 1}: {ROW_LABELS[i]}")
@@ -427,7 +458,7 @@ class ConnectionFieldScene(FieldGridScene):
         thin_labels(self.field_axes, self.ax, body_labels=False)
 
     @override
-    def create(self):
+    def create(self) -> None:
         s = self.system
         self.fields = [ConnectionFieldArtist(ax, s, i, n=self.n, color="0.35") for i, ax in enumerate(self.field_axes)]
         self.cursors = [ShapeCursorArtist(ax) for ax in self.field_axes]
@@ -437,7 +468,7 @@ class ConnectionFieldScene(FieldGridScene):
         self.text = readout(self.ax, 0.02, 0.02)
 
     @override
-    def set(self, alpha1=0.0, alpha2=0.0, alpha1_dot=1.0, alpha2_dot=0.0):
+    def set(self, alpha1: float = 0.0, alpha2: float = 0.0, alpha1_dot: float = 1.0, alpha2_dot: float = 0.0) -> None:
         r = np.array([alpha1, alpha2])
         rd = np.array([alpha1_dot, alpha2_dot])
         for c in self.cursors:
@@ -456,7 +487,8 @@ class ConnectionFieldScene(FieldGridScene):
             self.text.set_text(_fmt(self.xi))
 
     @override
-    def replot(self, alpha1=0.0, alpha2=0.0, alpha1_dot=1.0, alpha2_dot=0.0):
+    def replot(self, alpha1: float = 0.0, alpha2: float = 0.0, alpha1_dot: float = 1.0,
+               alpha2_dot: float = 0.0) -> None:
         r = np.array([alpha1, alpha2])
         rd = np.array([alpha1_dot, alpha2_dot])
         for i, ax in enumerate(self.field_axes):

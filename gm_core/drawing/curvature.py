@@ -9,13 +9,21 @@ singular or undefined shapes are masked (grey) and flagged, never drawn as NaN s
 from __future__ import annotations
 
 import html
+from collections.abc import Mapping, Sequence
+from typing import Any, ClassVar
 
 import matplotlib
 import numpy as np
+from matplotlib.animation import FuncAnimation
+from matplotlib.artist import Artist
+from matplotlib.axes import Axes
+from matplotlib.container import BarContainer
+from matplotlib.figure import Figure
 from matplotlib.patches import Patch
+from matplotlib.typing import ColorType
 from typing_extensions import override
 
-from gm_core.drawing.connection import ConnectionFieldArtist, shape_grid, style_shape_axes
+from gm_core.drawing.connection import ConnectionFieldArtist, Limits, shape_grid, style_shape_axes
 from gm_core.drawing.motion import SystemArtist
 from gm_core.drawing.toolkit.primitives import SingularFlag, TrailArtist, animate
 from gm_core.drawing.toolkit.style import PALETTE, Scene, freeze_layout, new_figure
@@ -28,8 +36,10 @@ from gm_core.geometry.estimates import (
     row_scaled,
     shaped_gait,
 )
-from gm_core.systems import LowReSwimmer
-from gm_core.validation import SingularShapeError
+from gm_core.systems import LocomotionSystem, LowReSwimmer
+from gm_core.systems.gaits import Gait
+from gm_core.systems.motion import Trajectory
+from gm_core.validation import FloatArray, SingularShapeError
 
 __all__ = ["ROWS", "LIMITS", "CurvatureMapArtist", "GaitArtist", "curvature_maps_figure", "animate_swimmer",
            "GaitStokesScene", "FrameFieldsScene", "estimates_table"]
@@ -49,20 +59,21 @@ class CurvatureMapArtist:
     values are :func:`gm_core.geometry.estimates.curvature_grid` (cached in the math layer).
     """
 
-    def __init__(self, ax, system, row=0, limits=None, n=81):
+    def __init__(self, ax: Axes, system: LocomotionSystem, row: int = 0, limits: Limits | None = None,
+                 n: int = 81) -> None:
         self.ax, self.n = ax, int(n)
-        self.limits = tuple(tuple(map(float, lim)) for lim in (limits or system.shape_limits))
+        self.limits = tuple((float(lo), float(hi)) for lo, hi in (limits or system.shape_limits))
         (lo1, hi1), (lo2, hi2) = self.limits
         cmap = matplotlib.colormaps[_CMAP].with_extremes(bad="0.75")
         self.image = ax.imshow(np.zeros((self.n, self.n)), origin="lower", extent=(lo1, hi1, lo2, hi2),
                                cmap=cmap, interpolation="bilinear", aspect="equal", zorder=1)
         self.set(system, row)
 
-    def values(self, system=None):
+    def values(self, system: LocomotionSystem | None = None) -> FloatArray:
         """Curvature (n, n, 3) of ``system`` (default: the one shown) on the map's grid."""
         return curvature_grid(system or self.system, self.limits, self.n)
 
-    def set(self, system=None, row=None):
+    def set(self, system: LocomotionSystem | None = None, row: int | None = None) -> float:
         if system is not None:
             self.system = system
         if row is not None:
@@ -84,14 +95,14 @@ class CurvatureMapArtist:
 class GaitArtist:
     """A gait drawn as a closed curve with a start dot and an arrow showing its direction."""
 
-    def __init__(self, ax, color="k", lw=1.8, samples=200):
+    def __init__(self, ax: Axes, color: ColorType = "k", lw: float = 1.8, samples: int = 200) -> None:
         (self.line,) = ax.plot([], [], color=color, lw=lw, zorder=4)
         (self.start,) = ax.plot([], [], "o", color=color, ms=5, zorder=5)
         self.arrow = ax.annotate("", xy=(0, 0), xytext=(0, 0), zorder=5,
                                  arrowprops=dict(arrowstyle="-|>", color=color, lw=lw))
         self.samples = samples
 
-    def set(self, gait):
+    def set(self, gait: Gait) -> None:
         t = np.linspace(0, gait.period, self.samples + 1)
         p = gait(t)
         self.line.set_data(p[:, 0], p[:, 1])
@@ -100,16 +111,17 @@ class GaitArtist:
         self.arrow.xy, self.arrow.xyann = tuple(p[k + 1]), tuple(p[k])
         self.points = p
 
-    def set_visible(self, visible):
+    def set_visible(self, visible: bool) -> None:
         for a in (self.line, self.start, self.arrow):
             a.set_visible(visible)
 
 
-def _map_axes(ax, system, limits, title=None):
+def _map_axes(ax: Axes, system: LocomotionSystem, limits: Limits, title: str | None = None) -> None:
     style_shape_axes(ax, system, title, limits=limits, pad=0.0)
 
 
-def curvature_maps_figure(cases, n=81, figsize=(9, 7.6)):
+def curvature_maps_figure(cases: Mapping[str, tuple[LocomotionSystem, Gait | None]], n: int = 81,
+                          figsize: Sequence[float] = (9, 7.6)) -> Figure:
     """Grid of curvature maps: one column per case, rows x, y, θ; ``cases`` = {title: (system, gait or None)}."""
     fig, axes = new_figure(3, len(cases), figsize=figsize, squeeze=False)
     for j, (title, (system, gait)) in enumerate(cases.items()):
@@ -125,7 +137,9 @@ def curvature_maps_figure(cases, n=81, figsize=(9, 7.6)):
     return fig
 
 
-def animate_swimmer(system, gait, traj, n_frames=60, row=0, limits=None, figsize=(9, 4), interval=60):
+def animate_swimmer(system: LocomotionSystem, gait: Gait, traj: Trajectory, n_frames: int = 60, row: int = 0,
+                    limits: Limits | None = None, figsize: Sequence[float] = (9, 4),
+                    interval: float = 60) -> tuple[Figure, FuncAnimation]:
     """Animation (fig, FuncAnimation) of ``system`` swimming ``traj`` (a locomotion.Trajectory) beside its gait.
 
     Left: the curvature row ``row`` with the gait and a moving dot; right: the swimmer in the
@@ -149,7 +163,7 @@ def animate_swimmer(system, gait, traj, n_frames=60, row=0, limits=None, figsize
     axw.set_title(system.name)
     idx = np.linspace(0, len(g) - 1, n_frames).round().astype(int)
 
-    def update(k):
+    def update(k: int) -> list[Artist]:
         i = idx[k]
         body.set(g[i], r[i])
         dot.set_data([r[i, 0]], [r[i, 1]])
@@ -185,22 +199,22 @@ class GaitStokesScene(Scene):
     Options: ``system`` (default the low-Reynolds swimmer), ``limits`` (the map's window).
     """
 
-    YLIM = (-1.1, 1.45)
+    YLIM: ClassVar[tuple[float, float]] = (-1.1, 1.45)
 
-    def __init__(self, system=None, limits=LIMITS, **options):
+    def __init__(self, system: LocomotionSystem | None = None, limits: Limits = LIMITS, **options: Any) -> None:
         self.system = system if system is not None else LowReSwimmer()
         self.limits = limits
         self.frames = frames_of(self.system, limits)
         super().__init__(**options)
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         fig, (self.ax, self.axb) = new_figure(1, 2, figsize=(9, 3.3), layout="compressed",
                                               gridspec_kw=dict(width_ratios=[1.1, 1]))
         return fig, [self.ax, self.axb]
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         _map_axes(self.ax, self.system, self.limits)
         axb = self.axb
         axb.set_xticks(np.arange(3), ROWS)
@@ -216,21 +230,23 @@ class GaitStokesScene(Scene):
                    loc="upper center", ncols=3, handlelength=1.2, columnspacing=1.0)
         axb.set_title("numbers: in the table below", loc="left")
 
-    COLORS = ("k", PALETTE["vermillion"], PALETTE["grey"])
+    COLORS: ClassVar[tuple[str, str, str]] = ("k", PALETTE["vermillion"], PALETTE["grey"])
 
     @override
-    def create(self):
+    def create(self) -> None:
         self.map = CurvatureMapArtist(self.ax, self.frames["middle link"], 0, limits=self.limits)
-        self._map_key = ("middle link", 0)
+        self._map_key: tuple[str, int] = ("middle link", 0)
         self.gait_artist = GaitArtist(self.ax)
         self.flag = SingularFlag(self.ax)
         x = np.arange(3)
-        self.bars = {name: self.axb.bar(x + (k - 1) * 0.27, np.zeros(3), 0.25, color=color)
+        self.bars: dict[str, BarContainer] = {name: self.axb.bar(x + (k - 1) * 0.27, np.zeros(3), 0.25, color=color)
                      for k, (name, color) in enumerate(zip(Estimates.NAMES, self.COLORS))}
-        self.estimates, self.table = None, ""
+        self.estimates: Estimates | None = None
+        self.table = ""
 
     @override
-    def set(self, c1=0.0, c2=0.0, a=1.0, b=0.6, tilt=0.78, bend=0.0, row=0, frame="middle link"):
+    def set(self, c1: float = 0.0, c2: float = 0.0, a: float = 1.0, b: float = 0.6, tilt: float = 0.78,
+            bend: float = 0.0, row: int = 0, frame: str = "middle link") -> None:
         if frame not in self.frames:
             raise ValueError(f"frame must be one of {list(self.frames)}; got {frame!r}")
         if (frame, row) != self._map_key:  # the image is redrawn only when the map changes
@@ -265,28 +281,28 @@ class FrameFieldsScene(Scene):
     FIGSIZE = (9, 3.3)
     NCOLS = 3
 
-    def __init__(self, system=None, limits=LIMITS, **options):
+    def __init__(self, system: LocomotionSystem | None = None, limits: Limits = LIMITS, **options: Any) -> None:
         self.system = system if system is not None else LowReSwimmer()
         self.limits = limits
         self.frames = frames_of(self.system, limits)
         super().__init__(**options)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         for i, ax in enumerate(self.axes):
             style_shape_axes(ax, self.system, f"row {ROWS[i]} of −A", limits=self.limits)
 
     @override
-    def create(self):
+    def create(self) -> None:
         base = self.frames["middle link"]
         self.fields = [ConnectionFieldArtist(ax, base, i, limits=self.limits) for i, ax in enumerate(self.axes)]
         self.caps = [f.cap for f in self.fields]            # the middle-link scale, kept in every frame
         a1, a2, _ = shape_grid(base, self.fields[0].n, self.fields[0].grid_limits)
         self.grid = np.stack([a1, a2], -1)                   # the arrows' shapes
-        self.rms = None
+        self.rms: FloatArray | None = None
 
     @override
-    def set(self, frame="middle link"):
+    def set(self, frame: str = "middle link") -> None:
         if frame not in self.frames:
             raise ValueError(f"frame must be one of {list(self.frames)}; got {frame!r}")
         system = self.frames[frame]

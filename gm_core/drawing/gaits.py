@@ -6,8 +6,15 @@ Trajectories come from :func:`gm_core.systems.motion.trajectory` (fourth-order M
 from __future__ import annotations
 
 import warnings
+from collections.abc import Callable, Mapping
+from typing import Any, ClassVar, TypedDict
 
 import numpy as np
+from matplotlib.animation import FuncAnimation
+from matplotlib.artist import Artist
+from matplotlib.backend_bases import MouseEvent
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 from typing_extensions import override
 
 from gm_core.drawing.connection import (
@@ -15,6 +22,7 @@ from gm_core.drawing.connection import (
     WIDE_SHAPES,
     ConnectionFieldArtist,
     FieldGridScene,
+    GridSize,
     ShapeCursorArtist,
     draw_singular_set,
     style_shape_axes,
@@ -22,10 +30,11 @@ from gm_core.drawing.connection import (
 )
 from gm_core.drawing.motion import MovingView, SystemArtist, draw_system_naive, style_world_axes, system_extent
 from gm_core.drawing.toolkit.primitives import SingularFlag, TrailArtist, animate
-from gm_core.drawing.toolkit.style import PALETTE, freeze_layout, new_figure, readout, signed
-from gm_core.systems.gaits import GAIT_FAMILIES, Gait, GaitWarning, as_gait, family_gait
-from gm_core.systems.motion import net_displacement, trajectory
-from gm_core.validation import SingularShapeError
+from gm_core.drawing.toolkit.style import PALETTE, PathText, freeze_layout, new_figure, readout, signed
+from gm_core.systems import LocomotionSystem
+from gm_core.systems.gaits import GAIT_FAMILIES, Gait, GaitLike, GaitWarning, as_gait, family_gait
+from gm_core.systems.motion import Trajectory, net_displacement, trajectory
+from gm_core.validation import FloatArray, SingularShapeError
 
 __all__ = ["GaitScene", "GAIT_SHAPES", "animate_gait"]
 
@@ -33,6 +42,22 @@ __all__ = ["GaitScene", "GAIT_SHAPES", "animate_gait"]
 #: The gait shapes of :class:`GaitScene`: the families of :mod:`gm_core.systems.gaits` and a loop drawn
 #: with the mouse ("drawn": drag the dots on any shape-space axes).
 GAIT_SHAPES = GAIT_FAMILIES + ("drawn",)
+
+
+class _GaitValues(TypedDict, total=False):
+    """The values of a :class:`GaitScene` (see its docstring); a missing one takes its default."""
+
+    family: str
+    amplitude: float
+    center1: float
+    center2: float
+    aspect: float
+    angle: float
+    frame: str | None
+
+
+#: What :meth:`GaitScene.motion` gives: the gait, its trajectory and None, or None and the error.
+Motion = tuple[Gait, Trajectory | None, SingularShapeError | None]
 
 
 class GaitScene(FieldGridScene):
@@ -54,28 +79,29 @@ class GaitScene(FieldGridScene):
 
     #: Magnus steps between two of the 61 frames: 720 per cycle put g(T) within ~1e-10 of
     #: net_displacement's converged value on the course's gaits (1e-12 relative), far below a pixel.
-    substeps = 12
-    cache_size = 256
+    substeps: ClassVar[int] = 12
+    cache_size: ClassVar[int] = 256
     #: a press within this many pixels of a control point grabs it
-    pick_px = 12.0
+    pick_px: ClassVar[float] = 12.0
 
-    def __init__(self, system, frames=None, n=None, lim=None, n_points=8, **options):
+    def __init__(self, system: LocomotionSystem, frames: Mapping[str, LocomotionSystem] | None = None,
+                 n: GridSize | None = None, lim: float | None = None, n_points: int = 8, **options: Any) -> None:
         self.frames = dict(frames or {})
         self.system, self.n = system, n
         self.lim = lim or 1.3 * system_extent(system)
-        self._cache = {}
+        self._cache: dict[tuple[object, ...], Motion] = {}
         self.n_points = int(n_points)
-        self.points = None          # control points of the drawn loop (K, 2), seeded on first use
-        self._grab = None
-        self._values = {}
+        self.points: FloatArray | None = None    # control points of the drawn loop (K, 2), seeded on first use
+        self._grab: int | None = None
+        self._values: _GaitValues = {}
         #: called (with no arguments) after a mouse edit; a panel sets it to its refresh
-        self.on_edit = None
+        self.on_edit: Callable[[], object] | None = None
         super().__init__(**options)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         s = self.system
-        self.fields = []
+        self.fields: list[ConnectionFieldArtist] = []
         for i, ax in enumerate(self.field_axes):
             style_shape_axes(ax, s, ROW_LABELS[i])
             self.fields.append(ConnectionFieldArtist(ax, s, i, n=self.n, color="0.5"))
@@ -83,9 +109,10 @@ class GaitScene(FieldGridScene):
         thin_labels(self.field_axes, self.ax)
 
     @override
-    def create(self):
+    def create(self) -> None:
         s = self.system
-        self.paths, self.handles = [], []
+        self.paths: list[tuple[Line2D, Line2D]] = []   # the gait and its start, on each field
+        self.handles: list[Line2D] = []                 # the drawn loop's control points
         for ax in self.field_axes:
             (line,) = ax.plot([], [], color=PALETTE["blue"], lw=2)
             (start,) = ax.plot([], [], "o", color=PALETTE["blue"], ms=5)
@@ -97,40 +124,40 @@ class GaitScene(FieldGridScene):
         self.view = MovingView(self.ax, self.lim)
         self.ax.set_title("motion over one cycle")
         self.trail = TrailArtist(self.ax, color=PALETTE["green"], lw=2)
-        grey = dict(facecolor="0.8", alpha=0.5, edgecolor="0.5")
+        grey: dict[str, Any] = dict(facecolor="0.8", alpha=0.5, edgecolor="0.5")
         self.start = SystemArtist(self.ax, s, styles={"link": grey, "chassis": grey})
         self.body = SystemArtist(self.ax, s)
         self.view.attach(self.trail.line, *(b.patch for art in (self.start, self.body) for b in art.bodies),
                          self.start.frame.quiver, self.body.frame.quiver)
         self.flag = SingularFlag(self.ax)
         self.text = readout(self.ax, 0.02, 0.02)
-        self._moving = [self.trail.line, self.start.frame.quiver, self.body.frame.quiver, self.flag.text,
-                        self.text] + [b.patch for art in (self.start, self.body) for b in art.bodies] + self.handles
+        self._moving: list[Artist | PathText] = [
+            self.trail.line, self.start.frame.quiver, self.body.frame.quiver, self.flag.text, self.text,
+            *(b.patch for art in (self.start, self.body) for b in art.bodies), *self.handles]
         canvas = self.fig.canvas
         self._cids = [canvas.mpl_connect("button_press_event", self.on_press),
                       canvas.mpl_connect("motion_notify_event", self.on_motion),
                       canvas.mpl_connect("button_release_event", self.on_release)]
 
     # -- the gait ------------------------------------------------------------------------------
-    def seed_points(self, v=None):
+    def seed_points(self, v: _GaitValues | None = None) -> FloatArray:
         """Control points of the drawn loop: K samples of the current family's gait (a circle at first)."""
-        v = dict(self._values if v is None else v)
+        v = (self._values if v is None else v).copy()
         fam = v.get("family", "circle")
         v["family"] = "circle" if fam == "drawn" else fam
         g = self.gait(v)
-        self.points = g(np.arange(self.n_points) / self.n_points * g.period)
-        return self.points
+        self.points = points = g(np.arange(self.n_points) / self.n_points * g.period)
+        return points
 
-    def gait(self, v):
+    def gait(self, v: _GaitValues) -> Gait:
         """The :class:`~gm_core.systems.gaits.Gait` for the values ``v`` (see the class docstring)."""
         fam = v.get("family", "circle")
         if fam == "drawn":
-            if self.points is None:
-                self.seed_points(dict(v, family="circle"))
+            points = self.seed_points({**v, "family": "circle"}) if self.points is None else self.points
             with warnings.catch_warnings():
                 # the control points are a closed loop by construction: no "open path" warning
                 warnings.simplefilter("ignore", GaitWarning)
-                return Gait.from_samples(self.points, name="drawn loop")
+                return Gait.from_samples(points, name="drawn loop")
         return family_gait(fam, v["amplitude"], (v["center1"], v["center2"]), v.get("aspect", 1.0),
                            v.get("angle", 0.0))
 
@@ -142,7 +169,7 @@ class GaitScene(FieldGridScene):
         return (fam, frame, float(v["amplitude"]), float(v["center1"]), float(v["center2"]),
                 float(v.get("aspect", 1.0)), float(v.get("angle", 0.0)))
 
-    def motion(self, v):
+    def motion(self, v: _GaitValues) -> Motion:
         """(gait, trajectory, error) for the values; the trajectory is None (and ``error`` the
         SingularShapeError) when the gait meets a singular shape. Cached by gait parameters."""
         gait = self.gait(v)
@@ -158,7 +185,7 @@ class GaitScene(FieldGridScene):
             self._cache[key] = hit
         return hit
 
-    def _use_frame(self, frame):
+    def _use_frame(self, frame: str | None) -> None:
         if frame is None or not self.frames:
             return
         system = self.frames[frame]
@@ -169,7 +196,7 @@ class GaitScene(FieldGridScene):
             f.set(system)
         self.start.system = self.body.system = system
 
-    def _fit_view(self, g):
+    def _fit_view(self, g: FloatArray) -> None:
         """Centre the window on the trail, at least the default size, with room for the body."""
         lo, hi = g[:, :2].min(0), g[:, :2].max(0)
         half = 1.2 * max(self.lim, 0.5 * float(np.max(hi - lo)) + 0.9 * self.lim)
@@ -177,11 +204,12 @@ class GaitScene(FieldGridScene):
         self.view.set((lo + hi) / 2 - [0.0, 0.17 * half], half)
 
     @override
-    def set(self, family="circle", amplitude=1.0, center1=0.0, center2=0.0, aspect=0.6, angle=0.0, frame=None):
-        v = dict(family=family, amplitude=amplitude, center1=center1, center2=center2, aspect=aspect,
-                 angle=angle, frame=frame)
+    def set(self, family: str = "circle", amplitude: float = 1.0, center1: float = 0.0, center2: float = 0.0,
+            aspect: float = 0.6, angle: float = 0.0, frame: str | None = None) -> None:
+        v: _GaitValues = dict(family=family, amplitude=amplitude, center1=center1, center2=center2, aspect=aspect,
+                              angle=angle, frame=frame)
         if family == "drawn" and self.points is None:
-            self.seed_points(dict(self._values or v, family=self._values.get("family", "circle")))
+            self.seed_points({**(self._values or v), "family": self._values.get("family", "circle")})
         self._values = v
         self._use_frame(frame)
         gait, self.traj, err = self.motion(v)
@@ -189,7 +217,7 @@ class GaitScene(FieldGridScene):
         for line, start in self.paths:
             line.set_data(path[:, 0], path[:, 1])
             start.set_data([path[0, 0]], [path[0, 1]])
-        pts = self.points if family == "drawn" else np.empty((0, 2))
+        pts = self.points if family == "drawn" and self.points is not None else np.empty((0, 2))   # seeded above
         for dots in self.handles:
             dots.set_data(pts[:, 0], pts[:, 1])
         # Everything that can change (the flag appears, the body is hidden) is marked changed on
@@ -198,7 +226,7 @@ class GaitScene(FieldGridScene):
         for a in self._moving:
             a.stale = True
         if self.traj is None:
-            self.net = None
+            self.net: FloatArray | None = None
             self.flag.show("gait meets a singular shape")
             self.message = str(err)
             self.trail.line.set_visible(False)
@@ -230,15 +258,16 @@ class GaitScene(FieldGridScene):
         k = int(np.argmin(d))
         return k if d[k] <= self.pick_px else None
 
-    def on_press(self, event):
+    def on_press(self, event: MouseEvent) -> None:
         """Grab the control point under the mouse (left button, drawn loop only)."""
         if getattr(event, "button", 1) not in (1, None):
             return
         self._grab = self._nearest(event)
 
-    def on_motion(self, event):
+    def on_motion(self, event: MouseEvent) -> None:
         """Move the grabbed control point to the mouse (clamped to the shape window) and update."""
-        if self._grab is None or event.inaxes not in self.field_axes or event.xdata is None:
+        if self._grab is None or self.points is None or event.inaxes not in self.field_axes or event.xdata is None \
+                or event.ydata is None:
             return
         (lo1, hi1), (lo2, hi2) = self.system.shape_limits
         pts = self.points.copy()
@@ -246,27 +275,29 @@ class GaitScene(FieldGridScene):
         self.points = pts
         self._edited()
 
-    def on_release(self, event):
+    def on_release(self, event: MouseEvent) -> None:
         """Let go of the control point."""
         if self._grab is not None:
             self._grab = None
             self._edited()
 
-    def _edited(self):
+    def _edited(self) -> None:
         if self.on_edit is not None:
             self.on_edit()
         else:
             self.set(**self._values)
             self.fig.canvas.draw_idle()
 
-    def animation(self, n_frames=60, cycles=2, row=2):
+    def animation(self, n_frames: int = 60, cycles: int = 2, row: int = 2) -> tuple[FuncAnimation, Figure, Trajectory]:
         """A kernel-free animation (FuncAnimation) of the current gait in the world: see :func:`animate_gait`."""
         return animate_gait(self.system, self.gait(self._values), n_frames=n_frames, cycles=cycles, row=row)
 
     @override
-    def replot(self, family="circle", amplitude=1.0, center1=0.0, center2=0.0, aspect=0.6, angle=0.0, frame=None):
+    def replot(self, family: str = "circle", amplitude: float = 1.0, center1: float = 0.0, center2: float = 0.0,
+               aspect: float = 0.6, angle: float = 0.0, frame: str | None = None) -> None:
         self._use_frame(frame)
-        v = dict(family=family, amplitude=amplitude, center1=center1, center2=center2, aspect=aspect, angle=angle)
+        v: _GaitValues = dict(family=family, amplitude=amplitude, center1=center1, center2=center2, aspect=aspect,
+                              angle=angle)
         gait = self.gait(v)
         path = gait(np.linspace(0.0, gait.period, 161))
         for i, ax in enumerate(self.field_axes):
@@ -286,7 +317,8 @@ class GaitScene(FieldGridScene):
             self.ax.set_title("singular")
 
 
-def animate_gait(system, gait, n_frames=60, row=2, cycles=1, world_lim=None, interval=60):
+def animate_gait(system: LocomotionSystem, gait: GaitLike, n_frames: int = 60, row: int = 2, cycles: int = 1,
+                 world_lim: float | None = None, interval: float = 60) -> tuple[FuncAnimation, Figure, Trajectory]:
     """An animation (FuncAnimation): the gait on connection row ``row`` and the body moving in the plane.
 
     Left: shape space with the field -A^row, the gait and a cursor at the current shape. Right: the
@@ -316,7 +348,7 @@ def animate_gait(system, gait, n_frames=60, row=2, cycles=1, world_lim=None, int
     style_world_axes(axw, half, c)
     axw.set_title(system.name)
 
-    def update(k):
+    def update(k: int) -> list[Artist]:
         k = int(k)
         body.set(traj.g[k], traj.r[k])
         trail.set(traj.g[: k + 1, :2])

@@ -5,8 +5,15 @@ Geodesics come from :mod:`gm_core.fields`, exp histories from :mod:`gm_core.calc
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, ClassVar, TypedDict
+
 import numpy as np
+from matplotlib.animation import FuncAnimation
+from matplotlib.artist import Artist
+from matplotlib.axes import Axes
 from matplotlib.collections import LineCollection
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 from typing_extensions import override
 
@@ -35,6 +42,10 @@ from gm_core.groups import SE2, RPlus
 from gm_core.groups.base import TWO_PI
 from gm_core.manifolds.spaces import cylinder_xyz, sphere_xyz, wrap_segments
 from gm_core.manifolds.tangent import cylinder_geodesic, great_circle, sphere_tangent_basis
+from gm_core.validation import FloatArray
+
+if TYPE_CHECKING:
+    from mpl_toolkits.mplot3d.axes3d import Axes3D
 
 __all__ = ["SurfaceGeodesicsScene", "helix_geometry", "HelixScene", "PuckArcScene", "puck_vs_arc_animation", "RPlusGeodesicScene",
            "ExpFourWaysScene"]
@@ -51,15 +62,17 @@ class SurfaceGeodesicsScene(Scene):
     circle whatever the heading. Both from :mod:`gm_core.manifolds`.
     """
 
-    H = 3.0            # the drawn piece of the cylinder: heights |s| <= H (it goes on forever)
-    N = 300
+    H: ClassVar[float] = 3.0            # the drawn piece of the cylinder: heights |s| <= H (it goes on forever)
+    N: ClassVar[int] = 300
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         return axes_row((9, 3.6), ("3d", None, "3d"), left=0.0, right=1.0, bottom=0.12, top=0.9, wspace=0.08)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
+        ax_c: Axes3D
+        ax_s: Axes3D
         ax_c, ax_f, ax_s = self.axes
         A, S = np.meshgrid(np.linspace(0, TWO_PI, 19), np.linspace(-self.H, self.H, 7))
         P = cylinder_xyz(S, A)
@@ -88,7 +101,9 @@ class SurfaceGeodesicsScene(Scene):
         title(ax_s, "sphere: a great circle")
 
     @override
-    def create(self):
+    def create(self) -> None:
+        ax_c: Axes3D
+        ax_s: Axes3D
         ax_c, ax_f, ax_s = self.axes
         col = PALETTE["blue"]
         (self.cyl_curve,) = ax_c.plot([], [], [], color=col, lw=2, zorder=3)
@@ -103,7 +118,7 @@ class SurfaceGeodesicsScene(Scene):
         self.readout = readout(ax_f, 0.07, 1.0, "", size=7.5, va="top", offset=(0, -4))
 
     @override
-    def set(self, heading_deg=15.0, length=3 * np.pi):
+    def set(self, heading_deg: float = 15.0, length: float = 3 * np.pi) -> None:
         h = np.deg2rad(heading_deg)
         t = np.linspace(0.0, length, self.N)
         # cylinder (radius 1): unit speed split between going around (cos h) and going up (sin h)
@@ -131,7 +146,19 @@ class SurfaceGeodesicsScene(Scene):
 
 
 # ============================================================================ 1.6 geodesics, exp
-def helix_geometry(thetadot, speed=1.0):
+class HelixGeometry(TypedDict):
+    """What :func:`helix_geometry` gives: sizes of the helix (inf for a straight line), its centre."""
+
+    diameter: float
+    radius: float
+    period: float
+    pitch: float
+    arclength: float
+    straight: bool
+    centre: FloatArray
+
+
+def helix_geometry(thetadot: float, speed: float = 1.0) -> HelixGeometry:
     """Diameter, period and pitch of the SE(2) geodesic of xi = (speed, 0, thetadot): a dict.
 
     Thin wrapper over :func:`gm_core.fields.se2_helix` returning plain floats (inf for a
@@ -148,15 +175,16 @@ class HelixScene(Scene):
     xy shadows, circles through the origin tangent to the x axis. Value ``thetadot``.
     """
 
-    FAMILY = (-2.0, -1.0, -0.5, 0.5, 1.0, 2.0)
-    T = np.linspace(-np.pi, np.pi, 121)
+    FAMILY: ClassVar[tuple[float, ...]] = (-2.0, -1.0, -0.5, 0.5, 1.0, 2.0)
+    T: ClassVar[FloatArray] = np.linspace(-np.pi, np.pi, 121)
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         return axes_row((9, 4.2), ("3d", None), left=0.0, right=0.98, bottom=0.04, top=0.9, wspace=0.05)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
+        ax3: Axes3D
         ax3, ax2 = self.axes
         plain_3d(ax3, lim=3.2, labels=("x", "y", "θ"))
         ax3.set_zlim(-7.0, 7.0)
@@ -170,7 +198,8 @@ class HelixScene(Scene):
         ax2.add_collection(LineCollection([p[:, :2] for p in paths], colors="0.75", linewidths=0.8))
 
     @override
-    def create(self):
+    def create(self) -> None:
+        ax3: Axes3D
         ax3, ax2 = self.axes
         (self.helix,) = ax3.plot([], [], [], color=PALETTE["vermillion"], lw=2.2)
         (self.circle,) = ax2.plot([], [], color=PALETTE["vermillion"], lw=2.2)
@@ -180,7 +209,7 @@ class HelixScene(Scene):
         self.info = PathText(ax2, 0.03, 0.03, "", size=8, va="bottom", coords="axes")
 
     @override
-    def set(self, thetadot=1.0):
+    def set(self, thetadot: float = 1.0) -> None:
         paths, _ = se2_helices(np.array([thetadot]), self.T)
         self.path = paths[0]
         self.helix.set_data_3d(self.path[:, 0], self.path[:, 1], self.path[:, 2])
@@ -206,16 +235,16 @@ class PuckArcScene(Scene):
     path's *body-frame* forward velocity: constant on SE(2), oscillating for the puck.
     """
 
-    T_MAX = 2 * np.pi
+    T_MAX: ClassVar[float] = 2 * np.pi
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         fig, axes = new_figure(1, 3, figsize=(10, 3.6), gridspec_kw=dict(width_ratios=[1, 1, 1.1]))
         margins(fig, left=0.02, right=0.98, bottom=0.15, top=0.88, wspace=0.12)
         return fig, list(axes)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         a, b, c = self.axes
         plane(a, 4.5)
         plane(b, 4.5)
@@ -229,7 +258,7 @@ class PuckArcScene(Scene):
         title(c, "forward speed seen by the body")
 
     @override
-    def create(self):
+    def create(self) -> None:
         a, b, c = self.axes
         self.paths = [TrailArtist(ax, color=col, lw=1.2, alpha=0.6) for ax, col in
                       ((a, PALETTE["purple"]), (b, PALETTE["blue"]))]
@@ -240,10 +269,10 @@ class PuckArcScene(Scene):
         (self.fwd_puck,) = c.plot([], [], color=PALETTE["purple"], lw=1.8)
         (self.fwd_arc,) = c.plot([], [], color=PALETTE["blue"], lw=1.8)
         (self.now,) = c.plot([], [], color="k", lw=1)
-        self._w = None
+        self._w: float | None = None
 
     @override
-    def set(self, t=1.0, w=1.0):
+    def set(self, t: float = 1.0, w: float = 1.0) -> None:
         if w != self._w:
             ts = np.linspace(0, self.T_MAX, 181)
             self.full = puck_vs_arc(ts, xi=(1.0, 1.0, w))
@@ -261,12 +290,12 @@ class PuckArcScene(Scene):
         self.now.set_data([t, t], [-1.6, 1.6])
 
 
-def puck_vs_arc_animation(w=1.0, frames=48, interval=80):
+def puck_vs_arc_animation(w: float = 1.0, frames: int = 48, interval: float = 80) -> FuncAnimation:
     """FuncAnimation of fig. 1.19 (play it with ``gm_core.drawing.toolkit.primitives.jshtml``; no kernel needed)."""
     scene = PuckArcScene()
     ts = np.linspace(0.0, PuckArcScene.T_MAX, frames)
 
-    def step(k):
+    def step(k: int) -> list[Artist]:
         scene.set(t=float(ts[k]), w=w)
         return []
 
@@ -282,13 +311,13 @@ class RPlusGeodesicScene(Scene):
     same starting velocity, for contrast.
     """
 
-    T = np.linspace(0.0, 3.0, 121)
+    T: ClassVar[FloatArray] = np.linspace(0.0, 3.0, 121)
 
     FIGSIZE = (6.4, 4.2)
     MARGINS = dict(left=0.15, right=0.97, bottom=0.14, top=0.9)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         (ax,) = self.axes
         ax.set_xlim(0, 3)
         ax.set_ylim(0, 8)
@@ -301,7 +330,7 @@ class RPlusGeodesicScene(Scene):
         ax.add_collection(LineCollection([np.c_[self.T, gi] for gi in g], colors="0.8", linewidths=1))
 
     @override
-    def create(self):
+    def create(self) -> None:
         (ax,) = self.axes
         (self.curve,) = ax.plot([], [], color=PALETTE["vermillion"], lw=2.2)
         (self.additive,) = ax.plot([], [], color=PALETTE["blue"], lw=1.2, ls="--")
@@ -311,7 +340,7 @@ class RPlusGeodesicScene(Scene):
         self.info = PathText(ax, 0.03, 0.93, "", size=8, va="top", coords="axes")
 
     @override
-    def set(self, xi=1.0):
+    def set(self, xi: float = 1.0) -> None:
         g, g_dot = rplus_geodesics(np.array(xi), self.T)
         self.g = g
         self.curve.set_data(self.T, g)
@@ -338,16 +367,17 @@ class ExpFourWaysScene(Scene):
     intermediate values of each method in the xy plane, over the closed-form arc.
     """
 
-    NS = tuple(2 ** k for k in range(7))
-    METHODS = (("taylor", PALETTE["green"], "Taylor partial sums"), ("product", PALETTE["blue"], r"$(I + \hat\xi/n)^k$"),
-               ("euler", PALETTE["orange"], "Euler steps"))
+    NS: ClassVar[tuple[int, ...]] = tuple(2 ** k for k in range(7))
+    METHODS: ClassVar[tuple[tuple[str, str, str], ...]] = (
+        ("taylor", PALETTE["green"], "Taylor partial sums"), ("product", PALETTE["blue"], r"$(I + \hat\xi/n)^k$"),
+        ("euler", PALETTE["orange"], "Euler steps"))
 
     FIGSIZE = (9.6, 4.0)
     NCOLS = 2
     MARGINS = dict(left=0.08, right=0.98, bottom=0.11, top=0.9, wspace=0.15)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         a, b = self.axes
         a.set_xlim(-0.2, 6.3)
         a.set_ylim(-17, 1.5)
@@ -367,9 +397,11 @@ class ExpFourWaysScene(Scene):
         title(b, "intermediate values in the xy plane", size=MATH_PT)
 
     @override
-    def create(self):
+    def create(self) -> None:
         a, b = self.axes
-        self.err_lines, self.err_marks, self.path_lines = {}, {}, {}
+        self.err_lines: dict[str, Line2D] = {}
+        self.err_marks: dict[str, Line2D] = {}
+        self.path_lines: dict[str, Line2D] = {}
         for k, (m, col, label) in enumerate(self.METHODS):
             (self.err_lines[m],) = a.plot([], [], "-o", color=col, ms=4, lw=1.5)
             (self.err_marks[m],) = a.plot([], [], "*", color=col, ms=13, mec="k", mew=0.5)
@@ -378,10 +410,10 @@ class ExpFourWaysScene(Scene):
         (self.arc,) = b.plot([], [], color="0.3", lw=2.5, alpha=0.5)
         (self.target,) = b.plot([], [], "k*", ms=12)
         self.info = PathText(b, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes", family="monospace")
-        self._key = None
+        self._key: tuple[float, str] | None = None
 
     @override
-    def set(self, thetadot=1.0, n=8, side="left"):
+    def set(self, thetadot: float = 1.0, n: float = 8, side: str = "left") -> None:
         n = int(n)
         xi = np.array([1.0, 0.0, thetadot])
         key = (thetadot, side)
@@ -395,7 +427,7 @@ class ExpFourWaysScene(Scene):
             end = SE2.exp(xi)
             self.target.set_data([end[0]], [end[1]])
             self._key = key
-        self.final_error = {}
+        self.final_error: dict[str, float] = {}
         for m, _, _ in self.METHODS:
             path = self.histories[m].path(n)
             self.final_error[m] = float(path.error[-1]) if m != "taylor" else float(

@@ -5,6 +5,8 @@ The group axioms ("group or not?") are drawn by :mod:`.group_or_not`.
 """
 from __future__ import annotations
 
+from typing import Any, ClassVar, TypedDict
+
 import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
 from typing_extensions import override
@@ -15,6 +17,7 @@ from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, ArrowSet, PathText, 
 from gm_core.groups import S1, SE2, R2xS1
 from gm_core.groups.axioms import powers
 from gm_core.groups.base import TWO_PI
+from gm_core.validation import FloatArray
 
 __all__ = ["BODY", "SlideRuleScene", "CircleIsoScene",
            "LeftRightActionScene", "ForwardLeftScene", "BodyPointsScene"]
@@ -38,10 +41,10 @@ class SlideRuleScene(Scene):
     #: the cursor hairline crosses both scales' ticks and reaches down to the arrows, with a gap
     #: (the NaN) around the D labels' row, so it points at the reading and crosses no label; it
     #: stops below the C labels (their baseline is 0.35)
-    CURSOR_Y = np.array([0.3, -0.32, np.nan, -0.58, -0.8])
+    CURSOR_Y: ClassVar[FloatArray] = np.array([0.3, -0.32, np.nan, -0.58, -0.8])
 
     @staticmethod
-    def _ticks(decades, y0, up):
+    def _ticks(decades: int, y0: float, up: bool) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         vals = np.concatenate([np.arange(1, 10, 0.5) * 10 ** d for d in range(decades)] + [[10 ** decades]])
         x = np.log10(vals)
         major = np.isclose(vals / 10 ** np.floor(np.log10(vals) + 1e-12), np.round(vals / 10 ** np.floor(
@@ -51,13 +54,13 @@ class SlideRuleScene(Scene):
         return vals, x, segs, major
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         (ax,) = self.axes
         ax.set_xlim(-0.08, 2.05)  # room for the scale letter "D" left of 1
         ax.set_ylim(-1.0, 0.95)
         ax.axis("off")
         vals, x, segs, major = self._ticks(2, 0.0, False)
-        ax.add_collection(LineCollection(segs, colors="k", linewidths=1))
+        ax.add_collection(LineCollection(segs, colors="k", linewidths=1))  # type: ignore[arg-type]  # array, see set
         for v, xx, m in zip(vals, x, major):
             if m and v not in (70, 90):     # 70 and 90 would crowd their neighbours
                 PathText(ax, xx, -0.45, f"{v:g}", size=7.5, ha="center")
@@ -67,9 +70,9 @@ class SlideRuleScene(Scene):
         self._c_vals, self._c_x, self._c_segs, self._c_major = vals, x, segs, major
 
     @override
-    def create(self):
+    def create(self) -> None:
         (ax,) = self.axes
-        self.slide = LineCollection(self._c_segs, colors=PALETTE["blue"], linewidths=1)
+        self.slide = LineCollection(self._c_segs, colors=PALETTE["blue"], linewidths=1)  # type: ignore[arg-type]
         ax.add_collection(self.slide)
         self.c_labels = [PathText(ax, x, 0.35, f"{v:g}", size=7, ha="center", color=PALETTE["blue"])
                          for v, x, m in zip(self._c_vals, self._c_x, self._c_major) if m]
@@ -81,11 +84,12 @@ class SlideRuleScene(Scene):
         self.readout = PathText(ax, 1.0, 0.75, "", size=9, ha="center")
 
     @override
-    def set(self, a=2.0, b=3.0):
+    def set(self, a: float = 2.0, b: float = 3.0) -> None:
         la, lb = np.log10(a), np.log10(b)
         segs = self._c_segs.copy()
         segs[..., 0] += la
-        self.slide.set_segments(segs)
+        # segments as one (n, 2, 2) array, which matplotlib takes, not the Sequence its stub names
+        self.slide.set_segments(segs)  # type: ignore[arg-type]
         for t, x in zip(self.c_labels, self._c_label_x):
             t.set_position((x + la, 0.35))
         self.slide_edge.set_data([la, la + 1], [0.02, 0.02])
@@ -104,14 +108,14 @@ class CircleIsoScene(Scene):
     Values ``a1``, ``a2`` in cycles [0, 1).
     """
 
-    G = S1(1.0)
+    G: ClassVar[S1] = S1(1.0)
 
     FIGSIZE = (7.6, 3.2)
     NCOLS = 2
     MARGINS = dict(left=0.01, right=0.99, bottom=0.02, top=0.88, wspace=0.04)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         t = np.linspace(0, TWO_PI, 120)
         for ax in self.axes:
             ax.plot(np.cos(t), np.sin(t), color="0.7")
@@ -123,7 +127,7 @@ class CircleIsoScene(Scene):
         title(self.axes[1], r"SO(2): multiply matrices, act on $e_1$", size=MATH_PT)
 
     @override
-    def create(self):
+    def create(self) -> None:
         ax_s, ax_r = self.axes
         self.pts = ax_s.scatter([0, 0, 0], [0, 0, 0], c=[PALETTE["blue"], PALETTE["orange"], PALETTE["vermillion"]],
                                 s=[50, 50, 90],
@@ -139,7 +143,7 @@ class CircleIsoScene(Scene):
                        for n, c in zip(names, colors)] for ax in (ax_s, ax_r)]
 
     @override
-    def set(self, a1=0.2, a2=0.35):
+    def set(self, a1: float = 0.2, a2: float = 0.35) -> None:
         G = self.G
         g1, g2 = np.array([a1]), np.array([a2])
         s = G.compose(g1, g2)
@@ -162,20 +166,29 @@ class CircleIsoScene(Scene):
 
 
 # ================================================================================ 1.3 SE(2)
+class _ActionNames(TypedDict):
+    """The names following the bodies of a :class:`LeftRightActionScene` (g on both axes)."""
+
+    g: list[PathText]
+    hg: PathText
+    h: PathText
+    gh: PathText
+
+
 class LeftRightActionScene(Scene):
     """Figs. 1.8-1.9: a body at g, moved by the left action (h g) and by the right action (g h).
 
     Values ``x, y, theta`` (g) and ``u, v, beta`` (h).
     """
 
-    LIM = 4.0
+    LIM: ClassVar[float] = 4.0
 
     FIGSIZE = (9, 4.3)
     NCOLS = 2
     MARGINS = dict(left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         for ax in self.axes:
             plane(ax, self.LIM)
             FrameArtist(ax, (0, 0, 0), length=0.6, colors=("0.55", "0.55"), zorder=2)
@@ -183,7 +196,7 @@ class LeftRightActionScene(Scene):
         title(self.axes[1], "right action: gh (fig. 1.9)")
 
     @override
-    def create(self):
+    def create(self) -> None:
         ax_l, ax_r = self.axes
         self.g_body = [BodyArtist(ax, BODY, facecolor="0.6") for ax in self.axes]
         self.g_frame = [FrameArtist(ax, length=0.5) for ax in self.axes]
@@ -201,8 +214,8 @@ class LeftRightActionScene(Scene):
         self.l_text = PathText(ax_l, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes")
         self.r_text = PathText(ax_r, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes")
         # the key: each body and the frame h carry their name, following them
-        label = dict(size=9, weight="bold", ha="left", va="bottom", offset=(5.0, 5.0))
-        self.names = {"g": [PathText(ax, 0, 0, "g", color="0.35", **label) for ax in self.axes],
+        label: dict[str, Any] = dict(size=9, weight="bold", ha="left", va="bottom", offset=(5.0, 5.0))  # PathText's
+        self.names: _ActionNames = {"g": [PathText(ax, 0, 0, "g", color="0.35", **label) for ax in self.axes],
                       "hg": PathText(ax_l, 0, 0, "hg", color=PALETTE["blue"], **label),
                       "h": PathText(ax_l, 0, 0, "h", color="0.2", **label),
                       "gh": PathText(ax_r, 0, 0, "gh", color=PALETTE["orange"], **label)}
@@ -210,7 +223,8 @@ class LeftRightActionScene(Scene):
             name.collection.set_clip_on(True)     # a body near the edge never pushes its name outside
 
     @override
-    def set(self, x=1.5, y=0.5, theta=0.5, u=-1.0, v=1.0, beta=0.9):
+    def set(self, x: float = 1.5, y: float = 0.5, theta: float = 0.5, u: float = -1.0, v: float = 1.0,
+            beta: float = 0.9) -> None:
         g = np.array([x, y, theta])
         h = np.array([u, v, beta])
         self.hg = SE2.compose(h, g)
@@ -250,23 +264,26 @@ class ForwardLeftScene(Scene):
     SE(2) ("forward and to the left" for g = (1, 1, pi/2)), changing in (R^2 x S^1, +).
     """
 
-    N_MAX = 8
-    LIM = 4.5
+    N_MAX: ClassVar[int] = 8
+    LIM: ClassVar[float] = 4.5
 
     FIGSIZE = (9, 4.4)
     NCOLS = 2
     MARGINS = dict(left=0.05, right=0.99, bottom=0.1, top=0.88, wspace=0.15)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         for ax in self.axes:
             plane(ax, self.LIM)
         title(self.axes[0], r"$(\mathbb{R}^2 \times \mathbb{S}^1, +)$:  g + g + …", size=MATH_PT)
         title(self.axes[1], "SE(2):  g ∘ g ∘ …", size=MATH_PT)
 
     @override
-    def create(self):
-        self.bodies, self.frames, self.steps, self.texts = [], [], [], []
+    def create(self) -> None:
+        self.bodies: list[PolyCollection] = []
+        self.frames: list[LineCollection] = []
+        self.steps: list[LineCollection] = []
+        self.texts: list[PathText] = []
         for ax, color in zip(self.axes, (PALETTE["purple"], PALETTE["blue"])):
             bodies = PolyCollection([], facecolors=color, edgecolors="k", alpha=0.4, linewidths=0.8)
             frames = LineCollection([], linewidths=1.8, zorder=4)
@@ -279,7 +296,7 @@ class ForwardLeftScene(Scene):
             self.texts.append(PathText(ax, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes"))
 
     @staticmethod
-    def body_displacements(poses):
+    def body_displacements(poses: FloatArray) -> FloatArray:
         """Displacement of each step, written in the body frame it starts from: (k, 2)."""
         d = poses[1:, :2] - poses[:-1, :2]
         t = poses[:-1, 2]
@@ -287,25 +304,26 @@ class ForwardLeftScene(Scene):
         return np.stack([c * d[:, 0] + s * d[:, 1], -s * d[:, 0] + c * d[:, 1]], -1)
 
     @staticmethod
-    def describe(d):
+    def describe(d: FloatArray) -> str:
         fwd = "forward" if d[0] > 1e-9 else ("backward" if d[0] < -1e-9 else "")
         side = "to the left" if d[1] > 1e-9 else ("to the right" if d[1] < -1e-9 else "")
         return " and ".join(w for w in (fwd, side) if w) or "no move"
 
     @override
-    def set(self, x=1.0, y=1.0, theta=np.pi / 2, n=2):
+    def set(self, x: float = 1.0, y: float = 1.0, theta: float = np.pi / 2, n: float = 2) -> None:
         n = int(n)
         g = np.array([x, y, theta])
         self.poses = [powers(R2xS1, g, n), powers(SE2, g, n)]
         for k in range(2):
             P = self.poses[k]
-            self.bodies[k].set_verts(SE2.act_on_points(P[:, None, :], BODY))
+            # (n, k, 2) arrays, not the Sequences of matplotlib's stubs (set_verts' fast path)
+            self.bodies[k].set_verts(SE2.act_on_points(P[:, None, :], BODY))  # type: ignore[arg-type]
             origin = P[:, :2]
             tips = SE2.act_on_points(P[:, None, :], np.array([[0.4, 0.0], [0.0, 0.4]]))
-            self.frames[k].set_segments(np.concatenate([np.stack([origin, tips[:, 0]], 1),
+            self.frames[k].set_segments(np.concatenate([np.stack([origin, tips[:, 0]], 1),  # type: ignore[arg-type]
                                                         np.stack([origin, tips[:, 1]], 1)]))
             self.frames[k].set_color([PALETTE["vermillion"]] * (n + 1) + [PALETTE["green"]] * (n + 1))
-            self.steps[k].set_segments(np.stack([P[:-1, :2], P[1:, :2]], 1))
+            self.steps[k].set_segments(np.stack([P[:-1, :2], P[1:, :2]], 1))  # type: ignore[arg-type]
             d = self.body_displacements(P)
             lines = [f"step {j + 1}: ({d[j, 0]:+.2f}, {d[j, 1]:+.2f}) {self.describe(d[j])}"
                      for j in range(min(n, 4))]
@@ -317,19 +335,19 @@ class ForwardLeftScene(Scene):
 class BodyPointsScene(Scene):
     """(1.11)-(1.12): a point fixed in the body, carried to the world by g; values ``x, y, theta, px, py``."""
 
-    OUTLINE = BodyArtist.rectangle(1.6, 0.8)
+    OUTLINE: ClassVar[FloatArray] = BodyArtist.rectangle(1.6, 0.8)
 
     FIGSIZE = (5, 4.4)
     MARGINS = dict(left=0.1, right=0.98, bottom=0.1, top=0.9)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         (ax,) = self.axes
         plane(ax, 3.0)
         FrameArtist(ax, (0, 0, 0), length=0.6, colors=("0.55", "0.55"), zorder=2)
 
     @override
-    def create(self):
+    def create(self) -> None:
         (ax,) = self.axes
         self.body = BodyArtist(ax, self.OUTLINE, facecolor=PALETTE["blue"], alpha=0.3)
         self.frame = FrameArtist(ax, length=0.6)
@@ -338,7 +356,7 @@ class BodyPointsScene(Scene):
         self.text = title(ax, size=8)
 
     @override
-    def set(self, x=0.5, y=0.3, theta=0.6, px=0.6, py=0.3):
+    def set(self, x: float = 0.5, y: float = 0.3, theta: float = 0.6, px: float = 0.6, py: float = 0.3) -> None:
         g = np.array([x, y, theta])
         pb = np.array([px, py])
         self.body.set(g)

@@ -8,8 +8,15 @@ numbers in a text-only axes on the right (:func:`plane_and_notes`).
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import Any, ClassVar, TypedDict
+
 import numpy as np
-from typing_extensions import override
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+from matplotlib.typing import ColorType
+from numpy.typing import ArrayLike
+from typing_extensions import Unpack, override
 
 from gm_core.chains import chain as C
 from gm_core.chains.holonomic import pin_constraints, pinned_pair
@@ -19,6 +26,7 @@ from gm_core.drawing.toolkit.axes import square_axes
 from gm_core.drawing.toolkit.primitives import BodyArtist, FrameArtist
 from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, PathText, Scene, new_figure, readout
 from gm_core.groups import SE2
+from gm_core.validation import FloatArray
 
 __all__ = ["plane_and_notes", "notes_text", "PinnedBodiesScene", "RelativePoseScene", "BetaVelocityScene",
            "BODY_OUTLINE"]
@@ -27,23 +35,24 @@ __all__ = ["plane_and_notes", "notes_text", "PinnedBodiesScene", "RelativePoseSc
 BODY_OUTLINE = np.array([[-0.18, -0.14], [1.1, -0.1], [1.25, 0.0], [1.1, 0.1], [-0.18, 0.14]])
 
 
-def plane_and_notes(figsize=(8.0, 4.4), ratio=(3, 2)):
+def plane_and_notes(figsize: Sequence[float] = (8.0, 4.4),
+                    ratio: Sequence[float] = (3, 2)) -> tuple[Figure, Axes, Axes]:
     """``(fig, ax, notes)``: square world axes on the left, a text-only axes for readouts on the right."""
     fig, (ax, notes) = new_figure(1, 2, figsize=figsize, gridspec_kw=dict(width_ratios=list(ratio)))
     notes.set_axis_off()
     return fig, ax, notes
 
 
-def notes_text(notes, y=1.0, size=8.5, **kw):
+def notes_text(notes: Axes, y: float = 1.0, size: float = 8.5, **kw: Any) -> PathText:
     """A monospace readout hanging from the top-left of the notes axes (lines grow downwards)."""
     return readout(notes, 0.0, y, size=size, va="top", **kw)
 
 
-def _label(ax, text, color="k"):
+def _label(ax: Axes, text: str, color: ColorType = "k") -> PathText:
     return PathText(ax, 0.0, 0.0, text, size=9, color=color, coords="data", offset=(5, 5), weight="bold")
 
 
-def _fmt(v):
+def _fmt(v: ArrayLike) -> str:
     return "(%+.2f, %+.2f, %+.2f)" % tuple(np.asarray(v, float))
 
 
@@ -57,17 +66,17 @@ class PinnedBodiesScene(Scene):
     origins is the value of the pin constraints (2.1), :func:`gm_core.chains.holonomic.pin_constraints`.
     """
 
-    lim = 2.2
-    COLORS = (PALETTE["blue"], PALETTE["orange"])
+    lim: ClassVar[float] = 2.2
+    COLORS: ClassVar[tuple[str, str]] = (PALETTE["blue"], PALETTE["orange"])
 
     FIGSIZE = (5.0, 4.6)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         square_axes(self.ax, self.lim)
 
     @override
-    def create(self):
+    def create(self) -> None:
         ax = self.ax
         self.bodies = [BodyArtist(ax, BODY_OUTLINE, facecolor=c, alpha=0.45, zorder=2) for c in self.COLORS]
         self.frames = [FrameArtist(ax, length=0.45, zorder=5) for _ in range(2)]
@@ -76,7 +85,7 @@ class PinnedBodiesScene(Scene):
         (self.pin,) = ax.plot([], [], "o", ms=11, mfc="white", mec="k", mew=2, zorder=6)
         self.text = readout(ax, 0.02, 0.02, size=8)
 
-    def compute(self, **values):
+    def compute(self, **values: float) -> tuple[FloatArray, FloatArray]:
         """Poses ``(2, 3)`` of the two bodies and the pin-constraint values ``(2,)``."""
         g1 = np.array([values["x1"], values["y1"], values["theta1"]], float)
         if values.get("pinned", False):
@@ -86,7 +95,7 @@ class PinnedBodiesScene(Scene):
         return g, pin_constraints(g[0], g[1])
 
     @override
-    def set(self, **values):
+    def set(self, **values: float) -> None:
         g, f = self.compute(**values)
         pinned = bool(values.get("pinned", False))
         self.poses, self.constraints = g, f
@@ -109,6 +118,16 @@ class PinnedBodiesScene(Scene):
 
 
 # ======================================================= the notation box, (2.iii)-(2.iv)
+class _RelativePoseValues(TypedDict):
+    """The values of a :class:`RelativePoseScene`: the arm's angles and three of its frames' names."""
+
+    alpha1: float
+    alpha2: float
+    frame: str
+    seen_from: str
+    via: str
+
+
 class RelativePoseScene(Scene):
     """The frames of a two-link arm and the pose of one seen from another, g_{a,b} = b^-1 a (2.iii).
 
@@ -119,26 +138,26 @@ class RelativePoseScene(Scene):
     show the cancellation rules: g_{c,b} g_{a,c} = g_{a,b} and g_{a,b}^-1 = g_{b,a}.
     """
 
-    NAMES = ("e", "g1", "h1", "g2", "h2")
-    lim = 2.4
+    NAMES: ClassVar[tuple[str, ...]] = ("e", "g1", "h1", "g2", "h2")
+    lim: ClassVar[float] = 2.4
 
-    def __init__(self, lengths=(1.2, 1.0), **options):
+    def __init__(self, lengths: ArrayLike = (1.2, 1.0), **options: Any) -> None:
         self.chain = C.Chain("RR", lengths)
         super().__init__(**options)
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         fig, self.ax, self.notes = plane_and_notes(figsize=(8.4, 4.4))
         return fig, [self.ax, self.notes]
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         square_axes(self.ax, self.lim)
         self.ax.set_xlim(-self.lim + 0.6, self.lim + 0.6)
         self.notes.set_axis_off()
 
     @override
-    def create(self):
+    def create(self) -> None:
         ax = self.ax
         self.art = ChainArtist(ax, 2, width=0.1, frames_shown=("g", "h"), pivot=True, frame_length=0.35,
                                colors=["0.8", "0.8"])
@@ -153,28 +172,29 @@ class RelativePoseScene(Scene):
         # changing numbers sit on lines of their own, so a formula is laid out once per choice
         self.text = PathText(self.notes, 0.0, 1.0, "", size=MATH_PT, va="top", coords="axes")
 
-    def poses(self, alpha1, alpha2):
+    def poses(self, alpha1: float, alpha2: float) -> dict[str, FloatArray]:
         """World poses of the named frames: dict name -> ``(3,)``."""
         fr = self.chain.frames([alpha1, alpha2])
         return {"e": SE2.identity(), "g1": fr["g"][0], "h1": fr["h"][0], "g2": fr["g"][1], "h2": fr["h"][1]}
 
-    def compute(self, **values):
+    def compute(self, **values: Unpack[_RelativePoseValues]
+                ) -> tuple[dict[str, FloatArray], FloatArray, FloatArray, FloatArray]:
         P = self.poses(values["alpha1"], values["alpha2"])
-        a, b, c = (P[values[k]] for k in ("frame", "seen_from", "via"))
+        a, b, c = P[values["frame"]], P[values["seen_from"]], P[values["via"]]
         rel = C.relative_pose(a, b)                                       # g_{a,b} = b^-1 a
         chained = SE2.compose(C.relative_pose(c, b), C.relative_pose(a, c))   # g_{c,b} g_{a,c}
         swapped = C.relative_pose(b, a)                                   # g_{b,a}
         return P, rel, chained, swapped
 
     @override
-    def set(self, **values):
+    def set(self, **values: Unpack[_RelativePoseValues]) -> None:
         P, rel, chained, swapped = self.compute(**values)
         self.P, self.rel, self.chained, self.swapped = P, rel, chained, swapped
         fr = self.chain.frames([values["alpha1"], values["alpha2"]])
         self.art.set(fr)
         for n, lab in self.labels.items():
             lab.set_position(P[n][:2])
-        na, nb, nc = (values[k] for k in ("frame", "seen_from", "via"))
+        na, nb, nc = values["frame"], values["seen_from"], values["via"]
         a, b, c = P[na], P[nb], P[nc]
         # b's axes as long lines: "seen from b" means measured along these
         L = 2 * self.lim
@@ -219,10 +239,10 @@ class BetaVelocityScene(ThreeLinkScene):
     """
 
     figsize = (8.4, 4.15)   # with its seven sliders above: 620 px, on one laptop screen
-    SCALE = 1.2
+    SCALE: ClassVar[float] = 1.2
     # what the numbers are: fixed mathtext lines (PathText lays each distinct line out once), the
     # changing numbers on lines of their own
-    NOTES = (
+    NOTES: ClassVar[tuple[str, ...]] = (
         "body velocity of the frame, (2.60):",
         r"$\xi_\beta = \mathrm{Ad}_\beta^{-1}\,\xi_2 + \mathrm{Ad}_\beta^{-1}\,v_\beta$",
         "",
@@ -238,24 +258,24 @@ class BetaVelocityScene(ThreeLinkScene):
         r"$v_\beta = T_\beta R_\beta^{-1}\,\dot\beta$, (2.61):",
         "   {v_beta}",
     )
-    KEY = ("dotted: the path of the frame's origin under each cause\n"
+    KEY: ClassVar[str] = ("dotted: the path of the frame's origin under each cause\n"
            "alone; faint orange: the shape part again, from the origin;\n"
            "thin blue: link 2's velocity; arrows: world velocity × {SCALE}")
-    COLORS = {"carried": PALETTE["blue"], "shape": PALETTE["orange"], "body": "k"}
+    COLORS: ClassVar[dict[str, str]] = {"carried": PALETTE["blue"], "shape": PALETTE["orange"], "body": "k"}
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         fig, self.ax, self.notes = plane_and_notes(figsize=self.figsize)
         return fig, [self.ax, self.notes]
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         self.lim = 0.55 * sum(self.lengths)
         square_axes(self.ax, self.lim)
         self.notes.set_axis_off()
 
     @override
-    def create(self):
+    def create(self) -> None:
         ax = self.ax
         self.art = ChainArtist(ax, 3, frames_shown=(), base_link=1, colors=["0.75", PALETTE["sky"], "0.75"])
         self.beta_art = FrameArtist(ax, length=0.3, colors=("0.35", "0.6"), zorder=8)
@@ -275,7 +295,7 @@ class BetaVelocityScene(ThreeLinkScene):
                  coords="axes")
         self.s = np.linspace(-1.0, 1.0, 41)[:, None]
 
-    def compute(self, **values):
+    def compute(self, **values: float) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, dict[str, FloatArray]]:
         """Shape, beta, its velocity parts (dict of ``(3,)``) and the frames of the chain."""
         a = np.array([values["alpha1"], values["alpha2"]], float)
         ad = np.array([values["alpha1_dot"], values["alpha2_dot"]], float)
@@ -285,7 +305,7 @@ class BetaVelocityScene(ThreeLinkScene):
         return a, ad, xi, beta, parts
 
     @override
-    def set(self, **values):
+    def set(self, **values: float) -> None:
         a, ad, xi, beta, parts = self.compute(**values)
         fr = self.chain.frames(a)                     # middle link at e: g = g_2 beta = beta
         self.art.set(fr)
@@ -312,5 +332,5 @@ class BetaVelocityScene(ThreeLinkScene):
         self.text.set_text(text)
 
     @override
-    def replot(self, **values):
+    def replot(self, **values: Any) -> None:
         Scene.replot(self, **values)

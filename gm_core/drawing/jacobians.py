@@ -8,15 +8,21 @@ head to tail and their sum grows towards J q_dot (grey), reached at the last ste
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+from numpy.typing import ArrayLike
 from typing_extensions import override
 
 from gm_core.chains import chain as C
-from gm_core.drawing.chains import ChainArtist
+from gm_core.drawing.chains import ChainArtist, JointsLike
 from gm_core.drawing.holonomic import plane_and_notes
 from gm_core.drawing.toolkit.axes import square_axes
 from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, PathText, Scene, arrow, set_arrows
 from gm_core.groups import SE2
+from gm_core.validation import FloatArray
 
 __all__ = ["JacobianStepScene", "COLUMN_COLORS"]
 
@@ -26,7 +32,7 @@ COLUMN_COLORS = (PALETTE["blue"], PALETTE["orange"], PALETTE["green"], PALETTE["
 _SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
-def _fmt(v):
+def _fmt(v: ArrayLike) -> str:
     return "(%+.2f, %+.2f, %+.2f)" % tuple(np.asarray(v, float))
 
 
@@ -40,7 +46,8 @@ class JacobianStepScene(Scene):
     the step), ``self.full (3,)`` (J q_dot by the body-iterative method of the chain).
     """
 
-    def __init__(self, joints="RPR", lengths=(1.0, 0.5, 0.7), scale=0.5, **options):
+    def __init__(self, joints: JointsLike = "RPR", lengths: ArrayLike = (1.0, 0.5, 0.7), scale: float = 0.5,
+                 **options: Any) -> None:
         self.chain = C.Chain(joints, lengths)
         self.n = self.chain.n_joints
         self.scale = float(scale)
@@ -48,17 +55,17 @@ class JacobianStepScene(Scene):
         super().__init__(**options)
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         fig, self.ax, self.notes = plane_and_notes(figsize=(8.6, 4.2), ratio=(1, 1))
         return fig, [self.ax, self.notes]
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         square_axes(self.ax, self.lim, center=(0.4, 0.4))
         self.notes.set_axis_off()
 
     @override
-    def create(self):
+    def create(self) -> None:
         ax, n = self.ax, self.n
         colors = [COLUMN_COLORS[j % len(COLUMN_COLORS)] for j in range(n)]
         self.colors = colors
@@ -74,7 +81,7 @@ class JacobianStepScene(Scene):
         # out once; the numbers change on lines without mathtext)
         self.text = PathText(self.notes, 0.0, 1.0, "", size=MATH_PT, va="top", coords="axes")
 
-    def compute(self, **values):
+    def compute(self, **values: float) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Frames ``(2n, 3)``, rate-weighted body columns ``(n, 2n, 3)`` and J q_dot ``(3,)`` of the tip."""
         q = np.array([values[f"q{i + 1}"] for i in range(self.n)], float)
         qd = np.array([values[f"q{i + 1}_dot"] for i in range(self.n)], float)
@@ -83,7 +90,7 @@ class JacobianStepScene(Scene):
         return frames, cols * qd[:, None, None], full
 
     @override
-    def set(self, **values):
+    def set(self, **values: float) -> None:
         frames, cols, full = self.compute(**values)
         n, k = self.n, int(values["step"])
         if not 0 <= k <= n:
@@ -121,7 +128,7 @@ class JacobianStepScene(Scene):
         set_arrows(self.target, tip[:2], s * SE2.body_to_world(tip, full)[:2])
         self.text.set_text(self._table(k, cols[:, -1], values))
 
-    def _table(self, k, cols, values):
+    def _table(self, k: int, cols: FloatArray, values: dict[str, float]) -> str:
         n = self.n
         tipname = f"h{n}".translate(_SUB)
         if k == 0:

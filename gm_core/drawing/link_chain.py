@@ -16,19 +16,32 @@ The scenes compute by calling the math (:mod:`gm_core.systems`, :mod:`gm_core.sy
 """
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
+from typing import Any, ClassVar, cast
+
 import numpy as np
+from matplotlib.animation import FuncAnimation
+from matplotlib.artist import Artist
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+from matplotlib.text import Text
+from matplotlib.typing import ColorType
+from numpy.typing import ArrayLike
 from typing_extensions import override
 
-from gm_core.drawing.connection import ROW_LABELS, ConnectionFieldArtist, math_title, style_shape_axes
+from gm_core.drawing.connection import ROW_LABELS, ConnectionFieldArtist, Limits, math_title, style_shape_axes
 from gm_core.drawing.curvature import CurvatureMapArtist
 from gm_core.drawing.motion import SystemArtist, style_world_axes
 from gm_core.drawing.toolkit.primitives import TrailArtist, animate
 from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, Scene, freeze_layout, new_figure, readout, signed, title
 from gm_core.geometry import efficiency, optimize_chain_gait, travelling_wave, wave_start
+from gm_core.geometry.optimal import OptimalGait
 from gm_core.groups import SE2
-from gm_core.systems import LinkChain, shape_slice
-from gm_core.systems.motion import trajectory
-from gm_core.validation import check_int, check_option
+from gm_core.systems import LinkChain, LocomotionSystem, shape_slice
+from gm_core.systems.gaits import Gait
+from gm_core.systems.motion import Trajectory, trajectory
+from gm_core.systems.restricted import AffineRestriction
+from gm_core.validation import FloatArray, check_int, check_option
 
 __all__ = ["ChainSliceScene", "WaveGaitScene", "OptimalGaitScene", "animate_chain_gait", "links_comparison_figure",
            "continuum_figure", "design_chain", "PHYSICS_LABELS"]
@@ -38,7 +51,8 @@ PHYSICS_LABELS = {"low Re (drag)": "low_re", "high Re (added mass)": "high_re", 
 JOINT_COLOURS = [PALETTE[k] for k in ("blue", "orange", "green", "vermillion", "purple", "sky", "yellow")]
 
 
-def design_chain(links, physics="low_re", total_length=3.0, taper=0.0, frame="com"):
+def design_chain(links: int, physics: str = "low_re", total_length: float = 3.0, taper: float = 0.0,
+                 frame: str = "com") -> LinkChain:
     """The chain a student designs (a :meth:`LinkChain.tapered`; ``physics`` may be a dropdown label)."""
     return LinkChain.tapered(links, PHYSICS_LABELS.get(physics, physics), total_length=total_length, taper=taper,
                              frame=frame)
@@ -48,24 +62,25 @@ class PartsArtist:
     """Every rigid part of a system as one PolyCollection: ``set(system, g, r)`` moves it in place,
     whatever the number of parts (the chain may gain or lose links between two calls)."""
 
-    def __init__(self, ax, facecolor=PALETTE["orange"], alpha=0.6, edgecolor="k", zorder=3):
+    def __init__(self, ax: Axes, facecolor: ColorType = PALETTE["orange"], alpha: float = 0.6,
+                 edgecolor: ColorType = "k", zorder: float = 3) -> None:
         from matplotlib.collections import PolyCollection
 
         self.coll = PolyCollection([], facecolors=facecolor, edgecolors=edgecolor, alpha=alpha, linewidths=0.8,
                                    zorder=zorder)
         ax.add_collection(self.coll)
 
-    def set(self, system, g, r):
+    def set(self, system: LocomotionSystem, g: ArrayLike, r: ArrayLike) -> None:
         poses = SE2.compose(np.asarray(g, dtype=float), system.part_poses(np.asarray(r, dtype=float)))
         self.coll.set_verts([SE2.act_on_points(pose, p.outline) for p, pose in zip(system.parts(), poses)])
 
 
-def _chain_axes_title(system):
+def _chain_axes_title(system: LinkChain) -> str:
     physics = {v: k for k, v in PHYSICS_LABELS.items()}.get(system.physics, system.physics.replace("_", " "))
     return f"{system.n_links} links, {physics}"
 
 
-def _joint_math(k):
+def _joint_math(k: int) -> str:
     """Joint ``k`` (0-based) as mathtext, as notebooks 08-10 label shape axes: ``$\\alpha_1$``."""
     return rf"$\alpha_{k + 1}$"
 
@@ -82,11 +97,12 @@ class ChainSliceScene(Scene):
     FIGSIZE = (9.0, 3.3)
     NCOLS = 3
 
-    def __init__(self, total_length=3.0, taper=0.0, limits=((-2.0, 2.0), (-2.0, 2.0)), n_map=21, **options):
+    def __init__(self, total_length: float = 3.0, taper: float = 0.0, limits: Limits = ((-2.0, 2.0), (-2.0, 2.0)),
+                 n_map: int = 21, **options: Any) -> None:
         self.total_length, self.taper, self.limits, self.n_map = total_length, taper, limits, n_map
         super().__init__(**options)
 
-    def _build(self, links, physics, axis1, axis2):
+    def _build(self, links: int, physics: str, axis1: int, axis2: int) -> None:
         self.system = design_chain(links, physics, self.total_length, self.taper)
         n = self.system.n_shape
         i, j = min(axis1, n) - 1, min(axis2, n) - 1
@@ -94,33 +110,34 @@ class ChainSliceScene(Scene):
             j = (i + 1) % n if n > 1 else i
         self.pair = (i, j)
         if n == 1:                       # two links: the shape space is a line; show it as a trivial slice
-            self.slice = None
+            self.slice: AffineRestriction | None = None
             return
         self.slice = shape_slice(self.system, None, (i, j), limits=self.limits)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         ax0, ax1, ax2 = self.axes
         style_world_axes(ax0, 0.62 * self.total_length)
         title(ax0, "the chain: slice joints bent (dots)", size=MATH_PT)
 
     @override
-    def create(self):
+    def create(self) -> None:
         self._build(4, "low_re", 1, 2)
         ax0, ax1, ax2 = self.axes
         self.body = PartsArtist(ax0)
         (self.joint_dots,) = ax0.plot([], [], "o", ms=7, color=PALETTE["vermillion"], zorder=6)
-        style_shape_axes(ax1, self.slice)
-        style_shape_axes(ax2, self.slice)
-        self.field = ConnectionFieldArtist(ax1, self.slice, 0, color="0.3")
-        self.map = CurvatureMapArtist(ax2, self.slice, 0, limits=self.limits, n=self.n_map)
+        sliced = cast(AffineRestriction, self.slice)    # four links: a 2-D slice of the shape space
+        style_shape_axes(ax1, sliced)
+        style_shape_axes(ax2, sliced)
+        self.field = ConnectionFieldArtist(ax1, sliced, 0, color="0.3")
+        self.map = CurvatureMapArtist(ax2, sliced, 0, limits=self.limits, n=self.n_map)
         self.text = readout(ax0, 0.02, 0.02)
         # PathText: cheap to redraw when the row changes; MATH_PT for the row's superscript
         self.titles = (title(ax1, size=MATH_PT), title(ax2, size=MATH_PT))
-        self._key = None
+        self._key: tuple[int, str, int, int] | None = None
 
     @override
-    def set(self, links=4, physics="low_re", row=2, axis1=1, axis2=2):
+    def set(self, links: int = 4, physics: str = "low_re", row: int = 2, axis1: int = 1, axis2: int = 2) -> None:
         links = check_int(links, "links", minimum=3, maximum=7, what=" (a slice needs two joints)")
         physics = check_option(PHYSICS_LABELS.get(physics, physics), "physics", tuple(PHYSICS_LABELS.values()))
         row = check_int(row, "row", minimum=0, maximum=2)
@@ -141,31 +158,31 @@ class ChainSliceScene(Scene):
         self.text.set_text(_chain_axes_title(self.system))    # the axis labels name the slice's joints
         self.row = row
 
-    def _drawn_shape(self):
+    def _drawn_shape(self) -> FloatArray:
         """The chain is drawn with the slice's two joints bent by 0.6 rad, the others straight."""
         r = np.zeros(self.system.n_shape)
         r[list(self.pair)] = 0.6
         return r
 
-    def _joint_positions(self):
+    def _joint_positions(self) -> FloatArray:
         P = self.system.link_poses(self._drawn_shape())
         L = np.array(self.system.lengths)
         return P[:-1, :2] + 0.5 * L[:-1, None] * np.stack([np.cos(P[:-1, 2]), np.sin(P[:-1, 2])], -1)
 
 
-def _joint_names(ax, n_max):
+def _joint_names(ax: Axes, n_max: int) -> list[Text]:
     """The key of the joint curves: each joint's name, in its curve's colour, along the top of the
     gait axes (curves stay below 1.5 rad there); :func:`_show_joint_names` shows the chain's."""
     return [ax.text(0.04 + 0.16 * k, 0.97, _joint_math(k), color=c, fontsize=MATH_PT, ha="left", va="top",
                     transform=ax.transAxes) for k, c in enumerate(JOINT_COLOURS[:n_max])]
 
 
-def _show_joint_names(names, n):
+def _show_joint_names(names: Sequence[Text], n: int) -> None:
     for k, name in enumerate(names):
         name.set_visible(k < n)
 
 
-def _gait_and_motion_axes(axes, total_length, gait_title, motion_title):
+def _gait_and_motion_axes(axes: Sequence[Axes], total_length: float, gait_title: str, motion_title: str) -> None:
     """Style the two axes of a gait scene: joint angles over one period, and the world of one cycle."""
     ax0, ax1 = axes
     ax0.set_xlim(0, 2 * np.pi)
@@ -189,17 +206,17 @@ class WaveGaitScene(Scene):
     FIGSIZE = (8.0, 3.6)
     NCOLS = 2
 
-    def __init__(self, total_length=3.0, taper=0.0, **options):
+    def __init__(self, total_length: float = 3.0, taper: float = 0.0, **options: Any) -> None:
         self.total_length, self.taper = total_length, taper
         super().__init__(**options)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         _gait_and_motion_axes(self.axes, self.total_length, "the gait: one wave along the body",
                               "one cycle: start (faint) and end")
 
     @override
-    def create(self):
+    def create(self) -> None:
         ax0, ax1 = self.axes
         self.lines = [ax0.plot([], [], color=c, lw=1.8)[0] for c in JOINT_COLOURS[:6]]
         self.names = _joint_names(ax0, 6)
@@ -208,7 +225,7 @@ class WaveGaitScene(Scene):
         self.trail = TrailArtist(ax1, color=PALETTE["green"])
         self.text = readout(ax1, 0.02, 0.02)
 
-    def compute(self, links, physics, amplitude, lag):
+    def compute(self, links: int, physics: str, amplitude: float, lag: float) -> None:
         self.system = design_chain(links, physics, self.total_length, self.taper)
         self.gait = travelling_wave(self.system.n_shape, amplitude, lag)
         self.traj = trajectory(self.system, self.gait, n_frames=61, substeps=8)
@@ -219,7 +236,7 @@ class WaveGaitScene(Scene):
         self.efficiency = efficiency(self.system, self.gait, check=False, samples=1024, displacement=self.g)
 
     @override
-    def set(self, links=4, physics="low_re", amplitude=0.8, lag=1.2):
+    def set(self, links: int = 4, physics: str = "low_re", amplitude: float = 0.8, lag: float = 1.2) -> None:
         links = check_int(links, "links", minimum=2, maximum=7)
         physics = check_option(PHYSICS_LABELS.get(physics, physics), "physics", tuple(PHYSICS_LABELS.values()))
         self.compute(links, physics, float(amplitude), float(lag))
@@ -249,20 +266,20 @@ class OptimalGaitScene(Scene):
 
     FIGSIZE = (8.4, 3.3)
     NCOLS = 2
-    MAX_JOINTS = 5
+    MAX_JOINTS: ClassVar[int] = 5
 
-    def __init__(self, total_length=3.0, **options):
+    def __init__(self, total_length: float = 3.0, **options: Any) -> None:
         self.total_length = total_length
-        self._results = {}
+        self._results: dict[tuple[int, str, float, int], OptimalGait] = {}
         super().__init__(**options)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         _gait_and_motion_axes(self.axes, self.total_length, "the gait: start wave (dashed), best (solid)",
                               "one cycle of the start wave")
 
     @override
-    def create(self):
+    def create(self) -> None:
         ax0, ax1 = self.axes
         colours = JOINT_COLOURS[:self.MAX_JOINTS]
         self.start_lines = [ax0.plot([], [], color=c, lw=1.0, ls="--", alpha=0.7)[0] for c in colours]
@@ -274,11 +291,11 @@ class OptimalGaitScene(Scene):
         self.text = readout(ax1, 0.02, 0.02)
 
     @staticmethod
-    def _key(links, physics, taper, order):
+    def _key(links: int, physics: str, taper: float, order: int) -> tuple[int, str, float, int]:
         return (int(links), physics, round(float(taper), 6), int(order))
 
     @override
-    def set(self, links=4, physics="low_re", taper=0.0, order=1):
+    def set(self, links: int = 4, physics: str = "low_re", taper: float = 0.0, order: int = 1) -> None:
         links = check_int(links, "links", minimum=3, maximum=self.MAX_JOINTS + 1)
         physics = check_option(PHYSICS_LABELS.get(physics, physics), "physics", tuple(PHYSICS_LABELS.values()))
         order = check_int(order, "order", minimum=1, maximum=2)
@@ -291,7 +308,10 @@ class OptimalGaitScene(Scene):
         for lines, g in ((self.start_lines, self.start), (self.best_lines, None if self.result is None else gait)):
             r = None if g is None else g(t)
             for k, line in enumerate(lines):
-                line.set_data(*((t, r[:, k]) if r is not None and k < self.system.n_shape else ([], [])))
+                if r is not None and k < self.system.n_shape:
+                    line.set_data(t, r[:, k])
+                else:
+                    line.set_data([], [])
         _show_joint_names(self.names, self.system.n_shape)
         traj = trajectory(self.system, gait, n_frames=41, substeps=4)
         self.first.set(self.system, traj.g[0], traj.r[0])
@@ -304,29 +324,31 @@ class OptimalGaitScene(Scene):
             self.text.set_text(f"start: efficiency {self.start_efficiency:.4f}\npress “optimise”")
         else:
             res = self.result
+            best = cast(float, res.efficiency)    # optimize_chain_gait's objective: always set
             self.axes[1].set_title("one cycle of the best gait", fontsize=9)
-            still = res.efficiency < 1e-9
-            self.text.set_text(f"best: efficiency {res.efficiency:.4f} ({res.nit} steps)\n"
+            still = best < 1e-9
+            self.text.set_text(f"best: efficiency {best:.4f} ({res.nit} steps)\n"
                                + ("no gait translates it: zero momentum\nkeeps its centre of mass still" if still else
                                   f"g(T) = ({signed(gT, 2)})"))
 
-    def optimize(self, callback=None):
+    def optimize(self, callback: Callable[[int, float], object] | None = None) -> OptimalGait:
         """Optimise the gait of the design shown (see :func:`gm_core.geometry.optimize_chain_gait`),
         keep the result for this design and draw it; ``callback(iteration, efficiency)`` reports
         progress. Returns the :class:`~gm_core.geometry.optimal.OptimalGait`."""
         links, physics, taper, order = self.key
-        self._results[self.key] = optimize_chain_gait(self.system, order, start=self.start, callback=callback)
+        result = self._results[self.key] = optimize_chain_gait(self.system, order, start=self.start, callback=callback)
         self.set(links, physics, taper, order)
-        return self.result
+        return result                     # what set has just drawn (self.result)
 
-    def animation(self, n_frames=48, cycles=2):
+    def animation(self, n_frames: int = 48, cycles: int = 2) -> tuple[FuncAnimation, Figure, Trajectory]:
         """The gait shown (the best one once found, else the start wave) as (anim, fig, traj):
         :func:`animate_chain_gait`."""
         gait = self.start if self.result is None else self.result.gait
         return animate_chain_gait(self.system, gait, n_frames=n_frames, cycles=cycles)
 
 
-def animate_chain_gait(system, gait, n_frames=60, cycles=2, interval=60, world_lim=None):
+def animate_chain_gait(system: LocomotionSystem, gait: Gait, n_frames: int = 60, cycles: int = 2, interval: float = 60,
+                       world_lim: float | None = None) -> tuple[FuncAnimation, Figure, Trajectory]:
     """The gait as a kernel-free animation: joint angles against time (with a cursor) and the body moving.
 
     Works for any number of joints. Returns (anim, fig, traj); play it with
@@ -355,7 +377,7 @@ def animate_chain_gait(system, gait, n_frames=60, cycles=2, interval=60, world_l
     style_world_axes(ax1, half, c)
     ax1.set_title(system.name, fontsize=9)
 
-    def update(k):
+    def update(k: int) -> list[Artist]:
         k = int(k)
         body.set(traj.g[k], traj.r[k])
         trail.set(traj.g[: k + 1, :2])
@@ -368,7 +390,7 @@ def animate_chain_gait(system, gait, n_frames=60, cycles=2, interval=60, world_l
     return animate(fig, update, range(n_frames), interval=interval, palette=True), fig, traj
 
 
-def links_comparison_figure(rows):
+def links_comparison_figure(rows: Sequence[tuple[str, float, float]]) -> Figure:
     """Bars of efficiency and displacement per cycle for chains of different lengths.
 
     ``rows``: list of (label, efficiency, displacement). Returns the figure.
@@ -376,8 +398,8 @@ def links_comparison_figure(rows):
     fig, (ax0, ax1) = new_figure(1, 2, figsize=(7.5, 2.9))
     labels = [r[0] for r in rows]
     x = np.arange(len(rows))
-    for ax, k, heading in ((ax0, 1, "efficiency (translation / path length)"), (ax1, 2, "translation per cycle")):
-        vals = [r[k] for r in rows]
+    for ax, vals, heading in ((ax0, [r[1] for r in rows], "efficiency (translation / path length)"),
+                              (ax1, [r[2] for r in rows], "translation per cycle")):
         ax.bar(x, vals, color=PALETTE["blue"], width=0.6)
         for xi, v in zip(x, vals):
             ax.text(xi, v, f"{v:.3f}", ha="center", va="bottom", fontsize=9)
@@ -388,7 +410,8 @@ def links_comparison_figure(rows):
     return fig
 
 
-def continuum_figure(n_links, errors, label="largest difference of A, chain − body"):
+def continuum_figure(n_links: ArrayLike, errors: ArrayLike,
+                     label: str = "largest difference of A, chain − body") -> Figure:
     """Log-log plot of the chain's error against the number of links, with the 1/N² slope for reference.
 
     Tick labels are plain numbers at the data (no mathtext powers, whose superscripts would be
@@ -404,7 +427,7 @@ def continuum_figure(n_links, errors, label="largest difference of A, chain − 
                                 np.ceil(np.log10(max(errors.max(), ref.max()))) + 1)
     plain = FuncFormatter(lambda v, _: f"{v:g}")
     for axis, ticks in ((ax.xaxis, n_links), (ax.yaxis, decades)):
-        axis.set_major_locator(FixedLocator(ticks))
+        axis.set_major_locator(FixedLocator(ticks))  # type: ignore[arg-type]  # an array, not the stub's Sequence
         axis.set_major_formatter(plain)
         axis.set_minor_locator(NullLocator())
     ax.set_xlabel("links N", fontsize=9, labelpad=0)

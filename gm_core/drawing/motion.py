@@ -6,21 +6,30 @@ The physics (poses of the parts, trajectories) lives in :mod:`gm_core.systems` a
 """
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
+from typing import Any, cast
+
 import numpy as np
+from matplotlib.artist import Artist
+from matplotlib.axes import Axes
+from matplotlib.quiver import Quiver
+from matplotlib.typing import ColorType
+from numpy.typing import ArrayLike
 from typing_extensions import override
 
 from gm_core.drawing.toolkit.axes import square_axes
 from gm_core.drawing.toolkit.primitives import BodyArtist, FrameArtist, SingularFlag, TrailArtist
 from gm_core.drawing.toolkit.style import PALETTE, PathText, Scene, readout, signed
 from gm_core.groups import SE2
-from gm_core.systems import Ackerman, DifferentialDrive
-from gm_core.systems.motion import drive
-from gm_core.validation import SingularShapeError
+from gm_core.systems import Ackerman, DifferentialDrive, LocomotionSystem
+from gm_core.systems.motion import Trajectory, drive
+from gm_core.validation import FloatArray, SingularShapeError
 
 __all__ = ["PART_STYLES", "SystemArtist", "system_extent", "draw_system_naive", "VelocityArtist",
            "style_world_axes", "MovingView", "CarScene", "DiffDriveScene", "AckermanScene"]
 
-PART_STYLES = {
+#: Polygon properties of a system's parts, by their kind.
+PART_STYLES: dict[str, dict[str, Any]] = {
     "chassis": dict(facecolor=PALETTE["blue"], alpha=0.35, edgecolor="k"),
     "wheel": dict(facecolor="0.15", alpha=0.9, edgecolor="k"),
     "link": dict(facecolor=PALETTE["orange"], alpha=0.6, edgecolor="k"),
@@ -31,7 +40,9 @@ PART_STYLES = {
 class SystemArtist:
     """A locomotor drawn at position g and shape r: one polygon per rigid part plus its body frame."""
 
-    def __init__(self, ax, system, g=(0.0, 0.0, 0.0), r=(0.0, 0.0), frame_length=None, styles=None, zorder=3):
+    def __init__(self, ax: Axes, system: LocomotionSystem, g: ArrayLike = (0.0, 0.0, 0.0), r: ArrayLike = (0.0, 0.0),
+                 frame_length: float | None = None, styles: Mapping[str, dict[str, Any]] | None = None,
+                 zorder: float = 3) -> None:
         self.system = system
         self.parts = system.parts()
         styles = dict(PART_STYLES, **(styles or {}))
@@ -40,7 +51,7 @@ class SystemArtist:
         self.frame = FrameArtist(ax, length=frame_length or 0.3 * size)
         self.set(g, r)
 
-    def set(self, g, r):
+    def set(self, g: ArrayLike, r: ArrayLike) -> None:
         """Place the body: part i at g o pose_i(r)."""
         self.g = np.asarray(g, dtype=float)
         self.r = np.asarray(r, dtype=float)
@@ -49,17 +60,17 @@ class SystemArtist:
             b.set(pose)
         self.frame.set(self.g)
 
-    def set_visible(self, visible):
+    def set_visible(self, visible: bool) -> None:
         for b in self.bodies:
             b.patch.set_visible(visible)
         self.frame.quiver.set_visible(visible)
 
-    def world_outlines(self):
+    def world_outlines(self) -> list[FloatArray]:
         """Current world outlines (list of (k, 2)) of the parts (for tests)."""
         return [np.asarray(b.patch.get_xy()) for b in self.bodies]
 
 
-def system_extent(system, r=None):
+def system_extent(system: LocomotionSystem, r: ArrayLike | None = None) -> float:
     """Half-size of a square (centred on the body frame) that holds the body at shape r (default 0)."""
     r = np.zeros(system.n_shape) if r is None else np.asarray(r, float)
     pts = np.vstack([SE2.act_on_points(pose, p.outline)
@@ -67,7 +78,7 @@ def system_extent(system, r=None):
     return float(np.abs(pts).max())
 
 
-def draw_system_naive(ax, system, g, r):
+def draw_system_naive(ax: Axes, system: LocomotionSystem, g: ArrayLike, r: ArrayLike) -> None:
     """Plot the body from scratch with ax.fill (the clear-and-replot baseline)."""
     poses = SE2.compose(np.asarray(g, float), system.part_poses(np.asarray(r, float)))
     for p, pose in zip(system.parts(), poses):
@@ -78,7 +89,7 @@ def draw_system_naive(ax, system, g, r):
 class VelocityArtist:
     """The body velocity xi drawn at the body frame: an arrow for (xi^x, xi^y) and an arc for xi^theta."""
 
-    def __init__(self, ax, scale=1.0, color=PALETTE["purple"], zorder=6):
+    def __init__(self, ax: Axes, scale: float = 1.0, color: ColorType = PALETTE["purple"], zorder: float = 6) -> None:
         self.scale = float(scale)
         self.quiver = ax.quiver([0.0], [0.0], [0.0], [0.0], color=color, angles="xy", scale_units="xy",
                                 scale=1.0, width=0.012, zorder=zorder)
@@ -86,7 +97,7 @@ class VelocityArtist:
         (self.tip,) = ax.plot([], [], marker=(3, 0, 0), color=color, ms=8, ls="none", zorder=zorder)
         self.xi = np.zeros(3)
 
-    def set(self, g, xi):
+    def set(self, g: ArrayLike, xi: ArrayLike) -> bool:
         """Show xi (body velocity) at pose g; hidden (returns False) if xi is not finite."""
         xi = np.asarray(xi, dtype=float)
         ok = bool(np.all(np.isfinite(xi)))
@@ -107,12 +118,13 @@ class VelocityArtist:
         self.tip.set_marker((3, 0, np.degrees(s[-1]) + (0 if w >= 0 else 180)))
         return True
 
-    def world_vector(self):
+    def world_vector(self) -> FloatArray:
         """The drawn linear-velocity arrow (2,) in world coordinates (for tests)."""
-        return np.array([self.quiver.U[0], self.quiver.V[0]])
+        U, V = cast(np.ma.MaskedArray, self.quiver.U), cast(np.ma.MaskedArray, self.quiver.V)   # set_UVC's arrays
+        return np.array([U[0], V[0]])
 
 
-def style_world_axes(ax, half, center=(0.0, 0.0)):
+def style_world_axes(ax: Axes, half: float, center: Sequence[float] = (0.0, 0.0)) -> None:
     """Square world axes of half-width ``half`` about ``center``, light grid, four ticks per axis."""
     square_axes(ax, half, center, nticks=4)
     ax.tick_params(pad=2)
@@ -131,7 +143,7 @@ class MovingView:
     Quiver arrows given in data units are rescaled with the window.
     """
 
-    def __init__(self, ax, half, nticks=4, max_ticks=8):
+    def __init__(self, ax: Axes, half: float, nticks: int = 4, max_ticks: int = 8) -> None:
         import matplotlib as mpl
         from matplotlib.collections import LineCollection
         from matplotlib.markers import TICKDOWN, TICKLEFT
@@ -162,28 +174,26 @@ class MovingView:
                                  offset=(0, -gap)) for _ in range(max_ticks)]
         self.ylabels = [PathText(ax, 0.0, 0.0, "", size=size, ha="right", va="center", coords="yaxis",
                                  offset=(-gap, 0)) for _ in range(max_ticks)]
-        self.quivers = []
+        self.quivers: list[tuple[Quiver, float]] = []     # each with its scale at the window's start
         self.center, self.half = np.zeros(2), self.half0
         self.set((0.0, 0.0), self.half0)
 
-    def attach(self, *artists):
+    def attach(self, *artists: Artist) -> None:
         """Draw these artists (world data) through the moving window."""
-        from matplotlib.quiver import Quiver
-
         for a in artists:
             if isinstance(a, Quiver):
                 a.set_offset_transform(self.transform)
-                self.quivers.append((a, a.scale))
+                self.quivers.append((a, cast(float, a.scale)))   # arrows in data units: a fixed scale
             else:
                 a.set_transform(self.transform)
         self.set(self.center, self.half)
 
-    def limits(self):
+    def limits(self) -> tuple[float, float, float, float]:
         """The world window shown: ``(x0, x1, y0, y1)``."""
         c, h = self.center, self.half
         return (c[0] - h, c[0] + h, c[1] - h, c[1] + h)
 
-    def set(self, center, half):
+    def set(self, center: ArrayLike, half: float) -> None:
         from matplotlib.ticker import ScalarFormatter
 
         self.center, self.half = np.asarray(center, float).copy(), float(half)
@@ -192,14 +202,16 @@ class MovingView:
         for q, scale in self.quivers:
             q.scale = scale / k
             q.stale = True
-        segs, xt, yt = [], [], []
+        segs: list[list[list[float]]] = []
+        xt: list[float] = []
+        yt: list[float] = []
         for axis, (lo, hi), marks, labels in ((0, self.limits()[:2], xt, self.xlabels),
                                               (1, self.limits()[2:], yt, self.ylabels)):
             eps = 1e-9 * (hi - lo)
             locs = [v for v in self.locator.tick_values(lo, hi) if lo - eps <= v <= hi + eps]
             fmt = ScalarFormatter()
             fmt.create_dummy_axis()
-            fmt.axis.set_view_interval(lo, hi)
+            fmt.axis.set_view_interval(lo, hi)  # type: ignore[union-attr]  # create_dummy_axis has set it
             text = fmt.format_ticks(locs)
             for i, t in enumerate(labels):
                 if i < len(locs):
@@ -218,7 +230,7 @@ class MovingView:
         self.xticks.set_data(xt, np.zeros(len(xt)))
         self.yticks.set_data(np.zeros(len(yt)), yt)
 
-    def touch(self):
+    def touch(self) -> None:
         """Mark the view's artists changed (so a blitter counts them as moving from the first frame)."""
         for a in [self.grid, self.xticks, self.yticks] + self.xlabels + self.ylabels:
             a.stale = True
@@ -227,7 +239,7 @@ class MovingView:
 
 
 # ------------------------------------------------------------------------------ cars
-def _fmt(xi):
+def _fmt(xi: ArrayLike) -> str:
     return f"ξ = ({signed(xi)})"
 
 
@@ -239,27 +251,28 @@ class CarScene(Scene):
     why). Options: ``system``, ``lim``.
     """
 
-    lim = 4.0
+    lim: float = 4.0
+    traj: Trajectory | None          # the last motion (None: it reached a singular shape)
 
-    def __init__(self, system=None, lim=None, **options):
+    def __init__(self, system: LocomotionSystem | None = None, lim: float | None = None, **options: Any) -> None:
         self.system = system or self.make_system()
         self.lim = float(lim or self.lim)
         super().__init__(**options)
 
-    def make_system(self):
+    def make_system(self) -> LocomotionSystem:
         raise NotImplementedError
 
-    def shape_path(self, values):
+    def shape_path(self, values: Mapping[str, float]) -> tuple[FloatArray, FloatArray, float]:
         raise NotImplementedError
 
     FIGSIZE = (5.5, 5.0)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         style_world_axes(self.ax, self.lim)
 
     @override
-    def create(self):
+    def create(self) -> None:
         ax = self.ax
         self.trail = TrailArtist(ax, color=PALETTE["green"], lw=2)
         self.start = SystemArtist(ax, self.system, styles={"chassis": dict(facecolor="0.8", alpha=0.4,
@@ -269,13 +282,13 @@ class CarScene(Scene):
         self.flag = SingularFlag(ax)
         self.text = readout(ax, 0.02, 0.02)
 
-    def compute(self, values):
+    def compute(self, values: Mapping[str, float]) -> tuple[Trajectory, FloatArray, FloatArray]:
         r0, rd, T = self.shape_path(values)
         traj = drive(self.system, r0, rd, T)
         return traj, rd, self.system.body_velocity(traj.r[-1], rd)
 
     @override
-    def set(self, **values):
+    def set(self, **values: float) -> None:
         self.flag.text.stale = True  # may appear on any change: a moving artist from the first frame
         self.text.stale = True
         try:
@@ -300,7 +313,7 @@ class CarScene(Scene):
         self.text.set_text(f"{_fmt(self.xi)}\ng(T) = ({g[0]:+.2f}, {g[1]:+.2f}, {g[2]:+.2f})")
 
     @override
-    def replot(self, **values):
+    def replot(self, **values: float) -> None:
         ax = self.ax
         ax.clear()
         style_world_axes(ax, self.lim)
@@ -317,11 +330,11 @@ class DiffDriveScene(CarScene):
     """Differential-drive car (3.8), (3.29): values ``wheel1_speed``, ``wheel2_speed``, ``duration``."""
 
     @override
-    def make_system(self):
+    def make_system(self) -> DifferentialDrive:
         return DifferentialDrive(wheel_radius=0.3, half_width=0.5)
 
     @override
-    def shape_path(self, v):
+    def shape_path(self, v: Mapping[str, float]) -> tuple[FloatArray, FloatArray, float]:
         return np.zeros(2), np.array([v["wheel1_speed"], v["wheel2_speed"]]), v["duration"]
 
 
@@ -329,10 +342,10 @@ class AckermanScene(CarScene):
     """Kinematic-bicycle car (3.9): values ``wheel_speed``, ``steering``, ``steering_speed``, ``duration``."""
 
     @override
-    def make_system(self):
+    def make_system(self) -> Ackerman:
         return Ackerman(wheel_radius=0.3, wheelbase=1.0)
 
     @override
-    def shape_path(self, v):
+    def shape_path(self, v: Mapping[str, float]) -> tuple[FloatArray, FloatArray, float]:
         return (np.array([0.0, v["steering"]]), np.array([v["wheel_speed"], v["steering_speed"]]),
                 v["duration"])

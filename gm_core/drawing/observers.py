@@ -7,7 +7,12 @@ flagged in words, never handed to matplotlib as inf.
 """
 from __future__ import annotations
 
+from typing import ClassVar
+
 import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+from numpy.typing import ArrayLike
 from typing_extensions import override
 
 from gm_core.chains.jacobians import relative_pose
@@ -30,11 +35,12 @@ from gm_core.drawing.toolkit.style import (
 from gm_core.drawing.vector_fields import vec_text
 from gm_core.groups import SE2
 from gm_core.manifolds.observers import conjugation, icr, observed_velocity, point_in_frame
+from gm_core.validation import FloatArray
 
 __all__ = ["ObserverScene", "FramesScene", "matrix_text"]
 
 
-def matrix_text(M, digits=2):
+def matrix_text(M: ArrayLike, digits: int = 2) -> str:
     """Rows of a small matrix as fixed-width text (never printing -0.00)."""
     tiny = 0.5 * 10.0 ** -digits
     return "\n".join("[" + " ".join(f"{(v if abs(v) >= tiny else 0.0):+.{digits}f}" for v in row) + "]"
@@ -52,19 +58,19 @@ class ObserverScene(Scene):
     Ad as conjugation, (h^-1 g) xi^ (h^-1 g)^-1 = (Ad xi)^.
     """
 
-    G = np.array([1.0, 0.6, 0.6])
-    LIM = 3.0
-    FAR = 6.0          # an ICR farther than this from the view's centre is reported, not drawn
-    SCALE = 1.0        # arrow length per unit velocity
+    G: ClassVar[FloatArray] = np.array([1.0, 0.6, 0.6])
+    LIM: ClassVar[float] = 3.0
+    FAR: ClassVar[float] = 6.0          # an ICR farther than this from the view's centre is reported, not drawn
+    SCALE: ClassVar[float] = 1.0        # arrow length per unit velocity
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         fig, axes = new_figure(1, 2, figsize=(9, 4.6), gridspec_kw=dict(width_ratios=[1, 0.95]))
         margins(fig, left=0.01, right=0.99, bottom=0.01, top=0.93, wspace=0.04)
         return fig, list(axes)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         ax, tx = self.axes
         plane(ax, self.LIM)
         FrameArtist(ax, (0, 0, 0), length=0.5, colors=("0.6", "0.6"), zorder=2)
@@ -79,7 +85,7 @@ class ObserverScene(Scene):
         PathText(tx, 0.52, 0.40, r"$(\mathrm{Ad}_g\,\xi)^\wedge$  (1.43)", size=MATH_PT, weight="bold")
 
     @override
-    def create(self):
+    def create(self) -> None:
         ax, tx = self.axes
         self.body = BodyArtist(ax, BODY * 1.5, self.G, facecolor=PALETTE["blue"], alpha=0.45)
         self.body_frame = FrameArtist(ax, self.G, length=0.5)
@@ -100,7 +106,8 @@ class ObserverScene(Scene):
         self.check = PathText(tx, 0.02, 0.04, "", size=8, va="bottom", family="monospace")
 
     @override
-    def set(self, hx=-1.5, hy=-1.0, htheta=0.0, vx=0.8, vy=0.3, w=0.6):
+    def set(self, hx: float = -1.5, hy: float = -1.0, htheta: float = 0.0, vx: float = 0.8, vy: float = 0.3,
+            w: float = 0.6) -> None:
         g = self.G
         h = np.array([hx, hy, htheta])
         self.xi = xi = np.array([vx, vy, w])
@@ -118,7 +125,7 @@ class ObserverScene(Scene):
         p_body, far = icr(xi)
         self.at_infinity = bool(far)
         if self.at_infinity:
-            self.icr_world = None
+            self.icr_world: FloatArray | None = None
             self.icr_mark.set_visible(False)
             self.spokes.set_visible(False)
             self.icr_note.set_text(r"$\xi^\theta = 0$: ICR at infinity (pure translation)")
@@ -163,17 +170,17 @@ class FramesScene(Scene):
     instantaneous frame, while against its own (moving) body frame it never moves at all.
     """
 
-    XI = np.array([0.8, 0.0, 0.8])
-    G0 = np.array([1.3, -0.1, 0.0])  # a circle of radius 1 about (1.3, 0.9), clear of frame A
-    TIP = np.array([0.45, 0.0])      # a point fixed on the body (its nose), in body coordinates
-    LIM = 3.0
-    DT = 0.8
+    XI: ClassVar[FloatArray] = np.array([0.8, 0.0, 0.8])
+    G0: ClassVar[FloatArray] = np.array([1.3, -0.1, 0.0])  # a circle of radius 1 about (1.3, 0.9), clear of frame A
+    TIP: ClassVar[FloatArray] = np.array([0.45, 0.0])      # a point fixed on the body (its nose), in body coordinates
+    LIM: ClassVar[float] = 3.0
+    DT: ClassVar[float] = 0.8
 
     FIGSIZE = (6.2, 5.2)
     MARGINS = dict(left=0.01, right=0.99, bottom=0.01, top=0.94)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         (ax,) = self.axes
         plane(ax, self.LIM, grid=False)
         FrameArtist(ax, (0, 0, 0), length=0.6, zorder=2)
@@ -184,7 +191,7 @@ class FramesScene(Scene):
         title(ax, "one page (reference frame), coordinate frames A and B")
 
     @override
-    def create(self):
+    def create(self) -> None:
         (ax,) = self.axes
         self.frame_b = FrameArtist(ax, length=0.6, colors=(PALETTE["purple"], PALETTE["purple"]), zorder=3)
         self.label_b = PathText(ax, 0, 0, "B", size=9, weight="bold", color=PALETTE["purple"], offset=(-8, -12))
@@ -199,7 +206,7 @@ class FramesScene(Scene):
         self.readout = readout(ax, 0.02, 0.02, "", size=7.5)
 
     @override
-    def set(self, t=1.2, bx=-1.8, by=1.2, btheta=-0.5):
+    def set(self, t: float = 1.2, bx: float = -1.8, by: float = 1.2, btheta: float = -0.5) -> None:
         b = np.array([bx, by, btheta])
         self.frame_b.set(b)
         self.label_b.set_position(b[:2])

@@ -6,15 +6,22 @@ Math: :func:`gm_core.systems.motion.displacement_until`, :func:`gm_core.systems.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any, cast
+
 import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+from matplotlib.layout_engine import ConstrainedLayoutEngine
+from matplotlib.lines import Line2D
 from matplotlib.patches import ConnectionPatch
 from typing_extensions import override
 
 from gm_core.drawing.toolkit.primitives import FrameArtist
 from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, Scene, new_figure, readout
 from gm_core.systems.directional import RATE_MAPS, rate_map, replay
-from gm_core.systems.gaits import circle_gait
-from gm_core.systems.motion import displacement_until, trajectory
+from gm_core.systems.gaits import Gait, circle_gait
+from gm_core.systems.motion import SystemLike, Trajectory, displacement_until, trajectory
 from gm_core.systems.pacing import sine_pacing
 
 __all__ = ["PacingSquareScene", "DirectionalScene"]
@@ -22,7 +29,8 @@ __all__ = ["PacingSquareScene", "DirectionalScene"]
 N_DOTS = 24
 
 
-def _arrow(fig, ax_a, xy_a, ax_b, xy_b, label, ha="center"):
+def _arrow(fig: Figure, ax_a: Axes, xy_a: tuple[float, float], ax_b: Axes, xy_b: tuple[float, float], label: str,
+           ha: str = "center") -> ConnectionPatch:
     con = ConnectionPatch(xyA=xy_a, coordsA=ax_a.transAxes, xyB=xy_b, coordsB=ax_b.transAxes,
                           arrowstyle="-|>", mutation_scale=16, lw=1.5, color="0.25")
     fig.add_artist(con)
@@ -41,25 +49,25 @@ class PacingSquareScene(Scene):
     ``gait`` (default a unit circle).
     """
 
-    def __init__(self, system=None, gait=None, **options):
+    def __init__(self, system: SystemLike | None = None, gait: Gait | None = None, **options: Any) -> None:
         from gm_core.systems import LowReSwimmer
 
         self.system = system or LowReSwimmer()
         self.loop = gait or circle_gait(1.0)
         self.base = trajectory(self.system, self.loop, 241)
-        self._cache = {}
+        self._cache: dict[float, tuple[Callable[[Any], Any], Gait, Trajectory]] = {}
         super().__init__(**options)
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         # h_pad pads the suptitle too (0.25 in left a 50 px band under it): the room between the
         # rows for the "repace" arrows comes from hspace instead
         fig, axes = new_figure(2, 2, figsize=(6.2, 5.5))
-        fig.get_layout_engine().set(w_pad=0.3, h_pad=0.05, wspace=0.12, hspace=0.2)
+        cast(ConstrainedLayoutEngine, fig.get_layout_engine()).set(w_pad=0.3, h_pad=0.05, wspace=0.12, hspace=0.2)
         return fig, list(axes.ravel())
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         ax_s, ax_g, ax_s2, ax_g2 = self.axes
         path = self.base.r
         lo, hi = self.base.g[:, :2].min(0), self.base.g[:, :2].max(0)
@@ -89,9 +97,9 @@ class PacingSquareScene(Scene):
                      fontsize=10)
 
     @override
-    def create(self):
+    def create(self) -> None:
         col = (PALETTE["blue"], PALETTE["orange"])
-        self.dots = []
+        self.dots: list[Line2D] = []
         for k, ax in enumerate(self.axes):
             (d,) = ax.plot([], [], "o", color=col[k // 2], ms=4)
             self.dots.append(d)
@@ -101,7 +109,7 @@ class PacingSquareScene(Scene):
         self.text_top = readout(self.axes[1], 0.03, 0.03)
         self.text_bot = readout(self.axes[3], 0.03, 0.03)
 
-    def _repaced(self, a):
+    def _repaced(self, a: float) -> tuple[Callable[[Any], Any], Gait, Trajectory]:
         hit = self._cache.get(a)
         if hit is None:
             tau, tau_dot = sine_pacing(a, self.loop.period)
@@ -113,7 +121,7 @@ class PacingSquareScene(Scene):
         return hit
 
     @override
-    def set(self, unevenness=0.7, t=0.4):
+    def set(self, unevenness: float = 0.7, t: float = 0.4) -> None:
         a, t = float(unevenness), float(t)
         tau, rep, tr = self._repaced(a)
         T = self.loop.period
@@ -147,12 +155,12 @@ class DirectionalScene(Scene):
     """
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         fig, (self.ax_b, self.ax_x) = new_figure(1, 2, figsize=(8.6, 3.9))
         return fig, [self.ax_b, self.ax_x]
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         ax = self.ax_b
         ax.set(xlim=(-1, 1), ylim=(-1, 1), aspect="equal", title="b(ṙ) over shape velocities")
         ax.set_xlabel(r"$\dot r_1$", labelpad=1, fontsize=MATH_PT)
@@ -166,7 +174,7 @@ class DirectionalScene(Scene):
         ax.grid(True, alpha=0.3)
 
     @override
-    def create(self):
+    def create(self) -> None:
         g = np.linspace(-1, 1, 121)
         self.grid = np.stack(np.meshgrid(g, g), -1)
         self.image = self.ax_b.imshow(np.zeros((121, 121)), extent=(-1, 1, -1, 1), origin="lower", cmap="RdBu_r",
@@ -181,10 +189,10 @@ class DirectionalScene(Scene):
         lo, hi = min(float(x.min()) for x in ends), max(float(x.max()) for x in ends)
         self.ax_x.set_ylim(lo - 0.45 * (hi - lo), hi + 0.1 * (hi - lo))
         self.text = readout(self.ax_x, 0.03, 0.03)
-        self._example = None
+        self._example: str | None = None
 
     @override
-    def set(self, example="(a) directionally linear", pace=2.0):
+    def set(self, example: str = "(a) directionally linear", pace: float = 2.0) -> None:
         if example != self._example:
             self.image.set_data(rate_map(example)(self.grid))
             self._example = example

@@ -5,7 +5,11 @@ The math is :mod:`gm_core.systems.rolling_disk`; this module only draws it.
 """
 from __future__ import annotations
 
+from typing import Any, ClassVar
+
 import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 from typing_extensions import override
 
 from gm_core.drawing.toolkit.axes import plane
@@ -37,15 +41,15 @@ class ParallelParkScene(Scene):
     Values: ``d`` (drive distance), ``phi`` (turn angle, radians).
     """
 
-    lim = 1.6
+    lim: ClassVar[float] = 1.6
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         fig, (self.ax, self.ax2) = new_figure(1, 2, figsize=(8.6, 4.4))
         return fig, [self.ax, self.ax2]
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         plane(self.ax, self.lim, step=0.5)
         self.ax.set_title("rolling disk: drive, turn, back, turn back")
         plane(self.ax2, self.lim, step=0.5)
@@ -55,12 +59,12 @@ class ParallelParkScene(Scene):
         self.ax2.plot([0], [0], "+", color="k", ms=8)
 
     @override
-    def create(self):
+    def create(self) -> None:
         ax, ax2 = self.ax, self.ax2
         self.segments = [ax.plot([], [], color=c, lw=2.5, label=lab)[0]
                          for c, lab in zip(MOVE_COLORS, ("drive d", "turn φ", "back d", "turn −φ"))]
         ax.legend(loc="upper right", fontsize=8, handlelength=1.2, framealpha=0.9)
-        grey = dict(facecolor="0.8", edgecolor="0.4", alpha=0.7)
+        grey: dict[str, Any] = dict(facecolor="0.8", edgecolor="0.4", alpha=0.7)
         self.disk0 = BodyArtist(ax, DISK_OUTLINE, **grey, zorder=3)
         self.disk = BodyArtist(ax, DISK_OUTLINE, facecolor=PALETTE["orange"], alpha=0.8, zorder=4)
         self.frame = FrameArtist(ax, length=0.35)
@@ -73,7 +77,7 @@ class ParallelParkScene(Scene):
         self.disk_scale = 1.0
 
     @override
-    def set(self, d=0.8, phi=0.6):
+    def set(self, d: float = 0.8, phi: float = 0.6) -> None:
         moves = parallel_park_moves(d, phi)
         t, g = disk_moves_path(moves, g0=(0.0, -0.4, 0.0), n_per_move=30)
         for k, line in enumerate(self.segments):
@@ -100,7 +104,7 @@ class ParallelParkScene(Scene):
         self.text2.set_text(f"gap to the start  {gap:.1e}\nradius varies by  {np.ptp(r):.1e}")
 
     @override
-    def replot(self, d=0.8, phi=0.6):
+    def replot(self, d: float = 0.8, phi: float = 0.6) -> None:
         for ax in self.axes:
             ax.clear()
         self.decorate()

@@ -7,8 +7,14 @@ artist hidden: no NaN or inf is handed to matplotlib.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any, ClassVar, Literal, cast
+
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.collections import LineCollection
+from matplotlib.figure import Figure
+from matplotlib.layout_engine import ConstrainedLayoutEngine
+from matplotlib.typing import ColorType
 from typing_extensions import override
 
 from gm_core.drawing.toolkit.axes import plain_3d, wire
@@ -38,12 +44,16 @@ from gm_core.manifolds.spaces import (
     torus_xyz,
     wrap_segments,
 )
+from gm_core.validation import FloatArray
+
+if TYPE_CHECKING:
+    from mpl_toolkits.mplot3d.axes3d import Axes3D
 
 __all__ = ["configuration_space_gallery", "flattened_views", "TorusPathScene", "LoopsScene",
            "PoleChartScene"]
 
 
-def configuration_space_gallery():
+def configuration_space_gallery() -> Figure:
     """Static figure: the six spaces of section 1.1 (figs 1.1-1.6) with systems that live on each."""
     fig = figure(figsize=(9, 6.0))
     spaces = [
@@ -106,29 +116,30 @@ def configuration_space_gallery():
                 A, B = np.meshgrid(np.linspace(-np.pi / 2, np.pi / 2, 13), u)
                 P = sphere_xyz(A, B) * 1.6
                 p = sphere_xyz(0.5, 1.0) * 1.6
-            wire(ax, P[..., 0], P[..., 1], P[..., 2], behind=True)   # the dot stays in front
-            ax.plot([p[0]], [p[1]], [p[2]], "o", color=PALETTE["blue"], ms=7, zorder=5)
-            plain_3d(ax, lim=2.0, axes_lines=False)
-            ax.set_box_aspect((1, 1, 1))
+            ax3 = cast("Axes3D", ax)   # made with projection="3d"
+            wire(ax3, P[..., 0], P[..., 1], P[..., 2], behind=True)   # the dot stays in front
+            ax3.plot([p[0]], [p[1]], [p[2]], "o", color=PALETTE["blue"], ms=7, zorder=5)
+            plain_3d(ax3, lim=2.0, axes_lines=False)
+            ax3.set_box_aspect((1, 1, 1))
         # the systems that live on the space, as the axes' x label (so the layout makes room)
         if three_d:
-            ax.text2D(0.5, -0.02, systems, transform=ax.transAxes, ha="center", va="top", fontsize=8.5,
+            cast("Axes3D", ax).text2D(0.5, -0.02, systems, transform=ax.transAxes, ha="center", va="top", fontsize=8.5,
                       color="0.25")
         else:
             ax.text(0.5, -0.04, systems, transform=ax.transAxes, ha="center", va="top", fontsize=8.5,
                     color="0.25")
-    fig.get_layout_engine().set(h_pad=0.12, hspace=0.12)
+    cast(ConstrainedLayoutEngine, fig.get_layout_engine()).set(h_pad=0.12, hspace=0.12)   # figure()'s layout
     return fig
 
 
-def _identified_edges(ax, w, h, kind):
+def _identified_edges(ax: Axes, w: float, h: float, kind: Literal["cylinder", "torus", "sphere"]) -> None:
     """Mark identified edges of a w x h rectangle: single arrows on one pair, double on the other."""
-    def mark(x0, y0, dx, dy, count, color):
+    def mark(x0: float, y0: float, dx: float, dy: float, count: int, color: ColorType) -> None:
         off = (np.arange(count) - (count - 1) / 2) * 0.06
         ax.plot(x0 + dx * (0.5 + off), y0 + dy * (0.5 + off), ls="none", marker="^" if dx == 0 else ">",
                 color=color, ms=8)
 
-    box = dict(color="k", lw=1.2)
+    box: dict[str, Any] = dict(color="k", lw=1.2)   # Line2D properties
     ax.plot([0, 0], [0, h], **box)
     ax.plot([w, w], [0, h], **box)
     if kind in ("torus", "sphere"):
@@ -146,7 +157,7 @@ def _identified_edges(ax, w, h, kind):
         mark(0, h, w, 0, 2, PALETTE["sky"])
 
 
-def flattened_views():
+def flattened_views() -> Figure:
     """Static figure: cylinder, torus and the sphere's latitude/longitude chart, flattened (figs 1.4-1.6).
 
     Matching arrow marks are edges glued together; on the sphere chart each whole horizontal
@@ -203,14 +214,15 @@ class TorusPathScene(Scene):
     Values: ``a0``, ``b0`` (start), ``slope`` (db/da), ``turns`` (how far to go in a).
     """
 
-    N = 360
+    N: ClassVar[int] = 360
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         return axes_row((8, 3.6), ("3d", None), left=0.02, right=0.97, bottom=0.14, top=0.9, wspace=0.15)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
+        ax3: Axes3D
         ax3, ax2 = self.axes
         u = np.linspace(0, TWO_PI, 21)
         A, B = np.meshgrid(u, np.linspace(0, TWO_PI, 11))
@@ -228,7 +240,8 @@ class TorusPathScene(Scene):
         axis_label(ax2, "y", "b", ticks=yticks(ax2, [0, np.pi, TWO_PI], ["0", "π", "2π"]))
 
     @override
-    def create(self):
+    def create(self) -> None:
+        ax3: Axes3D
         ax3, ax2 = self.axes
         (self.curve3d,) = ax3.plot([], [], [], color=PALETTE["purple"], lw=1.8)
         (self.start3d,) = ax3.plot([], [], [], "o", color="k", ms=5)
@@ -237,12 +250,12 @@ class TorusPathScene(Scene):
         (self.start2d,) = ax2.plot([], [], "o", color="k", ms=5)
         self.title = title(ax2)
 
-    def path(self, a0, b0, slope, turns):
+    def path(self, a0: float, b0: float, slope: float, turns: float) -> tuple[FloatArray, FloatArray]:
         t = np.linspace(0.0, turns * TWO_PI, self.N)
         return a0 + t, b0 + slope * t
 
     @override
-    def set(self, a0=0.0, b0=0.0, slope=0.5, turns=2.0):
+    def set(self, a0: float = 0.0, b0: float = 0.0, slope: float = 0.5, turns: float = 2.0) -> None:
         a, b = self.path(a0, b0, slope, turns)
         P = torus_xyz(a, b)
         self.curve3d.set_data_3d(P[:, 0], P[:, 1], P[:, 2])
@@ -253,7 +266,7 @@ class TorusPathScene(Scene):
         self.title.set_text(f"flattened: {len(self.segments)} straight pieces, slope {slope:.2f}")
 
 
-def _surface_points(kind):
+def _surface_points(kind: str) -> FloatArray:
     if kind == "torus":
         A, B = np.meshgrid(np.linspace(0, TWO_PI, 21), np.linspace(0, TWO_PI, 11))
         return torus_xyz(A, B)
@@ -269,14 +282,18 @@ class LoopsScene(Scene):
     do it keeps wrapping once round the tube, so its length never drops below 2 pi r.
     """
 
-    R, r, rho = 2.0, 0.7, 1.6
+    R: ClassVar[float] = 2.0      # the torus' radii
+    r: ClassVar[float] = 0.7
+    rho: ClassVar[float] = 1.6    # the sphere's radius
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         return axes_row((8, 2.9), ("3d", "3d"), left=0.0, right=1.0, bottom=-0.14, top=0.93, wspace=0.0)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
+        ax_t: Axes3D
+        ax_s: Axes3D
         ax_t, ax_s = self.axes
         for ax, kind in ((ax_t, "torus"), (ax_s, "sphere")):
             P = _surface_points(kind)
@@ -293,7 +310,9 @@ class LoopsScene(Scene):
         ax_t.plot(L[:, 0], L[:, 1], L[:, 2], color=PALETTE["blue"], lw=1.2, alpha=0.6)
 
     @override
-    def create(self):
+    def create(self) -> None:
+        ax_t: Axes3D
+        ax_s: Axes3D
         ax_t, ax_s = self.axes
         (self.torus_loop,) = ax_t.plot([], [], [], color=PALETTE["vermillion"], lw=2.5)
         (self.sphere_loop,) = ax_s.plot([], [], [], color=PALETTE["vermillion"], lw=2.5)
@@ -302,7 +321,7 @@ class LoopsScene(Scene):
         self.s_title = PathText(ax_s, 0.5, 0.97, "", size=9, ha="center", va="top", coords="axes")
 
     @override
-    def set(self, s=0.0):
+    def set(self, s: float = 0.0) -> None:
         u = np.linspace(0, TWO_PI, 90)
         T = torus_xyz(TWO_PI * s + 0 * u, u, self.R, self.r)
         self.torus_loop.set_data_3d(T[:, 0], T[:, 1], T[:, 2])
@@ -331,18 +350,18 @@ class PoleChartScene(Scene):
     coordinate speed against latitude. Values: ``lat_deg``, ``heading_deg``.
     """
 
-    POLE_TOL_DEG = 1e-6
-    WARN_SPEED = 50.0
-    ARROW = 0.25  # radians drawn per unit coordinate speed
+    POLE_TOL_DEG: ClassVar[float] = 1e-6
+    WARN_SPEED: ClassVar[float] = 50.0
+    ARROW: ClassVar[float] = 0.25  # radians drawn per unit coordinate speed
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         fig, axes = new_figure(1, 3, figsize=(10, 3.4), gridspec_kw=dict(width_ratios=[1.5, 1, 1.1]))
         margins(fig, left=0.06, right=0.98, bottom=0.2, top=0.88, wspace=0.35)
         return fig, list(axes)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         ax_c, ax_p, ax_v = self.axes
         ax_c.set_xlim(-np.pi, np.pi)
         ax_c.set_ylim(-np.pi / 2 - 0.15, np.pi / 2 + 0.15)
@@ -369,7 +388,7 @@ class PoleChartScene(Scene):
         self._lat_grid = lat
 
     @override
-    def create(self):
+    def create(self) -> None:
         ax_c, ax_p, ax_v = self.axes
         (self.pt_c,) = ax_c.plot([], [], "o", color=PALETTE["blue"], ms=7, zorder=7)
         self.arrow_c = arrow(ax_c, color=PALETTE["vermillion"], width=0.012)
@@ -380,10 +399,10 @@ class PoleChartScene(Scene):
         self.flag = SingularFlag(ax_c, loc=(0.5, 0.55))
         self.p_note = PathText(ax_p, 0.5, 0.03, "", size=8, ha="center", coords="axes")
         self.readout = PathText(ax_c, 0.02, 0.03, "", size=8, coords="axes")
-        self._heading = None
+        self._heading: float | None = None
 
     @override
-    def set(self, lat_deg=45.0, heading_deg=45.0):
+    def set(self, lat_deg: float = 45.0, heading_deg: float = 45.0) -> None:
         lat = np.deg2rad(lat_deg)
         h = np.deg2rad(heading_deg)
         lon = 0.0

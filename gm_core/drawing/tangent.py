@@ -7,8 +7,13 @@ sphere_velocity); here it is drawn.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, ClassVar
+
 import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
+from numpy.typing import ArrayLike
 from typing_extensions import override
 
 from gm_core.drawing.toolkit.axes import plain_3d, wire
@@ -17,11 +22,15 @@ from gm_core.drawing.vector_fields import vec_text
 from gm_core.groups.base import TWO_PI
 from gm_core.manifolds.spaces import sphere_xyz
 from gm_core.manifolds.tangent import circle_point_velocity, sphere_tangent_basis, sphere_velocity
+from gm_core.validation import FloatArray
+
+if TYPE_CHECKING:
+    from mpl_toolkits.mplot3d.axes3d import Axes3D
 
 __all__ = ["TangentSpaceScene", "arrow_3d"]
 
 
-def arrow_3d(p, v, normal, head=0.18):
+def arrow_3d(p: ArrayLike, v: ArrayLike, normal: ArrayLike, head: float = 0.18) -> FloatArray:
     """Segments ``(3, 2, 3)`` of a 3D arrow from ``p`` along ``v``: the shaft and two head barbs
     lying in the plane with unit ``normal`` (so an arrow in a tangent plane stays in it)."""
     p, v, normal = (np.asarray(a, float) for a in (p, v, normal))
@@ -35,7 +44,7 @@ def arrow_3d(p, v, normal, head=0.18):
     return np.array([[p, tip], [tip, tip - h * (0.9 * d + 0.45 * side)], [tip, tip - h * (0.9 * d - 0.45 * side)]])
 
 
-def _num(x):
+def _num(x: float) -> str:
     return f"{(x if abs(x) >= 0.005 else 0.0):+.2f}"
 
 
@@ -48,18 +57,19 @@ class TangentSpaceScene(Scene):
     the point so its tangent plane always faces the reader.
     """
 
-    AMP = 0.45
-    HALF = 0.6          # half-size of the drawn tangent plane patch
-    ARROW = 0.55        # drawn length per unit speed
-    LINE_Y = -1.45      # where the line R^1 is drawn, below the circle
-    LINE_RATE = 0.6     # the point on R^1 sits at x = LINE_RATE (s - pi)
+    AMP: ClassVar[float] = 0.45
+    HALF: ClassVar[float] = 0.6          # half-size of the drawn tangent plane patch
+    ARROW: ClassVar[float] = 0.55        # drawn length per unit speed
+    LINE_Y: ClassVar[float] = -1.45      # where the line R^1 is drawn, below the circle
+    LINE_RATE: ClassVar[float] = 0.6     # the point on R^1 sits at x = LINE_RATE (s - pi)
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         return axes_row((9, 4.3), (None, "3d"), left=0.01, right=0.99, bottom=0.01, top=0.92, wspace=0.02)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
+        ax3: Axes3D
         ax2, ax3 = self.axes
         ax2.set_xlim(-2.5, 2.5)
         ax2.set_ylim(-2.75, 2.3)
@@ -85,7 +95,8 @@ class TangentSpaceScene(Scene):
         ax3.plot(C[:, 0], C[:, 1], C[:, 2], color=PALETTE["blue"], lw=1.4, zorder=1)
 
     @override
-    def create(self):
+    def create(self) -> None:
+        ax3: Axes3D
         ax2, ax3 = self.axes
         (self.tangent_line,) = ax2.plot([], [], color=PALETTE["sky"], lw=2.5, alpha=0.8, zorder=2)
         (self.points2,) = ax2.plot([], [], "o", color="k", ms=6, zorder=5)
@@ -102,7 +113,8 @@ class TangentSpaceScene(Scene):
         self.readout3 = readout(ax3, 0.02, 0.02, "", size=7.5)
 
     @override
-    def set(self, s=0.8, speed=1.0):
+    def set(self, s: float = 0.8, speed: float = 1.0) -> None:
+        ax3: Axes3D
         ax2, ax3 = self.axes
         # circle and line (fig. 1.11)
         p, v = circle_point_velocity(s, speed)

@@ -7,8 +7,14 @@ integral curves come from :func:`gm_core.fields.integral_curve` (scipy's solve_i
 """
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
+from typing import ClassVar
+
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.collections import LineCollection
+from matplotlib.figure import Figure
+from numpy.typing import ArrayLike
 from typing_extensions import override
 
 from gm_core.drawing.groups import BODY
@@ -31,6 +37,7 @@ from gm_core.drawing.toolkit.style import (
 from gm_core.fields import FIELDS, integral_curve
 from gm_core.groups import SE2, RPlus
 from gm_core.manifolds.observers import icr, point_velocities
+from gm_core.validation import FloatArray
 
 __all__ = ["VectorFieldScene", "LiftedScalarScene", "LiftedSE2Scene", "VelocityScene", "AdjointScene",
            "vec_text"]
@@ -44,21 +51,21 @@ class VectorFieldScene(Scene):
     :func:`gm_core.fields.integral_curve` (scipy solve_ivp).
     """
 
-    LIM = 3.0
-    T = 6.0
-    N = 240
+    LIM: ClassVar[float] = 3.0
+    T: ClassVar[float] = 6.0
+    N: ClassVar[int] = 240
 
     FIGSIZE = (5.2, 5.0)
     MARGINS = dict(left=0.03, right=0.97, bottom=0.03, top=0.93)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         (ax,) = self.axes
         plane(ax, self.LIM, grid=False)
-        self._field = None
+        self._field: str | None = None
 
     @override
-    def create(self):
+    def create(self) -> None:
         (ax,) = self.axes
         g = np.linspace(-self.LIM + 0.25, self.LIM - 0.25, 13)
         self._grid = np.stack(np.meshgrid(g, g), -1).reshape(-1, 2)
@@ -71,11 +78,11 @@ class VectorFieldScene(Scene):
         self.title = title(ax)
         self._field = None
 
-    def _background(self, name):
+    def _background(self, name: str) -> list[FloatArray]:
         """A few fixed integral curves (both directions), cut where they leave the view: segments."""
         starts = np.array([[2.5, 0.0], [-2.5, 0.5], [0.5, 2.5], [-0.5, -2.5], [1.2, 1.2], [-1.5, -1.0],
                            [0.3, 0.05], [2.8, 2.8], [-2.8, 2.2]])
-        segs = []
+        segs: list[FloatArray] = []
         for sign in (1.0, -1.0):
             for q0 in starts:
                 seg = _flow(FIELDS[name], q0, 4.0, 100, 1.5 * self.LIM, sign)
@@ -83,7 +90,7 @@ class VectorFieldScene(Scene):
                     segs.append(seg)
         return segs
 
-    def curve(self, name, x0, y0):
+    def curve(self, name: str, x0: float, y0: float) -> list[FloatArray]:
         """Forward and backward integral curves from (x0, y0), each (m, 2), by solve_ivp.
 
         Uses :func:`gm_core.fields.integral_curve` (scipy's solve_ivp) on X and on -X, stopping
@@ -92,7 +99,7 @@ class VectorFieldScene(Scene):
         return [_flow(FIELDS[name], [x0, y0], self.T, self.N, 3 * self.LIM, sign) for sign in (1.0, -1.0)]
 
     @override
-    def set(self, field="spiral sink", x0=1.5, y0=1.0):
+    def set(self, field: str = "spiral sink", x0: float = 1.5, y0: float = 1.0) -> None:
         if field != self._field:
             v = FIELDS[field](self._grid)
             n = np.linalg.norm(v, axis=1, keepdims=True)
@@ -109,19 +116,20 @@ class VectorFieldScene(Scene):
         self.title.set_text(f"{field}: forward (solid) and backward (dashed) from ({x0:.2f}, {y0:.2f})")
 
 
-def _flow(f, q0, T, n, lim, sign=1.0):
+def _flow(f: Callable[[FloatArray], FloatArray], q0: ArrayLike, T: float, n: int, lim: float,
+          sign: float = 1.0) -> FloatArray:
     """Integral curve of sign * f from q0 at n + 1 equal times on [0, T], stopped where it leaves
     the box |x|, |y| < lim (gm_core.fields.integral_curve with a terminal event): (m, 2)."""
-    def leave(t, y):
+    def leave(t: float, y: FloatArray) -> float:
         return lim - np.max(np.abs(y))
 
-    leave.terminal = True
+    leave.terminal = True  # type: ignore[attr-defined]  # solve_ivp reads an event function's attribute
     c = integral_curve(lambda q, t: sign * f(q), q0, (0.0, T), t_eval=np.linspace(0.0, T, n + 1),
                        method="RK45", rtol=1e-5, atol=1e-8, events=leave)
     return c.q
 
 
-def _first_outside(c, lim):
+def _first_outside(c: FloatArray, lim: float) -> int:
     bad = ~np.all(np.isfinite(c) & (np.abs(c) < lim), axis=1)
     return int(np.argmax(bad)) if bad.any() else len(c)
 
@@ -135,19 +143,19 @@ class LiftedScalarScene(Scene):
     carried unchanged; on R+ it is scaled by h, like interest proportional to the balance.
     """
 
-    G_R2 = np.array([-1.0, -0.5])
-    V_R2 = np.array([0.8, 0.4])
-    G_RP = 1.5
-    V_RP = 0.6
+    G_R2: ClassVar[FloatArray] = np.array([-1.0, -0.5])
+    V_R2: ClassVar[FloatArray] = np.array([0.8, 0.4])
+    G_RP: ClassVar[float] = 1.5
+    V_RP: ClassVar[float] = 0.6
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         fig, axes = new_figure(1, 2, figsize=(9, 3.6), gridspec_kw=dict(width_ratios=[1, 1.5]))
         margins(fig, left=0.03, right=0.98, bottom=0.14, top=0.88, wspace=0.12)
         return fig, list(axes)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         ax2, ax1 = self.axes
         plane(ax2, 2.5)
         title(ax2, r"$(\mathbb{R}^2, +)$: $T_gL_h$ = identity", size=MATH_PT)
@@ -159,7 +167,7 @@ class LiftedScalarScene(Scene):
         title(ax1, r"$(\mathbb{R}^+, \times)$: $T_gL_h$ = h scales the arrow", size=MATH_PT)
 
     @override
-    def create(self):
+    def create(self) -> None:
         ax2, ax1 = self.axes
         (self.pts2,) = ax2.plot([], [], "o", color="k", ms=6)
         self.arrows2 = ArrowSet(ax2, color=[PALETTE["blue"], PALETTE["orange"]], n=2, width=0.012)
@@ -169,7 +177,7 @@ class LiftedScalarScene(Scene):
         self.text1 = PathText(ax1, 0.02, 0.05, "", size=MATH_PT, coords="axes", va="bottom")
 
     @override
-    def set(self, hx=1.5, hy=1.0, h=2.5):
+    def set(self, hx: float = 1.5, hy: float = 1.0, h: float = 2.5) -> None:
         g2 = self.G_R2
         hg2 = g2 + np.array([hx, hy])
         self.pts2.set_data([g2[0], hg2[0]], [g2[1], hg2[1]])
@@ -187,7 +195,7 @@ class LiftedScalarScene(Scene):
                             f"ratio ġ/g = {self.V_RP / g1:.3f} = {lifted / hg1:.3f} (the same at g and hg)")
 
 
-def vec_text(a, digits=2):
+def vec_text(a: Iterable[float], digits: int = 2) -> str:
     """'(+0.12, -0.50, +0.00)': fixed-width numbers for readouts, never printing -0.00."""
     tiny = 0.5 * 10.0 ** -digits
     return "(" + ", ".join(f"{(c if abs(c) >= tiny else 0.0):+.{digits}f}" for c in a) + ")"
@@ -204,20 +212,20 @@ class LiftedSE2Scene(Scene):
     frame welded to g, same *spatial* velocity).
     """
 
-    XI0 = np.array([0.7, 0.0, 0.9])
-    G_XY = np.array([-1.2, -1.0])
-    SCALE = 0.7
+    XI0: ClassVar[FloatArray] = np.array([0.7, 0.0, 0.9])
+    G_XY: ClassVar[FloatArray] = np.array([-1.2, -1.0])
+    SCALE: ClassVar[float] = 0.7
 
     FIGSIZE = (5.8, 5.4)
     MARGINS = dict(left=0.02, right=0.98, bottom=0.12, top=0.93)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         (ax,) = self.axes
         plane(ax, 3.5)
 
     @override
-    def create(self):
+    def create(self) -> None:
         (ax,) = self.axes
         colors = ("0.45", PALETTE["blue"], PALETTE["orange"])
         self.bodies = [BodyArtist(ax, BODY * 1.6, facecolor=c, alpha=0.45) for c in colors]
@@ -228,7 +236,7 @@ class LiftedSE2Scene(Scene):
         self.text = PathText(ax, 0.0, -0.015, "", size=7.5, va="top", coords="axes", family="monospace")
 
     @override
-    def set(self, theta=0.3, u=2.0, v=1.5, beta=1.0):
+    def set(self, theta: float = 0.3, u: float = 2.0, v: float = 1.5, beta: float = 1.0) -> None:
         g = np.array([self.G_XY[0], self.G_XY[1], theta])
         h = np.array([u, v, beta])
         g_dot = SE2.body_to_world(g, self.XI0)
@@ -254,16 +262,16 @@ class VelocityScene(Scene):
     Values ``x, y, theta`` (g) and ``vx, vy, w`` (the body velocity xi).
     """
 
-    LIM = 3.0
+    LIM: ClassVar[float] = 3.0
 
     @override
-    def make_figure(self):
+    def make_figure(self) -> tuple[Figure, list[Axes]]:
         fig, axes = new_figure(2, 2, figsize=(6.2, 5.9))
         margins(fig, left=0.02, right=0.98, bottom=0.02, top=0.95, wspace=0.06, hspace=0.12)
         return fig, list(np.ravel(axes))
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         names = ["(a) world velocity ġ", "(b) body velocity ξ, in the body frame",
                  "(c) ξ after moving the body to e", r"(d) spatial velocity $\xi^s$ at the origin"]
         for ax, name in zip(self.axes, names):
@@ -271,7 +279,7 @@ class VelocityScene(Scene):
             title(ax, name, size=MATH_PT)
 
     @override
-    def create(self):
+    def create(self) -> None:
         a, b, c, d = self.axes
         self.bodies = [BodyArtist(ax, BODY * 1.5, facecolor=PALETTE["blue"], alpha=0.4) for ax in self.axes]
         self.frames = [FrameArtist(ax, length=0.6) for ax in (b, c)]
@@ -288,7 +296,8 @@ class VelocityScene(Scene):
                       for k, ax in enumerate(self.axes)]
 
     @override
-    def set(self, x=1.2, y=0.6, theta=0.7, vx=0.8, vy=0.3, w=0.6):
+    def set(self, x: float = 1.2, y: float = 0.6, theta: float = 0.7, vx: float = 0.8, vy: float = 0.3,
+            w: float = 0.6) -> None:
         g = np.array([x, y, theta])
         xi = np.array([vx, vy, w])
         self.g_dot = SE2.body_to_world(g, xi)
@@ -306,26 +315,26 @@ class VelocityScene(Scene):
         lever = -g[:2]                         # from the body's frame origin to the world origin
         swirl = w * np.array([-lever[1], lever[0]])
         self.spatial_parts_vecs = np.stack([self.g_dot[:2], swirl])
-        set_arrows(self.spatial_parts, [[0, 0], self.g_dot[:2]], self.spatial_parts_vecs)
+        set_arrows(self.spatial_parts, [np.zeros(2), self.g_dot[:2]], self.spatial_parts_vecs)
         set_arrows(self.spatial, [0, 0], self.xi_s[:2])
         self.lever.set_data([x, 0], [y, 0])
         p, far = icr(xi)
-        self.icr_world = None if far else SE2.act_on_points(g, p)
-        shown = not far and np.max(np.abs(self.icr_world)) <= self.LIM
+        self.icr_world = c = None if far else SE2.act_on_points(g, p)
+        shown = c is not None and np.max(np.abs(c)) <= self.LIM
         for m in self.icr_marks:
             m.set_visible(bool(shown))
-            if shown:
-                m.set_data([self.icr_world[0]], [self.icr_world[1]])
+            if shown and c is not None:
+                m.set_data([c[0]], [c[1]])
         f = vec_text
-        where = ("ICR at infinity: pure translation" if far else
-                 f"ICR ★ ({self.icr_world[0]:+.2f}, {self.icr_world[1]:+.2f})" + ("" if shown else ", off view"))
+        where = ("ICR at infinity: pure translation" if c is None else
+                 f"ICR ★ ({c[0]:+.2f}, {c[1]:+.2f})" + ("" if shown else ", off view"))
         self.texts[0].set_text(f"ġ = {f(self.g_dot)}\n{where}")
         self.texts[1].set_text(f"ξ = {f(xi)}\n" + r"(red: $\xi^x$, green: $\xi^y$)")
         self.texts[2].set_text(r"$\xi = T_gL_g^{-1}\,\dot g$" + f"\n= {f(SE2.world_to_body(g, self.g_dot))}")
         self.texts[3].set_text(r"$\xi^s$" + f" = {f(self.xi_s)}\n= ġ + " + r"$\xi^\theta$ × (lever to the origin)")
 
 
-def _matrix_lines(M):
+def _matrix_lines(M: FloatArray) -> str:
     return "\n".join("[" + "  ".join(f"{v:+7.3f}" for v in row) + " ]" for row in M)
 
 
@@ -339,7 +348,7 @@ class AdjointScene(Scene):
     MARGINS = dict(left=0.0, right=1.0, bottom=0.0, top=1.0)
 
     @override
-    def decorate(self):
+    def decorate(self) -> None:
         (ax,) = self.axes
         text_panel(ax)
         # R_g^{-1} = R_{g^{-1}}, written with one level of scripts (a script of a script is 5 px)
@@ -348,7 +357,7 @@ class AdjointScene(Scene):
             PathText(ax, 0.02 + 0.33 * k, 0.9, s, size=MATH_PT, weight="bold")
 
     @override
-    def create(self):
+    def create(self) -> None:
         (ax,) = self.axes
         self.blocks = [PathText(ax, 0.02 + 0.33 * k, 0.8, "", size=8.5, va="top", color=c, family="monospace")
                        for k, c in enumerate(("k", PALETTE["blue"], PALETTE["green"]))]
@@ -361,7 +370,8 @@ class AdjointScene(Scene):
             r"back again: $\mathrm{Ad}_g^{-1}\,\xi^s = \xi$")), size=MATH_PT, va="top", offset=(0, -1.3 * MATH_PT))
 
     @override
-    def set(self, x=1.0, y=-0.5, theta=0.8, vx=0.5, vy=0.2, w=0.7):
+    def set(self, x: float = 1.0, y: float = -0.5, theta: float = 0.8, vx: float = 0.5, vy: float = 0.2,
+            w: float = 0.7) -> None:
         g = np.array([x, y, theta])
         xi = np.array([vx, vy, w])
         e = SE2.identity()

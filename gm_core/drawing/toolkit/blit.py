@@ -31,37 +31,48 @@ and two threads draw into one Agg buffer at once (half-drawn pictures, lost fram
 """
 from __future__ import annotations
 
+from collections.abc import Iterator
 from contextlib import contextmanager
+from typing import TYPE_CHECKING, Any, cast
 
+from matplotlib.artist import Artist
+from matplotlib.axes import Axes
 from matplotlib.axis import Axis
+from matplotlib.backend_bases import DrawEvent, FigureCanvasBase
+from matplotlib.figure import Figure
 from matplotlib.legend import Legend
 from matplotlib.spines import Spine
 from matplotlib.text import Text
 from matplotlib.transforms import Bbox
 
+if TYPE_CHECKING:
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.backends.backend_webagg_core import FigureCanvasWebAggCore
+    from mpl_toolkits.mplot3d.axes3d import Axes3D
+
 __all__ = ["Blitter", "KeyFrames", "can_blit", "hold_pictures_until_view", "sends_differences"]
 
 
-def can_blit(fig) -> bool:
+def can_blit(fig: Figure) -> bool:
     """True if ``fig`` can be blitted: its canvas can copy and restore regions (Agg-based)."""
     canvas = fig.canvas
     return hasattr(canvas, "copy_from_bbox") and hasattr(canvas, "restore_region")
 
 
-def sends_differences(fig) -> bool:
+def sends_differences(fig: Figure) -> bool:
     """True if ``fig``'s canvas sends pictures to a browser as differences (webagg, ipympl)."""
     from matplotlib.backends.backend_webagg_core import FigureCanvasWebAggCore
 
     return isinstance(fig.canvas, FigureCanvasWebAggCore)
 
 
-def _overlap(a, b) -> bool:
+def _overlap(a: Bbox, b: Bbox) -> bool:
     """True if two display boxes share an area (touching edges or empty boxes do not count)."""
     i = Bbox.intersection(a, b)
     return i is not None and i.width > 0 and i.height > 0
 
 
-def _no_view_yet(canvas) -> bool:
+def _no_view_yet(canvas: FigureCanvasBase) -> bool:
     """True while an ipympl canvas has no initialised browser view (``syncing_data_url``): a
     picture sent then only replaces the canvas' ``_data_url`` (without its ``data:`` prefix, so
     the browser's image breaks). Until the view asks for its first picture, only draw requests
@@ -69,7 +80,7 @@ def _no_view_yet(canvas) -> bool:
     return bool(getattr(canvas, "syncing_data_url", False))
 
 
-def hold_pictures_until_view(fig):
+def hold_pictures_until_view(fig: Figure) -> bool:
     """Under ipympl, send no picture of ``fig`` before its browser view has said 'initialized'.
 
     ipympl 0.10 treats a picture sent before that message (``syncing_data_url``) as the figure's
@@ -85,19 +96,19 @@ def hold_pictures_until_view(fig):
     as they are. Returns True if ``fig`` is held."""
     canvas = fig.canvas
     manager = getattr(canvas, "manager", None)
-    if not (_no_view_yet(canvas) and hasattr(canvas, "on_msg") and hasattr(manager, "refresh_all")):
+    if manager is None or not (_no_view_yet(canvas) and hasattr(canvas, "on_msg") and hasattr(manager, "refresh_all")):
         return False
     send = manager.refresh_all
     held = False
 
-    def refresh_all():
+    def refresh_all() -> None:
         nonlocal held
         if _no_view_yet(canvas):
             held = True   # webagg's picture stays due (_png_is_old); nothing is diffed or sent
         else:
             send()
 
-    def on_msg(widget, content, buffers):
+    def on_msg(widget: object, content: dict[str, Any], buffers: list[bytes]) -> None:
         # runs after ipympl's own handler (registered first), which ends syncing_data_url
         nonlocal held
         if content.get("type") == "initialized" and held and not _no_view_yet(canvas):
@@ -109,17 +120,18 @@ def hold_pictures_until_view(fig):
     return True
 
 
-def _view(ax):
+def _view(ax: Axes) -> tuple[object, ...]:
     """Everything that places an axes' content on the canvas: limits, and for 3D the camera."""
     # Only side-effect-free reads: get_position() would run apply_aspect(), mark the figure stale
     # and, under ipympl, request another draw from inside the draw callback (a redraw loop).
     view = (tuple(ax.viewLim.bounds),)
     if getattr(ax, "name", "") == "3d":
-        view += (tuple(ax.get_zlim()), ax.elev, ax.azim, getattr(ax, "roll", 0.0))
+        ax3 = cast("Axes3D", ax)
+        view += (tuple(ax3.get_zlim()), ax3.elev, ax3.azim, getattr(ax3, "roll", 0.0))
     return view
 
 
-def _leaf_artists(fig):
+def _leaf_artists(fig: Figure) -> Iterator[Artist]:
     for ax in fig.axes:
         skip = {id(ax.patch)}
         for a in ax.get_children():
@@ -134,12 +146,13 @@ def _leaf_artists(fig):
 class Blitter:
     """Render frames of ``fig`` by blitting the artists that changed since the last frame."""
 
-    def __init__(self, fig):
+    def __init__(self, fig: Figure) -> None:
         self.fig = fig
-        self.canvas = fig.canvas
-        self.dynamic: list = []
-        self._ids: set = set()
-        self._background = None
+        # blitting copies and restores regions of an Agg canvas (ipympl's and inline's; see can_blit)
+        self.canvas = cast("FigureCanvasAgg", fig.canvas)
+        self.dynamic: list[Artist] = []
+        self._ids: set[int] = set()
+        self._background: object | None = None   # Agg's saved region (copy_from_bbox), opaque
         self._limits = self._view_limits()
         self._real_draw_idle = self.canvas.draw_idle
         self._cid = self.canvas.mpl_connect("draw_event", self._on_draw)
@@ -147,10 +160,10 @@ class Blitter:
         self.blits = 0
 
     # -- bookkeeping ------------------------------------------------------------------
-    def _view_limits(self):
+    def _view_limits(self) -> list[tuple[object, ...]]:
         return [_view(ax) for ax in self.fig.axes]
 
-    def _on_draw(self, event):
+    def _on_draw(self, event: DrawEvent | None) -> None:
         """After every full draw: keep the background, then paint the animated artists on it."""
         if self.canvas.is_saving() or (event is not None and event.canvas is not self.canvas):
             # savefig: matplotlib draws animated artists itself while saving, and that picture
@@ -160,12 +173,12 @@ class Blitter:
         self._limits = self._view_limits()
         self._paint()
 
-    def _make_dynamic(self, a):
+    def _make_dynamic(self, a: Artist) -> None:
         a.set_animated(True)
         self.dynamic.append(a)
         self._ids.add(id(a))
 
-    def _covering(self):
+    def _covering(self) -> list[Artist]:
         """Static artists drawn *above* a moving one and overlapping it (a ✓ on a badge whose
         colour changes): pasted under the moving artist they would vanish, so they move too.
         Found once, when the set of moving artists grows (never per frame)."""
@@ -173,7 +186,7 @@ class Blitter:
         order = {id(a): (a.get_zorder(), i) for i, a in enumerate(leaves)}
         renderer = self.canvas.get_renderer() if hasattr(self.canvas, "get_renderer") else None
 
-        def extent(a):
+        def extent(a: Artist) -> Bbox | None:
             try:
                 box = a.get_window_extent(renderer)
             except Exception:  # an artist without a usable extent: assume it covers everything
@@ -186,7 +199,8 @@ class Blitter:
                 box = Bbox.intersection(box, clip) or Bbox([[0.0, 0.0], [0.0, 0.0]])
             return box
 
-        out, moving = [], [a for a in self.dynamic if a.figure is not None]
+        out: list[Artist] = []
+        moving = [a for a in self.dynamic if a.figure is not None]
         leaves = [a for a in leaves if not (isinstance(a, Text) and not a.get_text().strip())]
         boxes = {id(a): extent(a) for a in moving}
         changed = True
@@ -207,13 +221,13 @@ class Blitter:
                         break
         return out
 
-    def _sorted(self):
+    def _sorted(self) -> list[Artist]:
         # the moving artists in the order a full draw paints them (z-order, then insertion)
         order = {id(a): (a.get_zorder(), i) for i, a in enumerate(_leaf_artists(self.fig))}
         return sorted((a for a in self.dynamic if a.figure is not None),
                       key=lambda a: order.get(id(a), (a.get_zorder(), 0)))
 
-    def _paint(self):
+    def _paint(self) -> None:
         for a in self._sorted():
             if a.axes is not None:
                 a.axes.draw_artist(a)
@@ -222,17 +236,18 @@ class Blitter:
 
     # -- frames -------------------------------------------------------------------------
     @contextmanager
-    def frame(self):
+    def frame(self) -> Iterator[None]:
         """Run a panel update inside; on exit the figure is refreshed by a blit or a full draw."""
-        requested = []
-        self.canvas.draw_idle = lambda *a, **k: requested.append(True)
+        requested: list[bool] = []
+        # the canvas's draw_idle is swapped on the instance for the frame, then put back
+        self.canvas.draw_idle = lambda *a, **k: requested.append(True)  # type: ignore[method-assign]
         try:
             yield
         finally:
-            self.canvas.draw_idle = self._real_draw_idle
+            self.canvas.draw_idle = self._real_draw_idle  # type: ignore[method-assign]  # put back
         self.refresh()
 
-    def refresh(self):
+    def refresh(self) -> None:
         new = [a for a in _leaf_artists(self.fig) if a.stale and id(a) not in self._ids]
         if self._background is None or _no_view_yet(self.canvas):
             # No background yet (never drawn): everything is new, nothing is known to move. (Or
@@ -252,12 +267,12 @@ class Blitter:
         self.canvas.blit(self.fig.bbox)
         self.blits += 1
 
-    def _full_draw(self):
+    def _full_draw(self) -> None:
         self._background = None
         self.full_draws += 1
         self._real_draw_idle()
 
-    def disconnect(self):
+    def disconnect(self) -> None:
         self.canvas.mpl_disconnect(self._cid)
         for a in self.dynamic:
             a.set_animated(False)
@@ -274,9 +289,10 @@ class KeyFrames:
     asks the browser for nothing, so the key frame is the last picture the browser receives.
     """
 
-    def __init__(self, fig, delay: float = 0.25):
+    def __init__(self, fig: Figure, delay: float = 0.25) -> None:
         self.fig = fig
-        self.canvas = fig.canvas
+        # a key frame is webagg's "refresh" (ipympl's canvas is a webagg one; see sends_differences)
+        self.canvas = cast("FigureCanvasWebAggCore", fig.canvas)
         self.delay = float(delay)
         self.sent = 0
         self._sending = False
@@ -285,16 +301,16 @@ class KeyFrames:
         self._timer.add_callback(self.send)
         self._cid = self.canvas.mpl_connect("draw_event", self._on_draw)
 
-    def touch(self):
+    def touch(self) -> None:
         """A picture was just sent (or is about to be): the key frame follows ``delay`` s later."""
         self._timer.stop()
         self._timer.start()
 
-    def _on_draw(self, event):
+    def _on_draw(self, event: DrawEvent) -> None:
         if not self._sending and not self.canvas.is_saving():
             self.touch()
 
-    def send(self):
+    def send(self) -> None:
         """Draw the figure in full now and send it whole (not as a difference)."""
         canvas = self.canvas
         if _no_view_yet(canvas):
@@ -305,16 +321,16 @@ class KeyFrames:
             # to request a draw, which would send one more (difference) picture after the key
             # frame: that request is left out, the figure is drawn here instead.
             real_draw_idle = canvas.draw_idle
-            canvas.draw_idle = lambda *a, **k: None
+            canvas.draw_idle = lambda *a, **k: None  # type: ignore[method-assign]  # swapped for the refresh
             try:
                 canvas.handle_event({"type": "refresh"})
             finally:
-                canvas.draw_idle = real_draw_idle
+                canvas.draw_idle = real_draw_idle  # type: ignore[method-assign]  # put back
             canvas.draw()
             self.sent += 1
         finally:
             self._sending = False
 
-    def disconnect(self):
+    def disconnect(self) -> None:
         self._timer.stop()
         self.canvas.mpl_disconnect(self._cid)

@@ -8,15 +8,27 @@ from __future__ import annotations
 import base64
 import io
 import os
+import pathlib
+from collections.abc import Callable, Iterable, Sequence
+from typing import TYPE_CHECKING, Any, SupportsInt, cast
 
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.animation import AbstractMovieWriter, FuncAnimation
+from matplotlib.artist import Artist
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 from matplotlib.patches import Polygon
+from matplotlib.typing import ColorType
+from numpy.typing import ArrayLike
 from typing_extensions import override
 
 from gm_core.drawing.toolkit.style import DPI, PALETTE
 from gm_core.groups import SE2
+from gm_core.validation import FloatArray
+
+if TYPE_CHECKING:
+    from IPython.display import HTML
 
 __all__ = ["testing", "n_frames", "FrameArtist", "BodyArtist", "TrailArtist",
            "SingularFlag", "animate", "jshtml"]
@@ -35,14 +47,15 @@ def n_frames(n: int, under_test: int = 6) -> int:
 class FrameArtist:
     """An SE(2) coordinate frame drawn as two arrows (x axis ``PALETTE["x"]``, y axis ``PALETTE["y"]``) at g."""
 
-    def __init__(self, ax, g=(0.0, 0.0, 0.0), length=0.4, colors=(PALETTE["x"], PALETTE["y"]), zorder=5, **kw):
+    def __init__(self, ax: Axes, g: ArrayLike = (0.0, 0.0, 0.0), length: float = 0.4,
+                 colors: Sequence[ColorType] = (PALETTE["x"], PALETTE["y"]), zorder: float = 5, **kw: Any) -> None:
         self.ax = ax
         self.length = float(length)
         self.quiver = ax.quiver([0, 0], [0, 0], [1, 0], [0, 1], color=list(colors), angles="xy",
                                 scale_units="xy", scale=1.0, width=0.006, zorder=zorder, **kw)
         self.set(g)
 
-    def set(self, g):
+    def set(self, g: ArrayLike) -> None:
         x, y, t = np.asarray(g, dtype=float)
         L = self.length
         c, s = np.cos(t), np.sin(t)
@@ -50,14 +63,14 @@ class FrameArtist:
         self.quiver.set_UVC([L * c, -L * s], [L * s, L * c])
         self.g = np.array([x, y, t])
 
-    def remove(self):
+    def remove(self) -> None:
         self.quiver.remove()
 
 
 class BodyArtist:
     """A rigid body: a polygon given in body-frame coordinates, placed at g by (1.11)-(1.12)."""
 
-    def __init__(self, ax, outline, g=(0.0, 0.0, 0.0), **style):
+    def __init__(self, ax: Axes, outline: ArrayLike, g: ArrayLike = (0.0, 0.0, 0.0), **style: Any) -> None:
         self.outline = np.asarray(outline, dtype=float)
         style.setdefault("facecolor", PALETTE["blue"])
         style.setdefault("alpha", 0.5)
@@ -66,17 +79,17 @@ class BodyArtist:
         ax.add_patch(self.patch)
         self.set(g)
 
-    def set(self, g):
+    def set(self, g: ArrayLike) -> None:
         self.g = np.asarray(g, dtype=float)
         self.patch.set_xy(SE2.act_on_points(self.g, self.outline))
 
     @staticmethod
-    def triangle(size=0.3):
+    def triangle(size: float = 0.3) -> FloatArray:
         """Outline of an isosceles triangle pointing along the body x axis (the book's robot)."""
         return size * np.array([[1.0, 0.0], [-0.6, 0.55], [-0.6, -0.55]])
 
     @staticmethod
-    def rectangle(length, width):
+    def rectangle(length: float, width: float) -> FloatArray:
         """Outline of a length x width rectangle centred on the body frame."""
         a, b = length / 2, width / 2
         return np.array([[-a, -b], [a, -b], [a, b], [-a, b]])
@@ -85,18 +98,18 @@ class BodyArtist:
 class TrailArtist:
     """A path drawn as one Line2D; ``set(points)`` replaces its data, ``append(p)`` extends it."""
 
-    def __init__(self, ax, points=None, **style):
+    def __init__(self, ax: Axes, points: ArrayLike | None = None, **style: Any) -> None:
         style.setdefault("lw", 1.5)
         (self.line,) = ax.plot([], [], **style)
         self._pts = np.zeros((0, 2))
         if points is not None:
             self.set(points)
 
-    def set(self, points):
+    def set(self, points: ArrayLike) -> None:
         self._pts = np.asarray(points, dtype=float).reshape(-1, 2)
         self.line.set_data(self._pts[:, 0], self._pts[:, 1])
 
-    def append(self, p):
+    def append(self, p: ArrayLike) -> None:
         self.set(np.vstack([self._pts, np.asarray(p, dtype=float)[:2]]))
 
 
@@ -107,25 +120,34 @@ class SingularFlag:
     instead and hides the affected artists.
     """
 
-    def __init__(self, ax, loc=(0.5, 0.95)):
+    def __init__(self, ax: Axes, loc: tuple[float, float] = (0.5, 0.95)) -> None:
         self.text = ax.text(*loc, "", transform=ax.transAxes, ha="center", va="top", color="darkred",
                             fontsize=10, fontweight="bold",
                             bbox=dict(facecolor="mistyrose", edgecolor="darkred", alpha=0.9))
         self.text.set_visible(False)
 
-    def show(self, message):
+    def show(self, message: str) -> None:
         self.text.set_text(message)
         self.text.set_visible(True)
 
-    def hide(self):
+    def hide(self) -> None:
         self.text.set_visible(False)
 
     @property
-    def visible(self):
+    def visible(self) -> bool:
         return self.text.get_visible()
 
 
-def animate(fig, update, frames, interval=50, palette=False, **kw):
+class _KeptAnimation(FuncAnimation):
+    """A FuncAnimation that keeps, for :func:`jshtml`, what FuncAnimation keeps privately."""
+
+    gm_figure: Figure
+    gm_interval: float
+    gm_palette: bool
+
+
+def animate(fig: Figure, update: Callable[[Any], Iterable[Artist] | None], frames: int | Iterable[Any],
+            interval: float = 50, palette: bool = False, **kw: Any) -> FuncAnimation:
     """A FuncAnimation calling ``update(frame)``; shortened under the test suite (see n_frames).
 
     ``palette=True`` lets :func:`jshtml` store the frames with 256 colours (about a third of the
@@ -133,13 +155,13 @@ def animate(fig, update, frames, interval=50, palette=False, **kw):
     smooth colour maps, which it would band.
     """
     if np.isscalar(frames):
-        frames = n_frames(int(frames))
+        frames = n_frames(int(cast(SupportsInt, frames)))   # a scalar here: a count of frames
     else:
-        frames = list(frames)
+        frames = list(cast(Iterable[Any], frames))   # not a scalar: the frames themselves
         if testing():
             idx = np.linspace(0, len(frames) - 1, n_frames(len(frames))).round().astype(int)
             frames = [frames[i] for i in idx]
-    anim = FuncAnimation(fig, update, frames=frames, interval=interval, blit=False, **kw)
+    anim = _KeptAnimation(fig, update, frames=frames, interval=interval, blit=False, **kw)
     anim.gm_figure = fig   # read by jshtml (FuncAnimation keeps its figure and interval privately)
     anim.gm_interval = interval
     anim.gm_palette = bool(palette)
@@ -149,25 +171,25 @@ def animate(fig, update, frames, interval=50, palette=False, **kw):
 class _FrameCollector(AbstractMovieWriter):
     """A movie writer (matplotlib's public writer interface) that keeps every frame as a PNG data URL."""
 
-    def __init__(self, palette=False):
+    def __init__(self, palette: bool = False) -> None:
         super().__init__(fps=20)
         self.frames: list[str] = []
         self.palette = palette
 
     @override
-    def setup(self, fig, outfile, dpi=None):
+    def setup(self, fig: Figure, outfile: str | pathlib.Path, dpi: float | None = None) -> None:
         super().setup(fig, outfile, dpi=dpi)
 
     @override
-    def grab_frame(self, **savefig_kwargs):
+    def grab_frame(self, **savefig_kwargs: Any) -> None:
         self.frames.append(_png_data_url(self.fig, self.dpi, self.palette, **savefig_kwargs))
 
     @override
-    def finish(self):
+    def finish(self) -> None:
         pass
 
 
-def _png_data_url(fig, dpi, palette=False, **savefig_kwargs) -> str:
+def _png_data_url(fig: Figure, dpi: float, palette: bool = False, **savefig_kwargs: Any) -> str:
     """The figure as a PNG data URL; with ``palette``, in at most 256 colours.
 
     Line art holds a couple of thousand distinct colours, nearly all antialiasing shades, so a
@@ -186,7 +208,7 @@ def _png_data_url(fig, dpi, palette=False, **savefig_kwargs) -> str:
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
 
 
-def jshtml(anim, default_mode="loop"):
+def jshtml(anim: FuncAnimation, default_mode: str = "loop") -> HTML:
     """An IPython HTML object that plays ``anim`` in the page, with no live kernel and offline.
 
     Every frame is rendered at the figure standard's resolution through ``anim.save`` (a movie

@@ -22,25 +22,33 @@
 """
 from __future__ import annotations
 
+import os
 import re
 from abc import ABC, abstractmethod
-from typing import Any
+from collections.abc import Sequence
+from typing import IO, Any, ClassVar, Literal, overload
 
 import matplotlib as mpl
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
+from matplotlib.backend_bases import RendererBase
 from matplotlib.collections import LineCollection, PathCollection, PolyCollection
 from matplotlib.figure import Figure
 from matplotlib.font_manager import FontProperties, findfont, get_font
 from matplotlib.layout_engine import ConstrainedLayoutEngine, PlaceHolderLayoutEngine
 from matplotlib.path import Path
+from matplotlib.quiver import Quiver
 from matplotlib.textpath import TextPath
+from matplotlib.transforms import Bbox
 from matplotlib.transforms import blended_transform_factory as _blend
+from matplotlib.typing import ColorType, RcKeyType
+from numpy.typing import ArrayLike, NDArray
 from typing_extensions import override
 
 from gm_core.drawing.toolkit.blit import hold_pictures_until_view
 from gm_core.printing import shown
+from gm_core.validation import FloatArray
 
 __all__ = [
     "signed",
@@ -73,7 +81,7 @@ PALETTE.update(x=PALETTE["vermillion"], y=PALETTE["green"], theta=PALETTE["blue"
                left=PALETTE["blue"], right=PALETTE["orange"])
 
 #: rcParams of the figure standard (applied when gm_core.drawing is imported).
-STYLE = {
+STYLE: dict[RcKeyType, Any] = {
     "figure.dpi": DPI,
     "savefig.dpi": "figure",
     "figure.figsize": (6.0, 4.0),
@@ -92,7 +100,7 @@ STYLE = {
 }
 
 
-def apply_style():
+def apply_style() -> None:
     """Apply :data:`STYLE` to matplotlib's rcParams (done once on import of gm_core.drawing)."""
     mpl.rcParams.update(STYLE)
 
@@ -100,7 +108,7 @@ def apply_style():
 apply_style()
 
 
-def _fit(figsize):
+def _fit(figsize: Sequence[float]) -> tuple[float, float]:
     w, h = (float(v) for v in figsize)
     if w > MAX_WIDTH_IN:
         h, w = h * MAX_WIDTH_IN / w, MAX_WIDTH_IN
@@ -122,13 +130,15 @@ class CourseFigure(Figure):
     """
 
     @override
-    def tight_layout(self, *, pad=1.08, h_pad=None, w_pad=None, rect=None):
+    def tight_layout(self, *, pad: float = 1.08, h_pad: float | None = None, w_pad: float | None = None,
+                     rect: tuple[float, float, float, float] | None = None) -> None:
         if isinstance(self.get_layout_engine(), ConstrainedLayoutEngine):
             self.set_layout_engine("none")   # a placeholder: positions kept until the tight layout runs
         super().tight_layout(pad=pad, h_pad=h_pad, w_pad=w_pad, rect=rect)
 
     @override
-    def savefig(self, fname, *, transparent=None, **kwargs):
+    def savefig(self, fname: str | os.PathLike[str] | IO[bytes] | IO[str], *, transparent: bool | None = None,
+                **kwargs: Any) -> None:
         engine = self.get_layout_engine()
         if (not isinstance(engine, PlaceHolderLayoutEngine) or mpl.rcParams["figure.autolayout"]
                 or mpl.rcParams["figure.constrained_layout.use"]):   # there None would mean an engine
@@ -140,19 +150,42 @@ class CourseFigure(Figure):
             self.set_layout_engine(engine)
 
 
-def new_figure(nrows=1, ncols=1, *, figsize=(6, 4), subplot_kw=None, layout="constrained", dpi=DPI, **kw):
+#: The layouts :func:`new_figure` accepts: matplotlib's engine names, or None for explicit margins.
+Layout = Literal["constrained", "compressed", "tight", "none"] | None
+
+
+@overload
+def new_figure(nrows: Literal[1] = 1, ncols: Literal[1] = 1, *, figsize: Sequence[float] = (6, 4),
+               subplot_kw: dict[str, Any] | None = None, layout: Layout = "constrained", dpi: float = DPI,
+               squeeze: Literal[True] = True, **kw: Any) -> tuple[Figure, Axes]: ...
+@overload
+def new_figure(nrows: int = 1, ncols: int = 1, *, figsize: Sequence[float] = (6, 4),
+               subplot_kw: dict[str, Any] | None = None, layout: Layout = "constrained", dpi: float = DPI,
+               squeeze: Literal[False], **kw: Any) -> tuple[Figure, NDArray[np.object_]]: ...
+@overload
+def new_figure(nrows: int = 1, ncols: int = 1, *, figsize: Sequence[float] = (6, 4),
+               subplot_kw: dict[str, Any] | None = None, layout: Layout = "constrained", dpi: float = DPI,
+               squeeze: bool = True, **kw: Any) -> tuple[Figure, Any]: ...
+def new_figure(nrows: int = 1, ncols: int = 1, *, figsize: Sequence[float] = (6, 4),
+               subplot_kw: dict[str, Any] | None = None, layout: Layout = "constrained", dpi: float = DPI,
+               squeeze: bool = True, **kw: Any) -> tuple[Figure, Any]:
     """``(fig, axes)`` made to the figure standard, not auto-displayed (a panel places the canvas).
 
     The width is capped at :data:`MAX_WIDTH_IN` (the height shrinks with it), the resolution is
     :data:`DPI`, and the layout is constrained unless ``layout=None`` (then give explicit margins
     with :func:`margins`). Under ipympl (``%matplotlib widget``) the toolbar header is hidden and
     no picture is sent before the browser's view is ready (:func:`.blit.hold_pictures_until_view`).
+
+    ``axes`` is what :func:`matplotlib.pyplot.subplots` returns, and is typed as it types it: one
+    ``Axes`` for a 1 x 1 grid, an array of them with ``squeeze=False``, otherwise either (``Any``:
+    a single Axes or an array, as the grid's shape decides at run time).
     """
     with plt.ioff():
         fig, ax = plt.subplots(nrows, ncols, figsize=_fit(figsize), subplot_kw=subplot_kw, dpi=dpi,
-                               layout=layout, FigureClass=kw.pop("FigureClass", CourseFigure), **kw)
+                               squeeze=squeeze, layout=layout, FigureClass=kw.pop("FigureClass", CourseFigure),
+                               **kw)
     canvas = fig.canvas
-    if hasattr(canvas, "header_visible"):
+    if hasattr(canvas, "header_visible") and hasattr(canvas, "footer_visible") and hasattr(canvas, "resizable"):
         canvas.header_visible = False
         canvas.footer_visible = False
         canvas.resizable = False
@@ -160,14 +193,14 @@ def new_figure(nrows=1, ncols=1, *, figsize=(6, 4), subplot_kw=None, layout="con
     return fig, ax
 
 
-def figure(figsize=(6, 4), dpi=DPI, layout="constrained"):
+def figure(figsize: Sequence[float] = (6, 4), dpi: float = DPI, layout: Layout = "constrained") -> Figure:
     """An empty figure made like :func:`new_figure`, for mixed 2D/3D layouts (``add_subplot``)."""
     fig, ax = new_figure(figsize=figsize, dpi=dpi, layout=layout)
     ax.remove()
     return fig
 
 
-def freeze_layout(fig):
+def freeze_layout(fig: Figure) -> Figure:
     """Run the figure's layout engine once and keep the result: axes stop moving afterwards.
 
     A live figure is redrawn by blitting over a cached background; a layout that re-ran on
@@ -183,7 +216,7 @@ def freeze_layout(fig):
     return fig
 
 
-def margins(fig, **kw):
+def margins(fig: Figure, **kw: float) -> Figure:
     """Explicit margins (``subplots_adjust`` keywords) instead of constrained layout."""
     fig.set_layout_engine(None)
     fig.subplots_adjust(**kw)
@@ -192,6 +225,11 @@ def margins(fig, **kw):
 
 # --------------------------------------------------------------------------------- fast text
 _FAMILIES = {"sans": "DejaVu Sans", "monospace": "DejaVu Sans Mono"}
+#: The fonts, alignments and coordinate systems of a :class:`PathText`.
+Family = Literal["sans", "monospace"]
+HAlign = Literal["left", "center", "right"]
+VAlign = Literal["baseline", "bottom", "center", "top"]
+Coords = Literal["data", "axes", "figure", "xaxis", "yaxis"]
 _PATH_CACHE: dict = {}
 
 
@@ -276,7 +314,9 @@ def _glyphs(line, size, weight, family="sans"):
 class _FlatPathCollection(PathCollection):
     """A 2D PathCollection that an Axes3D accepts (drawn on top, never depth-sorted)."""
 
-    def do_3d_projection(self):
+    gm_path_text: PathText   # the PathText drawing this collection (read by layout checks)
+
+    def do_3d_projection(self) -> float:
         return -1e9
 
 
@@ -292,8 +332,9 @@ class PathText:
     standard).
     """
 
-    def __init__(self, ax, x, y, text="", size=9, color="k", ha="left", va="baseline", coords="data",
-                 weight="normal", zorder=7, offset=(0.0, 0.0), family="sans"):
+    def __init__(self, ax: Axes, x: float, y: float, text: object = "", size: float = 9, color: ColorType = "k",
+                 ha: HAlign = "left", va: VAlign = "baseline", coords: Coords = "data", weight: str = "normal",
+                 zorder: float = 7, offset: tuple[float, float] = (0.0, 0.0), family: Family = "sans") -> None:
         from matplotlib.transforms import ScaledTranslation
 
         self.ax = ax
@@ -313,9 +354,9 @@ class PathText:
         self.collection.set_in_layout(False)
         self.collection.gm_path_text = self       # lets layout checks find the text of a collection
         ax.add_collection(self.collection, autolim=False)
-        self.text = None
-        self.xy = np.array([x, y], float)
-        self.set_text(text)
+        self.text: str
+        self.xy: FloatArray = np.array([x, y], float)
+        self._show(str(text))
 
     def _paths(self, text):
         lines = text.split("\n")
@@ -333,34 +374,35 @@ class PathText:
             out.append(Path(p.vertices + np.array([dx, dy - k * step]), p.codes))
         return out
 
-    def set_text(self, text):
+    def set_text(self, text: object) -> None:
         text = str(text)
         if text != self.text:
-            self.text = text
-            paths = self._paths(text)
-            self.collection.set_paths(paths)
-            self.collection.set_offsets(np.tile(self.xy, (len(paths), 1)))
+            self._show(text)
 
-    def get_text(self):
+    def _show(self, text: str) -> None:
+        self.text = text
+        paths = self._paths(text)
+        self.collection.set_paths(paths)
+        self.collection.set_offsets(np.tile(self.xy, (len(paths), 1)))
+
+    def get_text(self) -> str:
         return self.text
 
-    def set_position(self, xy):
+    def set_position(self, xy: ArrayLike) -> None:
         self.xy = np.asarray(xy, float)
         self.collection.set_offsets(np.tile(self.xy, (len(self.collection.get_paths()), 1)))
 
-    def set_visible(self, b):
+    def set_visible(self, b: bool) -> None:
         self.collection.set_visible(b)
 
-    def get_visible(self):
+    def get_visible(self) -> bool:
         return self.collection.get_visible()
 
-    def set_color(self, c):
+    def set_color(self, c: ColorType) -> None:
         self.collection.set_facecolor(c)
 
-    def get_window_extent(self, renderer=None):
+    def get_window_extent(self, renderer: RendererBase | None = None) -> Bbox:
         """Bounding box of the drawn glyphs in display pixels (for layout checks)."""
-        from matplotlib.transforms import Bbox
-
         paths = self.collection.get_paths()
         if not paths:
             return Bbox.null()
@@ -369,15 +411,15 @@ class PathText:
         return Bbox.from_extents(*(pts.min(0) + off), *(pts.max(0) + off))
 
     @property
-    def stale(self):
+    def stale(self) -> bool:
         return self.collection.stale
 
     @stale.setter
-    def stale(self, v):
+    def stale(self, v: bool) -> None:
         self.collection.stale = v
 
 
-def readout(ax, x, y, s="", size=8, **kw):
+def readout(ax: Axes, x: float, y: float, s: object = "", size: float = 8, **kw: Any) -> PathText:
     """A monospace :class:`PathText` readout in axes coordinates (numbers that change every frame)."""
     kw.setdefault("coords", "axes")
     kw.setdefault("family", "monospace")
@@ -386,18 +428,19 @@ def readout(ax, x, y, s="", size=8, **kw):
     return PathText(ax, x, y, s, size=size, **kw)
 
 
-def signed(values, decimals: int = 3) -> str:
+def signed(values: ArrayLike, decimals: int = 3) -> str:
     """Numbers as a readout prints them, with their signs: ``"+0.125, -1.000, +0.000"``; rounded
     as shown (gm_core.printing.shown), so a value that is zero up to round-off never reads -0.000."""
     return ", ".join(f"{v:+.{decimals}f}" for v in np.atleast_1d(shown(values, decimals)).tolist())
 
 
-def title(ax, text="", size=9):
+def title(ax: Axes, text: object = "", size: float = 9) -> PathText:
     """A PathText title centred above ``ax``."""
     return PathText(ax, 0.5, 1.0, text, size=size, ha="center", va="bottom", coords="axes", offset=(0, 4))
 
 
-def axis_label(ax, which, text, size=9, ticks=()):
+def axis_label(ax: Axes, which: Literal["x", "y"], text: object, size: float = 9,
+               ticks: Sequence[PathText] = ()) -> PathText:
     """An axis label as PathText, clear of the tick labels (``ticks``: the PathTexts returned by
     :func:`xticks` / :func:`yticks`), so it is never squeezed into them.
 
@@ -413,7 +456,7 @@ def axis_label(ax, which, text, size=9, ticks=()):
                     offset=(-(5 + widest + 5), 0))
 
 
-def xticks(ax, values, labels, size=8):
+def xticks(ax: Axes, values: Sequence[float], labels: Sequence[object], size: float = 8) -> list[PathText]:
     """Tick marks and labels on the x axis without matplotlib's Axis machinery (cheap to redraw)."""
     ax.set_xticks([])
     tr = _blend(ax.transData, ax.transAxes)
@@ -423,7 +466,7 @@ def xticks(ax, values, labels, size=8):
             for v, lab in zip(values, labels)]
 
 
-def yticks(ax, values, labels, size=8):
+def yticks(ax: Axes, values: Sequence[float], labels: Sequence[object], size: float = 8) -> list[PathText]:
     """Tick marks and labels on the y axis without matplotlib's Axis machinery (cheap to redraw)."""
     ax.set_yticks([])
     tr = _blend(ax.transAxes, ax.transData)
@@ -442,15 +485,18 @@ class ArrowSet:
     ``width`` is the shaft width as a fraction of the x-range of the axes.
     """
 
-    def __init__(self, ax, n=1, color="k", width=0.008, zorder=6):
+    def __init__(self, ax: Axes, n: int = 1, color: ColorType | Sequence[ColorType] = "k", width: float = 0.008,
+                 zorder: float = 6) -> None:
         x0, x1 = ax.get_xlim()
         self.w = width * abs(x1 - x0)
         self.n = n
-        self.poly = PolyCollection(np.zeros((n, 7, 2)), facecolors=color, edgecolors="none", zorder=zorder)
+        # an (n, 7, 2) array, not the Sequence of matplotlib's stub: set_verts takes the array's fast path
+        self.poly = PolyCollection(np.zeros((n, 7, 2)), facecolors=color, edgecolors="none",  # type: ignore[arg-type]
+                                   zorder=zorder)
         ax.add_collection(self.poly, autolim=False)
         self.set(np.zeros((n, 2)), np.zeros((n, 2)))
 
-    def set(self, origins, vectors):
+    def set(self, origins: ArrayLike, vectors: ArrayLike) -> None:
         P = np.asarray(origins, float).reshape(-1, 2)
         V = np.asarray(vectors, float).reshape(-1, 2)
         self.offsets, self.U, self.V = P, V[:, 0].copy(), V[:, 1].copy()
@@ -464,25 +510,26 @@ class ArrowSet:
         tip = P + V
         verts = np.stack([P - nrm * w / 2, base - nrm * w / 2, base - nrm * hw, tip,
                           base + nrm * hw, base + nrm * w / 2, P + nrm * w / 2], 1)
-        self.poly.set_verts(verts)
+        self.poly.set_verts(verts)  # type: ignore[arg-type]  # an (n, 7, 2) array: the fast path, see __init__
 
-    def get_offsets(self):
+    def get_offsets(self) -> FloatArray:
         return self.offsets
 
-    def set_visible(self, b):
+    def set_visible(self, b: bool) -> None:
         self.poly.set_visible(b)
 
-    def get_visible(self):
+    def get_visible(self) -> bool:
         return self.poly.get_visible()
 
 
-def arrow(ax, color="k", width=0.008, zorder=6, n=1, **kw):
+def arrow(ax: Axes, color: ColorType | Sequence[ColorType] = "k", width: float = 0.008, zorder: float = 6, n: int = 1,
+          **kw: Any) -> Quiver:
     """A quiver of ``n`` arrows in data units, to be moved with :func:`set_arrows`."""
     return ax.quiver(np.zeros(n), np.zeros(n), np.ones(n), np.zeros(n), color=color, angles="xy",
                      scale_units="xy", scale=1.0, width=width, zorder=zorder, **kw)
 
 
-def set_arrows(q, origins, vectors):
+def set_arrows(q: Quiver | ArrowSet, origins: ArrayLike, vectors: ArrayLike) -> None:
     """Move a quiver or an :class:`ArrowSet`: arrows from ``origins (k, 2)`` along ``vectors (k, 2)``."""
     origins = np.asarray(origins, dtype=float).reshape(-1, 2)
     vectors = np.asarray(vectors, dtype=float).reshape(-1, 2)
@@ -493,7 +540,8 @@ def set_arrows(q, origins, vectors):
     q.set_UVC(vectors[:, 0], vectors[:, 1])
 
 
-def axes_row(figsize, projections, **margin_kw):
+def axes_row(figsize: Sequence[float], projections: Sequence[str | None],
+             **margin_kw: float) -> tuple[Figure, list[Axes]]:
     """A figure with one row of axes, ``projections`` giving each one's kind (None or "3d"); the
     keywords go to :func:`margins`. Returns ``(fig, [axes...])``."""
     fig = figure(figsize=figsize)
@@ -503,7 +551,7 @@ def axes_row(figsize, projections, **margin_kw):
     return fig, axes
 
 
-def text_panel(ax):
+def text_panel(ax: Axes) -> Axes:
     """Turn ``ax`` into a blank panel for text and tables: no axis, limits (0, 1) both ways."""
     ax.set_axis_off()
     ax.set_xlim(0, 1)
@@ -523,9 +571,9 @@ class Scene(ABC):
     (a single axes is also ``self.ax``).
     """
 
-    FIGSIZE: tuple[float, float] | None = None
-    NCOLS: int = 1
-    MARGINS: dict[str, float] | None = None
+    FIGSIZE: ClassVar[tuple[float, float] | None] = None
+    NCOLS: ClassVar[int] = 1
+    MARGINS: ClassVar[dict[str, float] | None] = None
     ax: Axes
 
     def __init__(self, **options: Any) -> None:
@@ -555,11 +603,19 @@ class Scene(ABC):
         raise NotImplementedError
 
     @abstractmethod
-    def set(self, **values: Any) -> None:
+    def set(self, *args: Any, **values: Any) -> None:
+        """Move the artists to ``values``; each scene names its own keywords (and a few take
+        positional values). ``*args: Any, **values: Any`` is the typing's "any signature", so a
+        scene's ``set(theta: float = 0.3)`` is checked as an override of this one."""
         raise NotImplementedError
 
-    def replot(self, **values: Any) -> None:
-        """The naive baseline: clear every axes, draw everything again, then set the values."""
+    def replot(self, *args: Any, **values: Any) -> None:
+        """The naive baseline: clear every axes, draw everything again, then set the values.
+
+        It takes the keywords of the scene's ``set``, by keyword only; the signature is ``set``'s
+        "any signature", so that a scene's own ``replot`` may name them."""
+        if args:
+            raise TypeError(f"{type(self).__name__}.replot takes its values by keyword")
         for ax in self.axes:
             ax.clear()
         self.decorate()
