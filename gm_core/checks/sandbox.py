@@ -19,9 +19,14 @@ that still holds the result pipe). A worker can kill its keeper and call ``setsi
 keeper's tree, group and session); while a check runs the checking process is a subreaper as
 well, so such an orphan becomes its child, and it is ended and reaped there with its own tree
 (:class:`gm_core.checks.proctree.Adoption`). No cgroup is needed (a student's laptop has none to give).
-The worker runs with a memory limit (``MEMORY_LIMIT_MB`` more address space than the kernel uses;
+The worker runs with a memory limit (``memory_mb`` more address space than the kernel uses;
 ``GM_CHECKS_MEMORY_MB`` sets it, 0 turns it off) so a runaway allocation is a ``MemoryError``,
 not a frozen computer.
+
+The settings (the time limit, the memory budget, how much printed output comes back) are one
+frozen :class:`SandboxSettings`: :func:`current_settings` gives the ones in force,
+:func:`apply_settings` puts others in force, :func:`using_settings` does so for a ``with`` block,
+and :func:`set_time_limit` (the student's) changes the time limit only.
 
 What stopped a call is said plainly: the time limit (``"timeout"``), Ctrl-C / SIGINT
 (``KeyboardInterrupt``), an alarm (``AlarmSignal``: ``signal.alarm`` or a timer in the student's
@@ -51,7 +56,9 @@ import signal
 import sys
 import time
 import warnings
-from contextlib import redirect_stderr, redirect_stdout
+from collections.abc import Iterator
+from contextlib import contextmanager, redirect_stderr, redirect_stdout
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -63,12 +70,63 @@ try:
 except ImportError:  # pragma: no cover - Windows
     resource = None  # type: ignore[assignment]  # checked before every use
 
-#: Seconds each probe may take before the child is stopped; change with set_time_limit().
-TIME_LIMIT = [5.0]
-#: Megabytes of address space the worker may take beyond what the kernel already uses (0: no limit).
-MEMORY_LIMIT_MB = [int(os.environ.get("GM_CHECKS_MEMORY_MB", "2048") or 0)]
-MAX_OUTPUT_CHARS = 1500
-MAX_OUTPUT_LINES = 25
+
+@dataclass(frozen=True)
+class SandboxSettings:
+    """How :func:`collect` runs probes.
+
+    ``time_limit``: seconds each probe may take before the worker is stopped (a ``time_limit``
+    given to :func:`collect` overrides it for that call; while grading, neither may exceed the
+    grader's per-call limit, :attr:`gm_core.checks.protocol.Limits.time_limit`).
+    ``memory_mb``: megabytes of address space the worker may take beyond what the kernel already
+    uses (0 or less: no limit). ``max_output_chars``, ``max_output_lines``: how much of what the
+    probes print comes back (the rest is cut, and the cut said).
+
+    Frozen: change the settings in force with :func:`apply_settings` or :func:`using_settings`,
+    e.g. ``using_settings(replace(current_settings(), time_limit=1.0))``.
+    """
+
+    time_limit: float = 5.0
+    memory_mb: int = 2048
+    max_output_chars: int = 1500
+    max_output_lines: int = 25
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "time_limit", float(self.time_limit))
+        for name in ("memory_mb", "max_output_chars", "max_output_lines"):
+            object.__setattr__(self, name, int(getattr(self, name)))
+        if not self.time_limit > 0:
+            raise ValueError(f"time_limit must be a positive number of seconds; got {self.time_limit!r}")
+        if self.max_output_chars < 0 or self.max_output_lines < 0:
+            raise ValueError("max_output_chars and max_output_lines must not be negative")
+
+
+#: The settings in force; the memory budget comes from ``GM_CHECKS_MEMORY_MB`` when it is set.
+_settings = SandboxSettings(memory_mb=int(os.environ.get("GM_CHECKS_MEMORY_MB", "2048") or 0))
+
+
+def current_settings() -> SandboxSettings:
+    """The :class:`SandboxSettings` in force."""
+    return _settings
+
+
+def apply_settings(settings: SandboxSettings) -> SandboxSettings:
+    """Put ``settings`` in force for every later check in this process; return the previous ones."""
+    global _settings
+    if not isinstance(settings, SandboxSettings):
+        raise TypeError(f"settings must be a SandboxSettings; got {type(settings).__name__}")
+    previous, _settings = _settings, settings
+    return previous
+
+
+@contextmanager
+def using_settings(settings: SandboxSettings) -> Iterator[SandboxSettings]:
+    """Put ``settings`` in force inside a ``with`` block; the previous ones come back after it."""
+    previous = apply_settings(settings)
+    try:
+        yield settings
+    finally:
+        apply_settings(previous)
 
 
 class Wrong(Exception):
@@ -87,7 +145,7 @@ def _on_alarm(signum, frame):
     raise AlarmSignal()
 
 
-def set_time_limit(seconds):
+def set_time_limit(seconds: float) -> None:
     """Set how many seconds a checker lets one call of your function take (default 5)."""
     try:
         s = float(seconds)
@@ -95,7 +153,7 @@ def set_time_limit(seconds):
         raise TypeError(f"seconds must be a number of seconds; got {seconds!r}") from None
     if not s > 0:
         raise ValueError(f"seconds must be positive; got {seconds!r}")
-    TIME_LIMIT[0] = s
+    apply_settings(replace(_settings, time_limit=s))
 
 
 def safe_text(exc, limit=200):
@@ -174,7 +232,7 @@ def _run_probe(probe, answer, forked=False):
         return {"k": "error", "m": "AlarmSignal",
                 "x": "an alarm signal (SIGALRM) went off: signal.alarm() or a timer in your code"}
     except MemoryError:
-        budget = MEMORY_LIMIT_MB[0]
+        budget = _settings.memory_mb
         more = f" (a check allows {budget} MB more than the kernel uses)" if budget else ""
         return {"k": "error", "m": "MemoryError", "x": f"it asked for more memory than it may have{more}"}
     except BaseException as exc:  # noqa: BLE001 - SystemExit, GeneratorExit, anything
@@ -182,10 +240,11 @@ def _run_probe(probe, answer, forked=False):
 
 
 def _truncate(text):
+    max_lines, max_chars = _settings.max_output_lines, _settings.max_output_chars
     lines = text.splitlines()
-    cut = len(lines) > MAX_OUTPUT_LINES or len(text) > MAX_OUTPUT_CHARS
+    cut = len(lines) > max_lines or len(text) > max_chars
     if cut:
-        text = "\n".join(lines[:MAX_OUTPUT_LINES])[:MAX_OUTPUT_CHARS]
+        text = "\n".join(lines[:max_lines])[:max_chars]
         text += f"\n... ({len(lines)} lines in all; the rest is not shown)"
     return text
 
@@ -205,8 +264,8 @@ def _quiet_display_in_child():
 
 
 def _limit_memory():
-    """Cap the worker's address space at what it has now plus MEMORY_LIMIT_MB (Linux)."""
-    budget = MEMORY_LIMIT_MB[0]
+    """Cap the worker's address space at what it has now plus the settings' ``memory_mb`` (Linux)."""
+    budget = _settings.memory_mb
     if resource is None or not budget or budget <= 0:
         return
     try:
@@ -305,7 +364,7 @@ def collect(answer, probes, time_limit=None, raw=False):
     Outcomes are decoded dicts (see the module docstring), one per probe, in order; with
     ``raw=True`` they stay JSON-able (for the grader, which decodes them in its own process).
     """
-    limit = TIME_LIMIT[0] if time_limit is None else float(time_limit)
+    limit = _settings.time_limit if time_limit is None else float(time_limit)
     graded = channel.time_limit()
     if graded is not None:
         limit = min(limit, graded)     # while grading, no call gets more than the grader allows
