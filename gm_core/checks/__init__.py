@@ -37,7 +37,7 @@ from gm_core.checks.exercise import (
     reset_progress,
     solutions_viewed,
 )
-from gm_core.checks.parts import CustomPart, FunctionPart, Part, TuplePart, Verdict
+from gm_core.checks.parts import CustomPart, FunctionPart, Mistake, Part, TuplePart, ValuePart, Verdict
 from gm_core.checks.sandbox import set_time_limit
 from gm_core.checks.store import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED, pending_updates
 
@@ -51,7 +51,7 @@ __all__ = [
     "progress", "progress_widget", "part_progress", "reset_progress", "exercise", "exercise_ids",
     "Verdict", "EXERCISE_IDS", "PASSED", "FAILED", "UNATTEMPTED", "IN_PROGRESS", "set_time_limit",
     "course_updates", "pending_updates", "solutions_viewed",
-    "Part", "FunctionPart", "TuplePart", "ChoicePart", "CustomPart", "Exercise",
+    "Part", "FunctionPart", "TuplePart", "ChoicePart", "CustomPart", "ValuePart", "Mistake", "Exercise",
 ] + ["ex" + i.replace(".", "_") for i in exercise_ids()]
 
 

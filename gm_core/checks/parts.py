@@ -20,15 +20,17 @@ from __future__ import annotations
 import copy
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Iterable, Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
+import numpy.typing as npt
 from typing_extensions import override
 
 from gm_core.checks import channel, store
 from gm_core.checks.answers import (
     describe,
     fmt_args,
+    fmt_value,
     is_starter,
     is_sympy,
     match_shape,
@@ -487,6 +489,155 @@ class CustomPart(Part):
         return self._judge(outcomes)
 
 
+class Mistake(NamedTuple):
+    """A plausible wrong value for a :class:`ValuePart` and the message it deserves.
+
+    ``tol``: how close (absolutely) an answer must come to ``value`` to be taken for this mistake;
+    None: the part's own tolerance (``atol + rtol * |value|``)."""
+
+    value: npt.ArrayLike
+    message: str
+    tol: float | None = None
+
+
+class ValuePart(Part):
+    """A one-value answer (a number, or an array of ``shape``) compared with an expected value
+    within a tolerance, declared by class attributes like learntools' problems::
+
+        class DiscArea(ValuePart):
+            name = "a"
+            prompt = "The area of the unit disc (a number)"
+            expected = np.pi
+            rtol = 1e-6
+            mistakes = [Mistake(2 * np.pi, "that is the circumference 2 pi r, not the area.")]
+            hints = ["The area of a disc of radius r is pi r^2."]
+            solution_text = "pi r^2 = pi for r = 1."
+
+        ex9_1 = Exercise("9.1", "Discs", [DiscArea()])
+
+    The probe and the judge come from this class. The probe reads the answer as plain numbers:
+    the starter value is unattempted; a bool, text, a function or the wrong number of entries gets
+    a message saying what was expected (``expects``, ``wrong_size``). The judge passes a value
+    within ``atol + rtol * |expected|`` of ``expected`` (entry by entry for an array) with
+    ``success``; otherwise it raises the message of the first of ``mistakes`` the value is close
+    to, else says how it is off (:meth:`far_message`). A value that is not finite gets
+    ``not_finite``.
+
+    ``reference`` defaults to ``expected`` and ``wrong`` to the mistakes' values; ``kind``,
+    ``weight`` and ``starter`` are those of :class:`Part`. Keyword arguments of the constructor
+    override the class attributes (``DiscArea(weight=1.0)``). A value that is costly to compute
+    (not at import) comes from overriding :meth:`expected_value` (then declare ``reference``);
+    mistakes that depend on it from :meth:`known_mistakes`; messages with numbers in them from
+    :meth:`success_message` and :meth:`far_message`.
+    """
+
+    kind = "number"
+    #: The expected value (a number, or an array of ``shape``); see :meth:`expected_value`.
+    expected: npt.ArrayLike | None = None
+    rtol: float = 1e-6
+    atol: float = 1e-8
+    shape: tuple[int, ...] = ()
+    mistakes: Sequence[Mistake] = ()
+    #: What the answer should be, in messages ("one number"); empty: said from ``shape``.
+    expects: str = ""
+    wrong_size: str = "your answer has {size} numbers (shape {shape}); {expects} was expected."
+    not_finite: str = "your answer is not finite (NaN or infinite entries)."
+    success: str = "Correct."
+
+    def __init__(self, **overrides: Any) -> None:
+        declarable = ("name", "prompt", "hints", "solution_text", "reference", "wrong", "starter", "weight")
+        unknown = sorted(set(overrides) - set(declarable))
+        if unknown:
+            raise TypeError(f"{type(self).__name__}() got unexpected arguments {unknown}; declare "
+                            "the rest as class attributes")
+
+        def declared(key: str, default: Any = None) -> Any:
+            return overrides[key] if key in overrides else getattr(type(self), key, default)
+
+        name, prompt = declared("name"), declared("prompt")
+        if not (isinstance(name, str) and isinstance(prompt, str)):
+            raise TypeError(f"{type(self).__name__} must declare a name and a prompt (class attributes)")
+        reference, wrong = declared("reference"), declared("wrong")
+        super().__init__(name, prompt, hints=declared("hints", ()),
+                         solution_text=declared("solution_text", ""),
+                         reference=self.expected if reference is None else reference,
+                         wrong=[m[0] for m in self.mistakes] if wrong is None else wrong,
+                         starter=declared("starter"), weight=declared("weight"))
+
+    # -- student side (runs in the sandbox)
+    def read(self, answer: Any) -> float | np.ndarray:
+        """The answer as plain numbers: a float, or an array of ``shape``."""
+        if is_starter(answer):
+            raise Unattempted()
+        if isinstance(answer, (bool, np.bool_)):
+            raise Wrong(f"your answer is {describe(answer)}; {self.expects_text} was expected.")
+        arr = to_numbers(answer, "your answer")
+        if arr.size != int(np.prod(self.shape)):
+            raise Wrong(self.wrong_size.format(size=arr.size, shape=arr.shape, expects=self.expects_text))
+        if not self.shape:
+            return float(arr.reshape(()))
+        return match_shape(arr, self.shape, "your answer")
+
+    @override
+    def probes(self) -> list[Callable[[Any], Any]]:
+        return [self.read]
+
+    # -- judge side
+    @property
+    def expects_text(self) -> str:
+        """What the answer should be, as the messages say it."""
+        if self.expects:
+            return self.expects
+        return "one number" if not self.shape else f"an array of shape {self.shape}"
+
+    def expected_value(self) -> npt.ArrayLike:
+        """The value a right answer is close to (default: ``expected``)."""
+        if self.expected is None:
+            raise NotImplementedError(f"{type(self).__name__} declares no expected value")
+        return self.expected
+
+    def known_mistakes(self, expected: npt.ArrayLike) -> list[Mistake]:
+        """The mistakes tried, in order, on a value that is not close to ``expected``."""
+        return [Mistake(*m) for m in self.mistakes]
+
+    def close(self, value: npt.ArrayLike, target: npt.ArrayLike, tol: float | None = None) -> bool:
+        """``value`` within ``tol`` of ``target`` (default: ``atol + rtol * |target|``), entry by entry."""
+        got, want = np.asarray(value, dtype=float), np.asarray(target, dtype=float)
+        if got.shape != want.shape:
+            return False
+        with np.errstate(all="ignore"):
+            bound = self.atol + self.rtol * np.abs(want) if tol is None else tol
+            return bool(np.all(np.abs(got - want) <= bound))
+
+    def success_message(self, value: float | np.ndarray, expected: npt.ArrayLike) -> str:
+        """The message of a right answer (default: ``success``)."""
+        return self.success
+
+    def far_message(self, value: float | np.ndarray, expected: npt.ArrayLike) -> str:
+        """The message of a value that is neither right nor a known mistake."""
+        return (f"your answer {fmt_value(value)} is not the expected value (to a relative tolerance "
+                f"of {self.rtol:g}). Check how you computed it, or ask .hint().")
+
+    @override
+    def judge(self, outcomes: list[dict[str, Any]]) -> str:
+        o: dict[str, Any] = outcomes[0] if outcomes else {"k": "crash", "m": ""}
+        if o["k"] != "ok":
+            outcome_error(o, "your answer", "no arguments")
+        value = o["v"]
+        if not (isinstance(value, float) if not self.shape
+                else isinstance(value, np.ndarray) and value.shape == self.shape):
+            raise Wrong(f"{self.expects_text} was expected.")
+        if not np.all(np.isfinite(value)):
+            raise Wrong(self.not_finite)
+        expected = self.expected_value()
+        if self.close(value, expected):
+            return self.success_message(value, expected)
+        for mistake in self.known_mistakes(expected):
+            if self.close(value, mistake.value, mistake.tol):
+                raise Wrong(mistake.message)
+        raise Wrong(self.far_message(value, expected))
+
+
 # ------------------------------------------------------------------------------ input helpers
 def probe_rng(seed: int) -> np.random.Generator:
     """The random generator for a checker's inputs: ``seed``, salted by the grader when grading
@@ -512,5 +663,5 @@ def rng_inputs(seed: int, n: int, make: Callable[[np.random.Generator], Sequence
     return inputs
 
 
-__all__ = ["Verdict", "Part", "FunctionPart", "TuplePart", "CustomPart", "outcome_error", "rng_inputs",
-           "probe_rng", "salted"]
+__all__ = ["Verdict", "Part", "FunctionPart", "TuplePart", "CustomPart", "ValuePart", "Mistake",
+           "outcome_error", "rng_inputs", "probe_rng", "salted"]
