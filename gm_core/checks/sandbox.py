@@ -56,14 +56,18 @@ import signal
 import sys
 import time
 import warnings
-from collections.abc import Iterator
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager, redirect_stderr, redirect_stdout
 from dataclasses import dataclass, replace
+from types import FrameType
+from typing import Any, TypeAlias, cast
 
 import numpy as np
+from typing_extensions import Required, TypedDict
 
 from gm_core.checks import channel
 from gm_core.checks.proctree import Adoption, become_subreaper, how_it_ended, kill_tree
+from gm_core.checks.protocol import JSON
 
 try:
     import resource
@@ -129,6 +133,21 @@ def using_settings(settings: SandboxSettings) -> Iterator[SandboxSettings]:
         apply_settings(previous)
 
 
+#: A probe: ``probe(answer) -> plain data``; the answer is whatever the student handed in.
+Probe: TypeAlias = Callable[[Any], Any]
+
+
+class ProbeOutcome(TypedDict, total=False):
+    """One probe's outcome (see the module docstring): its kind ``k``; ``v``, the probe's plain
+    value (``ok`` only: decoded numbers, text, float arrays, lists and dicts, or their JSON form
+    before :func:`decode_outcome`); ``m``, a message; ``x``, what more there is to say."""
+
+    k: Required[str]
+    v: Any
+    m: str
+    x: str
+
+
 class Wrong(Exception):
     """Raised inside a checker with a friendly message when the answer is wrong."""
 
@@ -141,7 +160,7 @@ class AlarmSignal(BaseException):
     """Raised in the worker when SIGALRM arrives (``signal.alarm`` or a timer in student code)."""
 
 
-def _on_alarm(signum, frame):
+def _on_alarm(signum: int, frame: FrameType | None) -> None:
     raise AlarmSignal()
 
 
@@ -156,7 +175,7 @@ def set_time_limit(seconds: float) -> None:
     apply_settings(replace(_settings, time_limit=s))
 
 
-def safe_text(exc, limit=200):
+def safe_text(exc: object, limit: int = 200) -> str:
     """str(exc), or a placeholder when even that fails (a hostile __str__)."""
     try:
         text = str(exc)
@@ -167,7 +186,8 @@ def safe_text(exc, limit=200):
     return text[:limit]
 
 
-def safe_name(exc):
+def safe_name(exc: object) -> str:
+    """The name of ``exc``'s type, or "Exception" when even that fails."""
     try:
         name = type(exc).__name__
         return name if isinstance(name, str) else "Exception"
@@ -176,7 +196,7 @@ def safe_name(exc):
 
 
 # ------------------------------------------------------------------------------ plain data
-def encode(value):
+def encode(value: object) -> JSON:
     """Plain data -> JSON-able (numpy arrays tagged); anything else becomes a short description."""
     if value is None or isinstance(value, (bool, str)):
         return value
@@ -195,7 +215,8 @@ def encode(value):
     raise TypeError(f"a probe returned {type(value).__name__}, which is not plain data")
 
 
-def decode(data):
+def decode(data: JSON) -> Any:
+    """JSON from :func:`encode` -> plain data (float arrays, lists, dicts, numbers, text)."""
     if isinstance(data, list):
         return [decode(v) for v in data]
     if isinstance(data, dict):
@@ -209,7 +230,7 @@ def decode(data):
 
 
 # ------------------------------------------------------------------------------ one probe
-def _run_probe(probe, answer, forked=False):
+def _run_probe(probe: Probe, answer: Any, forked: bool = False) -> ProbeOutcome:
     """Run one probe, turning whatever it does into an outcome dict. In this process (not
     ``forked``) Ctrl-C still interrupts; in the worker it becomes an outcome like any other."""
     try:
@@ -239,7 +260,7 @@ def _run_probe(probe, answer, forked=False):
         return {"k": "error", "m": safe_name(exc), "x": safe_text(exc)}
 
 
-def _truncate(text):
+def _truncate(text: str) -> str:
     max_lines, max_chars = _settings.max_output_lines, _settings.max_output_chars
     lines = text.splitlines()
     cut = len(lines) > max_lines or len(text) > max_chars
@@ -249,7 +270,7 @@ def _truncate(text):
     return text
 
 
-def _quiet_display_in_child():
+def _quiet_display_in_child() -> None:
     """In the child, send IPython display calls to the captured stdout, not the kernel's socket."""
     ip_mod = sys.modules.get("IPython")
     if ip_mod is None:
@@ -263,7 +284,7 @@ def _quiet_display_in_child():
         pass
 
 
-def _limit_memory():
+def _limit_memory() -> None:
     """Cap the worker's address space at what it has now plus the settings' ``memory_mb`` (Linux)."""
     budget = _settings.memory_mb
     if resource is None or not budget or budget <= 0:
@@ -281,7 +302,7 @@ def _limit_memory():
         pass
 
 
-def _child(probes, answer, wfd):
+def _child(probes: list[Probe], answer: Any, wfd: int) -> None:
     """The worker: run every probe, one JSON line each, then the captured output; then exit."""
     buf = io.StringIO()
     try:
@@ -301,7 +322,7 @@ def _child(probes, answer, wfd):
         os._exit(0)
 
 
-def _keeper(probes, answer, wfd):
+def _keeper(probes: list[Probe], answer: Any, wfd: int) -> None:
     """The fork's first process: own session and process group, subreaper of all below; forks
     the worker, reports how it ended, and reaps every descendant until none is left."""
     try:
@@ -327,13 +348,13 @@ def _keeper(probes, answer, wfd):
         os._exit(0)
 
 
-def _can_fork():
+def _can_fork() -> bool:
     return hasattr(os, "fork") and os.environ.get("GM_CHECKS_NO_FORK", "") not in ("1", "true")
 
 
-def _in_process(probes, answer, raw=False):
+def _in_process(probes: list[Probe], answer: Any, raw: bool = False) -> tuple[list[ProbeOutcome], str]:
     buf = io.StringIO()
-    outcomes = []
+    outcomes: list[ProbeOutcome] = []
     with redirect_stdout(buf), redirect_stderr(buf):
         for probe in probes:
             # copies, so a function that edits its input cannot change what later probes see
@@ -345,11 +366,13 @@ def _in_process(probes, answer, raw=False):
     return (outcomes if raw else [decode_outcome(o) for o in outcomes]), _truncate(buf.getvalue())
 
 
-def decode_outcome(o):
+def decode_outcome(o: object) -> ProbeOutcome:
+    """An outcome as the judges read it (``v`` decoded), from its JSON form; anything else, or
+    a value that cannot be decoded, is a crash ("unreadable result")."""
     if not isinstance(o, dict) or o.get("k") not in (
             "ok", "wrong", "unattempted", "error", "timeout", "crash", "skipped"):
         return {"k": "crash", "m": "unreadable result"}
-    out = {"k": o["k"], "m": o.get("m", ""), "x": o.get("x", "")}
+    out: ProbeOutcome = {"k": o["k"], "m": o.get("m", ""), "x": o.get("x", "")}
     if o["k"] == "ok":
         try:
             out["v"] = decode(o.get("v"))
@@ -358,7 +381,8 @@ def decode_outcome(o):
     return out
 
 
-def collect(answer, probes, time_limit=None, raw=False):
+def collect(answer: Any, probes: Iterable[Probe], time_limit: float | None = None,
+            raw: bool = False) -> tuple[list[ProbeOutcome], str]:
     """Run ``probe(answer)`` for every probe, each under the time limit; return (outcomes, output).
 
     Outcomes are decoded dicts (see the module docstring), one per probe, in order; with
@@ -372,8 +396,7 @@ def collect(answer, probes, time_limit=None, raw=False):
     if not probes:
         return [], ""
     if not _can_fork():
-        outcomes, output = _in_process(probes, answer, raw)
-        return outcomes, output
+        return _in_process(probes, answer, raw)
     rfd, wfd = os.pipe()
     adoption = Adoption().start()   # orphans of the probe tree come to this process, not init
     try:
@@ -389,7 +412,8 @@ def collect(answer, probes, time_limit=None, raw=False):
         os.close(rfd)
         _keeper(probes, answer, wfd)
     os.close(wfd)
-    outcomes, output, pending = [], "", b""
+    outcomes: list[ProbeOutcome] = []
+    output, pending = "", b""
     deadline = time.monotonic() + limit
     ended, status, done = False, None, False
     try:
@@ -419,7 +443,8 @@ def collect(answer, probes, time_limit=None, raw=False):
                     status = o.get("v") if isinstance(o.get("v"), int) else None
                     ended = True              # the worker died before it was done
                     break
-                outcomes.append(o if raw and isinstance(o, dict) else decode_outcome(o))
+                # raw: the JSON form, read strictly by the grader's decoder in its own process
+                outcomes.append(cast(ProbeOutcome, o) if raw and isinstance(o, dict) else decode_outcome(o))
                 deadline = time.monotonic() + limit  # the next probe gets its own limit
     finally:
         os.close(rfd)
@@ -430,5 +455,5 @@ def collect(answer, probes, time_limit=None, raw=False):
             outcomes.append({"k": "crash", "m": "", "x": how_it_ended(status)})
         else:
             outcomes.append({"k": "timeout", "m": f"{limit:g}", "x": ""})
-        outcomes += [{"k": "skipped", "m": "", "x": ""}] * (len(probes) - len(outcomes))
+        outcomes += [{"k": "skipped", "m": "", "x": ""} for _ in range(len(probes) - len(outcomes))]
     return outcomes, output
