@@ -8,6 +8,7 @@ judging run in the checking process. Independent routes are in tests/test_geomet
 from __future__ import annotations
 
 import functools
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -18,14 +19,19 @@ from gm_core.checks.answers import fmt_value
 from gm_core.checks.choice import ChoicePart
 from gm_core.checks.exercise import Exercise
 from gm_core.checks.parts import CustomPart, Mistake, ValuePart, outcome_error
-from gm_core.checks.sandbox import Wrong
+from gm_core.checks.sandbox import ProbeOutcome, Wrong
+
+if TYPE_CHECKING:
+    from gm_core.systems import LowReSwimmer
+    from gm_core.systems.reframed import Reframed
+    from gm_core.validation import FloatArray
 
 __all__ = ["ex4_1", "ex4_2", "swimmer", "swimmer_4_1", "SQUARE_4_1", "GAITS_4_1"]
 
 
 # ============================================================================ shared set-up
 @functools.lru_cache(maxsize=1)
-def swimmer():
+def swimmer() -> LowReSwimmer:
     """The swimmer of both exercises: LowReSwimmer() (links 1, drag ratio 2)."""
     from gm_core.systems import LowReSwimmer
 
@@ -38,7 +44,7 @@ SQUARE_4_1 = ((-2.5, 2.5), (-2.5, 2.5))
 
 
 @functools.lru_cache(maxsize=1)
-def swimmer_4_1():
+def swimmer_4_1() -> Reframed:
     """The swimmer of exercise 4.1: LowReSwimmer() in its minimum-perturbation frame over SQUARE_4_1.
 
     In that frame the curvature map is a faithful picture of the motion (notebook 10, section 4):
@@ -50,7 +56,7 @@ def swimmer_4_1():
 
 
 @functools.lru_cache(maxsize=1)
-def _stokes_A():
+def _stokes_A() -> tuple[FloatArray, FloatArray]:
     """(Stokes estimate, exact net displacement) of gait A: the references of 4.1(b)."""
     from gm_core.geometry import stokes_estimate
     from gm_core.systems.gaits import circle_gait
@@ -159,16 +165,16 @@ ex4_1 = Exercise("4.1", "Which gait moves further? Reading a curvature map", [
 TURN_MIN, DRIFT_MAX = 0.2, 0.02
 
 
-def _sample_gait(answer):
+def _sample_gait(answer: Any) -> FloatArray:
     """Student side of 4.2(a): the gait sampled over one period (:mod:`gm_core.checks.gait_samples`)."""
     return gait_samples.sample(answer, 2, "circle_gait(...)")
 
 
-def _judge_42a(outcomes):
+def _judge_42a(outcomes: list[ProbeOutcome]) -> str:
     from gm_core.geometry import drift_and_turn
     from gm_core.systems.gaits import Gait
 
-    o = outcomes[0] if outcomes else {"k": "crash", "m": ""}
+    o: ProbeOutcome = outcomes[0] if outcomes else {"k": "crash", "m": ""}
     if o["k"] != "ok":
         outcome_error(o, "your gait", "the times of one period")
     r = gait_samples.grid(o["v"], 2)
@@ -192,16 +198,16 @@ def _judge_42a(outcomes):
 class _CircleGait:
     """circle_gait(radius, centre), built only when called (keeps the import of this module light)."""
 
-    def __init__(self, radius, centre=(0.0, 0.0)):
+    def __init__(self, radius: float, centre: tuple[float, float] = (0.0, 0.0)) -> None:
         self.radius, self.centre = radius, centre
 
-    def __call__(self, t):
+    def __call__(self, t: npt.ArrayLike) -> FloatArray:
         from gm_core.systems.gaits import circle_gait
 
         return circle_gait(self.radius, self.centre)(t)
 
     @override
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"circle_gait({self.radius}, {self.centre})"
 
 
