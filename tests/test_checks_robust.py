@@ -2,12 +2,20 @@
 import os
 import sys
 import time
+from dataclasses import FrozenInstanceError, replace
 
 import numpy as np
 import pytest
 
 from gm_core import SE2, checks
-from gm_core.checks.sandbox import TIME_LIMIT, set_time_limit
+from gm_core.checks.sandbox import (
+    SandboxSettings,
+    apply_settings,
+    collect,
+    current_settings,
+    set_time_limit,
+    using_settings,
+)
 from gm_core.checks.store import FAILED, PASSED
 
 pytestmark = pytest.mark.usefixtures("clean")
@@ -15,10 +23,8 @@ pytestmark = pytest.mark.usefixtures("clean")
 
 @pytest.fixture
 def short_limit():
-    old = TIME_LIMIT[0]
-    set_time_limit(0.5)
-    yield
-    set_time_limit(old)
+    with using_settings(replace(current_settings(), time_limit=0.5)):
+        yield
 
 
 def test_endless_loop_is_stopped_and_the_kernel_stays_usable(short_limit):
@@ -42,6 +48,25 @@ def test_time_limit_is_per_check_call_and_configurable():
     assert "took longer than 0.2 s" in v.message
     with pytest.raises(ValueError):
         set_time_limit(-1)
+
+
+def test_sandbox_settings_change_only_through_the_settings_functions():
+    before = current_settings()
+    with pytest.raises(FrozenInstanceError):
+        before.time_limit = 1.0  # type: ignore[misc]
+    with pytest.raises(ValueError, match="time_limit"):
+        SandboxSettings(time_limit=0)
+    with using_settings(replace(before, time_limit=0.2, max_output_lines=2)) as inside:
+        assert current_settings() is inside
+        v = checks.ex1_4.a.check(lambda xi: time.sleep(0.4) or SE2.exp(xi), quiet=True)
+        assert "took longer than 0.2 s" in v.message
+        _, output = collect(None, [lambda a: print("1\n2\n3\n4")])
+        assert output.startswith("1\n2\n...") and "4 lines in all" in output
+        set_time_limit(3)
+        assert current_settings() == replace(inside, time_limit=3.0)
+    assert current_settings() is before
+    assert apply_settings(apply_settings(replace(before, memory_mb=0))) == replace(before, memory_mb=0)
+    assert current_settings() is before
 
 
 @pytest.mark.parametrize("exc", [SystemExit(3), GeneratorExit(), StopIteration(), MemoryError()])

@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 
 from gm_core import SE2, checks
-from gm_core.checks.sandbox import MEMORY_LIMIT_MB, collect
+from gm_core.checks.sandbox import collect, current_settings
 from gm_core.checks.store import FAILED, PASSED
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -272,7 +272,7 @@ def _alarm(xi):
 
 
 def _too_much_memory(xi):
-    return bytearray((MEMORY_LIMIT_MB[0] + 1024) * 2 ** 20)
+    return bytearray((current_settings().memory_mb + 1024) * 2 ** 20)
 
 
 def _endless_recursion(xi):
@@ -311,7 +311,7 @@ CASES = {
 
 
 def test_every_way_a_call_can_stop_has_its_own_friendly_message():
-    if not MEMORY_LIMIT_MB[0]:
+    if not current_settings().memory_mb:
         pytest.skip("the memory limit is turned off (GM_CHECKS_MEMORY_MB=0)")
     messages = {}
     for f, words in CASES.items():

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import importlib
 import re
+from typing import TYPE_CHECKING, Any
 
 from gm_core.checks.choice import ChoicePart
 from gm_core.checks.exercise import (
@@ -37,12 +38,15 @@ from gm_core.checks.exercise import (
     reset_progress,
     solutions_viewed,
 )
-from gm_core.checks.parts import CustomPart, FunctionPart, Part, TuplePart, Verdict
+from gm_core.checks.parts import CustomPart, FunctionPart, Mistake, Part, TuplePart, ValuePart, Verdict
 from gm_core.checks.sandbox import set_time_limit
 from gm_core.checks.store import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED, pending_updates
 
 #: The modules that declare exercises (each ``Exercise(...)`` registers itself on import).
 EXERCISE_MODULES = ("ex1", "ex2", "ex3", "ex4", "ex5")
+
+if TYPE_CHECKING:
+    import ipywidgets
 
 for _name in EXERCISE_MODULES:
     importlib.import_module(f".{_name}", __name__)
@@ -51,11 +55,12 @@ __all__ = [
     "progress", "progress_widget", "part_progress", "reset_progress", "exercise", "exercise_ids",
     "Verdict", "EXERCISE_IDS", "PASSED", "FAILED", "UNATTEMPTED", "IN_PROGRESS", "set_time_limit",
     "course_updates", "pending_updates", "solutions_viewed",
-    "Part", "FunctionPart", "TuplePart", "ChoicePart", "CustomPart", "Exercise",
+    "Part", "FunctionPart", "TuplePart", "ChoicePart", "CustomPart", "ValuePart", "Mistake", "Exercise",
 ] + ["ex" + i.replace(".", "_") for i in exercise_ids()]
 
 
-def __getattr__(name):
+def __getattr__(name: str) -> Any:
+    # Any: exN_M is an Exercise and EXERCISE_IDS a tuple of ids; one signature cannot say which
     # EXERCISE_IDS and every exN_M come from the registry, so a new chapter module needs no edit here
     if name == "EXERCISE_IDS":
         return exercise_ids()
@@ -65,18 +70,18 @@ def __getattr__(name):
     raise AttributeError(f"module 'gm_core.checks' has no attribute {name!r}")
 
 
-def exercise(ex_id):
+def exercise(ex_id: str) -> Exercise:
     """The exercise object for an id such as "1.4"."""
     return REGISTRY[str(ex_id)]
 
 
-def progress_widget():
+def progress_widget() -> ipywidgets.VBox:
     """A small table of progress() (all exercises, saved record), with pending course updates."""
     from gm_core.checks.views import progress_widget as _pw
     return _pw()
 
 
-def course_updates():
+def course_updates() -> None:
     """Show the course updates waiting in your workspace (once), e.g. on the start page.
 
     Each entry is an exercise you had edited when the course changed it: your file is kept, and

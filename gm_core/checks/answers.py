@@ -6,26 +6,34 @@ handed in into float arrays, or raise :class:`Wrong` / :class:`Unattempted` with
 from __future__ import annotations
 
 import warnings
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
 
 from gm_core.checks.sandbox import Unattempted, Wrong
 
+if TYPE_CHECKING:
+    import sympy
 
-def is_starter(value):
+
+def is_starter(value: object) -> bool:
     """True for the untouched starter values None and Ellipsis."""
     return value is None or value is Ellipsis
 
 
-def is_sympy(value):
+def is_sympy(value: object) -> bool:
+    """True for an object of sympy (an expression, a matrix, an equation, a number)."""
     return type(value).__module__.split(".")[0] == "sympy"
 
 
-def _article(word):
+def _article(word: str) -> str:
     return "an" if word[:1].lower() in "aeiou" else "a"
 
 
-def describe(value):
+def describe(value: object) -> str:
+    """A short description of ``value`` for a message: "a numpy array of shape (3,)", "a dict"."""
     t = type(value).__name__
     if isinstance(value, np.ndarray):
         return f"a numpy array of shape {value.shape}"
@@ -36,7 +44,7 @@ def describe(value):
     return f"{_article(t)} {t}"
 
 
-def fmt_value(a):
+def fmt_value(a: object) -> str:
     """A plain, short text for a number or array (never ``np.float64(1.0)``)."""
     if isinstance(a, np.ndarray):
         return np.array2string(a, precision=4, separator=", ", suppress_small=True)
@@ -51,11 +59,12 @@ def fmt_value(a):
     return repr(a)
 
 
-def fmt_args(args):
+def fmt_args(args: Sequence[object]) -> str:
+    """``args`` as a parenthesised list of short values: "(1, [0, 1])"."""
     return "(" + ", ".join(fmt_value(a) for a in args) + ")"
 
 
-def _sympy_to_list(value):
+def _sympy_to_list(value: Any) -> Any:
     if hasattr(value, "tolist"):
         return value.tolist()
     if isinstance(value, (list, tuple)):
@@ -63,7 +72,7 @@ def _sympy_to_list(value):
     return value
 
 
-def to_numbers(value, what="your answer"):
+def to_numbers(value: Any, what: str = "your answer") -> np.ndarray:
     """Numbers, lists, numpy arrays, sympy numbers/matrices (or lists of them) -> float array.
 
     Raises :class:`Wrong` for strings, leftover symbols, ragged lists and complex numbers with a
@@ -75,7 +84,7 @@ def to_numbers(value, what="your answer"):
             callable(value) and not is_sympy(value) and not isinstance(value, np.ndarray)):
         raise Wrong(f"{what} is {describe(value)}; a number or an array of numbers was expected.")
     if is_sympy(value) or isinstance(value, (list, tuple)):
-        free = set()
+        free: set[str] = set()
         stack = [value]
         while stack:
             v = stack.pop()
@@ -111,7 +120,7 @@ def to_numbers(value, what="your answer"):
     return arr
 
 
-def to_array(value, what="your answer"):
+def to_array(value: Any, what: str = "your answer") -> np.ndarray:
     """Like :func:`to_numbers`, but NaN or infinite entries are an error too."""
     arr = to_numbers(value, what)
     if arr.size and not np.all(np.isfinite(arr)):
@@ -119,7 +128,7 @@ def to_array(value, what="your answer"):
     return arr
 
 
-def match_shape(got, expected_shape, what="your answer"):
+def match_shape(got: np.ndarray, expected_shape: Sequence[int], what: str = "your answer") -> np.ndarray:
     """Return ``got`` reshaped to ``expected_shape`` if it only differs by singleton axes."""
     if got.shape == tuple(expected_shape):
         return got
@@ -133,7 +142,7 @@ def match_shape(got, expected_shape, what="your answer"):
     raise Wrong(f"{what} has shape {got.shape}, but shape {tuple(expected_shape)} was expected.")
 
 
-def sympy_expr(answer, what="your expression"):
+def sympy_expr(answer: Any, what: str = "your expression") -> Any:
     """A sympy expression or Matrix from a sympy answer, a (nested) list of them, or ``Eq``."""
     import sympy as sp
 
@@ -147,7 +156,7 @@ def sympy_expr(answer, what="your expression"):
     return answer
 
 
-def equation_value(eq, names):
+def equation_value(eq: sympy.Equality, names: Sequence[str]) -> sympy.Expr:
     """``Eq(lhs, rhs)``: the right-hand side when the left is a name for the result, else lhs - rhs."""
     lhs, rhs = eq.lhs, eq.rhs
     if getattr(lhs, "is_Symbol", False) and str(lhs) not in names:
@@ -158,7 +167,8 @@ def equation_value(eq, names):
     return lhs - rhs
 
 
-def sympy_function(answer, names, flat=None, what="your expression"):
+def sympy_function(answer: Any, names: Sequence[str], flat: Callable[..., Sequence[Any]] | None = None,
+                   what: str = "your expression") -> Callable[..., Any] | None:
     """A numeric function of the part's arguments from a sympy answer (symbols matched by name).
 
     Returns None if ``answer`` is not a sympy object after all. ``flat(*args)`` maps the part's
@@ -183,7 +193,7 @@ def sympy_function(answer, names, flat=None, what="your expression"):
         raise Wrong(f"{what} could not be evaluated numerically ({type(exc).__name__}).") from None
     flat = flat or (lambda *a: a)
 
-    def call(*args):
+    def call(*args: Any) -> Any:
         out = f(*flat(*args))
         if isinstance(out, (list, tuple)):
             out = np.array(np.broadcast_arrays(*[np.asarray(o) for o in out])
@@ -193,7 +203,8 @@ def sympy_function(answer, names, flat=None, what="your expression"):
     return call
 
 
-def sample_gait(answer, joints: int, example: str, n: int = 256, extra=()):
+def sample_gait(answer: Any, joints: int, example: str, n: int = 256,
+                extra: npt.ArrayLike = ()) -> np.ndarray:
     """A student's gait (a Gait, a callable t -> r(t) of period 1, or an array of shapes (K, joints))
     sampled at ``n + 1`` equal times over one period, then at the fractions ``extra`` of the
     period (:mod:`gm_core.checks.gait_samples` draws them from the probe salt): the student side of the gait

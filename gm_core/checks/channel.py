@@ -17,8 +17,9 @@ per-call limit), then the :class:`~.protocol.Evidence` of the call.
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from gm_core.checks.protocol import (
     MAX_OUTPUT,
@@ -107,7 +108,7 @@ def begin(part: Part) -> None:
         _send(CheckBegun(f"{_exercise_id(part)}/{part.name}"))
 
 
-def _outcome(raw: Any) -> Outcome:
+def _outcome(raw: object) -> Outcome:
     """A probe's plain result as an Outcome; one the grader could not read is a crash (as the
     student's own check sees it)."""
     try:
@@ -116,7 +117,7 @@ def _outcome(raw: Any) -> Outcome:
         return Outcome(OutcomeKind.CRASH, message="unreadable result")
 
 
-def emit(part: Part, outcomes: list[dict[str, Any]] | str, output: str = "") -> None:
+def emit(part: Part, outcomes: Sequence[Mapping[str, object]] | str, output: str = "") -> None:
     """Send the evidence of one check call: the probes' plain outcomes (or ``"stopped"``), the
     captured output."""
     if not active():

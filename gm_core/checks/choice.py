@@ -2,18 +2,21 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterable
-from typing import Any
+from collections.abc import Iterable
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from typing_extensions import override
 
 from gm_core.checks.answers import describe, is_starter
 from gm_core.checks.parts import Part, outcome_error
-from gm_core.checks.sandbox import Unattempted, Wrong
+from gm_core.checks.sandbox import Probe, ProbeOutcome, Unattempted, Wrong
+
+if TYPE_CHECKING:
+    import ipywidgets
 
 
-def _words(text):
+def _words(text: object) -> str:
     return re.sub(r"[^a-z0-9^+]+", " ", str(text).lower()).strip()
 
 
@@ -24,8 +27,8 @@ class ChoicePart(Part):
     that names none is not recorded as failed (the verdict asks for a letter).
     """
 
-    kind = "choice"
-    weight = 1.0
+    kind: str = "choice"
+    weight: float = 1.0
 
     def __init__(self, name: str, prompt: str, options: dict[str, str], correct: str | Iterable[str],
                  feedback: dict[str, str] | None = None, **kw: Any) -> None:
@@ -39,7 +42,7 @@ class ChoicePart(Part):
             self.wrong = [k for k in self.options if k not in self.correct]
 
     @staticmethod
-    def _read(answer):
+    def _read(answer: Any) -> int | str:
         """Student side: the answer as plain data (a stripped string or an int)."""
         if is_starter(answer):
             raise Unattempted()
@@ -52,7 +55,7 @@ class ChoicePart(Part):
         raise Wrong(f"your answer is {describe(answer)}; give one of the option letters.")
 
     @override
-    def probes(self) -> list[Callable[[Any], Any]]:
+    def probes(self) -> list[Probe]:
         return [self._read]
 
     def letter(self, value: int | str) -> str | None:
@@ -72,8 +75,8 @@ class ChoicePart(Part):
         return None
 
     @override
-    def judge(self, outcomes: list[dict[str, Any]]) -> str:
-        o = outcomes[0] if outcomes else {"k": "crash", "m": ""}
+    def judge(self, outcomes: list[ProbeOutcome]) -> str:
+        o: ProbeOutcome = outcomes[0] if outcomes else {"k": "crash", "m": ""}
         if o["k"] != "ok":
             outcome_error(o, "your answer", "no arguments")
         value = o["v"]
@@ -97,7 +100,7 @@ class ChoicePart(Part):
         rows = [f"| {k} | {text} |" for k, text in self.options.items()]
         return "| letter | statement |\n|---|---|\n" + "\n".join(rows)
 
-    def widget(self) -> Any:
+    def widget(self) -> ipywidgets.VBox:
         """Radio buttons, a Check button and feedback (ipywidgets)."""
         from gm_core.checks.views import choice_widget
         return choice_widget(self)

@@ -11,7 +11,8 @@ LABELS = {PASSED: "Correct", FAILED: "Not yet", UNATTEMPTED: "Unattempted", IN_P
           "hint": "Hint", "solution": "Solution", "notice": "Course update"}
 
 
-def in_notebook():
+def in_notebook() -> bool:
+    """True inside a Jupyter kernel (IPython with a kernel), where checkers show HTML boxes."""
     try:
         from IPython import get_ipython
     except Exception:  # noqa: BLE001 - IPython is always there with Jupyter
@@ -20,7 +21,9 @@ def in_notebook():
     return ip is not None and hasattr(ip, "kernel")
 
 
-def box_html(kind, title, message, extra=""):
+def box_html(kind: str, title: str, message: str, extra: str = "") -> str:
+    """The HTML of a message box: ``kind`` (a status, "hint", "solution", "notice") sets its colour
+    and label; ``extra``, what the student's code printed, is folded away under the message."""
     color = COLORS.get(kind, "#333")
     label = LABELS.get(kind, kind)
     body = html.escape(message).replace("\n", "<br>")
@@ -33,7 +36,7 @@ def box_html(kind, title, message, extra=""):
             f'</span><br>{body}{more}</div>')
 
 
-def show(kind, title, message, extra=""):
+def show(kind: str, title: str, message: str, extra: str = "") -> None:
     """Display a coloured message box in a notebook, or print it as plain text elsewhere. Once."""
     if in_notebook():
         try:

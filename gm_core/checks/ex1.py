@@ -1,10 +1,11 @@
 """Checkers for the chapter 1 exercises (1.1-1.5): configuration spaces, lifted actions, exp."""
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import Any
+from collections.abc import Callable, Iterator, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
 
 from gm_core.checks.answers import is_starter, is_sympy, to_numbers
 from gm_core.checks.choice import ChoicePart
@@ -18,8 +19,16 @@ from gm_core.checks.exp_routes import (
     routes_probes,
 )
 from gm_core.checks.parts import CustomPart, FunctionPart, TuplePart, outcome_error, probe_rng, rng_inputs
-from gm_core.checks.sandbox import Unattempted, Wrong
+from gm_core.checks.sandbox import Probe, ProbeOutcome, Unattempted, Wrong
 from gm_core.groups import SE2
+
+if TYPE_CHECKING:
+    import ipywidgets
+
+    from gm_core.validation import FloatArray
+
+#: A wrong function a part knows, with the message it deserves (FunctionPart's ``mistakes``).
+_Mistakes = Sequence[tuple[Callable[..., npt.ArrayLike], str]]
 
 # ============================================================================ 1.1
 ex1_1 = Exercise("1.1", "Configuration spaces of a universal joint and an offset universal joint", [
@@ -74,12 +83,12 @@ ex1_1 = Exercise("1.1", "Configuration spaces of a universal joint and an offset
 
 
 # ============================================================================ 1.2
-def _diag(h, g):
+def _diag(h: npt.ArrayLike, g: npt.ArrayLike) -> FloatArray:
     h = np.asarray(h, dtype=float)
     return np.diag(h)
 
 
-def _pos_pair(rng):
+def _pos_pair(rng: np.random.Generator) -> tuple[FloatArray, FloatArray]:
     return np.exp(rng.uniform(-1.5, 1.5, 2)), np.exp(rng.uniform(-1.5, 1.5, 2))
 
 
@@ -88,7 +97,7 @@ _scaling_inputs = rng_inputs(12, 6, _pos_pair,
                              edges=[(_ONE, np.array([2.0, 3.0])), (np.array([0.5, 4.0]), _ONE)])
 
 
-def _diag_params(out, args):
+def _diag_params(out: Any, args: tuple[Any, ...]) -> FloatArray:
     """Accept the two diagonal entries or the full 2x2 matrix (which must be diagonal)."""
     arr = to_numbers(out, "the value your function returned")
     if arr.shape == (2, 2):
@@ -102,11 +111,11 @@ def _diag_params(out, args):
 _hg_names = ("h1", "h2", "g1", "g2")
 
 
-def _hg_flat(h, g):
+def _hg_flat(h: Sequence[float], g: Sequence[float]) -> tuple[float, float, float, float]:
     return (h[0], h[1], g[0], g[1])
 
 
-def _lifted_part(name, side):
+def _lifted_part(name: str, side: str) -> FunctionPart:
     which = "T_g L_h = d(h g)/d g" if side == "left" else "T_g R_h = d(g h)/d g"
     return FunctionPart(
         name, f"The {side} lifted action {which} for the scaling group",
@@ -145,7 +154,7 @@ ex1_2 = Exercise("1.2", "Group and lifted actions of the scaling matrices diag(R
 
 
 # ============================================================================ 1.3
-def _rplus_inputs():
+def _rplus_inputs() -> Iterator[tuple[float]]:
     rng = probe_rng(13)
     yield (1.0,)
     yield (0.05,)
@@ -154,7 +163,7 @@ def _rplus_inputs():
         yield (float(np.exp(rng.uniform(-2, 2))),)
 
 
-def _se2_inputs():
+def _se2_inputs() -> Iterator[tuple[FloatArray]]:
     yield (np.zeros(3),)
     yield (np.array([1.0, 2.0, 0.0]),)
     yield (np.array([0.0, 0.0, np.pi]),)
@@ -163,37 +172,38 @@ def _se2_inputs():
         yield (SE2.random(rng),)
 
 
-def _rp(ref, label, mistakes=()):
+def _rp(ref: Callable[[float], float], label: str, mistakes: _Mistakes = ()) -> tuple[str, FunctionPart]:
     return label, FunctionPart(label, label, ref=lambda g: np.array([[ref(g)]]), inputs=_rplus_inputs,
                                arg_names=("g",), shape=(1, 1), mistakes=mistakes)
 
 
-def _se(ref, label, mistakes=()):
+def _se(ref: Callable[[FloatArray], FloatArray], label: str,
+        mistakes: _Mistakes = ()) -> tuple[str, FunctionPart]:
     return label, FunctionPart(label, label, ref=ref, inputs=_se2_inputs, arg_names=("g",),
                                shape=(3, 3), sympy_names=("x", "y", "theta"),
                                sympy_args=lambda g: (g[0], g[1], g[2]), mistakes=mistakes)
 
 
-def _TgL_ginv(g):
+def _TgL_ginv(g: FloatArray) -> FloatArray:
     return SE2.left_lifted_action(SE2.inverse(g), g)
 
 
-def _TeL_g(g):
+def _TeL_g(g: FloatArray) -> FloatArray:
     return SE2.left_lifted_action(g, SE2.identity())
 
 
-def _TgR_ginv(g):
+def _TgR_ginv(g: FloatArray) -> FloatArray:
     return SE2.right_lifted_action(SE2.inverse(g), g)
 
 
-def _TeR_g(g):
+def _TeR_g(g: FloatArray) -> FloatArray:
     return SE2.right_lifted_action(g, SE2.identity())
 
 
 _LABELS = ("T_g L_{g^-1}", "T_e L_g", "T_g R_{g^-1}", "T_e R_g")
 
 
-def _swap_msg(a, b):
+def _swap_msg(a: str, b: str) -> str:
     return f"this is {b}, not {a}: the two are inverses of each other, so check which one you meant."
 
 
@@ -201,14 +211,14 @@ _PRODUCT_LABELS = ("T_g L_{g^-1} T_e L_g on (R+, x)", "T_g R_{g^-1} T_e R_g on (
                    "T_g L_{g^-1} T_e L_g on SE(2)", "T_g R_{g^-1} T_e R_g on SE(2)")
 
 
-def _product_probes() -> list[Callable[[Any], Any]]:
+def _product_probes() -> list[Probe]:
     """One probe per product of part (c)."""
-    def probe_of(i: int) -> Callable[[Any], Any]:
+    def probe_of(i: int) -> Probe:
         return lambda ans: _product_probe(ans, i)
     return [probe_of(i) for i in range(4)]
 
 
-def _product_probe(answer, i):
+def _product_probe(answer: Any, i: int) -> list[list[str] | FloatArray | None]:
     """Student side: the i-th product as given: (symbols left in it, its numbers or None)."""
     if is_starter(answer):
         raise Unattempted()
@@ -232,7 +242,7 @@ def _product_probe(answer, i):
     return [[], to_numbers(item, _PRODUCT_LABELS[i])]
 
 
-def _product_judge(outcomes):
+def _product_judge(outcomes: list[ProbeOutcome]) -> str:
     for i, o in enumerate(outcomes):
         if o["k"] != "ok":
             outcome_error(o, "your products", "")
@@ -368,7 +378,7 @@ ex1_4 = Exercise("1.4", "The exponential map on SE(2)", [
 class SlideRuleExercise(Exercise):
     """Exercise 1.5 comes with an interactive slide rule: ``ex1_5.slide_rule(a, b)``."""
 
-    def slide_rule(self, a=2.0, b=3.0):
+    def slide_rule(self, a: float = 2.0, b: float = 3.0) -> ipywidgets.VBox:
         """Two log scales that slide past each other (ipywidgets; the course's slide rule drawing)."""
         from gm_core.checks.views import slide_rule
         return slide_rule(a, b)

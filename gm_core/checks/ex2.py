@@ -7,8 +7,11 @@ from __future__ import annotations
 
 import functools
 import inspect
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
 from typing_extensions import override
 
 from gm_core.chains.three_link import com_frame, com_frame_jacobians, three_link_jacobians
@@ -24,14 +27,22 @@ from gm_core.checks.answers import (
 from gm_core.checks.choice import ChoicePart  # noqa: F401 - kept for chapter modules that add choices
 from gm_core.checks.exercise import Exercise
 from gm_core.checks.parts import CustomPart, FunctionPart, outcome_error, probe_rng, rng_inputs
-from gm_core.checks.sandbox import Unattempted, Wrong
+from gm_core.checks.sandbox import Probe, ProbeOutcome, Unattempted, Wrong
 from gm_core.groups import SE2
+
+if TYPE_CHECKING:
+    import sympy
+
+    from gm_core.validation import FloatArray
+
+#: A function of 2.2 (a reference or a known mistake).
+_ArrayFunction = Callable[..., npt.ArrayLike]
 
 # ============================================================================ 2.1
 _R2 = np.sqrt(2.0)
 
 
-def _scalar_fn(f, label):
+def _scalar_fn(f: Any, label: str) -> Callable[[FloatArray], Any]:
     """Student side: a constraint given as f(p), f(x, y, z), f(x, y, z=0), f(*p), a sympy
     expression in x, y, z or an equation Eq(lhs, rhs) (read as lhs - rhs)."""
     if is_starter(f):
@@ -41,7 +52,8 @@ def _scalar_fn(f, label):
         expr = f.lhs - f.rhs if isinstance(f, sp.Equality) else f
         if hasattr(expr, "free_symbols"):
             g = sympy_function(expr, ("x", "y", "z"), None, label)
-            return lambda p: g(p[0], p[1], p[2])
+            if g is not None:          # always: expr has free symbols
+                return lambda p: g(p[0], p[1], p[2])
     if not callable(f):
         raise Wrong(f"{label} is {describe(f)}; a function of the point p = (x, y, z) (or a sympy "
                     "expression in x, y, z) was expected.")
@@ -56,7 +68,7 @@ def _scalar_fn(f, label):
     return f
 
 
-def _pair(answer):
+def _pair(answer: Any) -> Sequence[Any]:
     if is_starter(answer):
         raise Unattempted()
     if not isinstance(answer, (tuple, list)) or len(answer) != 2:
@@ -69,7 +81,7 @@ def _pair(answer):
     return answer
 
 
-def _values(answer, i, points):
+def _values(answer: Any, i: int, points: FloatArray) -> FloatArray:
     """Student side: f_i at every point (NaN where it gives no single number)."""
     label = ("f1", "f2")[i]
     f = _scalar_fn(_pair(answer)[i], label)
@@ -88,13 +100,13 @@ def _values(answer, i, points):
     return out
 
 
-def _unit(rng, n):
+def _unit(rng: np.random.Generator, n: int) -> FloatArray:
     u = rng.normal(size=(n, 3))
     return u / np.linalg.norm(u, axis=1, keepdims=True)
 
 
 @functools.lru_cache(maxsize=4)
-def _grid(salt):
+def _grid(salt: int | None) -> dict[str, FloatArray]:
     """The points where 2.1's constraints are sampled: a sphere of random points, rays along random
     directions (and the poles), the circle, latitude rings and meridians of the sphere. In the
     student's kernel always the same; when grading, the random directions, the rings' longitudes,
@@ -129,22 +141,22 @@ def _grid(salt):
             "f1": f1, "f2": f2, "p1": p1, "p2": p2}
 
 
-def _points():
+def _points() -> dict[str, FloatArray]:
     return _grid(channel.probe_salt())
 
 
-def _zeros_along(values, scale):
+def _zeros_along(values: npt.ArrayLike, scale: float) -> list[int]:
     """Indices along a sampled curve where the function crosses or (nearly) touches zero."""
     v = np.asarray(values)
     tol = 1e-7 * scale
-    idx = set(np.flatnonzero(np.abs(v) <= tol))
+    idx = {int(i) for i in np.flatnonzero(np.abs(v) <= tol)}
     idx |= {i for i in range(len(v) - 1) if v[i] * v[i + 1] < 0}
     a = np.abs(v)
     idx |= {i for i in range(1, len(v) - 1) if a[i] <= a[i - 1] and a[i] <= a[i + 1] and a[i] < 1e-2 * scale}
     return sorted(idx)
 
 
-def _judge_2_1(outcomes):
+def _judge_2_1(outcomes: list[ProbeOutcome]) -> str:
     for o in outcomes:
         if o["k"] != "ok":
             outcome_error(o, "your constraint", "a point p")
@@ -206,7 +218,7 @@ def _judge_2_1(outcomes):
             "out exactly the circle x^2 + y^2 = 1, z = 1.")
 
 
-def _probes_2_1():
+def _probes_2_1() -> list[Probe]:
     G = _points()
     return [lambda ans: _values(ans, 0, G["f1"][G["p1"]]), lambda ans: _values(ans, 1, G["f2"][G["p2"]])]
 
@@ -228,18 +240,18 @@ ex2_1 = Exercise("2.1", "Holonomic constraints: the circle as a sphere cut by a 
 
 
 # ============================================================================ 2.2
-def _rp_world(alpha, delta, l1, l2, a):
+def _rp_world(alpha: float, delta: float, l1: float, l2: float, a: float) -> FloatArray:
     L = l1 + delta + l2
     c, s = np.cos(alpha), np.sin(alpha)
     return np.array([[-L * s - a * c, c], [L * c - a * s, s], [1.0, 0.0]])
 
 
-def _rp_body(alpha, delta, l1, l2, a):
+def _rp_body(alpha: float, delta: float, l1: float, l2: float, a: float) -> FloatArray:
     L = l1 + delta + l2
     return np.array([[-a, 1.0], [L, 0.0], [1.0, 0.0]])
 
 
-def _rp_make(rng):
+def _rp_make(rng: np.random.Generator) -> tuple[float, float, float, float, float]:
     return (float(rng.uniform(-np.pi, np.pi)), float(rng.uniform(0, 1)), float(rng.uniform(0.5, 2)),
             float(rng.uniform(0.5, 2)), float(rng.uniform(-0.6, 0.6)))
 
@@ -249,19 +261,20 @@ _rp_inputs = rng_inputs(22, 6, _rp_make, edges=[(0.3, 0.4, 1.0, 1.0, 0.0), (0.0,
 _RP_NAMES = ("alpha", "delta", "l1", "l2", "a")
 
 
-def _swapcols(f):
+def _swapcols(f: Callable[..., FloatArray]) -> Callable[..., FloatArray]:
     return lambda *args: f(*args)[:, ::-1]
 
 
-def _no_offset(f):
+def _no_offset(f: _ArrayFunction) -> _ArrayFunction:
     return lambda alpha, delta, l1, l2, a: f(alpha, delta, l1, l2, 0.0)
 
 
-def _flip_offset(f):
+def _flip_offset(f: _ArrayFunction) -> _ArrayFunction:
     return lambda alpha, delta, l1, l2, a: f(alpha, delta, l1, l2, -a)
 
 
-def _rp_mistakes(ref, other, other_msg, flip_msg):
+def _rp_mistakes(ref: Callable[..., FloatArray], other: _ArrayFunction, other_msg: str,
+                 flip_msg: str) -> list[tuple[_ArrayFunction, str]]:
     """The mistakes tried for either Jacobian of exercise 2.2: the other part's answer, the
     offset dropped or flipped, the columns swapped."""
     return [(other, other_msg),
@@ -306,36 +319,37 @@ ex2_2 = Exercise("2.2", "Jacobian of the offset rotary-prismatic arm", [
 
 
 # ============================================================================ 2.3
-def com_beta(alpha, lengths, weights=None):
+def com_beta(alpha: npt.ArrayLike, lengths: npt.ArrayLike, weights: npt.ArrayLike | None = None) -> FloatArray:
     """beta(alpha): the length-weighted CoM / mean-orientation frame, (3,); ex. 2.3a (gm_core.chains)."""
     return com_frame(alpha, lengths, weights)[0]
 
 
-def com_dbeta(alpha, lengths):
+def com_dbeta(alpha: npt.ArrayLike, lengths: npt.ArrayLike) -> FloatArray:
+    """d beta / d alpha (3, 2) of the CoM frame (gm_core.chains)."""
     return com_frame(alpha, lengths)[1]
 
 
-def three_link_body_jacobians(alpha, lengths):
+def three_link_body_jacobians(alpha: npt.ArrayLike, lengths: npt.ArrayLike) -> FloatArray:
     """Adapter: gm_core.chains.three_link.three_link_jacobians stacked into one (3, 3, 5) array."""
     return np.stack(three_link_jacobians(alpha, lengths))
 
 
-def com_jacobian(alpha, lengths):
+def com_jacobian(alpha: npt.ArrayLike, lengths: npt.ArrayLike) -> FloatArray:
     """Body Jacobian (3, 5) of the CoM frame, (2.62) (gm_core.chains)."""
     return com_frame_jacobians(alpha, lengths)[0]
 
 
-def links_from_com(alpha, lengths):
+def links_from_com(alpha: npt.ArrayLike, lengths: npt.ArrayLike) -> FloatArray:
     """Link body Jacobians (3, 3, 5) with the CoM frame as body frame, (2.68) (gm_core.chains)."""
     return np.stack(com_frame_jacobians(alpha, lengths)[1])
 
 
-def _com_dbeta_only(al, le):
+def _com_dbeta_only(al: npt.ArrayLike, le: npt.ArrayLike) -> FloatArray:
     beta, dbeta = com_frame(al, le)
     return np.hstack([SE2.Ad_inv(beta), dbeta])
 
 
-def _tl_make(rng):
+def _tl_make(rng: np.random.Generator) -> tuple[FloatArray, FloatArray]:
     lengths = rng.uniform(0.5, 2.0, 3) if rng.uniform() < 0.6 else np.ones(3)
     return (rng.uniform(-1.6, 1.6, 2), lengths)
 
@@ -344,7 +358,7 @@ _tl_inputs = rng_inputs(23, 6, _tl_make, edges=[(np.zeros(2), np.ones(3)),
                                                 (np.array([0.7, -0.4]), np.array([1.0, 2.0, 0.5]))])
 
 
-def _links_post(out, args):
+def _links_post(out: Any, args: tuple[Any, ...]) -> Any:
     """Accept a (3, 3, 5) array or a sequence of three (3, 5) matrices."""
     if isinstance(out, (list, tuple)) and len(out) == 3:
         return np.stack([to_numbers(o, "each link Jacobian") for o in out])
@@ -403,7 +417,7 @@ ex2_3 = Exercise("2.3", "Three-link system: the centre-of-mass / mean-orientatio
 
 
 # ============================================================================ 2.4
-def _cob(x, y, tg, th):
+def _cob(x: float, y: float, tg: float, th: float) -> FloatArray:
     d = th - tg
     c, s = np.cos(d), np.sin(d)
     return np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
@@ -413,25 +427,27 @@ class ShowThatPart(FunctionPart):
     """A symbolic "show that" answer: a sympy object, numerically right, from which the symbols
     ``eliminated`` have dropped out (the property the exercise shows)."""
 
-    kind = "show"
+    kind: str = "show"
 
-    def __init__(self, *a, eliminated=(), reference_factory=None, **kw):
+    def __init__(self, *a: Any, eliminated: Sequence[str] = (),
+                 reference_factory: Callable[[], Any] | None = None, **kw: Any) -> None:
         self._reference_factory = reference_factory
         super().__init__(*a, **kw)
         self.eliminated = tuple(eliminated)
 
     @property
-    def reference(self):
+    @override
+    def reference(self) -> Any:
         """A correct answer (built with sympy on first use, so importing stays light)."""
         if self._reference_factory is not None:
             return self._reference_factory()
         return self._reference
 
     @reference.setter
-    def reference(self, value):
+    def reference(self, value: Any) -> None:
         self._reference = value
 
-    def _symbols(self, answer):
+    def _symbols(self, answer: Any) -> list[str]:
         if is_starter(answer):
             raise Unattempted()
         if not (is_sympy(answer) or isinstance(answer, (list, tuple))):
@@ -440,11 +456,11 @@ class ShowThatPart(FunctionPart):
         return sorted({str(x) for x in getattr(_as_matrix(answer), "free_symbols", ())})
 
     @override
-    def probes(self):
-        return [self._symbols] + super().probes()
+    def probes(self) -> list[Probe]:
+        return [self._symbols, *super().probes()]
 
     @override
-    def judge(self, outcomes):
+    def judge(self, outcomes: list[ProbeOutcome]) -> str:
         if not outcomes:
             raise Wrong("the check could not evaluate your answer.")
         if outcomes[0]["k"] != "ok":
@@ -458,14 +474,14 @@ class ShowThatPart(FunctionPart):
         return message
 
 
-def _cob_sympy():
+def _cob_sympy() -> sympy.Matrix:
     import sympy as sp
     tg, th = sp.symbols("theta_g theta_h", real=True)
     d = th - tg
     return sp.Matrix([[sp.cos(d), sp.sin(d), 0], [-sp.sin(d), sp.cos(d), 0], [0, 0, 1]])
 
 
-def _as_matrix(answer):
+def _as_matrix(answer: Any) -> Any:
     import sympy as sp
     return sp.Matrix(answer) if isinstance(answer, (list, tuple)) else answer
 

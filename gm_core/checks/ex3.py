@@ -6,16 +6,23 @@ References are computed here from the group layer, independently of gm_core.syst
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
 import numpy as np
+import numpy.typing as npt
 
 from gm_core.checks.choice import ChoicePart
 from gm_core.checks.exercise import Exercise
 from gm_core.checks.parts import FunctionPart, rng_inputs
 from gm_core.groups import SE2
 
+if TYPE_CHECKING:
+    from gm_core.validation import FloatArray
+
 
 # ============================================================================ 3.1
-def _theta_dd(alpha1, alpha2, R, w):
+def _theta_dd(alpha1: float, alpha2: float, R: float, w: float) -> float:
     return R * (alpha2 - alpha1) / (2.0 * w)
 
 
@@ -97,19 +104,19 @@ ex3_2 = Exercise("3.2", "Pfaffians with fewer or more than three rows", [
 
 
 # ============================================================================ 3.3
-def ackerman_rear(alpha, R, L):
+def ackerman_rear(alpha: npt.ArrayLike, R: float, L: float) -> FloatArray:
     """Local connection (3, 2) of the rear-wheel-drive kinematic bicycle; -A is (3.9)'s matrix for R = L = 1."""
     a2 = np.asarray(alpha, dtype=float)[1]
     return -np.array([[R, 0.0], [0.0, 0.0], [R * np.tan(a2) / L, 0.0]])
 
 
-def ackerman_front(alpha, R, L):
+def ackerman_front(alpha: npt.ArrayLike, R: float, L: float) -> FloatArray:
     """Local connection (3, 2) of the front-wheel-drive kinematic bicycle (passive rear wheel)."""
     a2 = np.asarray(alpha, dtype=float)[1]
     return -np.array([[R * np.cos(a2), 0.0], [0.0, 0.0], [R * np.sin(a2) / L, 0.0]])
 
 
-def ackerman_pfaffian(alpha, R, L, drive="rear"):
+def ackerman_pfaffian(alpha: npt.ArrayLike, R: float, L: float, drive: str = "rear") -> FloatArray:
     """The 3 x 5 Pfaffian omega acting on (xi, alpha1_dot, alpha2_dot)."""
     a2 = np.asarray(alpha, dtype=float)[1]
     c, s = np.cos(a2), np.sin(a2)
@@ -124,11 +131,11 @@ _ack_inputs = rng_inputs(33, 6, lambda rng: (rng.uniform(-1.3, 1.3, 2), rng.unif
                                 (np.array([2.0, -1.0]), 0.5, 2.0)])
 
 
-def _neg(f):
+def _neg(f: Callable[..., FloatArray]) -> Callable[..., FloatArray]:
     return lambda *a: -f(*a)
 
 
-def _ack_part(name, drive):
+def _ack_part(name: str, drive: str) -> FunctionPart:
     ref = ackerman_rear if drive == "rear" else ackerman_front
     other = ackerman_front if drive == "rear" else ackerman_rear
     return FunctionPart(
@@ -169,7 +176,7 @@ LINK = 1.0
 ASPECT = 10.0
 
 
-def two_link_geometry(alpha, l=LINK):
+def two_link_geometry(alpha: float, l: float = LINK) -> tuple[FloatArray, FloatArray]:
     """Link-centre poses (2, 3) in the body frame and their alpha-derivatives (2, 3)."""
     h = 0.5 * float(alpha)
     c, s = np.cos(h), np.sin(h)
@@ -178,7 +185,7 @@ def two_link_geometry(alpha, l=LINK):
     return poses, d
 
 
-def two_link_jacobians(alpha, l=LINK):
+def two_link_jacobians(alpha: float, l: float = LINK) -> FloatArray:
     """Body Jacobians (2, 3, 4) of the two link centres in (xi, alpha_dot), as in (2.62)."""
     poses, d = two_link_geometry(alpha, l)
     out = []
@@ -188,12 +195,12 @@ def two_link_jacobians(alpha, l=LINK):
     return np.stack(out)
 
 
-def low_re_resistance(l=LINK, c=1.0):
+def low_re_resistance(l: float = LINK, c: float = 1.0) -> FloatArray:
     """Drag matrix of a slender link: c l (longitudinal), 2 c l (lateral), c l^3 / 6 (rotation)."""
     return np.diag([c * l, 2 * c * l, 2 * c * l ** 3 / 12])
 
 
-def high_re_inertia(l=LINK, rho=1.0, aspect=ASPECT):
+def high_re_inertia(l: float = LINK, rho: float = 1.0, aspect: float = ASPECT) -> FloatArray:
     """Body + added inertia of a neutrally buoyant elliptical link, with (3.46)'s rotational term
     corrected to the classical rho pi (a^2 - b^2)^2 / 8."""
     a = l / 2
@@ -204,25 +211,27 @@ def high_re_inertia(l=LINK, rho=1.0, aspect=ASPECT):
     return body + added
 
 
-def swimmer_connection(alpha, K):
+def swimmer_connection(alpha: float, K: npt.ArrayLike) -> FloatArray:
     """A = M_xx^-1 M_xr for the 4x4 matrix M = sum J_i^T K J_i (drag or mass), shape (3, 1)."""
     J = two_link_jacobians(alpha)
     M = sum(Ji.T @ K @ Ji for Ji in J)
     return np.linalg.solve(M[:3, :3], M[:3, 3:])
 
 
-def low_re_connection(alpha):
+def low_re_connection(alpha: float) -> FloatArray:
+    """The low-Reynolds two-link swimmer's local connection (3, 1): the reference of 3.4(a)."""
     return swimmer_connection(alpha, low_re_resistance())
 
 
-def high_re_connection(alpha):
+def high_re_connection(alpha: float) -> FloatArray:
+    """The high-Reynolds two-link swimmer's local connection (3, 1): the reference of 3.4(b)."""
     return swimmer_connection(alpha, high_re_inertia())
 
 
 _sw_inputs = rng_inputs(34, 6, lambda rng: (float(rng.uniform(-2.5, 2.5)),), edges=[(0.0,), (1.0,), (-2.0,)])
 
 
-def _swim_part(name, regime):
+def _swim_part(name: str, regime: str) -> FunctionPart:
     ref = low_re_connection if regime == "low" else high_re_connection
     other = high_re_connection if regime == "low" else low_re_connection
     model = ("slender links with drag per unit length 1 (longitudinal) and 2 (lateral), (3.41)-(3.43)"

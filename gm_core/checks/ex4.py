@@ -8,23 +8,30 @@ judging run in the checking process. Independent routes are in tests/test_geomet
 from __future__ import annotations
 
 import functools
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
 from typing_extensions import override
 
 from gm_core.checks import gait_samples
-from gm_core.checks.answers import describe, fmt_value, is_starter, to_numbers
+from gm_core.checks.answers import fmt_value
 from gm_core.checks.choice import ChoicePart
 from gm_core.checks.exercise import Exercise
-from gm_core.checks.parts import CustomPart, outcome_error
-from gm_core.checks.sandbox import Unattempted, Wrong
+from gm_core.checks.parts import CustomPart, Mistake, ValuePart, outcome_error
+from gm_core.checks.sandbox import ProbeOutcome, Wrong
+
+if TYPE_CHECKING:
+    from gm_core.systems import LowReSwimmer
+    from gm_core.systems.reframed import Reframed
+    from gm_core.validation import FloatArray
 
 __all__ = ["ex4_1", "ex4_2", "swimmer", "swimmer_4_1", "SQUARE_4_1", "GAITS_4_1"]
 
 
 # ============================================================================ shared set-up
 @functools.lru_cache(maxsize=1)
-def swimmer():
+def swimmer() -> LowReSwimmer:
     """The swimmer of both exercises: LowReSwimmer() (links 1, drag ratio 2)."""
     from gm_core.systems import LowReSwimmer
 
@@ -37,7 +44,7 @@ SQUARE_4_1 = ((-2.5, 2.5), (-2.5, 2.5))
 
 
 @functools.lru_cache(maxsize=1)
-def swimmer_4_1():
+def swimmer_4_1() -> Reframed:
     """The swimmer of exercise 4.1: LowReSwimmer() in its minimum-perturbation frame over SQUARE_4_1.
 
     In that frame the curvature map is a faithful picture of the motion (notebook 10, section 4):
@@ -49,7 +56,7 @@ def swimmer_4_1():
 
 
 @functools.lru_cache(maxsize=1)
-def _stokes_A():
+def _stokes_A() -> tuple[FloatArray, FloatArray]:
     """(Stokes estimate, exact net displacement) of gait A: the references of 4.1(b)."""
     from gm_core.geometry import stokes_estimate
     from gm_core.systems.gaits import circle_gait
@@ -60,48 +67,52 @@ def _stokes_A():
 
 
 # ============================================================================ 4.1
-def _read_number(answer):
-    """Student side of 4.1(b): one real number, as plain data."""
-    if is_starter(answer):
-        raise Unattempted()
-    if isinstance(answer, (bool, np.bool_)):
-        raise Wrong(f"your answer is {describe(answer)}; one number (the x component) was expected.")
-    arr = to_numbers(answer, "your answer")
-    if arr.size != 1:
-        raise Wrong(f"your answer has {arr.size} numbers (shape {arr.shape}); hand in only the x "
-                    "component, one number.")
-    return float(arr.reshape(()))
+class _AreaSum(ValuePart):
+    """4.1(b): the student's own area sum, within 0.5 % of the library's Stokes estimate of gait A
+    (a midpoint sum with cells of 0.1 is within 0.45 %; the exact displacement, 0.8 % away in this
+    frame, is a mistake of its own)."""
 
+    name, rtol, atol = "b", 0.005, 0.0
+    prompt = "The x component of the Stokes estimate for gait A, from your own area sum (a number)"
+    expects = "one number (the x component)"
+    wrong_size = "your answer has {size} numbers (shape {shape}); hand in only the x component, one number."
+    not_finite = ("your number is not finite (NaN or infinite): did a cell of your grid sit on a "
+                  "singular shape, or did you divide by zero?")
+    hints = ["Evaluate constraint_curvature(s, grid) (s: the exercise's swimmer, in the "
+             "minimum-perturbation frame) on a grid of cell centres over the square [-1, 1]^2, "
+             "cells of 0.1 or smaller.",
+             "Keep the points with a1^2 + a2^2 <= 1, sum their x curvature (row 0) and multiply "
+             "by the area of one cell."]
+    solution_text = ("About -0.155 (stokes_estimate(s, circle_gait(1.0))[0], s the swimmer in the "
+                     "minimum-perturbation frame); the exact net x displacement is about -0.154.")
+    reference, wrong = -0.15492, [0.15492, -0.15369, 0.0, -0.15492 / 0.01 ** 2, -0.17]
 
-def _judge_41b(outcomes):
-    o = outcomes[0] if outcomes else {"k": "crash", "m": ""}
-    if o["k"] != "ok":
-        outcome_error(o, "your answer", "no arguments")
-    val = o["v"]
-    if not isinstance(val, float):
-        raise Wrong("one number (the x component) was expected.")
-    if not np.isfinite(val):
-        raise Wrong("your number is not finite (NaN or infinite): did a cell of your grid sit on a "
-                    "singular shape, or did you divide by zero?")
-    est, exact = _stokes_A()
-    ref = est[0]
-    # 0.5 %: a midpoint sum with cells of 0.1 is within 0.45 %; the exact displacement, 0.8 % away
-    # in this frame, is not accepted in its place
-    tol = 0.005 * abs(ref)
-    if abs(val - exact[0]) <= 0.3 * tol:
-        raise Wrong("that is the exact net displacement (net_displacement); this part asks for your "
-                    "own area sum of the x curvature. In this frame the two are close (within 1 %), "
-                    "but they are not the same number.")
-    if abs(val - ref) <= tol:
-        return (f"Correct: {fmt_value(val)}; the library's stokes_estimate gives {fmt_value(ref)}, and "
-                f"the exact net x displacement in this frame is {fmt_value(exact[0])}.")
-    if abs(val + ref) <= tol:
-        raise Wrong("your sign is reversed: a counter-clockwise gait collects +D(-A) over the region "
-                    "it encloses, and circle_gait runs counter-clockwise.")
-    if abs(val) <= 1e-3 * abs(ref):
-        raise Wrong("your sum is (nearly) zero: that is the y or theta component, or a grid whose "
-                    "cells were not restricted to the disc. Sum row x (index 0) inside the circle.")
-    raise Wrong(f"your number {fmt_value(val)} is not within 0.5 % of the area integral of the x "
+    @override
+    def expected_value(self) -> float:
+        return float(_stokes_A()[0][0])
+
+    @override
+    def known_mistakes(self, expected: npt.ArrayLike) -> list[Mistake]:
+        ref = float(np.asarray(expected))
+        tol = self.rtol * abs(ref)
+        return [Mistake(_stokes_A()[1][0], "that is the exact net displacement (net_displacement); "
+                        "this part asks for your own area sum of the x curvature. In this frame the "
+                        "two are close (within 1 %), but they are not the same number.", 0.3 * tol),
+                Mistake(-ref, "your sign is reversed: a counter-clockwise gait collects +D(-A) over "
+                        "the region it encloses, and circle_gait runs counter-clockwise."),
+                Mistake(0.0, "your sum is (nearly) zero: that is the y or theta component, or a grid "
+                        "whose cells were not restricted to the disc. Sum row x (index 0) inside the "
+                        "circle.", 1e-3 * abs(ref))]
+
+    @override
+    def success_message(self, value: float | np.ndarray, expected: npt.ArrayLike) -> str:
+        return (f"Correct: {fmt_value(value)}; the library's stokes_estimate gives "
+                f"{fmt_value(expected)}, and the exact net x displacement in this frame is "
+                f"{fmt_value(_stokes_A()[1][0])}.")
+
+    @override
+    def far_message(self, value: float | np.ndarray, expected: npt.ArrayLike) -> str:
+        return (f"your number {fmt_value(value)} is not within 0.5 % of the area integral of the x "
                 "curvature over the disc of radius 1. Is your grid fine enough (cells of 0.1 or "
                 "smaller), did you use the swimmer of this exercise (s, in the minimum-perturbation "
                 "frame), keep only the points inside the circle and multiply by the area of one cell?")
@@ -125,18 +136,7 @@ ex4_1 = Exercise("4.1", "Which gait moves further? Reading a curvature map", [
                "Net x motion ~ (the x curvature inside the loop, added up with its sign): "
                "red counts one way, blue the other."],
         solution_text="c: the smaller circle A."),
-    CustomPart(
-        "b", "The x component of the Stokes estimate for gait A, from your own area sum (a number)",
-        lambda: [_read_number], _judge_41b,
-        hints=["Evaluate constraint_curvature(s, grid) (s: the exercise's swimmer, in the "
-               "minimum-perturbation frame) on a grid of cell centres over the square [-1, 1]^2, "
-               "cells of 0.1 or smaller.",
-               "Keep the points with a1^2 + a2^2 <= 1, sum their x curvature (row 0) and multiply "
-               "by the area of one cell."],
-        solution_text="About -0.155 (stokes_estimate(s, circle_gait(1.0))[0], s the swimmer in the "
-                      "minimum-perturbation frame); the exact net x displacement is about -0.154.",
-        reference=-0.15492, wrong=[0.15492, -0.15369, 0.0, -0.15492 / 0.01 ** 2, -0.17],
-        kind="number"),
+    _AreaSum(),
     ChoicePart(
         "c", "Why does the larger circle move less?",
         {"a": "larger gaits are run faster, so the swimmer slips more",
@@ -165,16 +165,16 @@ ex4_1 = Exercise("4.1", "Which gait moves further? Reading a curvature map", [
 TURN_MIN, DRIFT_MAX = 0.2, 0.02
 
 
-def _sample_gait(answer):
+def _sample_gait(answer: Any) -> FloatArray:
     """Student side of 4.2(a): the gait sampled over one period (:mod:`gm_core.checks.gait_samples`)."""
     return gait_samples.sample(answer, 2, "circle_gait(...)")
 
 
-def _judge_42a(outcomes):
+def _judge_42a(outcomes: list[ProbeOutcome]) -> str:
     from gm_core.geometry import drift_and_turn
     from gm_core.systems.gaits import Gait
 
-    o = outcomes[0] if outcomes else {"k": "crash", "m": ""}
+    o: ProbeOutcome = outcomes[0] if outcomes else {"k": "crash", "m": ""}
     if o["k"] != "ok":
         outcome_error(o, "your gait", "the times of one period")
     r = gait_samples.grid(o["v"], 2)
@@ -198,16 +198,16 @@ def _judge_42a(outcomes):
 class _CircleGait:
     """circle_gait(radius, centre), built only when called (keeps the import of this module light)."""
 
-    def __init__(self, radius, centre=(0.0, 0.0)):
+    def __init__(self, radius: float, centre: tuple[float, float] = (0.0, 0.0)) -> None:
         self.radius, self.centre = radius, centre
 
-    def __call__(self, t):
+    def __call__(self, t: npt.ArrayLike) -> FloatArray:
         from gm_core.systems.gaits import circle_gait
 
         return circle_gait(self.radius, self.centre)(t)
 
     @override
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"circle_gait({self.radius}, {self.centre})"
 
 

@@ -9,8 +9,10 @@ process. Independent routes are in tests/test_checks_many_links.py.
 from __future__ import annotations
 
 import functools
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
 from typing_extensions import override
 
 from gm_core.checks import gait_samples
@@ -18,7 +20,11 @@ from gm_core.checks.answers import fmt_value
 from gm_core.checks.choice import ChoicePart
 from gm_core.checks.exercise import Exercise
 from gm_core.checks.parts import CustomPart, outcome_error
-from gm_core.checks.sandbox import Wrong
+from gm_core.checks.sandbox import ProbeOutcome, Wrong
+
+if TYPE_CHECKING:
+    from gm_core.systems.link_chain import LinkChain
+    from gm_core.validation import FloatArray
 
 __all__ = ["ex5_1", "swimmer_5_1", "DISTANCE_MIN", "ANGLE_MAX"]
 
@@ -28,23 +34,23 @@ _JOINTS = 3
 
 
 @functools.lru_cache(maxsize=1)
-def swimmer_5_1():
+def swimmer_5_1() -> LinkChain:
     """The four-link swimmer of exercise 5.1: chain_swimmer(4)."""
     from gm_core.geometry import chain_swimmer
 
     return chain_swimmer(4)
 
 
-def _sample_gait(answer):
+def _sample_gait(answer: Any) -> FloatArray:
     """Student side of 5.1(a): the gait sampled over one period (:mod:`gm_core.checks.gait_samples`)."""
     return gait_samples.sample(answer, _JOINTS, "travelling_wave(3, ...)")
 
 
-def _judge_51a(outcomes):
+def _judge_51a(outcomes: list[ProbeOutcome]) -> str:
     from gm_core.systems.gaits import Gait
     from gm_core.systems.motion import net_displacement
 
-    o = outcomes[0] if outcomes else {"k": "crash", "m": ""}
+    o: ProbeOutcome = outcomes[0] if outcomes else {"k": "crash", "m": ""}
     if o["k"] != "ok":
         outcome_error(o, "your gait", "the times of one period")
     r = gait_samples.grid(o["v"], _JOINTS, " (the four-link swimmer has three joints: alpha1, "
@@ -71,17 +77,17 @@ def _judge_51a(outcomes):
 class _Wave:
     """travelling_wave(3, amplitude, lag), built only when called (keeps this module's import light)."""
 
-    def __init__(self, amplitude, lag):
+    def __init__(self, amplitude: float, lag: float) -> None:
         self.amplitude, self.lag = amplitude, lag
 
-    def __call__(self, t):
+    def __call__(self, t: npt.ArrayLike) -> FloatArray:
         from gm_core.geometry import travelling_wave
 
         g = travelling_wave(_JOINTS, self.amplitude, self.lag, period=1.0)
         return g(t)
 
     @override
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"travelling_wave(3, {self.amplitude}, {self.lag}, period=1)"
 
 

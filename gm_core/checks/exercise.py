@@ -11,7 +11,7 @@ from typing_extensions import override
 
 from gm_core.checks import store
 from gm_core.checks.display import show
-from gm_core.checks.store import FAILED
+from gm_core.checks.store import FAILED, Progress
 
 if TYPE_CHECKING:   # the parts import this module, never the other way round
     from gm_core.checks.parts import Part, Verdict
@@ -23,10 +23,10 @@ REGISTRY: dict[str, Exercise] = {}
 class _MissingPart:
     """What an old notebook gets for a part the course renamed or removed: friendly messages."""
 
-    def __init__(self, exercise, name):
+    def __init__(self, exercise: Exercise, name: str) -> None:
         self.exercise, self.name = exercise, name
 
-    def _say(self, *args, **kwargs):
+    def _say(self, *args: object, **kwargs: object) -> None:
         ex = self.exercise
         new = ex.renamed.get(self.name)
         where = f"ex{ex.id.replace('.', '_')}"
@@ -65,7 +65,7 @@ class Exercise:
             setattr(self, p.name, p)
         REGISTRY[self.id] = self
 
-    def __getattr__(self, name: str) -> Any:
+    def __getattr__(self, name: str) -> Part | _MissingPart:
         # Only names the course once had get the "course was updated" answer (``renamed``: old
         # name -> new name, or None for a removed part); any other name is an AttributeError,
         # so hasattr works and a typo is not mistaken for a course update.
@@ -83,7 +83,7 @@ class Exercise:
     def __repr__(self) -> str:
         return f"<exercise {self.id}: {self.title}; parts {', '.join(self.parts)}>"
 
-    def status(self, data: dict[str, Any] | None = None) -> str:
+    def status(self, data: Progress | None = None) -> str:
         """passed / in progress / failed / unattempted, from the latest check of each part."""
         return store.exercise_status(self.id, list(self.parts), data)
 

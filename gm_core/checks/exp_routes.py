@@ -2,15 +2,25 @@
 their judge. Used by ex1.py (split off to keep each file readable in one sitting)."""
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
+import numpy.typing as npt
 
 from gm_core.checks.answers import fmt_value, is_starter, match_shape, to_numbers
 from gm_core.checks.parts import FunctionPart, outcome_error, probe_rng, rng_inputs, salted
-from gm_core.checks.sandbox import Unattempted, Wrong
+from gm_core.checks.sandbox import Probe, ProbeOutcome, Unattempted, Wrong
 from gm_core.groups import SE2, wrap_angle
 
+if TYPE_CHECKING:
+    from gm_core.validation import FloatArray
 
-def _se2_vec(out, args, nan_ok=True):
+#: A route of 1.4(d): ``f(xi, n)``, exp(xi) after n steps, as (x, y, theta) or a 3 x 3 matrix.
+Route = Callable[[npt.ArrayLike, int], npt.ArrayLike]
+
+
+def _se2_vec(out: Any, args: object, nan_ok: bool = True) -> FloatArray:
     """Accept (x, y, theta) or a 3x3 homogeneous matrix; wrap the angle to (-pi, pi]."""
     arr = to_numbers(out, "the value your function returned")
     if arr.shape == (3, 3):
@@ -19,7 +29,7 @@ def _se2_vec(out, args, nan_ok=True):
     return np.array([arr[0], arr[1], wrap_angle(arr[2])])
 
 
-def _exp_ref(xi):
+def _exp_ref(xi: npt.ArrayLike) -> FloatArray:
     e = SE2.exp(np.asarray(xi, dtype=float))
     return np.array([e[0], e[1], wrap_angle(e[2])])
 
@@ -30,8 +40,8 @@ _XI_EDGES = [(np.array(v, dtype=float),) for v in (
 _xi_inputs = rng_inputs(14, 6, lambda rng: (rng.uniform(-3, 3, 3),), edges=_XI_EDGES)
 
 
-def _exp_wrong_sign(xi):
-    vx, vy, w = xi
+def _exp_wrong_sign(xi: npt.ArrayLike) -> FloatArray:
+    vx, vy, w = np.asarray(xi, dtype=float)
     return _exp_ref([vx, vy, w]) * np.array([1, 1, 1]) if w == 0 else _exp_ref(
         [vx, vy, -w]) * np.array([1, 1, -1])
 
@@ -45,7 +55,8 @@ _EXP_MISTAKES = [
 ]
 
 
-def exp_part(name, side):
+def exp_part(name: str, side: str) -> FunctionPart:
+    """Part (a) or (b) of 1.4: the closed-form exp of the ``side`` ("left" or "right") field."""
     field = "left-invariant field X_L(g) = T_e L_g xi, (1.46)" if side == "left" else \
         "right-invariant field X_R(g) = T_e R_g xi, (1.47)"
     return FunctionPart(
@@ -64,13 +75,15 @@ def exp_part(name, side):
         wrong=[lambda xi: np.asarray(xi)])
 
 
-def helix_ref(xi):
+def helix_ref(xi: npt.ArrayLike) -> FloatArray:
+    """(pitch, diameter, xy arclength) of the helix exp(t xi), t in [0, 1]: the reference of 1.4(c)."""
     vx, vy, w = np.asarray(xi, dtype=float)
     v = np.hypot(vx, vy)
     return np.array([2 * np.pi * np.sign(w), 2 * v / abs(w), v])
 
 
-def helix_inputs():
+def helix_inputs() -> Iterator[tuple[FloatArray]]:
+    """The arguments 1.4(c) is checked on: three edge cases, then five seeded random xi."""
     yield (np.array([1.0, 0.0, 1.0]),)
     yield (np.array([0.0, 0.0, 2.0]),)
     yield (np.array([1.0, 1.0, -0.5]),)
@@ -89,7 +102,7 @@ _D_NS = {"euler_left": (1, 2, 7, 40), "euler_right": (1, 2, 7, 40), "product": (
          "taylor": (1, 2, 5, 12, 30)}
 
 
-def _d_calls():
+def _d_calls() -> list[tuple[str, FloatArray, int]]:
     """The (route, xi, n) calls of 1.4(d): in the student's kernel always the three xis above; when
     grading, the first of them and two drawn from this run's salt (one turning each way)."""
     xis = _D_XIS
@@ -100,7 +113,7 @@ def _d_calls():
     return [(k, xi, n) for k in _D_KEYS for xi in xis for n in _D_NS[k]]
 
 
-def _d_structure(answer):
+def _d_structure(answer: Any) -> str:
     """Student side: which entries of the dict are given."""
     if is_starter(answer):
         raise Unattempted()
@@ -120,52 +133,57 @@ def _d_structure(answer):
     return "ok"
 
 
-def _d_call(answer, k, xi, n):
+def _d_call(answer: Any, k: str, xi: npt.ArrayLike, n: int) -> FloatArray | None:
     out = answer[k](np.array(xi), int(n))
     if is_starter(out):
         return None
     return _se2_vec(out, None, nan_ok=True)
 
 
-def routes_probes():
-    return [_d_structure] + [lambda ans, c=c: _d_call(ans, *c) for c in _d_calls()]
+def routes_probes() -> list[Probe]:
+    """The probes of 1.4(d): the dict's structure, then every (route, xi, n) call."""
+    def call(c: tuple[str, FloatArray, int]) -> Probe:
+        return lambda ans: _d_call(ans, *c)
+    return [_d_structure, *(call(c) for c in _d_calls())]
 
 
-def _d_close(got, want):
+def _d_close(got: npt.ArrayLike, want: npt.ArrayLike) -> bool:
     d = np.asarray(got, dtype=float) - np.asarray(want, dtype=float)
     if np.isfinite(d[2]):   # a NaN or infinite difference stays so, and fails
         d[2] = wrap_angle(d[2])
     return bool(np.all(np.abs(d) <= 1e-9 + 1e-7 * np.abs(want)))
 
 
-def _d_vec(f, xi, n):
+def _d_vec(f: Route, xi: npt.ArrayLike, n: int) -> FloatArray:
     return _se2_vec(f(xi, n), None)
 
 
 #: wrong routes a student may hand in for each key, with the message each deserves
-def _d_mistakes(k):
-    out = [(EXP_METHODS[o], f"answer[{k!r}] computes {_D_NAMES[o]}, not {_D_NAMES[k]}.")
-           for o in _D_KEYS if o != k]
+def _d_mistakes(k: str) -> list[tuple[Route, str]]:
+    out: list[tuple[Route, str]] = [
+        (EXP_METHODS[o], f"answer[{k!r}] computes {_D_NAMES[o]}, not {_D_NAMES[k]}.") for o in _D_KEYS if o != k]
     out.append((lambda xi, n: SE2.exp(xi), f"answer[{k!r}] returns the exact exponential for every "
                 "n; implement the n-step method itself so that its convergence can be seen."))
     if k == "taylor":
         out.append((lambda xi, n: _taylor(xi, n + 1), "answer['taylor'] sums n + 1 terms (k = 0 ... "
                     "n); the prompt asks for the terms k < n."))
     else:
-        out.append((lambda xi, n, k=k: EXP_METHODS[k](xi, n + 1) if k == "product" else
-                    _euler(xi, n + 1, k.split("_")[1]), f"answer[{k!r}] takes n + 1 steps; take n "
-                    "steps of size 1/n."))
+        def more_steps(xi: npt.ArrayLike, n: int) -> npt.ArrayLike:
+            return EXP_METHODS[k](xi, n + 1) if k == "product" else _euler(xi, n + 1, k.split("_")[1])
+        out.append((more_steps, f"answer[{k!r}] takes n + 1 steps; take n steps of size 1/n."))
     return out
 
 
-def routes_judge(outcomes):
+def routes_judge(outcomes: list[ProbeOutcome]) -> str:
+    """The judge of 1.4(d): every route matches its reference step for step, or a message says
+    which route is wrong and, for a known mistake, how."""
     if not outcomes or outcomes[0]["k"] != "ok":
         outcome_error(outcomes[0] if outcomes else {"k": "crash", "m": ""}, "your dict", "")
     calls = _d_calls()
     if len(outcomes) != len(calls) + 1:
         raise Wrong("the check could not evaluate every route.")
     results = dict(zip(range(len(calls)), outcomes[1:]))
-    by_key = {k: [] for k in _D_KEYS}
+    by_key: dict[str, list[tuple[FloatArray, int, FloatArray]]] = {k: [] for k in _D_KEYS}
     for i, (k, xi, n) in enumerate(calls):
         o = results[i]
         label = f"xi = {fmt_value(xi)}, n = {n}"
@@ -194,7 +212,7 @@ def routes_judge(outcomes):
             "product converge at first order (error ~ 1/n), the Taylor sum factorially fast.")
 
 
-def _euler(xi, n, side):
+def _euler(xi: npt.ArrayLike, n: int, side: str) -> FloatArray:
     xi = np.asarray(xi, dtype=float)
     g = np.zeros(3)
     for _ in range(int(n)):
@@ -205,11 +223,11 @@ def _euler(xi, n, side):
     return g
 
 
-def _product(xi, n):
+def _product(xi: npt.ArrayLike, n: int) -> FloatArray:
     return np.linalg.matrix_power(np.eye(3) + SE2.hat(np.asarray(xi, dtype=float)) / n, int(n))
 
 
-def _taylor(xi, n):
+def _taylor(xi: npt.ArrayLike, n: int) -> FloatArray:
     X = SE2.hat(np.asarray(xi, dtype=float))
     total, term = np.zeros((3, 3)), np.eye(3)
     for k in range(int(n)):
@@ -219,7 +237,7 @@ def _taylor(xi, n):
 
 
 #: Reference implementations of the four routes of exercise 1.4d (also used by the tests).
-EXP_METHODS = {"euler_left": lambda xi, n: _euler(xi, n, "left"),
+EXP_METHODS: dict[str, Route] = {"euler_left": lambda xi, n: _euler(xi, n, "left"),
                "euler_right": lambda xi, n: _euler(xi, n, "right"),
                "product": _product, "taylor": _taylor}
 

@@ -9,6 +9,8 @@ so a "gait" that only knows the checker's sample times (a table of them) is not 
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from gm_core.checks.answers import describe, fmt_value, sample_gait
@@ -25,12 +27,12 @@ def extra_fractions() -> np.ndarray:
     return np.sort(probe_rng(_SEED).uniform(0.0, 1.0, N_EXTRA))
 
 
-def sample(answer, joints: int, example: str) -> np.ndarray:
+def sample(answer: Any, joints: int, example: str) -> np.ndarray:
     """Student side: the gait at the N_SAMPLES + 1 grid times, then at the N_EXTRA further times."""
     return sample_gait(answer, joints, example, N_SAMPLES, extra_fractions())
 
 
-def grid(r, joints: int, about: str = "") -> np.ndarray:
+def grid(r: object, joints: int, about: str = "") -> np.ndarray:
     """Judge side: check the shape of the samples and that the further ones lie on the loop;
     return the N_SAMPLES + 1 grid samples. Raises Wrong with a readable message."""
     n = N_SAMPLES + 1

@@ -19,16 +19,18 @@ from __future__ import annotations
 
 import copy
 from abc import ABC, abstractmethod
-from collections.abc import Callable, Iterable, Sequence
-from typing import Any
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from typing import Any, Literal, NamedTuple, NoReturn, overload
 
 import numpy as np
+import numpy.typing as npt
 from typing_extensions import override
 
 from gm_core.checks import channel, store
 from gm_core.checks.answers import (
     describe,
     fmt_args,
+    fmt_value,
     is_starter,
     is_sympy,
     match_shape,
@@ -37,7 +39,15 @@ from gm_core.checks.answers import (
 )
 from gm_core.checks.display import show
 from gm_core.checks.exercise import Exercise
-from gm_core.checks.sandbox import Unattempted, Wrong, collect, decode_outcome, safe_text
+from gm_core.checks.sandbox import (
+    Probe,
+    ProbeOutcome,
+    Unattempted,
+    Wrong,
+    collect,
+    decode_outcome,
+    safe_text,
+)
 from gm_core.checks.store import FAILED, PASSED, UNATTEMPTED
 from gm_core.groups import wrap_angle
 
@@ -71,8 +81,9 @@ class Verdict:
         return f"Verdict({self.part}: {self.status} - {self.message})"
 
 
-def outcome_error(o, what, label):
-    """Raise the readable Wrong/Unattempted for a non-"ok" probe outcome ``o``."""
+def outcome_error(o: ProbeOutcome, what: str, label: str) -> NoReturn:
+    """Raise the readable Wrong/Unattempted for a non-"ok" probe outcome ``o`` (``what`` gave it
+    when called with ``label``)."""
     k = o["k"]
     if k == "wrong":
         raise Wrong(o["m"])
@@ -102,8 +113,8 @@ class Part(ABC):
     only what is new.
     """
 
-    kind = "numeric"
-    weight = 2.0
+    kind: str = "numeric"
+    weight: float = 2.0
 
     def __init__(self, name: str, prompt: str, hints: Sequence[str] = (), solution_text: str = "",
                  reference: Any = None, wrong: Sequence[Any] = (), starter: Any = None,
@@ -134,16 +145,16 @@ class Part(ABC):
 
     # -- the two halves
     @abstractmethod
-    def probes(self) -> list[Callable[[Any], Any]]:
+    def probes(self) -> list[Probe]:
         """Functions probe(answer) -> plain data; the only code that touches the answer."""
         raise NotImplementedError
 
     @abstractmethod
-    def judge(self, outcomes: list[dict[str, Any]]) -> str:
+    def judge(self, outcomes: list[ProbeOutcome]) -> str:
         """Return the success message, or raise Wrong / Unattempted, from the probes' outcomes."""
         raise NotImplementedError
 
-    def verdict(self, outcomes: list[dict[str, Any]], output: str = "") -> Verdict:
+    def verdict(self, outcomes: list[ProbeOutcome], output: str = "") -> Verdict:
         """A Verdict from plain outcomes (used by check() and by the grader). Never raises."""
         try:
             if not isinstance(outcomes, list) or len(outcomes) != len(self.probes()):
@@ -163,6 +174,14 @@ class Part(ABC):
         return Verdict(status, message or "Well done.", self.title, output)
 
     # -- the three verbs
+    @overload
+    def check(self, answer: Any = None, *, quiet: bool = False, strict: Literal[False] = False,
+              time_limit: float | None = None) -> Verdict: ...
+
+    @overload
+    def check(self, answer: Any = None, *, quiet: bool = False, strict: bool,
+              time_limit: float | None = None) -> Verdict | None: ...
+
     def check(self, answer: Any = None, *, quiet: bool = False, strict: bool = False,
               time_limit: float | None = None) -> Verdict | None:
         """Check ``answer``; display and return a :class:`Verdict`. Never raises, unless
@@ -228,7 +247,7 @@ class Part(ABC):
             store.record_solution_view(self.exercise.id, self.name)
         show("solution", self.title, self.solution_text_full())
 
-    def _record(self, status):
+    def _record(self, status: str) -> None:
         # "unattempted" (the starter, or a choice that names no option) never overwrites a
         # saved verdict: re-running an untouched cell must not erase yesterday's pass
         if self.exercise is not None and status != UNATTEMPTED:
@@ -249,11 +268,14 @@ class FunctionPart(Part):
 
     kind = "function"
 
-    def __init__(self, name: str, prompt: str, ref: Callable[..., Any], inputs: Callable[[], Iterable[tuple]],
+    def __init__(self, name: str, prompt: str, ref: Callable[..., npt.ArrayLike],
+                 inputs: Callable[[], Iterable[tuple[Any, ...]]],
                  *, arg_names: Sequence[str], shape: tuple[int, ...], rtol: float = 1e-6, atol: float = 1e-8,
-                 mistakes: Sequence[tuple[Callable[..., Any], str]] = (),
-                 postprocess: Callable[[Any, tuple], Any] | None = None, sympy_names: Sequence[str] | None = None,
-                 sympy_args: Callable[..., tuple] | None = None, sympy_ok: Callable[..., bool] | None = None,
+                 mistakes: Sequence[tuple[Callable[..., npt.ArrayLike], str]] = (),
+                 postprocess: Callable[[Any, tuple[Any, ...]], Any] | None = None,
+                 sympy_names: Sequence[str] | None = None,
+                 sympy_args: Callable[..., tuple[Any, ...]] | None = None,
+                 sympy_ok: Callable[..., bool] | None = None,
                  angles: Sequence[int] = (), what: str = "your function", **kw: Any) -> None:
         known = [fn for fn, _ in mistakes]
         if kw.get("reference") is None:
@@ -297,7 +319,9 @@ class FunctionPart(Part):
         return (f"a function of ({', '.join(self.arg_names)})" if self.arg_names
                 else "a number or array")
 
-    def student_value(self, answer: Any, args: tuple) -> Any:
+    def student_value(self, answer: Any, args: tuple[Any, ...]) -> np.ndarray | str | None:
+        """Student side: the answer's value at ``args`` as a float array of ``shape`` (None: it
+        returned the starter; "skip": a sympy answer where ``sympy_ok`` says it cannot be read)."""
         f, kind, what = self.as_function(answer)
         if kind == "sympy" and self.sympy_ok is not None and not self.sympy_ok(*args):
             return "skip"
@@ -310,13 +334,14 @@ class FunctionPart(Part):
         return match_shape(got, self.shape, f"the value {what} returned")
 
     @override
-    def probes(self) -> list[Callable[[Any], Any]]:
-        def probe(args: tuple) -> Callable[[Any], Any]:
+    def probes(self) -> list[Probe]:
+        def probe(args: tuple[Any, ...]) -> Probe:
             return lambda ans: self.student_value(ans, args)
         return [probe(args) for args in self.inputs()]
 
     # -- judge side
-    def close(self, got: Any, expected: Any) -> bool:
+    def close(self, got: npt.ArrayLike, expected: npt.ArrayLike) -> bool:
+        """``got`` equals ``expected`` within ``atol + rtol * |expected|`` (``angles`` modulo 2 pi)."""
         got = np.asarray(got, dtype=float)
         expected = np.asarray(expected, dtype=float)
         if got.shape != expected.shape:
@@ -330,7 +355,7 @@ class FunctionPart(Part):
             return bool(np.all(np.abs(diff) <= self.atol + self.rtol * np.abs(expected)))
 
     @override
-    def judge(self, outcomes: list[dict[str, Any]]) -> str:
+    def judge(self, outcomes: list[ProbeOutcome]) -> str:
         all_args = list(self.inputs())
         what = self.what
         got_all: list[Any] = []
@@ -372,7 +397,8 @@ class FunctionPart(Part):
         raise Wrong(f"{what.capitalize()} gives a different value for {self._label(all_args[i])}"
                     f"{where}. Try this case by hand, or ask .hint().")
 
-    def _matches_everywhere(self, wrong_f, all_args, got_all):
+    def _matches_everywhere(self, wrong_f: Callable[..., npt.ArrayLike], all_args: list[tuple[Any, ...]],
+                            got_all: list[np.ndarray | None]) -> bool:
         for args, got in zip(all_args, got_all):
             if got is None:
                 continue
@@ -386,12 +412,12 @@ class FunctionPart(Part):
 
     success = "Correct: your answer matches the reference on random and edge-case inputs."
 
-    def _label(self, args):
+    def _label(self, args: tuple[Any, ...]) -> str:
         if not self.arg_names:
             return "this part"
         return ", ".join(f"{n}={fmt_args((a,))[1:-1]}" for n, a in zip(self.arg_names, args))
 
-    def _where(self, got, expected):
+    def _where(self, got: np.ndarray, expected: np.ndarray) -> str:
         if got.ndim == 0 or got.size == 1:
             return ""
         with np.errstate(all="ignore"):
@@ -416,7 +442,7 @@ class TuplePart(Part):
             self.reference = tuple(part.reference for _, part in self.components)
         self.extra = extra  # optional judge(values by component) for a property of the whole
 
-    def _values(self, answer):
+    def _values(self, answer: Any) -> list[Any]:
         labels = [lbl for lbl, _ in self.components]
         if is_starter(answer):
             raise Unattempted()
@@ -441,16 +467,16 @@ class TuplePart(Part):
         return values
 
     @override
-    def probes(self) -> list[Callable[[Any], Any]]:
-        def probe(i: int, part: FunctionPart, args: tuple) -> Callable[[Any], Any]:
+    def probes(self) -> list[Probe]:
+        def probe(i: int, part: FunctionPart, args: tuple[Any, ...]) -> Probe:
             return lambda ans: part.student_value(self._values(ans)[i], args)
-        out: list[Callable[[Any], Any]] = [lambda ans: (self._values(ans), "ok")[1]]
+        out: list[Probe] = [lambda ans: (self._values(ans), "ok")[1]]
         for i, (_, part) in enumerate(self.components):
             out += [probe(i, part, args) for args in part.inputs()]
         return out
 
     @override
-    def judge(self, outcomes: list[dict[str, Any]]) -> str:
+    def judge(self, outcomes: list[ProbeOutcome]) -> str:
         if not outcomes:
             raise Wrong("the check could not evaluate your answer.")
         first = outcomes[0]
@@ -472,19 +498,168 @@ class TuplePart(Part):
 class CustomPart(Part):
     """A part with its own probes and judge: ``make_probes() -> [probe]``, ``judge(outcomes)``."""
 
-    def __init__(self, name: str, prompt: str, make_probes: Callable[[], list[Callable[[Any], Any]]],
-                 judge: Callable[[list[dict[str, Any]]], str], kind: str = "custom", **kw: Any) -> None:
+    def __init__(self, name: str, prompt: str, make_probes: Callable[[], list[Probe]],
+                 judge: Callable[[list[ProbeOutcome]], str], kind: str = "custom", **kw: Any) -> None:
         super().__init__(name, prompt, **kw)
         self._make_probes, self._judge = make_probes, judge
         self.kind = kind
 
     @override
-    def probes(self) -> list[Callable[[Any], Any]]:
+    def probes(self) -> list[Probe]:
         return list(self._make_probes())
 
     @override
-    def judge(self, outcomes: list[dict[str, Any]]) -> str:
+    def judge(self, outcomes: list[ProbeOutcome]) -> str:
         return self._judge(outcomes)
+
+
+class Mistake(NamedTuple):
+    """A plausible wrong value for a :class:`ValuePart` and the message it deserves.
+
+    ``tol``: how close (absolutely) an answer must come to ``value`` to be taken for this mistake;
+    None: the part's own tolerance (``atol + rtol * |value|``)."""
+
+    value: npt.ArrayLike
+    message: str
+    tol: float | None = None
+
+
+class ValuePart(Part):
+    """A one-value answer (a number, or an array of ``shape``) compared with an expected value
+    within a tolerance, declared by class attributes like learntools' problems::
+
+        class DiscArea(ValuePart):
+            name = "a"
+            prompt = "The area of the unit disc (a number)"
+            expected = np.pi
+            rtol = 1e-6
+            mistakes = [Mistake(2 * np.pi, "that is the circumference 2 pi r, not the area.")]
+            hints = ["The area of a disc of radius r is pi r^2."]
+            solution_text = "pi r^2 = pi for r = 1."
+
+        ex9_1 = Exercise("9.1", "Discs", [DiscArea()])
+
+    The probe and the judge come from this class. The probe reads the answer as plain numbers:
+    the starter value is unattempted; a bool, text, a function or the wrong number of entries gets
+    a message saying what was expected (``expects``, ``wrong_size``). The judge passes a value
+    within ``atol + rtol * |expected|`` of ``expected`` (entry by entry for an array) with
+    ``success``; otherwise it raises the message of the first of ``mistakes`` the value is close
+    to, else says how it is off (:meth:`far_message`). A value that is not finite gets
+    ``not_finite``.
+
+    ``reference`` defaults to ``expected`` and ``wrong`` to the mistakes' values; ``kind``,
+    ``weight`` and ``starter`` are those of :class:`Part`. Keyword arguments of the constructor
+    override the class attributes (``DiscArea(weight=1.0)``). A value that is costly to compute
+    (not at import) comes from overriding :meth:`expected_value` (then declare ``reference``);
+    mistakes that depend on it from :meth:`known_mistakes`; messages with numbers in them from
+    :meth:`success_message` and :meth:`far_message`.
+    """
+
+    kind = "number"
+    #: The expected value (a number, or an array of ``shape``); see :meth:`expected_value`.
+    expected: npt.ArrayLike | None = None
+    rtol: float = 1e-6
+    atol: float = 1e-8
+    shape: tuple[int, ...] = ()
+    mistakes: Sequence[Mistake] = ()
+    #: What the answer should be, in messages ("one number"); empty: said from ``shape``.
+    expects: str = ""
+    wrong_size: str = "your answer has {size} numbers (shape {shape}); {expects} was expected."
+    not_finite: str = "your answer is not finite (NaN or infinite entries)."
+    success: str = "Correct."
+
+    def __init__(self, **overrides: Any) -> None:
+        declarable = ("name", "prompt", "hints", "solution_text", "reference", "wrong", "starter", "weight")
+        unknown = sorted(set(overrides) - set(declarable))
+        if unknown:
+            raise TypeError(f"{type(self).__name__}() got unexpected arguments {unknown}; declare "
+                            "the rest as class attributes")
+
+        def declared(key: str, default: Any = None) -> Any:
+            return overrides[key] if key in overrides else getattr(type(self), key, default)
+
+        name, prompt = declared("name"), declared("prompt")
+        if not (isinstance(name, str) and isinstance(prompt, str)):
+            raise TypeError(f"{type(self).__name__} must declare a name and a prompt (class attributes)")
+        reference, wrong = declared("reference"), declared("wrong")
+        super().__init__(name, prompt, hints=declared("hints", ()),
+                         solution_text=declared("solution_text", ""),
+                         reference=self.expected if reference is None else reference,
+                         wrong=[m[0] for m in self.mistakes] if wrong is None else wrong,
+                         starter=declared("starter"), weight=declared("weight"))
+
+    # -- student side (runs in the sandbox)
+    def read(self, answer: Any) -> float | np.ndarray:
+        """The answer as plain numbers: a float, or an array of ``shape``."""
+        if is_starter(answer):
+            raise Unattempted()
+        if isinstance(answer, (bool, np.bool_)):
+            raise Wrong(f"your answer is {describe(answer)}; {self.expects_text} was expected.")
+        arr = to_numbers(answer, "your answer")
+        if arr.size != int(np.prod(self.shape)):
+            raise Wrong(self.wrong_size.format(size=arr.size, shape=arr.shape, expects=self.expects_text))
+        if not self.shape:
+            return float(arr.reshape(()))
+        return match_shape(arr, self.shape, "your answer")
+
+    @override
+    def probes(self) -> list[Probe]:
+        return [self.read]
+
+    # -- judge side
+    @property
+    def expects_text(self) -> str:
+        """What the answer should be, as the messages say it."""
+        if self.expects:
+            return self.expects
+        return "one number" if not self.shape else f"an array of shape {self.shape}"
+
+    def expected_value(self) -> npt.ArrayLike:
+        """The value a right answer is close to (default: ``expected``)."""
+        if self.expected is None:
+            raise NotImplementedError(f"{type(self).__name__} declares no expected value")
+        return self.expected
+
+    def known_mistakes(self, expected: npt.ArrayLike) -> list[Mistake]:
+        """The mistakes tried, in order, on a value that is not close to ``expected``."""
+        return [Mistake(*m) for m in self.mistakes]
+
+    def close(self, value: npt.ArrayLike, target: npt.ArrayLike, tol: float | None = None) -> bool:
+        """``value`` within ``tol`` of ``target`` (default: ``atol + rtol * |target|``), entry by entry."""
+        got, want = np.asarray(value, dtype=float), np.asarray(target, dtype=float)
+        if got.shape != want.shape:
+            return False
+        with np.errstate(all="ignore"):
+            bound = self.atol + self.rtol * np.abs(want) if tol is None else tol
+            return bool(np.all(np.abs(got - want) <= bound))
+
+    def success_message(self, value: float | np.ndarray, expected: npt.ArrayLike) -> str:
+        """The message of a right answer (default: ``success``)."""
+        return self.success
+
+    def far_message(self, value: float | np.ndarray, expected: npt.ArrayLike) -> str:
+        """The message of a value that is neither right nor a known mistake."""
+        return (f"your answer {fmt_value(value)} is not the expected value (to a relative tolerance "
+                f"of {self.rtol:g}). Check how you computed it, or ask .hint().")
+
+    @override
+    def judge(self, outcomes: list[ProbeOutcome]) -> str:
+        o: ProbeOutcome = outcomes[0] if outcomes else {"k": "crash", "m": ""}
+        if o["k"] != "ok":
+            outcome_error(o, "your answer", "no arguments")
+        value = o["v"]
+        if not (isinstance(value, float) if not self.shape
+                else isinstance(value, np.ndarray) and value.shape == self.shape):
+            raise Wrong(f"{self.expects_text} was expected.")
+        if not np.all(np.isfinite(value)):
+            raise Wrong(self.not_finite)
+        expected = self.expected_value()
+        if self.close(value, expected):
+            return self.success_message(value, expected)
+        for mistake in self.known_mistakes(expected):
+            if self.close(value, mistake.value, mistake.tol):
+                raise Wrong(mistake.message)
+        raise Wrong(self.far_message(value, expected))
 
 
 # ------------------------------------------------------------------------------ input helpers
@@ -501,9 +676,9 @@ def salted() -> bool:
 
 
 def rng_inputs(seed: int, n: int, make: Callable[[np.random.Generator], Sequence[Any]],
-               edges: Iterable[Sequence[Any]] = ()) -> Callable[[], Iterable[tuple]]:
+               edges: Iterable[Sequence[Any]] = ()) -> Callable[[], Iterator[tuple[Any, ...]]]:
     """A function yielding the edge cases first, then ``n`` seeded random argument tuples."""
-    def inputs():
+    def inputs() -> Iterator[tuple[Any, ...]]:
         for e in edges:
             yield tuple(e)
         rng = probe_rng(seed)
@@ -512,5 +687,5 @@ def rng_inputs(seed: int, n: int, make: Callable[[np.random.Generator], Sequence
     return inputs
 
 
-__all__ = ["Verdict", "Part", "FunctionPart", "TuplePart", "CustomPart", "outcome_error", "rng_inputs",
-           "probe_rng", "salted"]
+__all__ = ["Verdict", "Part", "FunctionPart", "TuplePart", "CustomPart", "ValuePart", "Mistake",
+           "outcome_error", "rng_inputs", "probe_rng", "salted"]

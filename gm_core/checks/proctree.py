@@ -16,6 +16,7 @@ import os
 import signal
 import threading
 import time
+from typing import ClassVar
 
 PR_SET_CHILD_SUBREAPER = 36
 PR_GET_CHILD_SUBREAPER = 37
@@ -25,25 +26,29 @@ except Exception:  # noqa: BLE001
     _LIBC = None
 
 
-def become_subreaper():
+def _prctl(option: int, arg: object) -> int | None:
+    """libc's ``prctl(option, arg, 0, 0, 0)``; None where there is none (no libc, not Linux)."""
+    if _LIBC is None:
+        return None
+    try:
+        return int(_LIBC.prctl(option, arg, 0, 0, 0))
+    except (OSError, AttributeError):
+        return None
+
+
+def become_subreaper() -> None:
     """Orphans of this process's descendants become its children, not init's (Linux >= 3.4)."""
-    try:
-        _LIBC.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0)
-    except (OSError, AttributeError):
-        pass
+    _prctl(PR_SET_CHILD_SUBREAPER, 1)
 
 
-def _is_subreaper():
+def _is_subreaper() -> bool | None:
     flag = ctypes.c_int(0)
-    try:
-        if _LIBC.prctl(PR_GET_CHILD_SUBREAPER, ctypes.byref(flag), 0, 0, 0) != 0:
-            return None
-    except (OSError, AttributeError):
+    if _prctl(PR_GET_CHILD_SUBREAPER, ctypes.byref(flag)) != 0:
         return None
     return bool(flag.value)
 
 
-def _start_time(pid):
+def _start_time(pid: int) -> int | None:
     """The start time of ``pid`` in clock ticks since boot (field 22 of /proc/<pid>/stat)."""
     try:
         with open(f"/proc/{pid}/stat", encoding="ascii", errors="replace") as f:
@@ -52,7 +57,7 @@ def _start_time(pid):
         return None
 
 
-def _ticks_now():
+def _ticks_now() -> int | None:
     """Now, in the clock of /proc/<pid>/stat's start times (clock ticks since boot)."""
     try:
         with open("/proc/uptime", encoding="ascii") as f:
@@ -75,20 +80,24 @@ class Adoption:
     process that another thread of the notebook starts *while* a check runs (children from
     before the check, and from after it, are never touched)."""
 
-    _lock = threading.Lock()
-    _users = 0
-    _was = None
-    _keepers: set = set()
+    _lock: ClassVar[threading.Lock] = threading.Lock()
+    _users: ClassVar[int] = 0
+    _was: ClassVar[bool | None] = None
+    _keepers: ClassVar[set[int]] = set()
 
-    def __init__(self):
-        self.before, self.keeper, self.since, self.active = set(), None, None, False
-        self.until = None
+    def __init__(self) -> None:
+        self.before: set[int] = set()
+        self.keeper: int | None = None
+        self.since: int | None = None
+        self.active = False
+        self.until: int | None = None
 
-    def close_window(self):
+    def close_window(self) -> None:
         """The check is over: a child born from now on is the notebook's own, never a stray."""
         self.until = _ticks_now()
 
-    def start(self):
+    def start(self) -> Adoption:
+        """Make this process a subreaper while the check runs (counted); record its children now."""
         cls = type(self)
         with cls._lock:
             if cls._users == 0:
@@ -102,7 +111,7 @@ class Adoption:
             self.before = set(_children(os.getpid()) or [])
         return self
 
-    def fork(self):
+    def fork(self) -> int:
         """``os.fork()``, the child registered as a keeper (never taken for a stray by any check)."""
         cls = type(self)
         with cls._lock:
@@ -114,11 +123,12 @@ class Adoption:
             cls._lock, cls._users, cls._was, cls._keepers = threading.Lock(), 0, None, set()
         return pid
 
-    def keeper_reaped(self):
+    def keeper_reaped(self) -> None:
+        """The keeper is reaped: its pid may be reused, so it is no keeper any more."""
         with type(self)._lock:
             type(self)._keepers.discard(self.keeper)
 
-    def _strays(self):
+    def _strays(self) -> list[int]:
         if not self.active or self.since is None:
             return []
         out = []
@@ -132,7 +142,7 @@ class Adoption:
                     out.append(p)
         return out
 
-    def end_strays(self):
+    def end_strays(self) -> bool:
         """Kill and reap every stray child (and its tree); True if there were any."""
         found = False
         for _round in range(50):
@@ -161,7 +171,8 @@ class Adoption:
                     pass
         return found
 
-    def release(self):
+    def release(self) -> None:
+        """This check no longer needs adoption; the last one turns the subreaper off again."""
         cls = type(self)
         if not self.active:
             return
@@ -169,13 +180,10 @@ class Adoption:
         with cls._lock:
             cls._users -= 1
             if cls._users == 0 and cls._was is False:
-                try:
-                    _LIBC.prctl(PR_SET_CHILD_SUBREAPER, 0, 0, 0, 0)
-                except (OSError, AttributeError):
-                    pass
+                _prctl(PR_SET_CHILD_SUBREAPER, 0)
 
 
-def _children(pid):
+def _children(pid: int) -> list[int] | None:
     """Direct children of ``pid`` (from /proc); None when /proc cannot tell."""
     try:
         tids = os.listdir(f"/proc/{pid}/task")
@@ -194,7 +202,7 @@ def _children(pid):
     return out
 
 
-def _children_by_scan(pid):
+def _children_by_scan(pid: int) -> list[int]:
     out = []
     for name in os.listdir("/proc"):
         if name.isdigit():
@@ -208,7 +216,7 @@ def _children_by_scan(pid):
     return out
 
 
-def descendants(root):
+def descendants(root: int) -> list[int] | None:
     """Every process below ``root`` (children, their children, ...), or None without /proc."""
     first = _children(root)
     if first is None:
@@ -223,14 +231,14 @@ def descendants(root):
     return seen
 
 
-def _signal(pid, sig):
+def _signal(pid: int, sig: int) -> None:
     try:
         os.kill(pid, sig)
     except OSError:
         pass
 
 
-def _freeze_and_kill(keeper):
+def _freeze_and_kill(keeper: int) -> bool:
     """SIGSTOP everything below the keeper until nothing new appears, then SIGKILL it all.
     False when /proc cannot list the tree."""
     below = descendants(keeper)
@@ -248,7 +256,7 @@ def _freeze_and_kill(keeper):
     return True
 
 
-def _exited(pid):
+def _exited(pid: int) -> bool:
     """True once ``pid`` (our child) has exited, without reaping it (so its id stays reserved)."""
     if hasattr(os, "waitid") and hasattr(os, "WNOWAIT"):
         try:
@@ -258,7 +266,8 @@ def _exited(pid):
     return False
 
 
-def _finish(keeper, patience=0.25, rounds=40, adoption=None):
+def _finish(keeper: int, patience: float = 0.25, rounds: int = 40,
+            adoption: Adoption | None = None) -> None:
     """Wait for the keeper, which reaps the killed tree and then exits, killing any straggler
     meanwhile; then kill what is left of its process group and reap it; then end (and reap) the
     orphans that came to this process, and stop adopting."""
@@ -287,7 +296,7 @@ def _finish(keeper, patience=0.25, rounds=40, adoption=None):
             adoption.release()
 
 
-def _killed_early(pid):
+def _killed_early(pid: int) -> bool:
     """True when ``pid`` (our child, not reaped) was killed by a signal before we ended it."""
     if not (hasattr(os, "waitid") and hasattr(os, "WNOWAIT") and hasattr(os, "CLD_EXITED")):
         return False
@@ -298,7 +307,7 @@ def _killed_early(pid):
     return res is not None and res.si_code != os.CLD_EXITED
 
 
-def _kill_session(keeper):
+def _kill_session(keeper: int) -> None:
     """Kill every process still in the keeper's session or process group (its orphans, once
     something killed the keeper itself: they are no longer below it)."""
     for name in os.listdir("/proc"):
@@ -314,7 +323,7 @@ def _kill_session(keeper):
             _signal(int(name), signal.SIGKILL)
 
 
-def kill_tree(keeper, wait=False, adoption=None):
+def kill_tree(keeper: int, wait: bool = False, adoption: Adoption | None = None) -> None:
     """End the keeper's whole tree: every process below it is frozen and killed now; the keeper
     (which reaps them) is waited for in a background thread unless ``wait``. Without /proc the
     keeper's process group is killed instead. With an :class:`Adoption`, the orphans that escaped
@@ -344,13 +353,13 @@ def kill_tree(keeper, wait=False, adoption=None):
                          name="gm-checks-reaper", daemon=True).start()
 
 
-def how_it_ended(status):
+def how_it_ended(status: int | None) -> str:
     """A friendly account of a worker's wait status."""
     if status is None:
         return "the process running it was stopped from outside"
     if os.WIFSIGNALED(status):
         sig = os.WTERMSIG(status)
-        known = {
+        known: dict[int, str] = {
             signal.SIGKILL: "it was killed (SIGKILL), most likely because the computer ran out of memory",
             signal.SIGSEGV: "a segmentation fault: a recursion deeper than the interpreter survives "
                             "(was sys.setrecursionlimit raised?) or a bug in compiled code",

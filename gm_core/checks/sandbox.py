@@ -19,9 +19,14 @@ that still holds the result pipe). A worker can kill its keeper and call ``setsi
 keeper's tree, group and session); while a check runs the checking process is a subreaper as
 well, so such an orphan becomes its child, and it is ended and reaped there with its own tree
 (:class:`gm_core.checks.proctree.Adoption`). No cgroup is needed (a student's laptop has none to give).
-The worker runs with a memory limit (``MEMORY_LIMIT_MB`` more address space than the kernel uses;
+The worker runs with a memory limit (``memory_mb`` more address space than the kernel uses;
 ``GM_CHECKS_MEMORY_MB`` sets it, 0 turns it off) so a runaway allocation is a ``MemoryError``,
 not a frozen computer.
+
+The settings (the time limit, the memory budget, how much printed output comes back) are one
+frozen :class:`SandboxSettings`: :func:`current_settings` gives the ones in force,
+:func:`apply_settings` puts others in force, :func:`using_settings` does so for a ``with`` block,
+and :func:`set_time_limit` (the student's) changes the time limit only.
 
 What stopped a call is said plainly: the time limit (``"timeout"``), Ctrl-C / SIGINT
 (``KeyboardInterrupt``), an alarm (``AlarmSignal``: ``signal.alarm`` or a timer in the student's
@@ -51,24 +56,96 @@ import signal
 import sys
 import time
 import warnings
-from contextlib import redirect_stderr, redirect_stdout
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager, redirect_stderr, redirect_stdout
+from dataclasses import dataclass, replace
+from types import FrameType
+from typing import Any, TypeAlias, cast
 
 import numpy as np
+from typing_extensions import Required, TypedDict
 
 from gm_core.checks import channel
 from gm_core.checks.proctree import Adoption, become_subreaper, how_it_ended, kill_tree
+from gm_core.checks.protocol import JSON
 
 try:
     import resource
 except ImportError:  # pragma: no cover - Windows
     resource = None  # type: ignore[assignment]  # checked before every use
 
-#: Seconds each probe may take before the child is stopped; change with set_time_limit().
-TIME_LIMIT = [5.0]
-#: Megabytes of address space the worker may take beyond what the kernel already uses (0: no limit).
-MEMORY_LIMIT_MB = [int(os.environ.get("GM_CHECKS_MEMORY_MB", "2048") or 0)]
-MAX_OUTPUT_CHARS = 1500
-MAX_OUTPUT_LINES = 25
+
+@dataclass(frozen=True)
+class SandboxSettings:
+    """How :func:`collect` runs probes.
+
+    ``time_limit``: seconds each probe may take before the worker is stopped (a ``time_limit``
+    given to :func:`collect` overrides it for that call; while grading, neither may exceed the
+    grader's per-call limit, :attr:`gm_core.checks.protocol.Limits.time_limit`).
+    ``memory_mb``: megabytes of address space the worker may take beyond what the kernel already
+    uses (0 or less: no limit). ``max_output_chars``, ``max_output_lines``: how much of what the
+    probes print comes back (the rest is cut, and the cut said).
+
+    Frozen: change the settings in force with :func:`apply_settings` or :func:`using_settings`,
+    e.g. ``using_settings(replace(current_settings(), time_limit=1.0))``.
+    """
+
+    time_limit: float = 5.0
+    memory_mb: int = 2048
+    max_output_chars: int = 1500
+    max_output_lines: int = 25
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "time_limit", float(self.time_limit))
+        for name in ("memory_mb", "max_output_chars", "max_output_lines"):
+            object.__setattr__(self, name, int(getattr(self, name)))
+        if not self.time_limit > 0:
+            raise ValueError(f"time_limit must be a positive number of seconds; got {self.time_limit!r}")
+        if self.max_output_chars < 0 or self.max_output_lines < 0:
+            raise ValueError("max_output_chars and max_output_lines must not be negative")
+
+
+#: The settings in force; the memory budget comes from ``GM_CHECKS_MEMORY_MB`` when it is set.
+_settings = SandboxSettings(memory_mb=int(os.environ.get("GM_CHECKS_MEMORY_MB", "2048") or 0))
+
+
+def current_settings() -> SandboxSettings:
+    """The :class:`SandboxSettings` in force."""
+    return _settings
+
+
+def apply_settings(settings: SandboxSettings) -> SandboxSettings:
+    """Put ``settings`` in force for every later check in this process; return the previous ones."""
+    global _settings
+    if not isinstance(settings, SandboxSettings):
+        raise TypeError(f"settings must be a SandboxSettings; got {type(settings).__name__}")
+    previous, _settings = _settings, settings
+    return previous
+
+
+@contextmanager
+def using_settings(settings: SandboxSettings) -> Iterator[SandboxSettings]:
+    """Put ``settings`` in force inside a ``with`` block; the previous ones come back after it."""
+    previous = apply_settings(settings)
+    try:
+        yield settings
+    finally:
+        apply_settings(previous)
+
+
+#: A probe: ``probe(answer) -> plain data``; the answer is whatever the student handed in.
+Probe: TypeAlias = Callable[[Any], Any]
+
+
+class ProbeOutcome(TypedDict, total=False):
+    """One probe's outcome (see the module docstring): its kind ``k``; ``v``, the probe's plain
+    value (``ok`` only: decoded numbers, text, float arrays, lists and dicts, or their JSON form
+    before :func:`decode_outcome`); ``m``, a message; ``x``, what more there is to say."""
+
+    k: Required[str]
+    v: Any
+    m: str
+    x: str
 
 
 class Wrong(Exception):
@@ -83,11 +160,11 @@ class AlarmSignal(BaseException):
     """Raised in the worker when SIGALRM arrives (``signal.alarm`` or a timer in student code)."""
 
 
-def _on_alarm(signum, frame):
+def _on_alarm(signum: int, frame: FrameType | None) -> None:
     raise AlarmSignal()
 
 
-def set_time_limit(seconds):
+def set_time_limit(seconds: float) -> None:
     """Set how many seconds a checker lets one call of your function take (default 5)."""
     try:
         s = float(seconds)
@@ -95,10 +172,10 @@ def set_time_limit(seconds):
         raise TypeError(f"seconds must be a number of seconds; got {seconds!r}") from None
     if not s > 0:
         raise ValueError(f"seconds must be positive; got {seconds!r}")
-    TIME_LIMIT[0] = s
+    apply_settings(replace(_settings, time_limit=s))
 
 
-def safe_text(exc, limit=200):
+def safe_text(exc: object, limit: int = 200) -> str:
     """str(exc), or a placeholder when even that fails (a hostile __str__)."""
     try:
         text = str(exc)
@@ -109,7 +186,8 @@ def safe_text(exc, limit=200):
     return text[:limit]
 
 
-def safe_name(exc):
+def safe_name(exc: object) -> str:
+    """The name of ``exc``'s type, or "Exception" when even that fails."""
     try:
         name = type(exc).__name__
         return name if isinstance(name, str) else "Exception"
@@ -118,7 +196,7 @@ def safe_name(exc):
 
 
 # ------------------------------------------------------------------------------ plain data
-def encode(value):
+def encode(value: object) -> JSON:
     """Plain data -> JSON-able (numpy arrays tagged); anything else becomes a short description."""
     if value is None or isinstance(value, (bool, str)):
         return value
@@ -137,7 +215,8 @@ def encode(value):
     raise TypeError(f"a probe returned {type(value).__name__}, which is not plain data")
 
 
-def decode(data):
+def decode(data: JSON) -> Any:
+    """JSON from :func:`encode` -> plain data (float arrays, lists, dicts, numbers, text)."""
     if isinstance(data, list):
         return [decode(v) for v in data]
     if isinstance(data, dict):
@@ -151,7 +230,7 @@ def decode(data):
 
 
 # ------------------------------------------------------------------------------ one probe
-def _run_probe(probe, answer, forked=False):
+def _run_probe(probe: Probe, answer: Any, forked: bool = False) -> ProbeOutcome:
     """Run one probe, turning whatever it does into an outcome dict. In this process (not
     ``forked``) Ctrl-C still interrupts; in the worker it becomes an outcome like any other."""
     try:
@@ -174,23 +253,24 @@ def _run_probe(probe, answer, forked=False):
         return {"k": "error", "m": "AlarmSignal",
                 "x": "an alarm signal (SIGALRM) went off: signal.alarm() or a timer in your code"}
     except MemoryError:
-        budget = MEMORY_LIMIT_MB[0]
+        budget = _settings.memory_mb
         more = f" (a check allows {budget} MB more than the kernel uses)" if budget else ""
         return {"k": "error", "m": "MemoryError", "x": f"it asked for more memory than it may have{more}"}
     except BaseException as exc:  # noqa: BLE001 - SystemExit, GeneratorExit, anything
         return {"k": "error", "m": safe_name(exc), "x": safe_text(exc)}
 
 
-def _truncate(text):
+def _truncate(text: str) -> str:
+    max_lines, max_chars = _settings.max_output_lines, _settings.max_output_chars
     lines = text.splitlines()
-    cut = len(lines) > MAX_OUTPUT_LINES or len(text) > MAX_OUTPUT_CHARS
+    cut = len(lines) > max_lines or len(text) > max_chars
     if cut:
-        text = "\n".join(lines[:MAX_OUTPUT_LINES])[:MAX_OUTPUT_CHARS]
+        text = "\n".join(lines[:max_lines])[:max_chars]
         text += f"\n... ({len(lines)} lines in all; the rest is not shown)"
     return text
 
 
-def _quiet_display_in_child():
+def _quiet_display_in_child() -> None:
     """In the child, send IPython display calls to the captured stdout, not the kernel's socket."""
     ip_mod = sys.modules.get("IPython")
     if ip_mod is None:
@@ -204,9 +284,9 @@ def _quiet_display_in_child():
         pass
 
 
-def _limit_memory():
-    """Cap the worker's address space at what it has now plus MEMORY_LIMIT_MB (Linux)."""
-    budget = MEMORY_LIMIT_MB[0]
+def _limit_memory() -> None:
+    """Cap the worker's address space at what it has now plus the settings' ``memory_mb`` (Linux)."""
+    budget = _settings.memory_mb
     if resource is None or not budget or budget <= 0:
         return
     try:
@@ -222,7 +302,7 @@ def _limit_memory():
         pass
 
 
-def _child(probes, answer, wfd):
+def _child(probes: list[Probe], answer: Any, wfd: int) -> None:
     """The worker: run every probe, one JSON line each, then the captured output; then exit."""
     buf = io.StringIO()
     try:
@@ -242,7 +322,7 @@ def _child(probes, answer, wfd):
         os._exit(0)
 
 
-def _keeper(probes, answer, wfd):
+def _keeper(probes: list[Probe], answer: Any, wfd: int) -> None:
     """The fork's first process: own session and process group, subreaper of all below; forks
     the worker, reports how it ended, and reaps every descendant until none is left."""
     try:
@@ -268,13 +348,13 @@ def _keeper(probes, answer, wfd):
         os._exit(0)
 
 
-def _can_fork():
+def _can_fork() -> bool:
     return hasattr(os, "fork") and os.environ.get("GM_CHECKS_NO_FORK", "") not in ("1", "true")
 
 
-def _in_process(probes, answer, raw=False):
+def _in_process(probes: list[Probe], answer: Any, raw: bool = False) -> tuple[list[ProbeOutcome], str]:
     buf = io.StringIO()
-    outcomes = []
+    outcomes: list[ProbeOutcome] = []
     with redirect_stdout(buf), redirect_stderr(buf):
         for probe in probes:
             # copies, so a function that edits its input cannot change what later probes see
@@ -286,11 +366,13 @@ def _in_process(probes, answer, raw=False):
     return (outcomes if raw else [decode_outcome(o) for o in outcomes]), _truncate(buf.getvalue())
 
 
-def decode_outcome(o):
+def decode_outcome(o: object) -> ProbeOutcome:
+    """An outcome as the judges read it (``v`` decoded), from its JSON form; anything else, or
+    a value that cannot be decoded, is a crash ("unreadable result")."""
     if not isinstance(o, dict) or o.get("k") not in (
             "ok", "wrong", "unattempted", "error", "timeout", "crash", "skipped"):
         return {"k": "crash", "m": "unreadable result"}
-    out = {"k": o["k"], "m": o.get("m", ""), "x": o.get("x", "")}
+    out: ProbeOutcome = {"k": o["k"], "m": o.get("m", ""), "x": o.get("x", "")}
     if o["k"] == "ok":
         try:
             out["v"] = decode(o.get("v"))
@@ -299,13 +381,14 @@ def decode_outcome(o):
     return out
 
 
-def collect(answer, probes, time_limit=None, raw=False):
+def collect(answer: Any, probes: Iterable[Probe], time_limit: float | None = None,
+            raw: bool = False) -> tuple[list[ProbeOutcome], str]:
     """Run ``probe(answer)`` for every probe, each under the time limit; return (outcomes, output).
 
     Outcomes are decoded dicts (see the module docstring), one per probe, in order; with
     ``raw=True`` they stay JSON-able (for the grader, which decodes them in its own process).
     """
-    limit = TIME_LIMIT[0] if time_limit is None else float(time_limit)
+    limit = _settings.time_limit if time_limit is None else float(time_limit)
     graded = channel.time_limit()
     if graded is not None:
         limit = min(limit, graded)     # while grading, no call gets more than the grader allows
@@ -313,8 +396,7 @@ def collect(answer, probes, time_limit=None, raw=False):
     if not probes:
         return [], ""
     if not _can_fork():
-        outcomes, output = _in_process(probes, answer, raw)
-        return outcomes, output
+        return _in_process(probes, answer, raw)
     rfd, wfd = os.pipe()
     adoption = Adoption().start()   # orphans of the probe tree come to this process, not init
     try:
@@ -330,7 +412,8 @@ def collect(answer, probes, time_limit=None, raw=False):
         os.close(rfd)
         _keeper(probes, answer, wfd)
     os.close(wfd)
-    outcomes, output, pending = [], "", b""
+    outcomes: list[ProbeOutcome] = []
+    output, pending = "", b""
     deadline = time.monotonic() + limit
     ended, status, done = False, None, False
     try:
@@ -360,7 +443,8 @@ def collect(answer, probes, time_limit=None, raw=False):
                     status = o.get("v") if isinstance(o.get("v"), int) else None
                     ended = True              # the worker died before it was done
                     break
-                outcomes.append(o if raw and isinstance(o, dict) else decode_outcome(o))
+                # raw: the JSON form, read strictly by the grader's decoder in its own process
+                outcomes.append(cast(ProbeOutcome, o) if raw and isinstance(o, dict) else decode_outcome(o))
                 deadline = time.monotonic() + limit  # the next probe gets its own limit
     finally:
         os.close(rfd)
@@ -371,5 +455,5 @@ def collect(answer, probes, time_limit=None, raw=False):
             outcomes.append({"k": "crash", "m": "", "x": how_it_ended(status)})
         else:
             outcomes.append({"k": "timeout", "m": f"{limit:g}", "x": ""})
-        outcomes += [{"k": "skipped", "m": "", "x": ""}] * (len(probes) - len(outcomes))
+        outcomes += [{"k": "skipped", "m": "", "x": ""} for _ in range(len(probes) - len(outcomes))]
     return outcomes, output

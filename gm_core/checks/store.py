@@ -32,7 +32,10 @@ import math
 import os
 import re
 import time
+from collections.abc import Sequence
+from contextlib import AbstractContextManager
 from pathlib import Path
+from typing import Any, TypeAlias, TypedDict, cast
 
 from gm_core.checks.files import atomic_write
 
@@ -46,17 +49,44 @@ DAMAGED_TAG = ".damaged-"
 #: Seconds to wait for another kernel holding the lock before keeping the verdict in memory.
 LOCK_TIMEOUT = 15.0
 
-#: {"1.4/a": {"status": ..., "solution_viewed": bool, "when": float}} when no workspace is in use.
-_MEMORY: dict = {}
+
+class PartRecord(TypedDict):
+    """One part's record: its latest status, whether its solution was shown, when (time.time())."""
+
+    status: str
+    solution_viewed: bool
+    when: float
+
+
+class _Changes(TypedDict, total=False):
+    status: str
+    solution_viewed: bool
+
+
+#: The whole record: {"1.4/a": PartRecord}.
+Progress: TypeAlias = dict[str, PartRecord]
+
+
+class Notice(TypedDict):
+    """A course update (``tools/sync_workspace.py``): the student's kept ``file``, the course's
+    ``new_version`` written beside it (paths in the workspace), and whether it was ``seen``."""
+
+    file: str
+    new_version: str
+    seen: bool
+
+
+#: The record when no workspace is in use.
+_MEMORY: Progress = {}
 #: {workspace path: {key: record}}: verdicts a workspace could not take yet (it was not writable).
-_UNSAVED: dict = {}
+_UNSAVED: dict[str, Progress] = {}
 #: {workspace path: "why it could not be written"} while its record is not being saved.
-_NOT_SAVED: dict = {}
+_NOT_SAVED: dict[str, str] = {}
 #: Messages already shown to the student in this kernel (each is shown once).
-_TOLD: set = set()
+_TOLD: set[str] = set()
 
 
-def find_workspace(start=None):
+def find_workspace(start: str | os.PathLike[str] | None = None) -> Path | None:
     """The student workspace this kernel runs in, or None (then progress stays in memory)."""
     env = os.environ.get("GM_COURSE_WORKSPACE")
     try:
@@ -75,7 +105,7 @@ def find_workspace(start=None):
     return None
 
 
-def course_workspace():
+def course_workspace() -> Path | None:
     """The repository's workspace/ folder (for the start page), or the one this kernel runs in."""
     ws = find_workspace()
     if ws is not None:
@@ -84,7 +114,7 @@ def course_workspace():
     return guess if (guess / MANIFEST).is_file() else None
 
 
-def _read_json(path, default):
+def _read_json(path: str | os.PathLike[str], default: Any) -> Any:
     try:
         data = json.loads(Path(path).read_text(encoding="utf-8"))
     except (OSError, ValueError):
@@ -92,12 +122,12 @@ def _read_json(path, default):
     return data if isinstance(data, type(default)) else default
 
 
-def write_json_atomic(path, data):
+def write_json_atomic(path: str | os.PathLike[str], data: object) -> None:
     """Write JSON to ``path`` atomically (gm_core.checks.files.atomic_write)."""
     atomic_write(path, json.dumps(data, indent=1, sort_keys=True) + "\n")
 
 
-def _tell(key, text):
+def _tell(key: str, text: str) -> None:
     """Tell the student something about their record, once per kernel."""
     if key in _TOLD:
         return
@@ -109,7 +139,7 @@ def _tell(key, text):
 
 
 # ------------------------------------------------------------------------------ reading, tolerantly
-def _when(value):
+def _when(value: Any) -> float:
     """A record's time as a float; anything that is not a finite number of seconds becomes 0."""
     try:
         t = float(value)
@@ -118,7 +148,7 @@ def _when(value):
     return t if math.isfinite(t) else 0.0
 
 
-def _flag(value):
+def _flag(value: object) -> bool:
     if isinstance(value, str):
         return value.strip().lower() in ("true", "yes", "1")
     try:
@@ -127,7 +157,7 @@ def _flag(value):
         return False
 
 
-def _clean_record(key, rec):
+def _clean_record(key: object, rec: object) -> PartRecord | None:
     """A tidy record, or None when ``key``/``rec`` cannot be one (bad fields are tolerated)."""
     if not isinstance(key, str) or "/" not in key or not isinstance(rec, dict):
         return None
@@ -138,8 +168,8 @@ def _clean_record(key, rec):
             "when": _when(rec.get("when", 0))}
 
 
-def _clean(data):
-    out = {}
+def _clean(data: dict[Any, Any]) -> Progress:
+    out: Progress = {}
     for key, rec in data.items():
         tidy = _clean_record(key, rec)
         if tidy is not None:
@@ -147,7 +177,7 @@ def _clean(data):
     return out
 
 
-def _text(raw: bytes):
+def _text(raw: bytes) -> tuple[str, bool]:
     """(text, plain UTF-8?) from the file's bytes, whatever encoding an editor gave it."""
     for bom, codec in ((codecs.BOM_UTF32_LE, "utf-32"), (codecs.BOM_UTF32_BE, "utf-32"),
                        (codecs.BOM_UTF8, "utf-8-sig"), (codecs.BOM_UTF16_LE, "utf-16"),
@@ -175,9 +205,9 @@ def _text(raw: bytes):
 _ENTRY = re.compile(r'"((?:[^"\\\n]|\\.){1,200})"\s*:\s*\{')
 
 
-def _salvage(text):
+def _salvage(text: str) -> Progress:
     """Every ``"key": {record}`` that still parses, wherever it stands in a damaged text."""
-    found = {}
+    found: Progress = {}
     decoder = json.JSONDecoder()
     for m in _ENTRY.finditer(text):
         try:
@@ -191,7 +221,7 @@ def _salvage(text):
     return found
 
 
-def parse_record(raw: bytes):
+def parse_record(raw: bytes) -> tuple[Progress, str | None]:
     """(entries, problem) from the bytes of a progress file: ``problem`` is None for a sound file,
     otherwise a short description of the damage (the entries are then what could be salvaged)."""
     if not raw.strip():
@@ -216,7 +246,7 @@ def parse_record(raw: bytes):
     return {}, f"it holds a {type(data).__name__}, not a record"
 
 
-def _aside_name(path):
+def _aside_name(path: Path) -> Path:
     stamp = time.strftime("%Y%m%d-%H%M%S")
     for k in range(1, 1000):
         cand = path.with_name(f"{path.name}{DAMAGED_TAG}{stamp}{'' if k == 1 else f'-{k}'}")
@@ -225,7 +255,7 @@ def _aside_name(path):
     raise OSError("too many damaged progress files kept aside")
 
 
-def _read_file(ws, fix):
+def _read_file(ws: Path, fix: bool) -> tuple[Progress, bool]:
     """The workspace's record; returns (entries, damaged: bool). A damaged or unreadable file (or
     a folder in its place) is moved aside, kept, when ``fix`` (under the lock): the entries that
     could be read go into a new file, and the student is told."""
@@ -235,7 +265,8 @@ def _read_file(ws, fix):
     except FileNotFoundError:
         return {}, False
     except IsADirectoryError:
-        entries, problem = {}, "it is a folder, not a file"
+        entries: Progress = {}
+        problem: str | None = "it is a folder, not a file"
     except OSError as exc:
         entries, problem = {}, f"it cannot be read: {type(exc).__name__}, {exc.strerror or exc}"
     else:
@@ -257,10 +288,11 @@ class _Flock:
     """The same lock as filelock's on POSIX (``flock`` on the same file), for a bare ``pip install
     .`` without the [lab] extra; without fcntl (Windows) only the atomic write remains."""
 
-    def __init__(self, path, timeout):
-        self.path, self.timeout, self.fd = path, timeout, None
+    def __init__(self, path: str, timeout: float) -> None:
+        self.path, self.timeout = path, timeout
+        self.fd: int | None = None
 
-    def __enter__(self):
+    def __enter__(self) -> _Flock:
         try:
             import fcntl
         except ImportError:
@@ -277,12 +309,12 @@ class _Flock:
                     raise TimeoutError(f"another kernel holds {self.path}") from None
                 time.sleep(0.01)
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         if self.fd is not None:
             os.close(self.fd)            # closing the file releases the lock
 
 
-def _lock(ws, name=PROGRESS_FILE):
+def _lock(ws: Path, name: str = PROGRESS_FILE) -> AbstractContextManager[object]:
     path = str(ws / (name + LOCK_SUFFIX))
     try:
         from filelock import FileLock
@@ -291,19 +323,19 @@ def _lock(ws, name=PROGRESS_FILE):
     return FileLock(path, timeout=LOCK_TIMEOUT)
 
 
-def _merge(data, extra):
+def _merge(data: Progress, extra: Progress) -> Progress:
     """``data`` updated with every record of ``extra`` that is at least as recent."""
     for key, rec in extra.items():
         if key not in data or rec.get("when", 0) >= data[key].get("when", 0):
-            data[key] = dict(rec)
+            data[key] = rec.copy()
     return data
 
 
-def load():
+def load() -> Progress:
     """The whole record {"ex/part": {...}} (from the workspace file when there is one)."""
     ws = find_workspace()
     if ws is None:
-        return {k: dict(v) for k, v in _MEMORY.items()}
+        return {k: v.copy() for k, v in _MEMORY.items()}
     key = str(ws)
     try:
         data, damaged = _read_file(ws, fix=False)
@@ -318,7 +350,7 @@ def load():
     return _merge(data, _UNSAVED.get(key, {}))
 
 
-def _not_saved(ws, exc):
+def _not_saved(ws: Path, exc: BaseException) -> None:
     key = str(ws)
     why = f"{type(exc).__name__}: {exc}" if str(exc) else type(exc).__name__
     _NOT_SAVED[key] = why
@@ -328,14 +360,14 @@ def _not_saved(ws, exc):
           "folder writable (or free some disk space) and run a check again: it is then saved.")
 
 
-def _new_record(old, changes):
-    rec = dict(old or {"status": UNATTEMPTED, "solution_viewed": False})
+def _new_record(old: PartRecord | None, changes: _Changes) -> PartRecord:
+    rec: PartRecord = old.copy() if old else {"status": UNATTEMPTED, "solution_viewed": False, "when": 0.0}
     rec.update(changes)
     rec["when"] = time.time()
     return rec
 
 
-def _update(key, **changes):
+def _update(key: str, changes: _Changes) -> None:
     """Change one part's record. Never raises (a verdict is never lost to a bookkeeping error)."""
     try:
         _save(key, changes)
@@ -345,7 +377,7 @@ def _update(key, **changes):
         kept[key] = _new_record(kept.get(key), changes)
 
 
-def _save(key, changes):
+def _save(key: str, changes: _Changes) -> None:
     ws = find_workspace()
     if ws is None:
         _MEMORY[key] = _new_record(_MEMORY.get(key), changes)
@@ -370,33 +402,38 @@ def _save(key, changes):
                                              "including the verdicts kept in memory.")
 
 
-def _safe_file(ws):
+def _safe_file(ws: Path) -> Progress:
     try:
         return _read_file(ws, fix=False)[0]
     except Exception:  # noqa: BLE001
         return {}
 
 
-def not_saved():
+def not_saved() -> str | None:
     """Why this kernel's progress is not being saved in its workspace, or None when it is."""
     ws = find_workspace()
     return None if ws is None else _NOT_SAVED.get(str(ws))
 
 
-def record(ex_id, part, status):
-    _update(f"{ex_id}/{part}", status=status)
+def record(ex_id: str, part: str, status: str) -> None:
+    """Record the latest verdict of part ``part`` of exercise ``ex_id``."""
+    _update(f"{ex_id}/{part}", {"status": status})
 
 
-def record_solution_view(ex_id, part):
-    _update(f"{ex_id}/{part}", solution_viewed=True)
+def record_solution_view(ex_id: str, part: str) -> None:
+    """Record that the solution of the part was shown."""
+    _update(f"{ex_id}/{part}", {"solution_viewed": True})
 
 
-def part_status(ex_id, part, data=None):
+def part_status(ex_id: str, part: str, data: Progress | None = None) -> str:
+    """The latest status of the part (in ``data``, or the record loaded now)."""
     data = load() if data is None else data
-    return data.get(f"{ex_id}/{part}", {}).get("status", UNATTEMPTED)
+    rec = data.get(f"{ex_id}/{part}")
+    return UNATTEMPTED if rec is None else rec.get("status", UNATTEMPTED)
 
 
-def exercise_status(ex_id, parts, data=None):
+def exercise_status(ex_id: str, parts: Sequence[str], data: Progress | None = None) -> str:
+    """passed / in progress / failed / unattempted, from the latest status of each of ``parts``."""
     states = [part_status(ex_id, p, data) for p in parts]
     if any(s == FAILED for s in states):
         return FAILED
@@ -407,7 +444,7 @@ def exercise_status(ex_id, parts, data=None):
     return UNATTEMPTED
 
 
-def reset(confirm=True):
+def reset(confirm: bool = True) -> None:
     """Forget every recorded check (in memory, and in the workspace's progress file if any)."""
     _MEMORY.clear()
     _UNSAVED.clear()
@@ -425,7 +462,7 @@ def reset(confirm=True):
 
 
 # ------------------------------------------------------------------------------ course updates
-def pending_updates(mark_seen=False):
+def pending_updates(mark_seen: bool = False) -> list[Notice]:
     """Course updates of exercises the student had edited: [{"file", "new_version", ...}].
 
     Each entry names the student's kept file and the new course version written beside it.
@@ -439,7 +476,7 @@ def pending_updates(mark_seen=False):
         return []
 
 
-def _pending_updates(mark_seen):
+def _pending_updates(mark_seen: bool) -> list[Notice]:
     ws = course_workspace()
     if ws is None:
         return []
@@ -459,10 +496,11 @@ def _pending_updates(mark_seen):
         return _listed(ws)[1]
 
 
-def _listed(ws):
+def _listed(ws: Path) -> tuple[list[Notice], list[Notice]]:
     """(every notice, the unseen ones whose new version is still there)."""
-    notices = _read_json(ws / NOTICES, [])
-    notices = [n for n in notices if isinstance(n, dict) and isinstance(n.get("new_version"), str)]
+    # the sync tool's notices: kept if they name their new version; their other fields as written
+    notices: list[Notice] = [cast(Notice, n) for n in _read_json(ws / NOTICES, [])
+                             if isinstance(n, dict) and isinstance(n.get("new_version"), str)]
     known = {n["new_version"] for n in notices}
     for beside in sorted(ws.rglob("*.course-update*.ipynb")):
         rel = beside.relative_to(ws).as_posix()
@@ -470,5 +508,5 @@ def _listed(ws):
             stem = beside.name.split(".course-update")[0]
             notices.append({"file": (beside.parent.relative_to(ws) / (stem + ".ipynb")).as_posix(),
                             "new_version": rel, "seen": False})
-    pending = [dict(n) for n in notices if not n.get("seen") and (ws / n["new_version"]).exists()]
+    pending = [n.copy() for n in notices if not n.get("seen") and (ws / n["new_version"]).exists()]
     return notices, pending

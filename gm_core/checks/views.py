@@ -8,6 +8,8 @@ from __future__ import annotations
 import contextlib
 import html
 import io
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -18,13 +20,19 @@ from gm_core.checks.store import (
     IN_PROGRESS,
     PASSED,
     UNATTEMPTED,
+    Notice,
     find_workspace,
     not_saved,
     pending_updates,
 )
 
+if TYPE_CHECKING:
+    import ipywidgets
 
-def choice_widget(part):
+    from gm_core.checks.choice import ChoicePart
+
+
+def choice_widget(part: ChoicePart) -> ipywidgets.VBox:
     """RadioButtons with the options, a Check button and a feedback line; records progress."""
     import ipywidgets as W
 
@@ -33,7 +41,7 @@ def choice_widget(part):
     button = W.Button(description="Check", button_style="primary")
     out = W.HTML()
 
-    def on_click(_):
+    def on_click(_: object) -> None:
         v = part.check(radio.value, quiet=True)
         color = COLORS.get(v.status, "#6e7781")
         out.value = f'<span style="color:{color}"><b>{v.status}</b>: {html.escape(v.message)}</span>'
@@ -45,7 +53,7 @@ def choice_widget(part):
 
 
 # ------------------------------------------------------------------------------ slide rule
-def slide_rule(a=2.0, b=3.0):
+def slide_rule(a: float = 2.0, b: float = 3.0) -> ipywidgets.VBox:
     """Two log scales sliding past each other: set a (slide) and b (cursor), read a*b on D.
 
     The picture is the course's one slide rule, :class:`gm_core.drawing.groups.SlideRuleScene`,
@@ -70,7 +78,7 @@ def slide_rule(a=2.0, b=3.0):
     view = W.Image(format="png")
     text = W.HTML()
 
-    def update(*_):
+    def update(*_: object) -> None:
         scene.set(a=sa.value, b=sb.value)
         png = io.BytesIO()
         scene.fig.savefig(png, format="png")
@@ -93,7 +101,7 @@ def slide_rule(a=2.0, b=3.0):
 _ICON = {PASSED: "&#10004;", FAILED: "&#10008;", UNATTEMPTED: "&middot;", IN_PROGRESS: "&#9680;"}
 
 
-def updates_html(pending):
+def updates_html(pending: Sequence[Notice]) -> str:
     """An HTML list of pending course updates (the student's kept file and the new version)."""
     items = "".join(
         f"<li>your <code>{html.escape(n['file'])}</code> is kept as you left it; the course's new "
@@ -103,7 +111,7 @@ def updates_html(pending):
             "Open the new version to see what changed; copy over what you want to keep.</div>")
 
 
-def progress_html(mark_seen=False):
+def progress_html(mark_seen: bool = False) -> str:
     """An HTML table of every exercise's status (the saved record), with parts passed."""
     with contextlib.redirect_stdout(io.StringIO()):   # the table says it itself when not saved
         status = progress()
@@ -130,14 +138,14 @@ def progress_html(mark_seen=False):
     return (updates_html(pending) if pending else "") + table
 
 
-def progress_widget():
+def progress_widget() -> ipywidgets.VBox:
     """A small widget showing progress() and pending course updates; Refresh re-reads the record."""
     import ipywidgets as W
 
     view = W.HTML(progress_html(mark_seen=True))
     button = W.Button(description="Refresh", layout=W.Layout(width="90px"))
 
-    def refresh(_=None):
+    def refresh(_: object = None) -> None:
         view.value = progress_html()
 
     button.on_click(refresh)
