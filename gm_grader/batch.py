@@ -218,12 +218,10 @@ PlanItem: TypeAlias = NotGraded | ToRun | Missing
 
 @dataclass(frozen=True)
 class Plan:
-    """What a batch will grade, in the report's order, the notes so far and what every sandbox
-    must not see."""
+    """What a batch will grade, in the report's order, and the notes so far."""
 
     items: tuple[PlanItem, ...]
     notes: tuple[str, ...]
-    hide: tuple[str, ...]
 
     @property
     def runs(self) -> tuple[ToRun, ...]:
@@ -267,11 +265,6 @@ class _Choice:
 def plan(paths: Sequence[str | Path], out_dir: str | Path, assignment: Assignment) -> Plan:
     """Which notebook of each submission grades which exercise, and what is missing or not graded."""
     subs = _submissions(paths)
-    # hidden from every sandbox: the output, the batch, and the folders around each submission
-    # (where other students' uploads usually sit, graded in this run or not)
-    hide = [str(Path(out_dir).resolve())] + [str(Path(p).resolve()) for p in paths]
-    hide += [str(Path(p).resolve().parent) for p in paths]
-    hide += [str(q.resolve()) for sub in subs for q, _ in sub.found]
     items: list[PlanItem] = []
     lines: list[str] = []
     expected = assignment.exercises
@@ -309,7 +302,7 @@ def plan(paths: Sequence[str | Path], out_dir: str | Path, assignment: Assignmen
                        "under this name)")
                 items.append(Missing(want, ex_id, msg))
                 lines.append(msg)
-    return Plan(tuple(items), tuple(lines), tuple(hide))
+    return Plan(tuple(items), tuple(lines))
 
 
 # ------------------------------------------------------------------------------ run
@@ -320,7 +313,7 @@ def run(the_plan: Plan, settings: GradeSettings) -> dict[Path, RunResult | str]:
     limits = settings.limits
     done: dict[Path, RunResult | str] = {}
     with ThreadPoolExecutor(max_workers=max(1, int(settings.jobs))) as pool:
-        futures = {pool.submit(run_submission, item.path, limits=limits, hide=the_plan.hide,
+        futures = {pool.submit(run_submission, item.path, limits=limits,
                                sandbox=settings.sandbox, salt=salt,
                                caps=check_caps(REGISTRY[item.exercise], limits.time_limit)): item.path
                    for item in the_plan.runs}
@@ -449,9 +442,10 @@ def _limits_note(cgroups: Sequence[Sequence[str]], sandbox: bool) -> str | None:
     missing = sorted({c for kinds in cgroups for c in ("pids", "memory") if c not in kinds})
     if not missing:
         return None
-    what = {"pids": "the number of its processes was not bounded (RLIMIT_NPROC does not hold "
-                    "root)" if os.geteuid() == 0 else "its processes were bounded per user "
-                    "(RLIMIT_NPROC), not per notebook",
+    what = {"pids": ("its processes were bounded by RLIMIT_NPROC of the sandbox's own user"
+                     if sandbox else "the number of its processes was not bounded (RLIMIT_NPROC "
+                     "does not hold root)") if os.geteuid() == 0 else "its processes were bounded "
+                    "per user (RLIMIT_NPROC), not per notebook",
             "memory": "its memory was limited per process (RLIMIT_AS), not for the whole tree"}
     end = ("the sandbox's pid namespace still ended every process with it" if sandbox else
            "processes that left the kernel's session may have outlived it")
