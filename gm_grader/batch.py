@@ -1,7 +1,11 @@
 """Grade submitted exercise notebooks: ``python -m gm_grader SUBMISSIONS... --out DIR``.
 
-Each SUBMISSION is a folder (one student's upload) or a single notebook. For every exercise
-notebook ``exN_M.ipynb`` in it:
+Each SUBMISSION is a folder (one student's upload) or a single notebook. Each is first copied
+into the grader's private staging folder (:mod:`gm_grader.staging`: regular files only, never
+through a link; links, devices, FIFOs, folders named like notebooks and hard links to elsewhere
+get a row saying why they are not graded, names that are not UTF-8 or hold control characters
+are normalised and the rows say so); from then on only those copies are read. For every
+exercise notebook ``exN_M.ipynb`` in it:
 
 1. it runs **in its own sandbox** (:mod:`gm_grader.isolate`: bubblewrap, read-only course and Python,
    a private ``/tmp``, no network, no view of the other submissions or of the output folder,
@@ -38,7 +42,9 @@ import json
 import os
 import re
 import secrets
+import shutil
 import sys
+import tempfile
 import time
 from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
@@ -55,10 +61,10 @@ from gm_grader import report as _report
 from gm_grader.clock import check_caps
 from gm_grader.evidence import summarise
 from gm_grader.isolate import RunResult, run_submission, sandbox_problem
+from gm_grader.staging import MAX_NOTEBOOK_BYTES, Upload, leftover_reason, stage
 
 _EXACT = re.compile(r"ex(\d+)_(\d+)\.ipynb")
 _ANY = re.compile(r"ex(\d+)_(\d+)", re.IGNORECASE)
-MAX_NOTEBOOK_BYTES = 50_000_000
 
 Row: TypeAlias = dict[str, Any]            # one row of grades.csv (report.FIELDS, visibility)
 Notebook: TypeAlias = dict[str, Any]       # a notebook's JSON
@@ -66,6 +72,7 @@ Notebook: TypeAlias = dict[str, Any]       # a notebook's JSON
 
 class SandboxUnavailable(RuntimeError):
     """bubblewrap cannot make a sandbox here, and ``--no-sandbox`` was not given."""
+
 
 
 @dataclass(frozen=True)
@@ -90,20 +97,6 @@ class Assignment:
     part_visibility: Mapping[str, str] = field(default_factory=dict)
 
 
-def leftover_reason(path: Path) -> str | None:
-    """Why a notebook is a workspace leftover and not a submission (None if it is not one)."""
-    name = path.name
-    if ".ipynb_checkpoints" in path.parts or name.endswith("-checkpoint.ipynb"):
-        return "a Jupyter checkpoint"
-    if ".course-update" in name:
-        return "the course's newer version of an exercise, kept beside the student's own"
-    if re.search(r"-Copy\d*\.ipynb$", name) or name.lower().startswith("copy of "):
-        return "a copy of a notebook"
-    if name.startswith("."):
-        return "a hidden file"
-    return None
-
-
 def _read_notebook(path: Path) -> tuple[dict[str, Any], Notebook] | str:
     """(the notebook's top-level metadata, its JSON), or the reason it cannot be read -- never raises."""
     try:
@@ -123,23 +116,25 @@ def _read_notebook(path: Path) -> tuple[dict[str, Any], Notebook] | str:
     return (meta if isinstance(meta, dict) else {}), data
 
 
-def identify(path: Path) -> tuple[str | None, str, Notebook | None]:
-    """(exercise id or None, note, notebook JSON or None) for a notebook file."""
+def identify(path: Path, name: str | None = None) -> tuple[str | None, str, Notebook | None]:
+    """(exercise id or None, note, notebook JSON or None) for a notebook file; ``name``: the
+    name it was uploaded under (default: its own)."""
     read = _read_notebook(path)
     meta, data = read if isinstance(read, tuple) else (None, None)
-    m = _EXACT.fullmatch(path.name)
+    name = path.name if name is None else name
+    m = _EXACT.fullmatch(name)
     note = ""
     if m is None:
-        m = _ANY.search(path.name)
+        m = _ANY.search(name)
         if m is not None:
-            note = f"named {path.name!r}, graded as ex{m.group(1)}_{m.group(2)}.ipynb"
+            note = f"named {name!r}, graded as ex{m.group(1)}_{m.group(2)}.ipynb"
     if m is None and meta is not None:
         course = meta.get("gm_course")
         src = course.get("generated_from") if isinstance(course, dict) else None
         if isinstance(src, str):
             m = _ANY.search(src)
             if m is not None:
-                note = (f"named {path.name!r}; recognised from its metadata as "
+                note = (f"named {name!r}; recognised from its metadata as "
                         f"ex{m.group(1)}_{m.group(2)}.ipynb (please keep the course's file names)")
     if m is None:
         return None, "", data
@@ -178,17 +173,9 @@ def load_assignment(path: str | Path) -> Assignment:
 
 # ------------------------------------------------------------------------------ plan
 @dataclass(frozen=True)
-class Submission:
-    """One argument of the command line: its label prefix, its notebooks, its skipped files."""
-
-    prefix: str
-    found: tuple[tuple[Path, str], ...]     # (notebook path, name in the report)
-    skipped: tuple[str, ...]
-
-
-@dataclass(frozen=True)
 class NotGraded:
-    """A notebook that is no exercise of the course: one row saying why."""
+    """An entry of an upload that is not graded (no exercise of the course, a link, a device, a
+    folder in place of a notebook...): one row saying why."""
 
     rel: str
     why: str
@@ -196,12 +183,14 @@ class NotGraded:
 
 @dataclass(frozen=True)
 class ToRun:
-    """A notebook to run and judge as exercise ``exercise`` (``notebook`` None: unreadable)."""
+    """A staged notebook to run and judge as exercise ``exercise`` (``notebook`` None:
+    unreadable); ``note``: what the student is told about its name, or ''."""
 
     path: Path
     rel: str
     exercise: str
     notebook: Notebook | None
+    note: str = ""
 
 
 @dataclass(frozen=True)
@@ -229,30 +218,6 @@ class Plan:
         return tuple(i for i in self.items if isinstance(i, ToRun) and i.notebook is not None)
 
 
-def _submissions(paths: Sequence[str | Path]) -> list[Submission]:
-    """The notebooks of each argument, leftovers set aside."""
-    out = []
-    many = len(paths) > 1
-    for p in map(Path, paths):
-        found, skipped = [], []
-        if p.is_dir():
-            base = p
-            files = sorted(q for q in p.rglob("*.ipynb") if q.is_file())
-        else:
-            base = p.parent
-            files = [p]
-        prefix = ((p.name if p.is_dir() else p.parent.name) + "/") if many else ""
-        for q in files:
-            rel = prefix + q.relative_to(base).as_posix()
-            why = leftover_reason(q.relative_to(base))
-            if why:
-                skipped.append(f"{rel} skipped: {why}")
-            else:
-                found.append((q, rel))
-        out.append(Submission(prefix, tuple(found), tuple(skipped)))
-    return out
-
-
 @dataclass(frozen=True)
 class _Choice:
     path: Path
@@ -260,19 +225,28 @@ class _Choice:
     note: str
     exact: bool
     notebook: Notebook | None
+    renamed: str
 
 
-def plan(paths: Sequence[str | Path], out_dir: str | Path, assignment: Assignment) -> Plan:
-    """Which notebook of each submission grades which exercise, and what is missing or not graded."""
-    subs = _submissions(paths)
+def plan(uploads: Sequence[Upload], assignment: Assignment) -> Plan:
+    """Which staged notebook of each upload (:func:`gm_grader.staging.stage`) grades which
+    exercise, and what is missing, refused or not graded."""
     items: list[PlanItem] = []
     lines: list[str] = []
     expected = assignment.exercises
-    for sub in subs:
-        lines += sub.skipped
+    for up in uploads:
+        lines += up.skipped
+        for r in up.refused:
+            items.append(NotGraded(r.rel, r.why))
+            lines.append(f"{r.rel}: not graded ({r.why})")
         chosen: dict[str, _Choice] = {}
-        for path, rel in sub.found:
-            ex_id, note, data = identify(path)
+        for f in up.files:
+            rel = f.rel
+            if f.note:
+                lines.append(f"{rel}: {f.note}")
+            if f.shared:
+                lines.append(f"{rel}: {f.shared}")
+            ex_id, note, data = identify(f.path, Path(f.inner).name)
             if ex_id is None or ex_id not in REGISTRY:
                 why = (f"there is no exercise {ex_id} in this course" if ex_id else
                        "it is not one of the course's exercise notebooks (exN_M.ipynb, e.g. "
@@ -283,21 +257,21 @@ def plan(paths: Sequence[str | Path], out_dir: str | Path, assignment: Assignmen
             if expected is not None and ex_id not in expected:
                 lines.append(f"{rel}: not graded (exercise {ex_id} is not part of this assignment)")
                 continue
-            exact = _EXACT.fullmatch(path.name) is not None
+            exact = _EXACT.fullmatch(Path(f.inner).name) is not None
             before = chosen.get(ex_id)
             if before is not None and (before.exact or not exact):
                 lines.append(f"{rel}: not graded (exercise {ex_id} is graded from {before.rel})")
                 continue
             if before is not None:
                 lines.append(f"{before.rel}: not graded (exercise {ex_id} is graded from {rel})")
-            chosen[ex_id] = _Choice(path, rel, note, exact, data)
+            chosen[ex_id] = _Choice(f.path, rel, note, exact, data, f.note)
         for ex_id, c in sorted(chosen.items()):
             if c.note:
                 lines.append(f"{c.rel}: {c.note}")
-            items.append(ToRun(c.path, c.rel, ex_id, c.notebook))
+            items.append(ToRun(c.path, c.rel, ex_id, c.notebook, c.renamed))
         for ex_id in expected or ():
             if ex_id not in chosen:
-                want = f"{sub.prefix}ex{ex_id.replace('.', '_')}.ipynb"
+                want = f"{up.prefix}ex{ex_id.replace('.', '_')}.ipynb"
                 msg = (f"{want} was not found in the submission (upload the exercise notebook "
                        "under this name)")
                 items.append(Missing(want, ex_id, msg))
@@ -313,8 +287,8 @@ def run(the_plan: Plan, settings: GradeSettings) -> dict[Path, RunResult | str]:
     limits = settings.limits
     done: dict[Path, RunResult | str] = {}
     with ThreadPoolExecutor(max_workers=max(1, int(settings.jobs))) as pool:
-        futures = {pool.submit(run_submission, item.path, limits=limits,
-                               sandbox=settings.sandbox, salt=salt,
+        futures = {pool.submit(run_submission, item.path, limits=limits, sandbox=settings.sandbox,
+                               salt=salt,
                                caps=check_caps(REGISTRY[item.exercise], limits.time_limit)): item.path
                    for item in the_plan.runs}
         for fut, path in futures.items():
@@ -354,17 +328,27 @@ def _sources(notebook: Notebook) -> dict[int, str]:
 def _judge_one(item: ToRun, result: RunResult | str | None, assignment: Assignment,
                weights: Mapping[str, float], lines: list[str]) -> list[Row]:
     ex_id, rel = item.exercise, item.rel
-    ex = REGISTRY[ex_id]
     if item.notebook is None or not isinstance(result, RunResult):
         read = _read_notebook(item.path)
         why = result if isinstance(result, str) else (read if isinstance(read, str) else "")
         msg = f"the notebook could not be graded: {why}"
         lines.append(f"{rel}: {msg}")
-        return _rows_for(ex_id, rel, assignment, weights, _failed_with(msg))
+        return _rows_for(ex_id, rel, assignment, weights, _failed_with(_noted(msg, item.note)))
+    return _judged(item, result, assignment, weights, lines)
+
+
+def _noted(msg: str, note: str) -> str:
+    return f"{msg} (Note: {note}.)" if note else msg
+
+
+def _judged(item: ToRun, result: RunResult, assignment: Assignment,
+            weights: Mapping[str, float], lines: list[str]) -> list[Row]:
+    ex_id, rel = item.exercise, item.rel
+    assert item.notebook is not None
     old = channel.probe_salt()
     try:
         channel.set_probe_salt(result.salt)
-        summary = summarise(result, ex, _sources(item.notebook))
+        summary = summarise(result, REGISTRY[ex_id], _sources(item.notebook))
     finally:
         channel.set_probe_salt(old)
     if summary.problem:
@@ -379,7 +363,7 @@ def _judge_one(item: ToRun, result: RunResult | str | None, assignment: Assignme
             msg += f" (checked in {summary.where(judged.cell)})"
         if not judged.verdict.passed and notes:
             msg += " Note: " + "; ".join(notes) + "."
-        return judged.verdict.status, msg
+        return judged.verdict.status, _noted(msg, item.note)
 
     return _rows_for(ex_id, rel, assignment, weights, message_of)
 
@@ -418,7 +402,9 @@ def grade(paths: Sequence[str | Path], out_dir: str | Path,
           weights: Mapping[str, float] | None = None, *,
           settings: GradeSettings | None = None,
           assignment: Assignment | None = None) -> dict[str, Any]:
-    """Grade every submission under ``paths``; write results.json and grades.csv; return results."""
+    """Grade every submission under ``paths``; write results.json and grades.csv; return results.
+    The uploads are copied into a private staging folder first (:mod:`gm_grader.staging`); the
+    grader reads and runs those copies only."""
     t0 = time.monotonic()
     settings = settings or GradeSettings()
     _report.check_visibility(settings.visibility)
@@ -429,9 +415,13 @@ def grade(paths: Sequence[str | Path], out_dir: str | Path,
         problem = sandbox_problem()
         if problem:
             raise SandboxUnavailable(problem)
-    the_plan = plan(paths, out_dir, assignment)
-    runs = run(the_plan, settings)
-    rows, lines = judge(the_plan, runs, assignment, weights, settings)
+    staging = Path(tempfile.mkdtemp(prefix="gm-stage-"))
+    try:
+        the_plan = plan(stage(paths, staging), assignment)
+        runs = run(the_plan, settings)
+        rows, lines = judge(the_plan, runs, assignment, weights, settings)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
     return _report.write(rows, out_dir, message="\n".join(lines), elapsed=time.monotonic() - t0,
                          visibility=visibility, max_score=assignment.max_score)
 
@@ -474,7 +464,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                     help="run without bubblewrap (only where each submission already has its own "
                     "container, e.g. on Gradescope)")
     args = ap.parse_args(argv)
-    missing = [p for p in args.paths if not Path(p).exists()]
+    missing = [p for p in args.paths if not os.path.lexists(p)]
     if missing:
         print(f"grade: no such file or folder: {', '.join(missing)}", file=sys.stderr)
         return 2
@@ -506,4 +496,4 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 __all__ = ["grade", "plan", "run", "judge", "main", "identify", "leftover_reason",
            "load_assignment", "SandboxUnavailable", "GradeSettings", "Assignment", "Plan",
-           "ToRun", "Missing", "NotGraded", "Submission"]
+           "ToRun", "Missing", "NotGraded", "MAX_NOTEBOOK_BYTES"]
