@@ -32,7 +32,14 @@ score and visibilities::
 Points per part default to ``Part.weight`` (2 for a computed answer, 1 for a multiple-choice
 question); ``--weights FILE.json`` maps part ids (``"1.4a"``, ``"1.4 d_rates"``) to points.
 Without bubblewrap the grader refuses to run unless told ``--no-sandbox`` (for a container per
-submission, as on Gradescope). In nbgrader / otter-grader test cells use
+submission, as on Gradescope).
+
+Exit status: 0 when every notebook was graded (whatever it scored); 2 for a usage error (an
+argument, the assignment, an output or submission folder inside what every sandbox reads); 3
+when no sandbox can run here (a sandbox made as for a notebook is tried first; nothing is
+graded); 4 when the grader itself failed during the batch -- a sandbox that did not start, a
+notebook it could not judge, a report file it could not write: every other grade is written,
+the notebooks it failed on get rows saying the fault is the grader's, and stderr says why. In nbgrader / otter-grader test cells use
 ``ex1_4.a.check(answer, strict=True)`` instead (None on success, AssertionError on failure).
 """
 from __future__ import annotations
@@ -58,9 +65,10 @@ from gm_core.checks.parts import Part
 from gm_core.checks.protocol import Limits
 from gm_core.checks.store import FAILED, PASSED
 from gm_grader import report as _report
+from gm_grader import view
 from gm_grader.clock import check_caps
 from gm_grader.evidence import summarise
-from gm_grader.isolate import RunResult, run_submission, sandbox_problem
+from gm_grader.isolate import RunResult, run_submission, sandbox_problem, startup_fault
 from gm_grader.staging import MAX_NOTEBOOK_BYTES, Upload, leftover_reason, stage
 
 _EXACT = re.compile(r"ex(\d+)_(\d+)\.ipynb")
@@ -73,6 +81,23 @@ Notebook: TypeAlias = dict[str, Any]       # a notebook's JSON
 class SandboxUnavailable(RuntimeError):
     """bubblewrap cannot make a sandbox here, and ``--no-sandbox`` was not given."""
 
+
+class GraderFaults(RuntimeError):
+    """The grader itself failed during a batch (a sandbox that could not start, a notebook it
+    could not judge, a report file it could not write): ``causes`` says what; every grade it
+    could still give has been written (``results``: what was written, or None)."""
+
+    def __init__(self, causes: Sequence[str], results: dict[str, Any] | None) -> None:
+        super().__init__("; ".join(causes))
+        self.causes = tuple(causes)
+        self.results = results
+
+
+@dataclass(frozen=True)
+class Fault:
+    """The grader's own failure on one notebook: not the student's doing."""
+
+    cause: str
 
 
 @dataclass(frozen=True)
@@ -280,12 +305,12 @@ def plan(uploads: Sequence[Upload], assignment: Assignment) -> Plan:
 
 
 # ------------------------------------------------------------------------------ run
-def run(the_plan: Plan, settings: GradeSettings) -> dict[Path, RunResult | str]:
+def run(the_plan: Plan, settings: GradeSettings) -> dict[Path, RunResult | Fault]:
     """Run every readable notebook of the plan in its sandbox, ``settings.jobs`` at a time:
-    {path: what its run brought back, or why the grader could not run it}."""
+    {path: what its run brought back, or the grader's failure to run it}."""
     salt = secrets.randbits(62)
     limits = settings.limits
-    done: dict[Path, RunResult | str] = {}
+    done: dict[Path, RunResult | Fault] = {}
     with ThreadPoolExecutor(max_workers=max(1, int(settings.jobs))) as pool:
         futures = {pool.submit(run_submission, item.path, limits=limits, sandbox=settings.sandbox,
                                salt=salt,
@@ -293,9 +318,12 @@ def run(the_plan: Plan, settings: GradeSettings) -> dict[Path, RunResult | str]:
                    for item in the_plan.runs}
         for fut, path in futures.items():
             try:
-                done[path] = fut.result()
-            except Exception as exc:  # noqa: BLE001 - the grader's own failure: a row, not a crash
-                done[path] = f"the grader could not run it ({type(exc).__name__}: {exc})"[:300]
+                result = fut.result()
+            except Exception as exc:  # noqa: BLE001 - the grader's own failure: said, not hidden
+                done[path] = Fault(f"the grader could not run it ({type(exc).__name__}: {exc})"[:300])
+                continue
+            fault = startup_fault(result)
+            done[path] = Fault(fault) if fault else result
     return done
 
 
@@ -325,16 +353,24 @@ def _sources(notebook: Notebook) -> dict[int, str]:
     return sources
 
 
-def _judge_one(item: ToRun, result: RunResult | str | None, assignment: Assignment,
-               weights: Mapping[str, float], lines: list[str]) -> list[Row]:
+def _judge_one(item: ToRun, result: RunResult | Fault | None, assignment: Assignment,
+               weights: Mapping[str, float], lines: list[str], faults: list[str]) -> list[Row]:
     ex_id, rel = item.exercise, item.rel
-    if item.notebook is None or not isinstance(result, RunResult):
-        read = _read_notebook(item.path)
-        why = result if isinstance(result, str) else (read if isinstance(read, str) else "")
-        msg = f"the notebook could not be graded: {why}"
-        lines.append(f"{rel}: {msg}")
-        return _rows_for(ex_id, rel, assignment, weights, _failed_with(_noted(msg, item.note)))
-    return _judged(item, result, assignment, weights, lines)
+    if isinstance(result, RunResult) and item.notebook is not None:
+        try:
+            return _judged(item, result, assignment, weights, lines)
+        except Exception as exc:  # noqa: BLE001 - the grader's own failure: said, not hidden
+            result = Fault(f"the grader could not judge it ({type(exc).__name__}: {exc})"[:300])
+    if isinstance(result, Fault):
+        faults.append(f"{rel}: {result.cause}")
+        lines.append(f"{rel}: GRADER FAULT, not graded: {result.cause}")
+        msg = ("Not graded, because of a fault in the grader, not in your notebook "
+               f"({result.cause}); your instructor has been told and will grade it again.")
+        return _rows_for(ex_id, rel, assignment, weights, _failed_with(msg))
+    read = _read_notebook(item.path)
+    msg = f"the notebook could not be graded: {read if isinstance(read, str) else ''}"
+    lines.append(f"{rel}: {msg}")
+    return _rows_for(ex_id, rel, assignment, weights, _failed_with(_noted(msg, item.note)))
 
 
 def _noted(msg: str, note: str) -> str:
@@ -372,9 +408,12 @@ def _failed_with(message: str) -> Callable[[str, Part], tuple[str, str]]:
     return lambda name, part: (FAILED, message)
 
 
-def judge(the_plan: Plan, runs: Mapping[Path, RunResult | str], assignment: Assignment,
-          weights: Mapping[str, float], settings: GradeSettings) -> tuple[list[Row], list[str]]:
-    """The report's rows, in the plan's order, and its overall lines."""
+def judge(the_plan: Plan, runs: Mapping[Path, RunResult | Fault], assignment: Assignment,
+          weights: Mapping[str, float], settings: GradeSettings,
+          faults: list[str] | None = None) -> tuple[list[Row], list[str]]:
+    """The report's rows, in the plan's order, and its overall lines; the grader's own failures
+    are added to ``faults`` (and said in the lines and the rows: never the student's)."""
+    faults = [] if faults is None else faults
     lines = list(the_plan.notes)
     ran = [r.cgroups for r in runs.values() if isinstance(r, RunResult)]
     if ran:
@@ -391,10 +430,13 @@ def judge(the_plan: Plan, runs: Mapping[Path, RunResult | str], assignment: Assi
             rows += _rows_for(item.exercise, item.want, assignment, weights,
                               _failed_with(item.message))
         else:
-            rows += _judge_one(item, runs.get(item.path), assignment, weights, lines)
+            rows += _judge_one(item, runs.get(item.path), assignment, weights, lines, faults)
     if not rows:
         lines.insert(0, "No exercise notebook of this course was found in the submission: upload "
                      "the notebooks named exN_M.ipynb (e.g. ex1_4.ipynb) from your workspace.")
+    if faults:
+        lines.insert(0, f"GRADER FAULT: the grader failed on {len(faults)} notebook(s), not "
+                     "because of anything in them; grade them again once the cause is fixed.")
     return rows, lines
 
 
@@ -403,8 +445,11 @@ def grade(paths: Sequence[str | Path], out_dir: str | Path,
           settings: GradeSettings | None = None,
           assignment: Assignment | None = None) -> dict[str, Any]:
     """Grade every submission under ``paths``; write results.json and grades.csv; return results.
-    The uploads are copied into a private staging folder first (:mod:`gm_grader.staging`); the
-    grader reads and runs those copies only."""
+
+    Raises :class:`SandboxUnavailable` when no sandbox can run here (nothing is written),
+    ``ValueError`` when the output folder, a submission or the staging folder lies where every
+    sandbox can read it, and :class:`GraderFaults` *after writing every grade it could* when the
+    grader failed on some notebook or could not write a report file."""
     t0 = time.monotonic()
     settings = settings or GradeSettings()
     _report.check_visibility(settings.visibility)
@@ -412,18 +457,31 @@ def grade(paths: Sequence[str | Path], out_dir: str | Path,
     weights = {**(weights or {}), **assignment.weights}
     visibility = assignment.visibility or settings.visibility
     if settings.sandbox:
-        problem = sandbox_problem()
+        problem = sandbox_problem() or view.preflight(settings.limits)
         if problem:
             raise SandboxUnavailable(problem)
     staging = Path(tempfile.mkdtemp(prefix="gm-stage-"))
     try:
+        if settings.sandbox:
+            bad = view.exposed([out_dir, *paths, staging])
+            if bad:
+                raise ValueError("refusing to grade: " + "; ".join(bad) + " (grade from and into "
+                                 "folders outside it)")
         the_plan = plan(stage(paths, staging), assignment)
         runs = run(the_plan, settings)
-        rows, lines = judge(the_plan, runs, assignment, weights, settings)
+        faults: list[str] = []
+        rows, lines = judge(the_plan, runs, assignment, weights, settings, faults)
     finally:
         shutil.rmtree(staging, ignore_errors=True)
-    return _report.write(rows, out_dir, message="\n".join(lines), elapsed=time.monotonic() - t0,
-                         visibility=visibility, max_score=assignment.max_score)
+    try:
+        results = _report.write(rows, out_dir, message="\n".join(lines),
+                                elapsed=time.monotonic() - t0, visibility=visibility,
+                                max_score=assignment.max_score)
+    except _report.ReportError as exc:
+        raise GraderFaults([*faults, *exc.causes], exc.results) from None
+    if faults:
+        raise GraderFaults(faults, results)
+    return results
 
 
 def _limits_note(cgroups: Sequence[Sequence[str]], sandbox: bool) -> str | None:
@@ -468,6 +526,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if missing:
         print(f"grade: no such file or folder: {', '.join(missing)}", file=sys.stderr)
         return 2
+    faults: tuple[str, ...] = ()
     try:
         weights = json.loads(args.weights.read_text()) if args.weights else None
         assignment = load_assignment(args.assignment) if args.assignment else None
@@ -476,24 +535,34 @@ def main(argv: Sequence[str] | None = None) -> int:
                         processes=args.max_processes)
         settings = GradeSettings(limits=limits, sandbox=not args.no_sandbox, jobs=args.jobs,
                                  visibility=args.visibility)
-        results = grade(args.paths, args.out, weights, settings=settings, assignment=assignment)
+        results: dict[str, Any] | None = grade(args.paths, args.out, weights, settings=settings,
+                                               assignment=assignment)
     except SandboxUnavailable as exc:
         print(f"grade: refusing to run student notebooks without a sandbox: {exc}. Install "
               "bubblewrap, or pass --no-sandbox where each submission already runs in its own "
               "container (Gradescope).", file=sys.stderr)
         return 3
+    except GraderFaults as exc:
+        faults, results = exc.causes, exc.results
     except (ValueError, OSError) as exc:
         print(f"grade: {exc}", file=sys.stderr)
         return 2
-    total = sum(t["max_score"] for t in results["tests"])
-    n = len({t["name"].split(":")[0] for t in results["tests"] if t["max_score"] > 0})
-    print(f"graded {n} notebook(s): {results['score']:g} / {total:g} points; see "
-          f"{args.out / 'results.json'} and grades.csv")
-    if results.get("output"):
-        print(results["output"])
+    if results is not None:
+        total = sum(t["max_score"] for t in results["tests"])
+        n = len({t["name"].split(":")[0] for t in results["tests"] if t["max_score"] > 0})
+        print(f"graded {n} notebook(s): {results['score']:g} / {total:g} points; see "
+              f"{args.out / 'results.json'} and grades.csv")
+        if results.get("output"):
+            print(results["output"])
+    if faults:
+        print(f"grade: the grader itself failed ({len(faults)} fault(s)); every other grade is "
+              "written:", file=sys.stderr)
+        for f in faults:
+            print(f"grade: GRADER FAULT: {f}", file=sys.stderr)
+        return 4
     return 0
 
 
 __all__ = ["grade", "plan", "run", "judge", "main", "identify", "leftover_reason",
-           "load_assignment", "SandboxUnavailable", "GradeSettings", "Assignment", "Plan",
-           "ToRun", "Missing", "NotGraded", "MAX_NOTEBOOK_BYTES"]
+           "load_assignment", "SandboxUnavailable", "GraderFaults", "Fault", "GradeSettings",
+           "Assignment", "Plan", "ToRun", "Missing", "NotGraded", "MAX_NOTEBOOK_BYTES"]

@@ -53,11 +53,13 @@ from gm_core.checks.protocol import (
     CheckAnnounced,
     Done,
     EvidenceLine,
+    Fatal,
     KernelStarted,
     Limits,
     ProtocolError,
     Record,
     RunnerConfig,
+    Started,
     decode_record,
     encode_config,
 )
@@ -414,6 +416,29 @@ def _stage_font_cache(dst: Path) -> bool:
     except OSError:
         return False
     return True
+
+
+def startup_fault(result: RunResult) -> str | None:
+    """Why the grader, not the notebook, is to blame for a run that ended before any of the
+    student's cells began (None when a cell began, the notebook could not be read, or the run
+    finished): the sandbox or the runner did not start, the kernel or the course's checkers could
+    not be loaded. Nothing of the submission runs before its first cell, so none of this can be
+    its doing."""
+    recs = result.records
+    if not any(isinstance(r, Started) for r in recs):
+        tail = [ln.strip() for ln in result.log.splitlines() if ln.strip()]
+        return ("the sandbox or the grader's runner could not start"
+                + (f" ({tail[-1][:200]})" if tail else ""))
+    if any(isinstance(r, (CellStarted, CellEnded, EvidenceLine, Done)) for r in recs):
+        return None
+    fatal = next((r.message for r in recs if isinstance(r, Fatal)), None)
+    if fatal is not None and fatal.startswith("the notebook could not be read"):
+        return None
+    if fatal is not None:
+        return f"the notebook's kernel could not be prepared ({fatal[:200]})"
+    if result.killed is not None:
+        return "the notebook's kernel did not start in time"
+    return "the grader's runner ended before the notebook's first cell"
 
 
 _JOIN = ('for c in "$@"; do [ "$c" = -- ] && break; echo $$ > "$c/cgroup.procs" 2>/dev/null; '
