@@ -106,8 +106,10 @@ def python_roots() -> list[Path]:
     return [Path(r) for r in roots if r and os.path.isdir(r)]
 
 
-def course_roots(course: Path = PKG_PARENT) -> list[Path]:
-    """The course's packages (never the folder that holds them)."""
+def course_roots(course: Path | None = None) -> list[Path]:
+    """The course's packages (never the folder that holds them; ``course``: that folder, by
+    default :data:`PKG_PARENT`)."""
+    course = PKG_PARENT if course is None else course
     return [course / p for p in COURSE_PACKAGES if (course / p).is_dir()]
 
 
@@ -125,7 +127,7 @@ def _outermost(paths: Iterable[Path]) -> list[Path]:
     return [p for p in norm if not any(o != p and o in p.parents for o in norm)]
 
 
-def visible_roots(course: Path = PKG_PARENT) -> list[Path]:
+def visible_roots(course: Path | None = None) -> list[Path]:
     """Every host folder or file a sandbox can read (outermost ones), by its real path."""
     found = [*_system_paths(), *python_roots(), *course_roots(course)]
     for top in SYSTEM_TOP:
@@ -135,7 +137,7 @@ def visible_roots(course: Path = PKG_PARENT) -> list[Path]:
     return _outermost(Path(os.path.realpath(p)) for p in found)
 
 
-def exposed(paths: Iterable[str | Path], course: Path = PKG_PARENT) -> list[str]:
+def exposed(paths: Iterable[str | Path], course: Path | None = None) -> list[str]:
     """Sentences naming each of ``paths`` (the grader's own: arguments, output, staging folder)
     that lies in a folder every sandbox can read."""
     roots = visible_roots(course)
@@ -189,7 +191,7 @@ def write_identity_files(folder: Path, identity: Identity) -> tuple[Path, Path]:
 
 
 def bwrap_args(inbox: Path, etc: tuple[Path, Path], identity: Identity, limits: Limits,
-               course: Path = PKG_PARENT) -> list[str]:
+               course: Path | None = None) -> list[str]:
     """bubblewrap's arguments (after ``bwrap``, before ``--``) for one run whose inbox (made
     readable to ``identity``) appears at :data:`INBOX`."""
     cap = str(limits.tmp_mb << 20)
@@ -227,7 +229,7 @@ def bwrap_args(inbox: Path, etc: tuple[Path, Path], identity: Identity, limits: 
 
 
 def command(inbox: Path, etc: tuple[Path, Path], identity: Identity, limits: Limits,
-            program: Sequence[str], course: Path = PKG_PARENT) -> list[str]:
+            program: Sequence[str], course: Path | None = None) -> list[str]:
     """The whole command running ``program`` in a sandbox (bwrap, then the drop to the run's
     user when bubblewrap runs as root)."""
     drop = ([sys.executable, "-I", "-S", "-c", DROP, str(identity.uid), str(identity.gid)]
