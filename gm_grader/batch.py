@@ -1,7 +1,11 @@
 """Grade submitted exercise notebooks: ``python -m gm_grader SUBMISSIONS... --out DIR``.
 
-Each SUBMISSION is a folder (one student's upload) or a single notebook. For every exercise
-notebook ``exN_M.ipynb`` in it:
+Each SUBMISSION is a folder (one student's upload) or a single notebook. Each is first copied
+into the grader's private staging folder (:mod:`gm_grader.staging`: regular files only, never
+through a link; links, devices, FIFOs, folders named like notebooks and hard links to elsewhere
+get a row saying why they are not graded, names that are not UTF-8 or hold control characters
+are normalised and the rows say so); from then on only those copies are read. For every
+exercise notebook ``exN_M.ipynb`` in it:
 
 1. it runs **in its own sandbox** (:mod:`gm_grader.isolate`: bubblewrap, read-only course and Python,
    a private ``/tmp``, no network, no view of the other submissions or of the output folder,
@@ -28,7 +32,14 @@ score and visibilities::
 Points per part default to ``Part.weight`` (2 for a computed answer, 1 for a multiple-choice
 question); ``--weights FILE.json`` maps part ids (``"1.4a"``, ``"1.4 d_rates"``) to points.
 Without bubblewrap the grader refuses to run unless told ``--no-sandbox`` (for a container per
-submission, as on Gradescope). In nbgrader / otter-grader test cells use
+submission, as on Gradescope).
+
+Exit status: 0 when every notebook was graded (whatever it scored); 2 for a usage error (an
+argument, the assignment, an output or submission folder inside what every sandbox reads); 3
+when no sandbox can run here (a sandbox made as for a notebook is tried first; nothing is
+graded); 4 when the grader itself failed during the batch -- a sandbox that did not start, a
+notebook it could not judge, a report file it could not write: every other grade is written,
+the notebooks it failed on get rows saying the fault is the grader's, and stderr says why. In nbgrader / otter-grader test cells use
 ``ex1_4.a.check(answer, strict=True)`` instead (None on success, AssertionError on failure).
 """
 from __future__ import annotations
@@ -38,7 +49,9 @@ import json
 import os
 import re
 import secrets
+import shutil
 import sys
+import tempfile
 import time
 from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
@@ -52,13 +65,14 @@ from gm_core.checks.parts import Part
 from gm_core.checks.protocol import Limits
 from gm_core.checks.store import FAILED, PASSED
 from gm_grader import report as _report
+from gm_grader import view
 from gm_grader.clock import check_caps
 from gm_grader.evidence import summarise
-from gm_grader.isolate import RunResult, run_submission, sandbox_problem
+from gm_grader.isolate import RunResult, run_submission, sandbox_problem, startup_fault
+from gm_grader.staging import MAX_NOTEBOOK_BYTES, Upload, leftover_reason, stage
 
 _EXACT = re.compile(r"ex(\d+)_(\d+)\.ipynb")
 _ANY = re.compile(r"ex(\d+)_(\d+)", re.IGNORECASE)
-MAX_NOTEBOOK_BYTES = 50_000_000
 
 Row: TypeAlias = dict[str, Any]            # one row of grades.csv (report.FIELDS, visibility)
 Notebook: TypeAlias = dict[str, Any]       # a notebook's JSON
@@ -66,6 +80,24 @@ Notebook: TypeAlias = dict[str, Any]       # a notebook's JSON
 
 class SandboxUnavailable(RuntimeError):
     """bubblewrap cannot make a sandbox here, and ``--no-sandbox`` was not given."""
+
+
+class GraderFaults(RuntimeError):
+    """The grader itself failed during a batch (a sandbox that could not start, a notebook it
+    could not judge, a report file it could not write): ``causes`` says what; every grade it
+    could still give has been written (``results``: what was written, or None)."""
+
+    def __init__(self, causes: Sequence[str], results: dict[str, Any] | None) -> None:
+        super().__init__("; ".join(causes))
+        self.causes = tuple(causes)
+        self.results = results
+
+
+@dataclass(frozen=True)
+class Fault:
+    """The grader's own failure on one notebook: not the student's doing."""
+
+    cause: str
 
 
 @dataclass(frozen=True)
@@ -90,20 +122,6 @@ class Assignment:
     part_visibility: Mapping[str, str] = field(default_factory=dict)
 
 
-def leftover_reason(path: Path) -> str | None:
-    """Why a notebook is a workspace leftover and not a submission (None if it is not one)."""
-    name = path.name
-    if ".ipynb_checkpoints" in path.parts or name.endswith("-checkpoint.ipynb"):
-        return "a Jupyter checkpoint"
-    if ".course-update" in name:
-        return "the course's newer version of an exercise, kept beside the student's own"
-    if re.search(r"-Copy\d*\.ipynb$", name) or name.lower().startswith("copy of "):
-        return "a copy of a notebook"
-    if name.startswith("."):
-        return "a hidden file"
-    return None
-
-
 def _read_notebook(path: Path) -> tuple[dict[str, Any], Notebook] | str:
     """(the notebook's top-level metadata, its JSON), or the reason it cannot be read -- never raises."""
     try:
@@ -123,23 +141,25 @@ def _read_notebook(path: Path) -> tuple[dict[str, Any], Notebook] | str:
     return (meta if isinstance(meta, dict) else {}), data
 
 
-def identify(path: Path) -> tuple[str | None, str, Notebook | None]:
-    """(exercise id or None, note, notebook JSON or None) for a notebook file."""
+def identify(path: Path, name: str | None = None) -> tuple[str | None, str, Notebook | None]:
+    """(exercise id or None, note, notebook JSON or None) for a notebook file; ``name``: the
+    name it was uploaded under (default: its own)."""
     read = _read_notebook(path)
     meta, data = read if isinstance(read, tuple) else (None, None)
-    m = _EXACT.fullmatch(path.name)
+    name = path.name if name is None else name
+    m = _EXACT.fullmatch(name)
     note = ""
     if m is None:
-        m = _ANY.search(path.name)
+        m = _ANY.search(name)
         if m is not None:
-            note = f"named {path.name!r}, graded as ex{m.group(1)}_{m.group(2)}.ipynb"
+            note = f"named {name!r}, graded as ex{m.group(1)}_{m.group(2)}.ipynb"
     if m is None and meta is not None:
         course = meta.get("gm_course")
         src = course.get("generated_from") if isinstance(course, dict) else None
         if isinstance(src, str):
             m = _ANY.search(src)
             if m is not None:
-                note = (f"named {path.name!r}; recognised from its metadata as "
+                note = (f"named {name!r}; recognised from its metadata as "
                         f"ex{m.group(1)}_{m.group(2)}.ipynb (please keep the course's file names)")
     if m is None:
         return None, "", data
@@ -178,17 +198,9 @@ def load_assignment(path: str | Path) -> Assignment:
 
 # ------------------------------------------------------------------------------ plan
 @dataclass(frozen=True)
-class Submission:
-    """One argument of the command line: its label prefix, its notebooks, its skipped files."""
-
-    prefix: str
-    found: tuple[tuple[Path, str], ...]     # (notebook path, name in the report)
-    skipped: tuple[str, ...]
-
-
-@dataclass(frozen=True)
 class NotGraded:
-    """A notebook that is no exercise of the course: one row saying why."""
+    """An entry of an upload that is not graded (no exercise of the course, a link, a device, a
+    folder in place of a notebook...): one row saying why."""
 
     rel: str
     why: str
@@ -196,12 +208,14 @@ class NotGraded:
 
 @dataclass(frozen=True)
 class ToRun:
-    """A notebook to run and judge as exercise ``exercise`` (``notebook`` None: unreadable)."""
+    """A staged notebook to run and judge as exercise ``exercise`` (``notebook`` None:
+    unreadable); ``note``: what the student is told about its name, or ''."""
 
     path: Path
     rel: str
     exercise: str
     notebook: Notebook | None
+    note: str = ""
 
 
 @dataclass(frozen=True)
@@ -218,41 +232,15 @@ PlanItem: TypeAlias = NotGraded | ToRun | Missing
 
 @dataclass(frozen=True)
 class Plan:
-    """What a batch will grade, in the report's order, the notes so far and what every sandbox
-    must not see."""
+    """What a batch will grade, in the report's order, and the notes so far."""
 
     items: tuple[PlanItem, ...]
     notes: tuple[str, ...]
-    hide: tuple[str, ...]
 
     @property
     def runs(self) -> tuple[ToRun, ...]:
         """The notebooks to run (the readable ones)."""
         return tuple(i for i in self.items if isinstance(i, ToRun) and i.notebook is not None)
-
-
-def _submissions(paths: Sequence[str | Path]) -> list[Submission]:
-    """The notebooks of each argument, leftovers set aside."""
-    out = []
-    many = len(paths) > 1
-    for p in map(Path, paths):
-        found, skipped = [], []
-        if p.is_dir():
-            base = p
-            files = sorted(q for q in p.rglob("*.ipynb") if q.is_file())
-        else:
-            base = p.parent
-            files = [p]
-        prefix = ((p.name if p.is_dir() else p.parent.name) + "/") if many else ""
-        for q in files:
-            rel = prefix + q.relative_to(base).as_posix()
-            why = leftover_reason(q.relative_to(base))
-            if why:
-                skipped.append(f"{rel} skipped: {why}")
-            else:
-                found.append((q, rel))
-        out.append(Submission(prefix, tuple(found), tuple(skipped)))
-    return out
 
 
 @dataclass(frozen=True)
@@ -262,24 +250,28 @@ class _Choice:
     note: str
     exact: bool
     notebook: Notebook | None
+    renamed: str
 
 
-def plan(paths: Sequence[str | Path], out_dir: str | Path, assignment: Assignment) -> Plan:
-    """Which notebook of each submission grades which exercise, and what is missing or not graded."""
-    subs = _submissions(paths)
-    # hidden from every sandbox: the output, the batch, and the folders around each submission
-    # (where other students' uploads usually sit, graded in this run or not)
-    hide = [str(Path(out_dir).resolve())] + [str(Path(p).resolve()) for p in paths]
-    hide += [str(Path(p).resolve().parent) for p in paths]
-    hide += [str(q.resolve()) for sub in subs for q, _ in sub.found]
+def plan(uploads: Sequence[Upload], assignment: Assignment) -> Plan:
+    """Which staged notebook of each upload (:func:`gm_grader.staging.stage`) grades which
+    exercise, and what is missing, refused or not graded."""
     items: list[PlanItem] = []
     lines: list[str] = []
     expected = assignment.exercises
-    for sub in subs:
-        lines += sub.skipped
+    for up in uploads:
+        lines += up.skipped
+        for r in up.refused:
+            items.append(NotGraded(r.rel, r.why))
+            lines.append(f"{r.rel}: not graded ({r.why})")
         chosen: dict[str, _Choice] = {}
-        for path, rel in sub.found:
-            ex_id, note, data = identify(path)
+        for f in up.files:
+            rel = f.rel
+            if f.note:
+                lines.append(f"{rel}: {f.note}")
+            if f.shared:
+                lines.append(f"{rel}: {f.shared}")
+            ex_id, note, data = identify(f.path, Path(f.inner).name)
             if ex_id is None or ex_id not in REGISTRY:
                 why = (f"there is no exercise {ex_id} in this course" if ex_id else
                        "it is not one of the course's exercise notebooks (exN_M.ipynb, e.g. "
@@ -290,45 +282,48 @@ def plan(paths: Sequence[str | Path], out_dir: str | Path, assignment: Assignmen
             if expected is not None and ex_id not in expected:
                 lines.append(f"{rel}: not graded (exercise {ex_id} is not part of this assignment)")
                 continue
-            exact = _EXACT.fullmatch(path.name) is not None
+            exact = _EXACT.fullmatch(Path(f.inner).name) is not None
             before = chosen.get(ex_id)
             if before is not None and (before.exact or not exact):
                 lines.append(f"{rel}: not graded (exercise {ex_id} is graded from {before.rel})")
                 continue
             if before is not None:
                 lines.append(f"{before.rel}: not graded (exercise {ex_id} is graded from {rel})")
-            chosen[ex_id] = _Choice(path, rel, note, exact, data)
+            chosen[ex_id] = _Choice(f.path, rel, note, exact, data, f.note)
         for ex_id, c in sorted(chosen.items()):
             if c.note:
                 lines.append(f"{c.rel}: {c.note}")
-            items.append(ToRun(c.path, c.rel, ex_id, c.notebook))
+            items.append(ToRun(c.path, c.rel, ex_id, c.notebook, c.renamed))
         for ex_id in expected or ():
             if ex_id not in chosen:
-                want = f"{sub.prefix}ex{ex_id.replace('.', '_')}.ipynb"
+                want = f"{up.prefix}ex{ex_id.replace('.', '_')}.ipynb"
                 msg = (f"{want} was not found in the submission (upload the exercise notebook "
                        "under this name)")
                 items.append(Missing(want, ex_id, msg))
                 lines.append(msg)
-    return Plan(tuple(items), tuple(lines), tuple(hide))
+    return Plan(tuple(items), tuple(lines))
 
 
 # ------------------------------------------------------------------------------ run
-def run(the_plan: Plan, settings: GradeSettings) -> dict[Path, RunResult | str]:
+def run(the_plan: Plan, settings: GradeSettings) -> dict[Path, RunResult | Fault]:
     """Run every readable notebook of the plan in its sandbox, ``settings.jobs`` at a time:
-    {path: what its run brought back, or why the grader could not run it}."""
+    {path: what its run brought back, or the grader's failure to run it}."""
     salt = secrets.randbits(62)
     limits = settings.limits
-    done: dict[Path, RunResult | str] = {}
+    done: dict[Path, RunResult | Fault] = {}
     with ThreadPoolExecutor(max_workers=max(1, int(settings.jobs))) as pool:
-        futures = {pool.submit(run_submission, item.path, limits=limits, hide=the_plan.hide,
-                               sandbox=settings.sandbox, salt=salt,
+        futures = {pool.submit(run_submission, item.path, limits=limits, sandbox=settings.sandbox,
+                               salt=salt,
                                caps=check_caps(REGISTRY[item.exercise], limits.time_limit)): item.path
                    for item in the_plan.runs}
         for fut, path in futures.items():
             try:
-                done[path] = fut.result()
-            except Exception as exc:  # noqa: BLE001 - the grader's own failure: a row, not a crash
-                done[path] = f"the grader could not run it ({type(exc).__name__}: {exc})"[:300]
+                result = fut.result()
+            except Exception as exc:  # noqa: BLE001 - the grader's own failure: said, not hidden
+                done[path] = Fault(f"the grader could not run it ({type(exc).__name__}: {exc})"[:300])
+                continue
+            fault = startup_fault(result)
+            done[path] = Fault(fault) if fault else result
     return done
 
 
@@ -358,20 +353,38 @@ def _sources(notebook: Notebook) -> dict[int, str]:
     return sources
 
 
-def _judge_one(item: ToRun, result: RunResult | str | None, assignment: Assignment,
-               weights: Mapping[str, float], lines: list[str]) -> list[Row]:
+def _judge_one(item: ToRun, result: RunResult | Fault | None, assignment: Assignment,
+               weights: Mapping[str, float], lines: list[str], faults: list[str]) -> list[Row]:
     ex_id, rel = item.exercise, item.rel
-    ex = REGISTRY[ex_id]
-    if item.notebook is None or not isinstance(result, RunResult):
-        read = _read_notebook(item.path)
-        why = result if isinstance(result, str) else (read if isinstance(read, str) else "")
-        msg = f"the notebook could not be graded: {why}"
-        lines.append(f"{rel}: {msg}")
+    if isinstance(result, RunResult) and item.notebook is not None:
+        try:
+            return _judged(item, result, assignment, weights, lines)
+        except Exception as exc:  # noqa: BLE001 - the grader's own failure: said, not hidden
+            result = Fault(f"the grader could not judge it ({type(exc).__name__}: {exc})"[:300])
+    if isinstance(result, Fault):
+        faults.append(f"{rel}: {result.cause}")
+        lines.append(f"{rel}: GRADER FAULT, not graded: {result.cause}")
+        msg = ("Not graded, because of a fault in the grader, not in your notebook "
+               f"({result.cause}); your instructor has been told and will grade it again.")
         return _rows_for(ex_id, rel, assignment, weights, _failed_with(msg))
+    read = _read_notebook(item.path)
+    msg = f"the notebook could not be graded: {read if isinstance(read, str) else ''}"
+    lines.append(f"{rel}: {msg}")
+    return _rows_for(ex_id, rel, assignment, weights, _failed_with(_noted(msg, item.note)))
+
+
+def _noted(msg: str, note: str) -> str:
+    return f"{msg} (Note: {note}.)" if note else msg
+
+
+def _judged(item: ToRun, result: RunResult, assignment: Assignment,
+            weights: Mapping[str, float], lines: list[str]) -> list[Row]:
+    ex_id, rel = item.exercise, item.rel
+    assert item.notebook is not None
     old = channel.probe_salt()
     try:
         channel.set_probe_salt(result.salt)
-        summary = summarise(result, ex, _sources(item.notebook))
+        summary = summarise(result, REGISTRY[ex_id], _sources(item.notebook))
     finally:
         channel.set_probe_salt(old)
     if summary.problem:
@@ -386,7 +399,7 @@ def _judge_one(item: ToRun, result: RunResult | str | None, assignment: Assignme
             msg += f" (checked in {summary.where(judged.cell)})"
         if not judged.verdict.passed and notes:
             msg += " Note: " + "; ".join(notes) + "."
-        return judged.verdict.status, msg
+        return judged.verdict.status, _noted(msg, item.note)
 
     return _rows_for(ex_id, rel, assignment, weights, message_of)
 
@@ -395,9 +408,12 @@ def _failed_with(message: str) -> Callable[[str, Part], tuple[str, str]]:
     return lambda name, part: (FAILED, message)
 
 
-def judge(the_plan: Plan, runs: Mapping[Path, RunResult | str], assignment: Assignment,
-          weights: Mapping[str, float], settings: GradeSettings) -> tuple[list[Row], list[str]]:
-    """The report's rows, in the plan's order, and its overall lines."""
+def judge(the_plan: Plan, runs: Mapping[Path, RunResult | Fault], assignment: Assignment,
+          weights: Mapping[str, float], settings: GradeSettings,
+          faults: list[str] | None = None) -> tuple[list[Row], list[str]]:
+    """The report's rows, in the plan's order, and its overall lines; the grader's own failures
+    are added to ``faults`` (and said in the lines and the rows: never the student's)."""
+    faults = [] if faults is None else faults
     lines = list(the_plan.notes)
     ran = [r.cgroups for r in runs.values() if isinstance(r, RunResult)]
     if ran:
@@ -414,10 +430,13 @@ def judge(the_plan: Plan, runs: Mapping[Path, RunResult | str], assignment: Assi
             rows += _rows_for(item.exercise, item.want, assignment, weights,
                               _failed_with(item.message))
         else:
-            rows += _judge_one(item, runs.get(item.path), assignment, weights, lines)
+            rows += _judge_one(item, runs.get(item.path), assignment, weights, lines, faults)
     if not rows:
         lines.insert(0, "No exercise notebook of this course was found in the submission: upload "
                      "the notebooks named exN_M.ipynb (e.g. ex1_4.ipynb) from your workspace.")
+    if faults:
+        lines.insert(0, f"GRADER FAULT: the grader failed on {len(faults)} notebook(s), not "
+                     "because of anything in them; grade them again once the cause is fixed.")
     return rows, lines
 
 
@@ -425,7 +444,12 @@ def grade(paths: Sequence[str | Path], out_dir: str | Path,
           weights: Mapping[str, float] | None = None, *,
           settings: GradeSettings | None = None,
           assignment: Assignment | None = None) -> dict[str, Any]:
-    """Grade every submission under ``paths``; write results.json and grades.csv; return results."""
+    """Grade every submission under ``paths``; write results.json and grades.csv; return results.
+
+    Raises :class:`SandboxUnavailable` when no sandbox can run here (nothing is written),
+    ``ValueError`` when the output folder, a submission or the staging folder lies where every
+    sandbox can read it, and :class:`GraderFaults` *after writing every grade it could* when the
+    grader failed on some notebook or could not write a report file."""
     t0 = time.monotonic()
     settings = settings or GradeSettings()
     _report.check_visibility(settings.visibility)
@@ -433,14 +457,31 @@ def grade(paths: Sequence[str | Path], out_dir: str | Path,
     weights = {**(weights or {}), **assignment.weights}
     visibility = assignment.visibility or settings.visibility
     if settings.sandbox:
-        problem = sandbox_problem()
+        problem = sandbox_problem() or view.preflight(settings.limits)
         if problem:
             raise SandboxUnavailable(problem)
-    the_plan = plan(paths, out_dir, assignment)
-    runs = run(the_plan, settings)
-    rows, lines = judge(the_plan, runs, assignment, weights, settings)
-    return _report.write(rows, out_dir, message="\n".join(lines), elapsed=time.monotonic() - t0,
-                         visibility=visibility, max_score=assignment.max_score)
+    staging = Path(tempfile.mkdtemp(prefix="gm-stage-"))
+    try:
+        if settings.sandbox:
+            bad = view.exposed([out_dir, *paths, staging])
+            if bad:
+                raise ValueError("refusing to grade: " + "; ".join(bad) + " (grade from and into "
+                                 "folders outside it)")
+        the_plan = plan(stage(paths, staging), assignment)
+        runs = run(the_plan, settings)
+        faults: list[str] = []
+        rows, lines = judge(the_plan, runs, assignment, weights, settings, faults)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    try:
+        results = _report.write(rows, out_dir, message="\n".join(lines),
+                                elapsed=time.monotonic() - t0, visibility=visibility,
+                                max_score=assignment.max_score)
+    except _report.ReportError as exc:
+        raise GraderFaults([*faults, *exc.causes], exc.results) from None
+    if faults:
+        raise GraderFaults(faults, results)
+    return results
 
 
 def _limits_note(cgroups: Sequence[Sequence[str]], sandbox: bool) -> str | None:
@@ -449,9 +490,10 @@ def _limits_note(cgroups: Sequence[Sequence[str]], sandbox: bool) -> str | None:
     missing = sorted({c for kinds in cgroups for c in ("pids", "memory") if c not in kinds})
     if not missing:
         return None
-    what = {"pids": "the number of its processes was not bounded (RLIMIT_NPROC does not hold "
-                    "root)" if os.geteuid() == 0 else "its processes were bounded per user "
-                    "(RLIMIT_NPROC), not per notebook",
+    what = {"pids": ("its processes were bounded by RLIMIT_NPROC of the sandbox's own user"
+                     if sandbox else "the number of its processes was not bounded (RLIMIT_NPROC "
+                     "does not hold root)") if os.geteuid() == 0 else "its processes were bounded "
+                    "per user (RLIMIT_NPROC), not per notebook",
             "memory": "its memory was limited per process (RLIMIT_AS), not for the whole tree"}
     end = ("the sandbox's pid namespace still ended every process with it" if sandbox else
            "processes that left the kernel's session may have outlived it")
@@ -480,10 +522,11 @@ def main(argv: Sequence[str] | None = None) -> int:
                     help="run without bubblewrap (only where each submission already has its own "
                     "container, e.g. on Gradescope)")
     args = ap.parse_args(argv)
-    missing = [p for p in args.paths if not Path(p).exists()]
+    missing = [p for p in args.paths if not os.path.lexists(p)]
     if missing:
         print(f"grade: no such file or folder: {', '.join(missing)}", file=sys.stderr)
         return 2
+    faults: tuple[str, ...] = ()
     try:
         weights = json.loads(args.weights.read_text()) if args.weights else None
         assignment = load_assignment(args.assignment) if args.assignment else None
@@ -492,24 +535,34 @@ def main(argv: Sequence[str] | None = None) -> int:
                         processes=args.max_processes)
         settings = GradeSettings(limits=limits, sandbox=not args.no_sandbox, jobs=args.jobs,
                                  visibility=args.visibility)
-        results = grade(args.paths, args.out, weights, settings=settings, assignment=assignment)
+        results: dict[str, Any] | None = grade(args.paths, args.out, weights, settings=settings,
+                                               assignment=assignment)
     except SandboxUnavailable as exc:
         print(f"grade: refusing to run student notebooks without a sandbox: {exc}. Install "
               "bubblewrap, or pass --no-sandbox where each submission already runs in its own "
               "container (Gradescope).", file=sys.stderr)
         return 3
+    except GraderFaults as exc:
+        faults, results = exc.causes, exc.results
     except (ValueError, OSError) as exc:
         print(f"grade: {exc}", file=sys.stderr)
         return 2
-    total = sum(t["max_score"] for t in results["tests"])
-    n = len({t["name"].split(":")[0] for t in results["tests"] if t["max_score"] > 0})
-    print(f"graded {n} notebook(s): {results['score']:g} / {total:g} points; see "
-          f"{args.out / 'results.json'} and grades.csv")
-    if results.get("output"):
-        print(results["output"])
+    if results is not None:
+        total = sum(t["max_score"] for t in results["tests"])
+        n = len({t["name"].split(":")[0] for t in results["tests"] if t["max_score"] > 0})
+        print(f"graded {n} notebook(s): {results['score']:g} / {total:g} points; see "
+              f"{args.out / 'results.json'} and grades.csv")
+        if results.get("output"):
+            print(results["output"])
+    if faults:
+        print(f"grade: the grader itself failed ({len(faults)} fault(s)); every other grade is "
+              "written:", file=sys.stderr)
+        for f in faults:
+            print(f"grade: GRADER FAULT: {f}", file=sys.stderr)
+        return 4
     return 0
 
 
 __all__ = ["grade", "plan", "run", "judge", "main", "identify", "leftover_reason",
-           "load_assignment", "SandboxUnavailable", "GradeSettings", "Assignment", "Plan",
-           "ToRun", "Missing", "NotGraded", "Submission"]
+           "load_assignment", "SandboxUnavailable", "GraderFaults", "Fault", "GradeSettings",
+           "Assignment", "Plan", "ToRun", "Missing", "NotGraded", "MAX_NOTEBOOK_BYTES"]

@@ -2,23 +2,24 @@
 
 The sandbox (``bwrap``, Debian's ``bubblewrap`` package) gives the notebook's kernel:
 
-* the whole file system **read-only** (the course's code, Python, site-packages), with a fresh,
-  size-capped ``/tmp`` of its own as the only writable place (its notebook is copied there);
-* **no view** of the other submissions of the batch, the output folder or the grader's private
-  folder: tmpfs mounts hide them (or ``/dev/null`` over single files where a folder also holds
-  the course's code);
-* new user, pid, network, IPC and UTS namespaces (``--unshare-all``: no network at all), no
-  capabilities, a new session; ``--die-with-parent`` and the pid namespace mean that when the
+* **only what it needs** to see (:mod:`gm_grader.view`): the system's programs and libraries, the
+  Python the grader runs on and the course's packages, all read-only; its own staged notebook;
+  a fresh, size-capped ``/tmp`` and ``/dev/shm`` as the only writable places. No grading folder,
+  no other submission, no output folder, no home, no ``/etc/shadow``, no host sockets: they are
+  not hidden, they were never put there, and nothing a submission holds decides what is;
+* **its own user**: a root grader's sandbox drops to a uid and gid of its own (nobody's root);
+* new pid, network, IPC and UTS namespaces (no network at all), no capabilities, a new
+  session; ``--die-with-parent`` and the pid namespace mean that when the
   sandbox ends, every process it started ends too (a ``setsid`` daemon included);
 * limits: total wall time per notebook and per cell, kept by the grading process itself
   (:class:`_OuterClock`: the kernel can stop its runner, not the grader), memory (``RLIMIT_AS`` per
   process, and a memory cgroup for the whole tree), processes (a pids cgroup; ``RLIMIT_NPROC``
-  too for a non-root grader), file size and ``/tmp`` size. Each notebook gets cgroups of its own
+  too, of the sandbox's own user), file size and ``/tmp`` size. Each notebook gets cgroups of its own
   (``pids.max``, the memory limit) wherever this process may create them (cgroup v1 or v2); at the
   end, or at a limit, every process in them is killed and they are removed. Where none can be
   made (``GM_GRADE_NO_CGROUPS=1`` also says so) the sandbox's pid namespace still ends every
-  process with it, but the number of processes is not bounded for a root grader and the memory
-  limit is per process: the grader says so in its report.
+  process with it, but the memory limit is per process (and without a sandbox a root grader's
+  processes are not bounded in number): the grader says so in its report.
 
 Evidence comes back on a pipe created here before the sandbox starts and inherited by the
 runner (:mod:`gm_grader.runner`); the grader reads at most ``MAX_EVIDENCE_BYTES`` of it. Nothing the
@@ -41,7 +42,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from enum import Enum
 from pathlib import Path
@@ -52,18 +53,20 @@ from gm_core.checks.protocol import (
     CheckAnnounced,
     Done,
     EvidenceLine,
+    Fatal,
     KernelStarted,
     Limits,
     ProtocolError,
     Record,
     RunnerConfig,
+    Started,
     decode_record,
     encode_config,
 )
+from gm_grader import view
 from gm_grader.clock import OUTER_MARGIN, STARTUP_LIMIT, CellClock
 from gm_grader.runner import GRACE as _RUNNER_GRACE
 
-PKG_PARENT = Path(__file__).resolve().parents[1]   # the folder holding gm_core and gm_grader
 MAX_EVIDENCE_BYTES = 64_000_000
 MAX_LOG_BYTES = 20_000
 
@@ -229,70 +232,9 @@ class _Cgroups:
 
 
 # ------------------------------------------------------------------------------ one run
-_TMP = Path("/tmp")
-
-
-def _kept() -> list[Path]:
-    """What the kernel must see: the course's code and the Python it runs on."""
-    return [PKG_PARENT, Path(sys.prefix).resolve(), Path(sys.base_prefix).resolve(),
-            Path(sys.executable).resolve().parent]
-
-
-def _within(p: Path, roots: Iterable[Path]) -> bool:
-    return any(r == p or r in p.parents for r in roots)
-
-
-def _keep_args() -> list[str]:
-    """bwrap arguments that bring back, read-only, the kept folders lying under ``/tmp``.
-
-    The sandbox mounts an empty ``/tmp`` of its own; a course or venv cloned under ``/tmp`` (as a
-    CI job or an instructor's scratch checkout may be) would vanish with it. These binds follow that
-    mount and come before the hiding mounts, so what is hidden inside them stays hidden.
-    """
-    under = sorted({k for k in _kept() if _TMP in k.parents})
-    top = [k for k in under if not any(o in k.parents for o in under)]
-    return [a for k in top for a in ("--ro-bind", str(k), str(k))]
-
-
-def _hide_args(hide: Iterable[str | Path]) -> list[str]:
-    """bwrap arguments hiding folders (tmpfs) or files (/dev/null) the sandbox must not see."""
-    keep = _kept()
-    # under /tmp only what _keep_args brings back is visible; the rest the empty /tmp hides already
-    visible = [k for k in keep if _TMP in k.parents]
-
-    def hidden_anyway(p: Path) -> bool:
-        return (p == _TMP or _TMP in p.parents) and not _within(p, visible)
-
-    dirs: set[Path] = set()
-    files: set[Path] = set()
-    for h in hide:
-        p = Path(h).resolve()
-        if p.is_file():
-            d = p.parent
-            if any(k == d or d in k.parents for k in keep):
-                files.add(p)
-            else:
-                dirs.add(d)
-        elif p.is_dir():
-            if any(k == p or p in k.parents for k in keep):
-                files |= {q for q in p.glob("*.ipynb")} | {q for q in p.glob("*.json")}
-                files |= {q for q in p.glob("*.csv")}
-            else:
-                dirs.add(p)
-    shown = sorted(d for d in dirs if d != Path("/") and not hidden_anyway(d))
-    top = [d for d in shown if not any(o in d.parents for o in shown)]
-    args: list[str] = []
-    for d in top:
-        args += ["--tmpfs", str(d)]
-    for f in sorted(files):
-        if not any(d in f.parents for d in top) and not hidden_anyway(f):
-            args += ["--ro-bind", "/dev/null", str(f)]
-    return args
-
-
 def _env(home: str) -> dict[str, str]:
     keep = {k: v for k, v in os.environ.items() if k in ("PATH", "LANG", "LC_ALL", "TZ")}
-    pp = [str(PKG_PARENT)]
+    pp = [str(view.PKG_PARENT)]
     return {**keep, "PYTHONPATH": os.pathsep.join(pp), "HOME": f"{home}/home",
             "IPYTHONDIR": f"{home}/ipython", "JUPYTER_RUNTIME_DIR": f"{home}/runtime",
             "JUPYTER_CONFIG_DIR": f"{home}/jupyter", "MPLCONFIGDIR": f"{home}/mpl",
@@ -354,53 +296,57 @@ class _OuterClock:
         return self.clock.seconds(now) > self.bound
 
 
-def run_submission(notebook: str | Path, *, limits: Limits, hide: Sequence[str | Path] = (),
-                   sandbox: bool = True, nonce: str | None = None, salt: int | None = None,
+def run_submission(notebook: str | Path, *, limits: Limits, sandbox: bool = True,
+                   nonce: str | None = None, salt: int | None = None,
                    caps: Mapping[str, float] | None = None) -> RunResult:
-    """Run ``notebook`` in its sandbox; return what it brought back.
+    """Run ``notebook`` (a staged copy: a plain file of the grader's) in its sandbox; return what
+    it brought back.
 
     ``caps``: {"<exercise>/<part>": seconds} the longest honest check of each part may take
     (:func:`gm_grader.clock.check_caps`), credited on the cell clocks."""
     notebook = Path(notebook)
     private = Path(tempfile.mkdtemp(prefix="gm-grade-"))
     os.chmod(private, 0o700)
-    inbox = private / "in"
-    inbox.mkdir()
-    name = "submission.ipynb"
-    shutil.copyfile(notebook, inbox / name)
-    rfd, wfd = os.pipe()
-    inside = "/tmp/.gm-in" if sandbox else str(inbox)
-    scratch = "/tmp" if sandbox else str(private / "tmp")
-    config = RunnerConfig(notebook=f"{inside}/{name}", workdir=f"{scratch}/work", evidence_fd=wfd,
-                          nonce=nonce or secrets.token_hex(16),
-                          salt=salt if salt is not None else secrets.randbits(62), limits=limits,
-                          caps=dict(caps or {}), mpl_cache=_mpl_cache())
-    (inbox / "config.json").write_text(encode_config(config))
-    cmd = [sys.executable, "-m", "gm_grader.runner", f"{inside}/config.json"]
-    cgroups = _Cgroups(limits, f"gm-grade-{os.getpid()}-{secrets.token_hex(4)}")
-    if sandbox:
-        cmd = ["bwrap", "--ro-bind", "/", "/", "--dev", "/dev", "--proc", "/proc",
-               "--size", str(limits.tmp_mb << 20), "--perms", "1777", "--tmpfs", "/tmp",
-               *_keep_args(), *_hide_args([*hide, private]),
-               "--ro-bind", str(inbox), "/tmp/.gm-in",
-               "--unshare-all", "--die-with-parent", "--new-session", "--cap-drop", "ALL",
-               "--chdir", "/tmp", "--", *cmd]
-    else:
-        (private / "tmp").mkdir()
-    cmd, preexec = _limited(cmd, limits, cgroups)
-    started = time.monotonic()
     log, received = b"", 0
     killed: Killed | None = None
     proc = None
-    outer = _OuterClock(limits, caps, started)
-    wfd_open = True
+    cgroups: _Cgroups | None = None
+    rfd = wfd = -1
+    started = time.monotonic()
     try:
+        inbox = view.make_inbox(private)
+        name = "submission.ipynb"
+        shutil.copyfile(notebook, inbox / name)
+        identity = view.sandbox_identity() if sandbox else None
+        inside = view.INBOX if sandbox else str(inbox)
+        fonts = _stage_font_cache(inbox / "mpl")
+        rfd, wfd = os.pipe()
+        scratch = "/tmp" if sandbox else str(private / "tmp")
+        config = RunnerConfig(notebook=f"{inside}/{name}", workdir=f"{scratch}/work",
+                              evidence_fd=wfd, nonce=nonce or secrets.token_hex(16),
+                              salt=salt if salt is not None else secrets.randbits(62),
+                              limits=limits, caps=dict(caps or {}),
+                              mpl_cache=f"{inside}/mpl" if fonts else None)
+        (inbox / "config.json").write_text(encode_config(config))
+        for f in inbox.rglob("*"):
+            f.chmod(0o755 if f.is_dir() else 0o644)   # the sandbox's user reads them; no one writes
+        cmd = [sys.executable, "-m", "gm_grader.runner", f"{inside}/config.json"]
+        if identity is not None:
+            etc = view.write_identity_files(private / "etc", identity)
+            cmd = view.command(inbox, etc, identity, limits, cmd)
+        else:
+            (private / "tmp").mkdir()
+        cgroups = _Cgroups(limits, f"gm-grade-{os.getpid()}-{secrets.token_hex(4)}")
+        cmd, preexec = _limited(cmd, limits, cgroups,
+                                own_user=identity is not None and identity.drop)
+        started = time.monotonic()
+        outer = _OuterClock(limits, caps, started)
         proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                                 stderr=subprocess.STDOUT, pass_fds=(wfd,), env=_env(scratch),
                                 cwd=str(private if not sandbox else "/"), preexec_fn=preexec,
                                 start_new_session=True)
         os.close(wfd)
-        wfd_open = False
+        wfd = -1
         assert proc.stdout is not None
         streams = {rfd: "e", proc.stdout.fileno(): "o"}
         deadline = started + limits.notebook_timeout
@@ -434,16 +380,18 @@ def run_submission(notebook: str | Path, *, limits: Limits, hide: Sequence[str |
             if killed is Killed.EVIDENCE:
                 break
     finally:
-        if wfd_open:
-            os.close(wfd)
+        for fd in (wfd, rfd):
+            if fd >= 0:
+                os.close(fd)
         if proc is not None:
             _stop(proc)
-        os.close(rfd)
-        cgroups.close()
+        if cgroups is not None:
+            cgroups.close()
         shutil.rmtree(private, ignore_errors=True)
     result = RunResult(records=tuple(outer.records), nonce=config.nonce, salt=config.salt,
                        killed=killed, log=log.decode("utf-8", "replace")[-4000:],
-                       seconds=time.monotonic() - started, cgroups=tuple(sorted(cgroups.kinds)))
+                       seconds=time.monotonic() - started,
+                       cgroups=tuple(sorted(cgroups.kinds)) if cgroups is not None else ())
     kernel_pid = result.kernel_pid
     if not sandbox and kernel_pid and proc is not None and _session_of(kernel_pid) == kernel_pid \
             and kernel_pid not in (os.getpid(), os.getpgrp(), os.getsid(0)):
@@ -451,21 +399,68 @@ def run_submission(notebook: str | Path, *, limits: Limits, hide: Sequence[str |
     return result
 
 
+def _stage_font_cache(dst: Path) -> bool:
+    """Copy matplotlib's font list (built once on this machine) into the run's inbox, so the
+    kernel need not rebuild it: True if there was one. The cache folder itself is not shown to
+    the sandbox (it may lie in the grader's home)."""
+    src = _mpl_cache()
+    if src is None:
+        return False
+    try:
+        names = [n for n in os.listdir(src) if n.startswith("fontlist") and n.endswith(".json")]
+        if not names:
+            return False
+        dst.mkdir()
+        for n in names:
+            shutil.copyfile(os.path.join(src, n), dst / n)
+    except OSError:
+        return False
+    return True
+
+
+def startup_fault(result: RunResult) -> str | None:
+    """Why the grader, not the notebook, is to blame for a run that ended before any of the
+    student's cells began (None when a cell began, the notebook could not be read, or the run
+    finished): the sandbox or the runner did not start, the kernel or the course's checkers could
+    not be loaded. Nothing of the submission runs before its first cell, so none of this can be
+    its doing."""
+    recs = result.records
+    if not any(isinstance(r, Started) for r in recs):
+        tail = [ln.strip() for ln in result.log.splitlines() if ln.strip()]
+        return ("the sandbox or the grader's runner could not start"
+                + (f" ({tail[-1][:200]})" if tail else ""))
+    if any(isinstance(r, (CellStarted, CellEnded, EvidenceLine, Done)) for r in recs):
+        return None
+    fatal = next((r.message for r in recs if isinstance(r, Fatal)), None)
+    if fatal is not None and fatal.startswith("the notebook could not be read"):
+        return None
+    if fatal is not None:
+        return f"the notebook's kernel could not be prepared ({fatal[:200]})"
+    if result.killed is not None:
+        return "the notebook's kernel did not start in time"
+    return "the grader's runner ended before the notebook's first cell"
+
+
 _JOIN = ('for c in "$@"; do [ "$c" = -- ] && break; echo $$ > "$c/cgroup.procs" 2>/dev/null; '
          'shift; done; shift; exec "$@"')
 
 
-def _limited(cmd: list[str], limits: Limits,
-             cgroups: _Cgroups) -> tuple[list[str], Callable[[], None] | None]:
+def _limited(cmd: list[str], limits: Limits, cgroups: _Cgroups,
+             own_user: bool = False) -> tuple[list[str], Callable[[], None] | None]:
     """(command, preexec_fn) applying the limits before ``cmd`` starts: a shell joins the cgroups
     and ``prlimit`` sets the resource limits, then both exec (no Python runs between fork and
-    exec, which matters with --jobs); without prlimit, a preexec_fn does the same."""
+    exec, which matters with --jobs); without prlimit, a preexec_fn does the same.
+
+    ``own_user``: the sandbox drops to a uid of its own (a root grader, :mod:`gm_grader.view`),
+    so ``RLIMIT_NPROC`` counts this notebook's processes alone; a root grader's other runs are
+    not held by it (the pids cgroup does that), a user's are counted with the user's own."""
     mem, fsize = limits.memory_mb << 20, limits.tmp_mb << 20
-    nproc = limits.processes + _user_processes() if os.geteuid() != 0 else None
+    nproc = (limits.processes if own_user else
+             limits.processes + _user_processes() if os.geteuid() != 0 else None)
     prlimit = shutil.which("prlimit")
     if prlimit is not None and Path("/bin/sh").exists():
         lim = [f"--as={mem}", f"--fsize={fsize}", "--core=0"]
-        if nproc is not None:   # root is not held by RLIMIT_NPROC: the pids cgroup does that
+        if nproc is not None:   # root is not held by RLIMIT_NPROC: its sandbox's own user is
             lim.append(f"--nproc={nproc}")
         return ["/bin/sh", "-c", _JOIN, "sh", *map(str, cgroups.dirs), "--", prlimit, *lim,
                 "--", *cmd], None

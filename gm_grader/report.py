@@ -2,7 +2,10 @@
 
 Both files are written by the grading process only, after every sandbox has ended, each to a
 temporary file in the output folder and then moved into place (``os.replace``), so a reader never
-sees half a file and nothing a notebook started can be writing them.
+sees half a file and nothing a notebook started can be writing them. Each is written even when
+the other cannot be (:class:`ReportError` then says which and why), and no text can stop either:
+a name that is not UTF-8 (a lone surrogate, as Python reads such a name) is written with ``?``
+in its place.
 """
 from __future__ import annotations
 
@@ -17,6 +20,27 @@ from gm_core.checks.files import atomic_write
 
 VISIBILITIES = ("visible", "hidden", "after_due_date", "after_published")
 FIELDS = ["notebook", "exercise", "part", "status", "score", "max_score", "message"]
+
+
+class ReportError(OSError):
+    """One or both report files could not be written: ``causes`` says which and why;
+    ``results`` is what was to be written."""
+
+    def __init__(self, causes: Sequence[str], results: dict[str, Any]) -> None:
+        super().__init__("; ".join(causes))
+        self.causes = tuple(causes)
+        self.results = results
+
+
+def _text(v: Any) -> Any:
+    """``v`` with every lone surrogate of a string replaced by ``?`` (always writable as UTF-8)."""
+    if isinstance(v, str):
+        return v.encode("utf-8", "replace").decode("utf-8")
+    return v
+
+
+def _clean(rows: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
+    return [{k: _text(v) for k, v in r.items()} for r in rows]
 
 
 def check_visibility(v: str, what: str = "visibility") -> str:
@@ -50,15 +74,27 @@ def results(rows: Sequence[Mapping[str, Any]], *, message: str = "", elapsed: fl
 def write(rows: Sequence[Mapping[str, Any]], out_dir: str | Path, *, message: str = "",
           elapsed: float = 0.0, visibility: str = "visible",
           max_score: float | None = None) -> dict[str, Any]:
-    """Write results.json and grades.csv into ``out_dir`` (atomically); return the results."""
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    res = results(rows, message=message, elapsed=elapsed, visibility=visibility,
+    """Write results.json and grades.csv into ``out_dir`` (atomically); return the results.
+    Raises :class:`ReportError` (after writing what it could) when a file cannot be written."""
+    rows = _clean(rows)
+    res = results(rows, message=_text(message), elapsed=elapsed, visibility=visibility,
                   max_score=max_score)
     buf = io.StringIO()
     w = csv.DictWriter(buf, fieldnames=FIELDS, extrasaction="ignore")
     w.writeheader()
     w.writerows(rows)
-    atomic_write(out / "grades.csv", buf.getvalue())
-    atomic_write(out / "results.json", json.dumps(res, indent=1) + "\n")
+    out = Path(out_dir)
+    causes = []
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ReportError([f"the output folder {out} could not be made ({exc})"], res) from None
+    for name, text in (("grades.csv", buf.getvalue()),
+                       ("results.json", json.dumps(res, indent=1) + "\n")):
+        try:
+            atomic_write(out / name, text)
+        except (OSError, ValueError) as exc:
+            causes.append(f"{out / name} could not be written ({type(exc).__name__}: {exc})")
+    if causes:
+        raise ReportError(causes, res)
     return res

@@ -640,11 +640,14 @@ def test_every_way_a_run_ends_gives_every_part_a_row_and_a_reason():
 
 
 @needs_sandbox
-def test_the_notebook_limit_ends_the_sandbox_and_everything_in_it(tmp_path):
+def test_the_notebook_limit_ends_the_sandbox_and_everything_in_it(tmp_path, monkeypatch):
+    import tempfile
+
     from gm_grader.isolate import run_submission
     nb = write_nb(tmp_path / "ex1_1.ipynb", ["import time\ntime.sleep(10**6)"])
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))   # bwrap's command line names it
     t = time.monotonic()
-    run = run_submission(nb, limits=Limits(notebook_timeout=2.0), hide=[tmp_path])
+    run = run_submission(nb, limits=Limits(notebook_timeout=2.0))
     assert run.killed is Killed.TIME and time.monotonic() - t < 30
     summary = _evidence.summarise(run, REGISTRY["1.1"], {})
     assert "longer than the time allowed" in summary.problem
@@ -652,49 +655,51 @@ def test_the_notebook_limit_ends_the_sandbox_and_everything_in_it(tmp_path):
     assert alive_with(str(tmp_path)) == []          # bwrap (its command line names tmp_path) is gone
 
 
-@needs_sandbox
-def test_hiding_outside_tmp_and_around_the_course(tmp_path):
-    """Submissions outside /tmp are hidden by tmpfs mounts; a folder holding the course is not
-    hidden (the kernel needs it), only its notebooks and result files are."""
-    import shutil
+def _in_sandbox(script, course=None, tmp=None):
+    """Run a shell script in a sandbox laid out as for a notebook (gm_grader.view)."""
     import tempfile
 
-    from gm_grader.isolate import _hide_args
+    from gm_grader import view
+    private = Path(tempfile.mkdtemp(dir=tmp))
+    inbox = view.make_inbox(private)
+    ident = view.sandbox_identity()
+    etc = view.write_identity_files(private / "etc", ident)
+    cmd = view.command(inbox, etc, ident, Limits(), ["/bin/sh", "-c", script],
+                       **({"course": course} if course else {}))
+    return subprocess.run(cmd, capture_output=True, text=True, env={"PATH": "/usr/bin:/bin"})
+
+
+@needs_sandbox
+def test_a_sandbox_sees_the_course_not_what_lies_beside_it():
+    """A sandbox sees the course's packages, never the folder around them (solutions/, a grading
+    folder beside them) nor a folder elsewhere: nothing is hidden, it was never put there."""
+    import shutil
+    import tempfile
     base = Path(tempfile.mkdtemp(prefix="gm-hide-", dir="/var/tmp"))
     try:
         (base / "bob").mkdir()
         (base / "bob" / "ex1_1.ipynb").write_text("secret")
-        args = _hide_args([base / "bob" / "ex1_1.ipynb", base])
-        assert args == ["--tmpfs", str(base)]
-        res = subprocess.run(["bwrap", "--ro-bind", "/", "/", "--dev", "/dev", "--proc", "/proc",
-                              *args, "--unshare-all", "--cap-drop", "ALL", "cat",
-                              str(base / "bob" / "ex1_1.ipynb")], capture_output=True, text=True)
-        assert res.returncode != 0 and "secret" not in res.stdout
+        res = _in_sandbox(f"cat {base}/bob/ex1_1.ipynb; ls {ROOT}; ls {ROOT}/gm_core/checks")
+        assert "secret" not in res.stdout and "No such file" in res.stderr
+        assert "parts.py" in res.stdout                             # the course's code is there
+        assert "solutions" not in res.stdout and "gm_core" in res.stdout
     finally:
         shutil.rmtree(base)
-    args = _hide_args([ROOT, ROOT / "solutions" / "ex1_1.ipynb"])
-    mounts = [args[i + 1] for i, a in enumerate(args) if a == "--tmpfs"]
-    assert mounts == [str(ROOT / "solutions")]                  # never the course's own folder
 
 
-def test_a_course_cloned_under_tmp_stays_visible_and_its_notebooks_hidden(monkeypatch, tmp_path):
+@needs_sandbox
+def test_a_course_cloned_under_tmp_stays_visible_and_its_notebooks_do_not(tmp_path):
     """The sandbox's empty /tmp must not hide a course (or venv) that lives under /tmp, as a CI
-    clone may; what is hidden inside it stays hidden."""
-    from gm_grader import isolate as _isolate
+    clone may; what lies beside its packages stays out of sight."""
     course = (tmp_path / "course").resolve()
     (course / "solutions").mkdir(parents=True)
     (course / "solutions" / "ex1_1.ipynb").write_text("secret")
     (course / "gm_core").mkdir()
-    monkeypatch.setattr(_isolate, "PKG_PARENT", course)
-    keep = _isolate._keep_args()
-    assert str(course) in keep
-    hide = _isolate._hide_args([course / "solutions" / "ex1_1.ipynb"])
-    assert hide == ["--tmpfs", str(course / "solutions")]
-    res = subprocess.run(["bwrap", "--ro-bind", "/", "/", "--dev", "/dev", "--proc", "/proc", "--tmpfs", "/tmp",
-                          *keep, *hide, "--unshare-all", "--cap-drop", "ALL", "sh", "-c",
-                          f"ls {course}; cat {course}/solutions/ex1_1.ipynb"], capture_output=True, text=True)
-    assert "gm_core" in res.stdout and "solutions" in res.stdout
-    assert "secret" not in res.stdout
+    (course / "gm_core" / "mark.py").write_text("")
+    res = _in_sandbox(f"ls {course} {course}/gm_core; cat {course}/solutions/ex1_1.ipynb",
+                      course=course, tmp=tmp_path)
+    assert "gm_core" in res.stdout and "mark.py" in res.stdout
+    assert "solutions" not in res.stdout and "secret" not in res.stdout
 
 
 def test_the_runner_reads_notebooks_without_compiling_the_iri_grammar():
