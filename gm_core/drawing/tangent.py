@@ -126,8 +126,8 @@ class TangentSpaceScene(Scene):
         self.line_p = x
         self.line_v = self.LINE_RATE * speed            # its velocity dx/dt (with ds/dt = speed)
         self.points2.set_data([p[0], x], [p[1], self.LINE_Y])
-        set_arrows(self.arrows2, [p, [x, self.LINE_Y + 0.15]], np.array([self.ARROW * v, [self.line_v, 0.0]]))
-        self.readout2.set_text(f"circle: p = {vec_text(p)}\n        v = {vec_text(v)}, p·v = {_num(p @ v)}\n"
+        set_arrows(self.arrows2, np.array([p, [x, self.LINE_Y + 0.15]]), np.array([self.ARROW * v, [self.line_v, 0.0]]))
+        self.readout2.set_text(f"circle: p = {vec_text(p)}\n        v = {vec_text(v)}, p·v = {_num(float(p @ v))}\n"
                                f"line:   x = {x:+.2f}, ẋ = {self.line_v:+.2f}")
         # sphere (fig. 1.12): lat = AMP sin(2 lon), lon = s, moving at rate speed in lon
         lat, lon = self.AMP * np.sin(2 * s), s
@@ -145,4 +145,4 @@ class TangentSpaceScene(Scene):
         lab = P + 1.05 * h * (east + north)
         self.label_plane.set_position_3d(lab)
         ax3.view_init(elev=np.rad2deg(lat) * 0.6 + 12, azim=np.rad2deg(lon) - 20)
-        self.readout3.set_text(f"p = {vec_text(P)}\nv = {vec_text(V)}\np·v = {_num(P @ V)}: v lies in the tangent plane")
+        self.readout3.set_text(f"p = {vec_text(P)}\nv = {vec_text(V)}\np·v = {_num(float(P @ V))}: v lies in the tangent plane")

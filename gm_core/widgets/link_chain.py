@@ -80,6 +80,8 @@ class OptimalGaitPanel(ScenePanel):
     title = "Design a chain and optimise its gait"
     scene_class = OptimalGaitScene
     scene: OptimalGaitScene
+    #: the design whose animation is shown below the panel
+    _shown: tuple[int, str, float, int] | None = None
 
     @override
     def controls_spec(self) -> dict[str, W.ValueWidget]:
@@ -103,12 +105,12 @@ class OptimalGaitPanel(ScenePanel):
 
     @override
     def after_update(self, values: dict[str, Any]) -> None:
-        if getattr(self, "_shown", None) != self.scene.key:      # the animation belongs to another design
+        if self._shown != self.scene.key:      # the animation belongs to another design
             self.movie.clear_output()
             self._shown = None
-        done = self.scene.result is not None
-        self.bar.value = self.bar.max if done else 0
-        self.status.value = f"optimised: efficiency {self.scene.result.efficiency:.4f}" if done else ""
+        result = self.scene.result
+        self.bar.value = self.bar.max if result is not None else 0
+        self.status.value = f"optimised: efficiency {result.efficiency:.4f}" if result is not None else ""
 
     def run(self, animate: bool = True) -> OptimalGait:
         """Optimise the design shown with a live progress bar, then show the gait and, if ``animate``,
