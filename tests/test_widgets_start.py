@@ -31,10 +31,21 @@ def test_set_updates_once_and_rejects_unknown_controls():
         raise AssertionError("set() accepted an unknown control")
 
 
-def test_naive_update_draws_the_same_pose():
-    p = FrameDemo()
-    p.naive_update(x=0.5, y=0.5, theta=0.3)
-    assert len(p.ax.patches) == 1
+def _picture(panel):
+    panel.fig.canvas.draw()
+    return np.asarray(panel.fig.canvas.buffer_rgba()).copy()
+
+
+def test_naive_update_draws_the_same_picture():
+    """The clear-and-replot baseline of the latency benchmark draws what the in-place update draws,
+    pixel for pixel, and both differ from the starting picture."""
+    moved, replotted = FrameDemo(), FrameDemo()
+    start = _picture(moved)
+    moved.set(x=0.5, y=0.5, theta=0.3)
+    replotted.naive_update(x=0.5, y=0.5, theta=0.3)
+    a, b = _picture(moved), _picture(replotted)
+    assert a.shape == b.shape and not np.array_equal(a, start)
+    assert np.array_equal(a, b), f"{np.count_nonzero((a != b).any(axis=2))} pixels differ"
     assert "FrameDemo" in all_panels()
 
 
