@@ -91,9 +91,12 @@ _PANEL_FACTS_JS = r"""
   const num = (x) => { const v = Number(Array.isArray(x) ? x[0] : x); return Number.isFinite(v) ? v : null; };
   const sliders = [...area.querySelectorAll('.widget-slider')].map(s => {
     const t = s.querySelector('.noUi-target'), h = s.querySelector('.noUi-handle');
-    const own = (s.querySelector('.widget-label') || {}).innerText || '';
+    // textContent, not innerText: a cell JupyterLab has not laid out (off screen) has no innerText
+    const text = (e) => (e && e.textContent || '').trim();
+    const lab = s.querySelector('.widget-label');
     const above = s.parentElement && s.parentElement.querySelector(':scope > .gm-control-label-box .gm-control-label');
-    const label = own.trim() || (above ? above.innerText.trim() : '') || s.getAttribute('title') || '';
+    const tip = lab && lab.getAttribute('title');   // a label shown above the slider is its tooltip too
+    const label = text(lab) || text(above) || (tip && tip !== 'null' ? tip : '');
     const disabled = !t || !h || t.hasAttribute('disabled') || t.classList.contains('noUi-state-disabled') || !!h.closest('[disabled]');
     const r = t && t.noUiSlider ? t.noUiSlider.options.range : {};
     return {label, disabled, min: num(r.min), max: num(r.max),
