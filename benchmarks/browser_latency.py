@@ -47,11 +47,17 @@ import latency_report as lr  # noqa: E402
 import student  # noqa: E402
 
 # Arm the measurement of one move: remember the area's canvas pixels, and on the next keydown
-# look at them on every animation frame until they differ.
+# look at them on every animation frame until they differ. ipympl paints a canvas only when a
+# new picture has loaded (student.py's picture watch counts them), so while the count of the
+# panel's pictures is unchanged the pixels are not read: reading a large canvas on every frame
+# would take the page's time from the very drawing being timed (and more for larger canvases).
 _ARM_JS = r"""
 (sel) => {
   const area = document.querySelector(sel);
   const canvases = [...area.querySelectorAll('.jupyter-matplotlib canvas, .jupyter-matplotlib-canvas-div canvas')];
+  const ids = [...area.querySelectorAll('[data-gm-pictures]')].map(v => v.getAttribute('data-gm-pictures'));
+  const watched = ids.length > 0 && window.__gmPictures && ids.every(id => window.__gmPictures[id]);
+  const shown = () => watched ? ids.reduce((n, id) => n + window.__gmPictures[id].shown, 0) : null;
   const grab = () => canvases.map(c => {
     if (!c.width || !c.height) return new Uint32Array(0);
     return new Uint32Array(c.getContext('2d').getImageData(0, 0, c.width, c.height).data.buffer);
@@ -64,16 +70,19 @@ _ARM_JS = r"""
     }
     return true;
   };
-  const state = {t0: null, latency: null, frames: 0};
+  const state = {t0: null, latency: null, frames: 0, grabs: 0, watched};
   window.__gmLatency = state;
-  const before = grab();
+  const before = grab(), shown0 = shown();
   const onKey = (e) => {
     document.removeEventListener('keydown', onKey, true);
     state.t0 = e.timeStamp;
     const tick = () => {
       if (window.__gmLatency !== state) return;  // disarmed
       state.frames++;
-      if (!same(before, grab())) { state.latency = performance.now() - state.t0; return; }
+      if (!watched || shown() !== shown0) {
+        state.grabs++;
+        if (!same(before, grab())) { state.latency = performance.now() - state.t0; return; }
+      }
       requestAnimationFrame(tick);
     };
     requestAnimationFrame(tick);
