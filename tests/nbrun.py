@@ -40,6 +40,10 @@ MARK = "nbrecord"
 ENV = "GM_NBRUN_DIR"
 #: seconds one cell may run before the notebook's execution is stopped and its item fails
 CELL_TIMEOUT = 300
+#: seconds a new kernel may take to answer, and how often a kernel that never answered is started
+#: again (no cell has run then, so starting again changes nothing the notebook does)
+STARTUP_TIMEOUT = 300
+STARTS = 2
 #: in config.stash: this process made the run folder (the controller, or a run without xdist)
 OWNER = pytest.StashKey[bool]()
 #: xdist group of a notebook's item and of the tests that read its record
@@ -183,15 +187,21 @@ def execute(path: Path) -> dict:
     install = (f"import sys\nsys.path.append({str(TESTS)!r}) if {str(TESTS)!r} not in sys.path else None\n"
                f"__import__('nbrecord').install_in_kernel({str(path)!r}, {rel!r})\n")
     finish = f"__import__('nbrecord').finish_in_kernel({str(kernel_out)!r}, {panel_state_code()!r})\n"
-    run = nbformat.v4.new_notebook(metadata=nb.metadata)
-    run.cells = [nbformat.v4.new_code_cell(install), *nb.cells, nbformat.v4.new_code_cell(finish)]
-    client = NotebookClient(run, timeout=CELL_TIMEOUT, startup_timeout=120, kernel_name="python3",
-                            allow_errors=True, resources={"metadata": {"path": str(path.parent)}})
     problem = ""
-    try:
-        client.execute()
-    except Exception as e:  # noqa: BLE001 - a timeout or a dead kernel: the record says so
-        problem = f"{type(e).__name__}: {str(e)[-1500:]}"
+    for _ in range(STARTS):
+        run = nbformat.v4.new_notebook(metadata=nb.metadata)
+        run.cells = [nbformat.v4.new_code_cell(install), *nbformat.read(path, as_version=4).cells,
+                     nbformat.v4.new_code_cell(finish)]
+        client = NotebookClient(run, timeout=CELL_TIMEOUT, startup_timeout=STARTUP_TIMEOUT, kernel_name="python3",
+                                allow_errors=True, resources={"metadata": {"path": str(path.parent)}})
+        try:
+            client.execute()
+            problem = ""
+            break
+        except Exception as e:  # noqa: BLE001 - a timeout or a dead kernel: the record says so
+            problem = f"{type(e).__name__}: {str(e)[-1500:]}"
+            if run.cells[0].get("execution_count") is not None:
+                break   # the kernel ran the notebook's code: never run it twice
     try:
         rec = json.loads(kernel_out.read_text(encoding="utf-8"))
     except (OSError, ValueError):
