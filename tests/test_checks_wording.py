@@ -94,6 +94,7 @@ def test_a_list_answer_to_1_2a_names_its_second_entry():
     v = checks.ex1_2.a.check(lambda h, g: [h[0] * g[0], h[1] * g[1] + 1], quiet=True)
     assert v.status == FAILED
     assert "the second entry differs" in v.message and not ZERO_BASED.search(v.message), v.message
+    assert "h=[1, 1], g=[2, 3]" in v.message, v.message        # values as written, not [1., 1.]
 
 
 def test_a_matrix_entry_is_named_by_row_and_column():
@@ -121,3 +122,10 @@ def test_an_angle_off_by_a_full_turn_is_not_called_different():
     message = p.verdict(outcomes).message
     assert "the first entry differs" in message, message
     assert "third" not in message
+
+
+def test_numbers_in_messages_are_written_as_a_person_writes_them():
+    from gm_core.checks.answers import fmt_value
+    assert fmt_value(np.array([1.0, -0.0, 1e-17, 2.123456])) == "[1, 0, 0, 2.123]"
+    assert fmt_value(-0.0) == "0" and fmt_value(np.float64(0.25)) == "0.25"
+    assert fmt_value(np.array([np.nan, np.inf])) == "[nan, inf]"
