@@ -1,6 +1,7 @@
 """Feedback in the student's words (issue 36, "what the student sees" 5): where a checker says which
 entries of a list or array differ, it counts from 1 and names them ("the second entry"), never
-Python's indices counted from 0. The judges are called with plain probe outcomes (what the sandbox returns), so
+Python's indices counted from 0; a multiple-choice answer given as a number says which option
+that number is. The judges are called with plain probe outcomes (what the sandbox returns), so
 each message is checked without a sandbox."""
 import re
 
@@ -8,9 +9,10 @@ import numpy as np
 import pytest
 
 from gm_core import checks
+from gm_core.checks.choice import ChoicePart
 from gm_core.checks.exercise import REGISTRY, exercise_ids
-from gm_core.checks.parts import FunctionPart, TuplePart
-from gm_core.checks.store import FAILED
+from gm_core.checks.parts import FunctionPart, TuplePart, Verdict
+from gm_core.checks.store import FAILED, PASSED
 from gm_core.checks.wording import differing_entries, entry_name, ordinal
 
 pytestmark = pytest.mark.usefixtures("clean")
@@ -129,3 +131,23 @@ def test_numbers_in_messages_are_written_as_a_person_writes_them():
     assert fmt_value(np.array([1.0, -0.0, 1e-17, 2.123456])) == "[1, 0, 0, 2.123]"
     assert fmt_value(-0.0) == "0" and fmt_value(np.float64(0.25)) == "0.25"
     assert fmt_value(np.array([np.nan, np.inf])) == "[nan, inf]"
+
+
+@pytest.mark.parametrize("answer, letter", [(0, "a"), (1, "b")])
+def test_a_number_for_a_choice_says_which_option_it_is(answer, letter):
+    p = checks.ex1_1.a
+    v = p.check(answer, quiet=True)
+    assert v.status == (PASSED if letter in p.correct else FAILED)       # the verdict is unchanged
+    assert f"You answered {answer}: numbers count the options from 0, so {answer} is option ({letter})" \
+        in v.message, v.message
+    assert "You answered" not in p.check(letter, quiet=True).message
+
+
+def test_every_choice_feedback_is_friendly_for_every_number():
+    for ex_id in exercise_ids():
+        for part in REGISTRY[ex_id].parts.values():
+            if isinstance(part, ChoicePart):
+                for n in range(len(part.options) + 1):
+                    v = part.verdict([{"k": "ok", "v": n}])
+                    assert isinstance(v, Verdict) and v.message, (ex_id, part.name, n)
+                    assert "Traceback" not in v.message
