@@ -151,3 +151,14 @@ def test_every_choice_feedback_is_friendly_for_every_number():
                     v = part.verdict([{"k": "ok", "v": n}])
                     assert isinstance(v, Verdict) and v.message, (ex_id, part.name, n)
                     assert "Traceback" not in v.message
+
+
+def test_the_solution_box_links_the_worked_solution():
+    """solution() names the worked notebook by a path relative to the exercise; in Jupyter that
+    path is a link (the plain-text box keeps the path as it is)."""
+    from gm_core.checks.display import box_html
+    text = checks.ex1_4.a.solution_text_full()
+    assert "../solutions/ex1_4.ipynb" in text
+    html = box_html("solution", "exercise 1.4a", text)
+    assert '<a href="../solutions/ex1_4.ipynb">../solutions/ex1_4.ipynb</a>' in html
+    assert "<a " not in box_html("hint", "x", "a < b and ex1_4.ipynb without a folder")

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import html
+import re
 
 from gm_core.checks.store import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED
 
@@ -21,12 +22,19 @@ def in_notebook() -> bool:
     return ip is not None and hasattr(ip, "kernel")
 
 
+#: A notebook named by a path relative to the notebook's folder (``../solutions/ex1_4.ipynb``).
+_NOTEBOOK_PATH = re.compile(r"(?<![\w/.])(\.\./[\w.-]+(?:/[\w.-]+)*\.ipynb)")
+
+
 def box_html(kind: str, title: str, message: str, extra: str = "") -> str:
     """The HTML of a message box: ``kind`` (a status, "hint", "solution", "notice") sets its colour
-    and label; ``extra``, what the student's code printed, is folded away under the message."""
+    and label; ``extra``, what the student's code printed, is folded away under the message. A
+    relative path to a notebook in the message (``../solutions/ex1_4.ipynb``) becomes a link,
+    which JupyterLab opens in a tab of its own."""
     color = COLORS.get(kind, "#333")
     label = LABELS.get(kind, kind)
-    body = html.escape(message).replace("\n", "<br>")
+    body = _NOTEBOOK_PATH.sub(r'<a href="\1">\1</a>',
+                              html.escape(message)).replace("\n", "<br>")
     more = ""
     if extra:
         more = ('<details><summary style="color:#555">What your code printed</summary><pre '
