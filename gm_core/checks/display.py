@@ -1,8 +1,10 @@
-"""How checkers show things: a coloured box in a notebook, plain text elsewhere. No gm_core imports."""
+"""How checkers show things: a coloured box in a notebook, plain text elsewhere; the progress
+table in HTML. No gm_core imports but the status names."""
 from __future__ import annotations
 
 import html
 import re
+from collections.abc import Sequence
 
 from gm_core.checks.store import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED
 
@@ -57,3 +59,23 @@ def show(kind: str, title: str, message: str, extra: str = "") -> None:
     print(f"[{label}] ({title}) {message}")
     if extra:
         print("  Your code printed:\n    " + extra.replace("\n", "\n    "))
+
+
+#: A mark beside each status in the progress table.
+_ICON = {PASSED: "&#10004;", FAILED: "&#10008;", UNATTEMPTED: "&middot;", IN_PROGRESS: "&#9680;"}
+
+
+def progress_table_html(rows: Sequence[tuple[str, str, str, str]], where: str = "") -> str:
+    """The progress table in HTML, from its rows (exercise, status, parts passed, note), as
+    ``ProgressTable.rows()`` gives them, and where the record is kept."""
+    cells = []
+    for ex_id, status, done, note in rows:
+        color = COLORS.get(status, "#333")
+        cells.append(f'<tr><td>{html.escape(ex_id)}</td><td style="color:{color}">'
+                     f'{_ICON.get(status, "")} {html.escape(status)}</td>'
+                     f'<td style="color:#555">{html.escape(done)}</td>'
+                     f'<td style="color:#555">{html.escape(note)}</td></tr>')
+    note = (f'<span style="color:#555;font-size:85%">Record: {html.escape(where)}.</span>'
+            if where else "")
+    return ('<table style="font-size:90%"><tr><th>exercise</th><th>status</th><th>parts passed</th>'
+            "<th></th></tr>" + "".join(cells) + "</table>" + note)
