@@ -218,6 +218,69 @@ def test_hint_counts_are_read_from_the_comment():
     assert stated_hints(" uncomment for a hint (this part has one)") == 1
 
 
+#: Maths typed as plain text: Greek letters spelled out, subscripted names, ASCII arrows and
+#: relations, R+ for the positive reals, sizes like 2 x 2, sqrt, and function calls like exp(...)
+_GREEK = "alpha|beta|gamma|delta|epsilon|theta|lambda|mu|xi|pi|rho|sigma|tau|phi|psi|omega"
+_PSEUDO = re.compile(
+    rf"\b(?:{_GREEK})(?:\d|_|\b)|\b[A-Za-z]\w*_\w+|\b[A-Za-z][0-9]\b|->|!=|<=|>=|\bR\+"
+    r"|\b\d+ ?x ?\d+\b|\bsqrt\b|\b(?:exp|log|log10|sin|cos|tan|diag|sign|sinc)\(")
+_LINK_TARGET = re.compile(r"\]\([^)]*\)")
+_PATH = re.compile(r"\S*/\S*")
+
+
+def pseudo_maths(markdown):
+    """[snippet] for every piece of maths written as plain text in ``markdown``, outside maths,
+    code, comments, link targets and file paths (tests/test_notebook_text.py's prose())."""
+    from test_notebook_text import prose
+    left = _PATH.sub(" ", _LINK_TARGET.sub("]", prose(markdown)))
+    return [left[max(0, m.start() - 25):m.end() + 25].replace("\n", " ") for m in _PSEUDO.finditer(left)]
+
+
+@pytest.mark.parametrize("path", EXERCISES + SOLUTIONS, ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_maths_in_the_exercises_is_written_as_maths(path):
+    nb = nbformat.read(path, as_version=4)
+    found = [f"cell {i}: ...{s}..." for i, c in enumerate(nb.cells) if c.cell_type == "markdown"
+             for s in pseudo_maths(c.source)]
+    assert not found, f"{path.relative_to(ROOT)}: maths as plain text (write it in $...$):\n" + "\n".join(found)
+
+
+@pytest.mark.parametrize("text, n", [
+    ("the rotation by -theta and h = diag(h1, h2) in (R+, x), a 2 x 2 matrix", 6),
+    ("alpha_dot, t -> exp(t xi) and x != 0, radius sqrt 2", 6),
+    (r"$\alpha_1$ and `alpha1` and [exercise 1.3](../workspace/ex1_3.ipynb), <!-- xi -->", 0),
+    ("the (1.xii) box, Figure 2.8, SE(2), section 1.6.4", 0),
+])
+def test_the_plain_text_maths_scanner(text, n):
+    assert len(pseudo_maths(text)) == n, pseudo_maths(text)
+
+
+_MD_LINK = re.compile(r"\[[^\]]*\]\(([^)\s]+)\)")
+
+
+def _course_file(folder, target):
+    """The file a relative link from a notebook in ``folder`` (exercises, solutions or the
+    student's workspace) opens; workspace/ holds copies of exercises/ and the workspace README."""
+    parts = (ROOT / folder / target).resolve().relative_to(ROOT).parts
+    if parts[:1] == ("workspace",):
+        name = "/".join(parts[1:])
+        return ROOT / "tools" / "workspace_README.md" if name == "README.md" else ROOT / "exercises" / name
+    return ROOT.joinpath(*parts)
+
+
+@pytest.mark.parametrize("path", EXERCISES + SOLUTIONS, ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_links_open_something_the_student_has(path):
+    """Every relative link in the notebook's markdown opens a file from where the notebook is
+    read: solutions/, exercises/ or the student's copy in workspace/."""
+    nb = nbformat.read(path, as_version=4)
+    links = [t for c in nb.cells if c.cell_type == "markdown" for t in _MD_LINK.findall(c.source)
+             if "://" not in t and not t.startswith("#")]
+    assert any("../workspace/" in t for t in links), f"{path.name} links to nothing of the student's"
+    folders = ("solutions",) if path.parent.name == "solutions" else ("exercises", "workspace")
+    for t in links:
+        for folder in folders:
+            assert _course_file(folder, t.split("#")[0]).is_file(), (path.name, folder, t)
+
+
 def test_generation_is_deterministic(tmp_path):
     out = tmp_path / "ex"
     assert mk.main(["--exercises", str(out)]) == 0
