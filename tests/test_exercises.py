@@ -202,9 +202,10 @@ def test_hint_counts_in_the_notebook_are_the_checkers(path):
     assert found == {name: len(part.hints) for name, part in ex.parts.items()}
 
 
-def test_the_workspace_readme_states_hint_counts_that_hold():
+@pytest.mark.parametrize("readme", ["tools/workspace_README.md", "exercises/README.md"])
+def test_the_readmes_state_hint_counts_that_hold(readme):
     from gm_core.checks.exercise import REGISTRY
-    text = (ROOT / "tools" / "workspace_README.md").read_text(encoding="utf-8")
+    text = (ROOT / readme).read_text(encoding="utf-8")
     lines = list(_HINT_LINE.finditer(text))
     assert lines
     for m in lines:
