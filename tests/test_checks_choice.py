@@ -43,8 +43,12 @@ def test_option_order_is_stable():
             setattr(REGISTRY[e], n, p)
 
 
-#: The notebooks render an option's maths in $...$; the checker says it in plain text.
-_PLAIN = [("$", ""), ("\\mathbb{R}", "R"), ("\\times", "x"), ("\\dot r", "r_dot")]
+#: The notebooks render an option's maths in $...$; the checker says it in plain text (its words
+#: are what a typed answer is matched against, and what the widget's radio buttons show).
+_PLAIN = [("$", ""), ("\\mathbb{R}", "R"), ("R^+", "R+"), ("\\times", "x"), ("\\dot r", "r_dot"),
+          ("\\omega_\\xi", "omega_xi"), ("\\alpha_1", "alpha1"), ("\\alpha_2", "alpha2"),
+          ("\\theta", "theta"), ("\\xi", "xi"), ("\\exp", "exp"), ("\\log", "log"), ("\\neq", "!="),
+          ("\\sim", "~")]
 
 
 def _plain(text):
@@ -57,6 +61,8 @@ def _plain(text):
 def test_notebooks_show_the_checker_options(ex_id, name, part):
     rows = [f"| {k} | {text} |" for k, text in part.options.items()]
     assert _plain("| a | $\\mathbb{R}^2 \\times S^1$, $\\dot r$ |") == "| a | R^2 x S^1, r_dot |"
+    assert _plain("| b | $\\log$ on $(\\mathbb{R}^+, \\times)$: $\\exp(a) \\neq \\omega_\\xi$ |") == \
+        "| b | log on (R+, x): exp(a) != omega_xi |"
     for folder in ("solutions", "exercises"):
         nb = nbformat.read(ROOT / folder / f"ex{ex_id.replace('.', '_')}.ipynb", as_version=4)
         text = "\n".join(_plain(c.source) for c in nb.cells if c.cell_type == "markdown")

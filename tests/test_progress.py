@@ -2,6 +2,7 @@
 and restarts, in memory elsewhere, a reset; and exercises come from a registry."""
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -59,7 +60,7 @@ def test_progress_is_saved_in_the_workspace_across_kernels(workspace):
     kernel(workspace, code.replace("{b}", ex_b_letter()))
     saved = json.loads((workspace / ".progress.json").read_text())
     assert saved["1.1/a"]["status"] == PASSED
-    out = kernel(workspace / "sub", "from gm_core.checks import progress; print(progress())")
+    out = kernel(workspace / "sub", "from gm_core.checks import progress; print(dict(progress()))")
     status = eval(out)
     assert status["1.1"] == PASSED and status["3.1"] == IN_PROGRESS
     assert list(status) == list(exercise_ids()) and len(status) >= 13
@@ -100,6 +101,44 @@ def test_solution_views_are_recorded(workspace, capsys):
     assert "../solutions/ex2_2.ipynb" in capsys.readouterr().out
     html = checks.progress_widget().view.value
     assert "solution viewed: b" in html and "saved in your workspace" in html
+
+
+def test_progress_shows_a_table_never_a_raw_dict(workspace):
+    """progress() is still a dict to a program, and a small table to the student: plain text
+    (a terminal, print, repr) and HTML in Jupyter, one row per exercise with its status in words,
+    its parts passed and the solutions viewed, and where the record is kept."""
+    from IPython.lib.pretty import pretty
+
+    checks.ex1_2.a.check(checks.ex1_2.a.reference, quiet=True)
+    checks.ex1_1.a.check("a", quiet=True)
+    checks.ex3_2.b.solution()
+    status = progress()
+    assert isinstance(status, dict) and status["1.2"] == IN_PROGRESS and status["1.1"] == FAILED
+    assert dict(status) == {i: REGISTRY[i].status() for i in exercise_ids()}
+    assert json.loads(json.dumps(status)) == dict(status)
+    text = repr(status)
+    assert text == str(status) == pretty(status)
+    assert "{" not in text and "'" not in text, text
+    lines = text.splitlines()
+    assert lines[0] == "Your progress (saved in your workspace):"
+    assert lines[1].split() == ["exercise", "status", "parts", "passed"]
+    rows = {line.split()[0]: line for line in lines[2:]}
+    assert list(rows) == list(exercise_ids())
+    assert rows["1.2"].split() == ["1.2", "in", "progress", "1", "of", "3"]
+    assert rows["1.1"].split() == ["1.1", "failed", "0", "of", "2"]
+    assert rows["3.2"].split() == ["3.2", "unattempted", "0", "of", "2", "solution", "viewed:", "b"]
+    html = status._repr_html_()
+    assert html.startswith("<table") and html.count("<tr>") == len(exercise_ids()) + 1
+    row = re.search(r"<tr><td>1\.2</td>(.*?)</tr>", html).group(1)
+    assert "in progress" in row and "1 of 3" in row
+    assert "solution viewed: b" in html and "saved in your workspace" in html
+
+
+def test_the_progress_table_of_a_kernel_outside_a_workspace_says_so():
+    checks.ex2_4.a.check(checks.ex2_4.a.reference, quiet=True)
+    text = str(progress())
+    assert text.startswith("Your progress (this kernel only, not in a workspace):")
+    assert re.search(r"^  2\.4 +passed +1 of 1$", text, re.M), text
 
 
 def test_progress_widget_and_start_page_list_pending_updates_once(workspace, capsys):

@@ -6,8 +6,9 @@ Usage in an exercise notebook::
     ex1_4.a.check(exp_left)     # Correct / Not yet / Unattempted, with a message
     ex1_4.a.hint()              # graded hints: hint(2), hint(3) say more
     ex1_4.a.solution()          # the key result and the worked-solution notebook to open
-    progress()                  # {"1.1": "passed" | "in progress" | "failed" | "unattempted", ...}
-    progress_widget()           # the same as a table, with pending course updates
+    progress()                  # a table of every exercise: passed, in progress, failed, unattempted
+                                # (a dict to a program: progress()["1.4"] == "passed")
+    progress_widget()           # the same table with a Refresh button and pending course updates
 
 Every exercise is an object ``exN_M`` whose parts are attributes (``ex2_3.a``, ``ex2_3.b``, ...).
 A check never raises into the notebook and never hangs: your code runs in a separate process
@@ -32,6 +33,7 @@ from gm_core.checks.choice import ChoicePart
 from gm_core.checks.exercise import (
     REGISTRY,
     Exercise,
+    ProgressTable,
     exercise_ids,
     part_progress,
     progress,
@@ -52,7 +54,7 @@ for _name in EXERCISE_MODULES:
     importlib.import_module(f".{_name}", __name__)
 
 __all__ = [
-    "progress", "progress_widget", "part_progress", "reset_progress", "exercise", "exercise_ids",
+    "progress", "ProgressTable", "progress_widget", "part_progress", "reset_progress", "exercise", "exercise_ids",
     "Verdict", "EXERCISE_IDS", "PASSED", "FAILED", "UNATTEMPTED", "IN_PROGRESS", "set_time_limit",
     "course_updates", "pending_updates", "solutions_viewed",
     "Part", "FunctionPart", "TuplePart", "ChoicePart", "CustomPart", "ValuePart", "Mistake", "Exercise",
@@ -76,7 +78,8 @@ def exercise(ex_id: str) -> Exercise:
 
 
 def progress_widget() -> ipywidgets.VBox:
-    """A small table of progress() (all exercises, saved record), with pending course updates."""
+    """The table of progress() (all exercises, saved record) with a Refresh button, after any
+    pending course updates."""
     from gm_core.checks.views import progress_widget as _pw
     return _pw()
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, SupportsFloat
 
 import numpy as np
 import numpy.typing as npt
@@ -44,16 +44,22 @@ def describe(value: object) -> str:
     return f"{_article(t)} {t}"
 
 
+def _fmt_float(x: SupportsFloat) -> str:
+    """A float as a person writes it: 4 significant digits, 1 not 1., 0 not -0 or 1e-17."""
+    x = float(x)
+    return f"{(0.0 if abs(x) < 1e-12 else x) + 0.0:.4g}"
+
+
 def fmt_value(a: object) -> str:
-    """A plain, short text for a number or array (never ``np.float64(1.0)``)."""
+    """A plain, short text for a number or array (never ``np.float64(1.0)``, ``1.`` or ``-0.``)."""
     if isinstance(a, np.ndarray):
-        return np.array2string(a, precision=4, separator=", ", suppress_small=True)
+        return np.array2string(a, separator=", ", formatter={"float_kind": _fmt_float})
     if isinstance(a, (bool, np.bool_)):
         return str(bool(a))
     if isinstance(a, (int, np.integer)):
         return str(int(a))
     if isinstance(a, (float, np.floating)):
-        return f"{float(a):.4g}"
+        return _fmt_float(a)
     if isinstance(a, (list, tuple)):
         return "(" + ", ".join(fmt_value(x) for x in a) + ")"
     return repr(a)

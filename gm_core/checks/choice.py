@@ -91,9 +91,13 @@ class ChoicePart(Part):
                 raise Wrong(f"there is no option number {value}; give one of the letters {choices}.")
             raise Unattempted(f"'{value[:40]}' does not name one of the options; give one of the "
                               f"letters {choices} (this is not counted as a wrong answer).")
+        # a number is read as Python counts, from 0: say which option that is, so a student who
+        # counted from 1 sees why the verdict is about another option than they meant
+        note = (f"(You answered {value}: numbers count the options from 0, so {value} is option "
+                f"({k}); giving the letter is clearer.) " if isinstance(value, int) else "")
         if k in self.correct:
-            return self.feedback.get(k, "Correct.")
-        raise Wrong(self.feedback.get(k, "Not this one: reread the section the prompt cites."))
+            return note + self.feedback.get(k, "Correct.")
+        raise Wrong(note + self.feedback.get(k, "Not this one: reread the section the prompt cites."))
 
     def markdown_table(self) -> str:
         """The options as the markdown table the exercise notebook shows."""

@@ -1,7 +1,10 @@
-"""How checkers show things: a coloured box in a notebook, plain text elsewhere. No gm_core imports."""
+"""How checkers show things: a coloured box in a notebook, plain text elsewhere; the progress
+table in HTML. No gm_core imports but the status names."""
 from __future__ import annotations
 
 import html
+import re
+from collections.abc import Sequence
 
 from gm_core.checks.store import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED
 
@@ -21,12 +24,19 @@ def in_notebook() -> bool:
     return ip is not None and hasattr(ip, "kernel")
 
 
+#: A notebook named by a path relative to the notebook's folder (``../solutions/ex1_4.ipynb``).
+_NOTEBOOK_PATH = re.compile(r"(?<![\w/.])(\.\./[\w.-]+(?:/[\w.-]+)*\.ipynb)")
+
+
 def box_html(kind: str, title: str, message: str, extra: str = "") -> str:
     """The HTML of a message box: ``kind`` (a status, "hint", "solution", "notice") sets its colour
-    and label; ``extra``, what the student's code printed, is folded away under the message."""
+    and label; ``extra``, what the student's code printed, is folded away under the message. A
+    relative path to a notebook in the message (``../solutions/ex1_4.ipynb``) becomes a link,
+    which JupyterLab opens in a tab of its own."""
     color = COLORS.get(kind, "#333")
     label = LABELS.get(kind, kind)
-    body = html.escape(message).replace("\n", "<br>")
+    body = _NOTEBOOK_PATH.sub(r'<a href="\1">\1</a>',
+                              html.escape(message)).replace("\n", "<br>")
     more = ""
     if extra:
         more = ('<details><summary style="color:#555">What your code printed</summary><pre '
@@ -49,3 +59,23 @@ def show(kind: str, title: str, message: str, extra: str = "") -> None:
     print(f"[{label}] ({title}) {message}")
     if extra:
         print("  Your code printed:\n    " + extra.replace("\n", "\n    "))
+
+
+#: A mark beside each status in the progress table.
+_ICON = {PASSED: "&#10004;", FAILED: "&#10008;", UNATTEMPTED: "&middot;", IN_PROGRESS: "&#9680;"}
+
+
+def progress_table_html(rows: Sequence[tuple[str, str, str, str]], where: str = "") -> str:
+    """The progress table in HTML, from its rows (exercise, status, parts passed, note), as
+    ``ProgressTable.rows()`` gives them, and where the record is kept."""
+    cells = []
+    for ex_id, status, done, note in rows:
+        color = COLORS.get(status, "#333")
+        cells.append(f'<tr><td>{html.escape(ex_id)}</td><td style="color:{color}">'
+                     f'{_ICON.get(status, "")} {html.escape(status)}</td>'
+                     f'<td style="color:#555">{html.escape(done)}</td>'
+                     f'<td style="color:#555">{html.escape(note)}</td></tr>')
+    note = (f'<span style="color:#555;font-size:85%">Record: {html.escape(where)}.</span>'
+            if where else "")
+    return ('<table style="font-size:90%"><tr><th>exercise</th><th>status</th><th>parts passed</th>'
+            "<th></th></tr>" + "".join(cells) + "</table>" + note)

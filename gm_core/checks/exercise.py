@@ -4,14 +4,14 @@ No imports from the parts (``parts``): a part is anything with ``name`` and ``ex
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from typing_extensions import override
 
 from gm_core.checks import store
-from gm_core.checks.display import show
-from gm_core.checks.store import FAILED, Progress
+from gm_core.checks.display import progress_table_html, show
+from gm_core.checks.store import FAILED, PASSED, Progress
 
 if TYPE_CHECKING:   # the parts import this module, never the other way round
     from gm_core.checks.parts import Part, Verdict
@@ -101,8 +101,78 @@ def exercise_ids() -> tuple[str, ...]:
     return tuple(sorted(REGISTRY, key=lambda s: tuple(int(x) if x.isdigit() else x for x in s.split("."))))
 
 
-def progress() -> dict[str, str]:
-    """{exercise id: "passed" | "in progress" | "failed" | "unattempted"} for every exercise.
+class ProgressTable(dict[str, str]):
+    """What :func:`progress` returns: ``{exercise id: status}``, a plain dict to a program
+    (``progress()["1.4"] == "passed"``), shown to the student as a small table, an HTML table in
+    Jupyter (``_repr_html_``) and a plain-text one anywhere else, never as a raw dict.
+
+    Besides the statuses it keeps, from the same reading of the record, how many parts of each
+    exercise have passed (``parts``: {id: (passed, parts)}), whose solutions were shown
+    (``viewed``: {id: [part names]}) and where the record is kept (``where``).
+    """
+
+    parts: dict[str, tuple[int, int]]
+    viewed: dict[str, list[str]]
+    where: str
+
+    def __init__(self, status: Mapping[str, str] | None = None,
+                 parts: Mapping[str, tuple[int, int]] | None = None,
+                 viewed: Mapping[str, Sequence[str]] | None = None, where: str = "") -> None:
+        super().__init__(status or {})
+        self.parts = dict(parts or {})
+        self.viewed = {k: list(v) for k, v in (viewed or {}).items()}
+        self.where = where
+
+    def rows(self) -> list[tuple[str, str, str, str]]:
+        """(exercise, status, parts passed, note) for every exercise, as the table shows them."""
+        out = []
+        for ex_id, status in self.items():
+            done, total = self.parts.get(ex_id, (0, 0))
+            seen = self.viewed.get(ex_id, [])
+            out.append((ex_id, status, f"{done} of {total}" if total else "",
+                        f"solution viewed: {', '.join(seen)}" if seen else ""))
+        return out
+
+    def text(self) -> str:
+        """The plain-text table (ASCII apart from what the record itself holds)."""
+        head = ("exercise", "status", "parts passed", "")
+        body = self.rows()
+        widths = [max(len(r[i]) for r in [head, *body]) for i in range(3)]
+        lines = ["Your progress" + (f" ({self.where})" if self.where else "") + ":"]
+        for r in [head, *body]:
+            lines.append("  " + "  ".join(c.ljust(w) for c, w in zip(r, widths)) +
+                         (f"  {r[3]}" if r[3] else ""))
+        return "\n".join(line.rstrip() for line in lines)
+
+    @override
+    def __repr__(self) -> str:
+        return self.text()
+
+    @override
+    def __str__(self) -> str:
+        return self.text()
+
+    def _repr_pretty_(self, printer: Any, cycle: bool) -> None:
+        # IPython's plain-text display (a terminal, or a front end without HTML)
+        printer.text(self.text())
+
+    def _repr_html_(self) -> str:
+        return progress_table_html(self.rows(), self.where)
+
+
+def record_place() -> str:
+    """Where the progress record is kept, in a few words for the progress table."""
+    why = store.not_saved()
+    if why:
+        return f"NOT SAVED, kept in this kernel only: the workspace cannot be written ({why})"
+    return ("saved in your workspace" if store.find_workspace() is not None
+            else "this kernel only, not in a workspace")
+
+
+def progress() -> ProgressTable:
+    """Every exercise's status, "passed" | "in progress" | "failed" | "unattempted", by id: a dict
+    ``{exercise id: status}`` that shows itself as a small table (:class:`ProgressTable`), with
+    how many parts of each have passed and which solutions were viewed.
 
     Inside a student workspace this is the saved record (all notebooks, across restarts);
     elsewhere it covers this kernel. When the workspace cannot be written, it also shows this
@@ -113,7 +183,11 @@ def progress() -> dict[str, str]:
     if why:
         print(f"(Not saved: the workspace cannot be written ({why}); these verdicts are kept in "
               "this kernel's memory only.)")
-    return {ex_id: REGISTRY[ex_id].status(data) for ex_id in exercise_ids()}
+    status = {ex_id: REGISTRY[ex_id].status(data) for ex_id in exercise_ids()}
+    parts = {ex_id: (sum(store.part_status(ex_id, name, data) == PASSED for name in ex.parts),
+                     len(ex.parts))
+             for ex_id, ex in ((i, REGISTRY[i]) for i in exercise_ids())}
+    return ProgressTable(status, parts, _viewed(data), record_place())
 
 
 def part_progress() -> dict[str, dict[str, str]]:
@@ -125,7 +199,10 @@ def part_progress() -> dict[str, dict[str, str]]:
 
 def solutions_viewed() -> dict[str, list[str]]:
     """{exercise id: [part names whose solution() was shown]}."""
-    data = store.load()
+    return _viewed(store.load())
+
+
+def _viewed(data: Progress) -> dict[str, list[str]]:
     out: dict[str, list[str]] = {}
     for key, rec in data.items():
         if rec.get("solution_viewed"):

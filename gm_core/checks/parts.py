@@ -49,6 +49,7 @@ from gm_core.checks.sandbox import (
     safe_text,
 )
 from gm_core.checks.store import FAILED, PASSED, UNATTEMPTED
+from gm_core.checks.wording import differing_entries
 from gm_core.groups import wrap_angle
 
 
@@ -346,13 +347,18 @@ class FunctionPart(Part):
         expected = np.asarray(expected, dtype=float)
         if got.shape != expected.shape:
             return False
-        diff = got - expected
+        return not bool(np.any(self.differing(got, expected)))
+
+    def differing(self, got: np.ndarray, expected: np.ndarray) -> np.ndarray:
+        """Which entries of ``got`` are not within the tolerance of ``expected`` (same shape): a
+        boolean array; ``angles`` are compared modulo 2 pi, and NaN or inf always differ."""
+        diff = np.array(got, dtype=float) - np.asarray(expected, dtype=float)
         if self.angles and diff.ndim == 1:
             for i in self.angles:
                 if np.isfinite(diff[i]):   # a NaN or infinite difference stays so, and fails
                     diff[i] = wrap_angle(diff[i])
         with np.errstate(all="ignore"):
-            return bool(np.all(np.abs(diff) <= self.atol + self.rtol * np.abs(expected)))
+            return ~(np.abs(diff) <= self.atol + self.rtol * np.abs(expected))
 
     @override
     def judge(self, outcomes: list[ProbeOutcome]) -> str:
@@ -418,15 +424,11 @@ class FunctionPart(Part):
         return ", ".join(f"{n}={fmt_args((a,))[1:-1]}" for n, a in zip(self.arg_names, args))
 
     def _where(self, got: np.ndarray, expected: np.ndarray) -> str:
+        """": the second entry differs" (positions counted from 1 and named), or "" for a number."""
         if got.ndim == 0 or got.size == 1:
             return ""
-        with np.errstate(all="ignore"):
-            bad = np.abs(got - expected) > self.atol + self.rtol * np.abs(expected)
-        idx = [tuple(int(i) for i in ix) for ix in np.argwhere(bad)]
-        if not idx:
-            return ""
-        shown = ", ".join(str(i if len(i) > 1 else i[0]) for i in idx[:4])
-        return f" (entries {shown} differ)"
+        text = differing_entries(np.argwhere(self.differing(got, expected)), got.shape)
+        return f": {text}" if text else ""
 
 
 class TuplePart(Part):

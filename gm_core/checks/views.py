@@ -13,18 +13,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from gm_core.checks.display import COLORS
-from gm_core.checks.exercise import exercise_ids, part_progress, progress, solutions_viewed
-from gm_core.checks.store import (
-    FAILED,
-    IN_PROGRESS,
-    PASSED,
-    UNATTEMPTED,
-    Notice,
-    find_workspace,
-    not_saved,
-    pending_updates,
-)
+from gm_core.checks.display import COLORS, progress_table_html
+from gm_core.checks.exercise import progress
+from gm_core.checks.store import Notice, pending_updates
 
 if TYPE_CHECKING:
     import ipywidgets
@@ -98,9 +89,6 @@ def slide_rule(a: float = 2.0, b: float = 3.0) -> ipywidgets.VBox:
 
 
 # ------------------------------------------------------------------------------ progress
-_ICON = {PASSED: "&#10004;", FAILED: "&#10008;", UNATTEMPTED: "&middot;", IN_PROGRESS: "&#9680;"}
-
-
 def updates_html(pending: Sequence[Notice]) -> str:
     """An HTML list of pending course updates (the student's kept file and the new version)."""
     items = "".join(
@@ -112,30 +100,12 @@ def updates_html(pending: Sequence[Notice]) -> str:
 
 
 def progress_html(mark_seen: bool = False) -> str:
-    """An HTML table of every exercise's status (the saved record), with parts passed."""
+    """An HTML table of every exercise's status (the saved record), with parts passed, after any
+    pending course updates."""
     with contextlib.redirect_stdout(io.StringIO()):   # the table says it itself when not saved
-        status = progress()
-    parts = part_progress()
-    viewed = solutions_viewed()
-    rows = []
-    for ex_id in exercise_ids():
-        s = status[ex_id]
-        p = parts.get(ex_id, {})
-        done = sum(v == PASSED for v in p.values())
-        seen = viewed.get(ex_id, [])
-        note = f"solution viewed: {', '.join(seen)}" if seen else ""
-        rows.append(f'<tr><td>{ex_id}</td><td style="color:{COLORS[s]}">{_ICON[s]} {s}</td>'
-                    f'<td style="color:#555">{done}/{len(p)} parts</td>'
-                    f'<td style="color:#555">{html.escape(note)}</td></tr>')
-    why = not_saved()
-    where = (f"NOT SAVED, kept in this kernel only: the workspace cannot be written ({why})" if why
-             else "saved in your workspace" if find_workspace() is not None
-             else "this kernel only (not in a workspace)")
-    where = html.escape(where)
-    table = ('<table style="font-size:90%"><tr><th>exercise</th><th>status</th><th></th><th></th>'
-             "</tr>" + "".join(rows) + f'</table><span style="color:#555;font-size:85%">Record: {where}.</span>')
+        table = progress()
     pending = pending_updates(mark_seen=mark_seen)
-    return (updates_html(pending) if pending else "") + table
+    return (updates_html(pending) if pending else "") + progress_table_html(table.rows(), table.where)
 
 
 def progress_widget() -> ipywidgets.VBox:
