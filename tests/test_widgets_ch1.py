@@ -7,6 +7,8 @@ gm_core's mathematics says, computed here by an independent route where one exis
 products, finite differences, scipy.integrate.solve_ivp, scipy.linalg.expm).
 """
 import os
+import sys
+from pathlib import Path
 
 os.environ.setdefault("GM_COURSE_TESTING", "1")
 
@@ -238,6 +240,26 @@ def test_forward_left_poses_and_body_displacements():
     assert "forward and to the right" in p.scene.texts[0].get_text()
     slide(p, n=1)
     assert len(p.scene.bodies[0].get_paths()) == 2
+
+
+def test_circle_names_never_cover_each_other_or_the_captions():
+    """Issue 36: a₁'s name sat on the caption when a₁ was near the bottom of the circle, and the
+    names of coinciding points covered each other. Over a grid of both sliders the figure
+    standard's checker (tests/figstd.py) finds no overlap and every name stays near its point."""
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import figstd
+
+    p = CircleIsoPanel()
+    found = []
+    for a1 in np.arange(0.0, 1.0, 0.125):
+        for a2 in np.arange(0.0, 1.0, 0.125):
+            p.set(a1=a1, a2=a2)
+            found += [f"a1 = {a1}, a2 = {a2}: {m}" for m in figstd.check_figure(p.fig)]
+            ang = 2 * np.pi * np.array([a1, a2, (a1 + a2) % 1])
+            for name, a in zip(p.scene.names[1], ang):
+                r = np.hypot(*name.xy)
+                assert 1.1 < r < 1.6 and abs(np.angle(np.exp(1j * (np.arctan2(name.xy[1], name.xy[0]) - a)))) < 0.8
+    assert not found, "\n".join(found[:10])
 
 
 def test_body_points_world_position():
