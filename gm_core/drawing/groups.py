@@ -308,10 +308,17 @@ class ForwardLeftScene(Scene):
 
     Each step's displacement, read in the body frame it starts from, is printed: constant in
     SE(2) ("forward and to the left" for g = (1, 1, pi/2)), changing in (R^2 x S^1, +).
+
+    Both axes show the same square window, the smallest of :attr:`ZOOMS` that holds every pose
+    of both paths with their bodies (n long steps in (R^2 x S^1, +) reach 8 times as far as one);
+    the grid spacing and the drawn bodies grow with the window, so they look the same size.
     """
 
     N_MAX: ClassVar[int] = 8
     LIM: ClassVar[float] = 4.5
+    #: half-widths of the window, multiples of LIM: the panel's farthest pose (eight steps of
+    #: (-2, -2, -0.17) in SE(2)) is 20.6 from the origin along an axis
+    ZOOMS: ClassVar[tuple[float, ...]] = (4.5, 9.0, 13.5, 18.0, 22.5, 27.0)
 
     FIGSIZE = (9, 4.4)
     NCOLS = 2
@@ -320,7 +327,7 @@ class ForwardLeftScene(Scene):
     @override
     def decorate(self) -> None:
         for ax in self.axes:
-            plane(ax, self.LIM)
+            plane(ax, self.LIM, grid=False)
         title(self.axes[0], r"$(\mathbb{R}^2 \times \mathbb{S}^1, +)$:  g + g + …", size=MATH_PT)
         title(self.axes[1], "SE(2):  g ∘ g ∘ …", size=MATH_PT)
 
@@ -330,16 +337,35 @@ class ForwardLeftScene(Scene):
         self.frames: list[LineCollection] = []
         self.steps: list[LineCollection] = []
         self.texts: list[PathText] = []
+        self.grids: list[LineCollection] = []
         for ax, color in zip(self.axes, (PALETTE["purple"], PALETTE["blue"])):
+            grid = LineCollection([], linewidths=0.7, zorder=0)
             bodies = PolyCollection([], facecolors=color, edgecolors="k", alpha=0.4, linewidths=0.8)
             frames = LineCollection([], linewidths=1.8, zorder=4)
             steps = LineCollection([], colors=color, linewidths=1.2, linestyles="--")
-            for c in (bodies, frames, steps):
+            for c in (grid, bodies, frames, steps):
                 ax.add_collection(c)
+            self.grids.append(grid)
             self.bodies.append(bodies)
             self.frames.append(frames)
             self.steps.append(steps)
             self.texts.append(PathText(ax, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes"))
+        self.lim = 0.0
+        self.scale = 1.0
+
+    def _zoom(self, lim: float) -> None:
+        """Show the window [-lim, lim]^2 on both axes, with a grid line every lim / 4.5 units."""
+        if lim == self.lim:
+            return
+        self.lim, self.scale = lim, lim / self.LIM
+        k = np.arange(-np.floor(self.LIM), np.floor(self.LIM) + 1) * self.scale
+        segs = [[(v, -lim), (v, lim)] for v in k] + [[(-lim, v), (lim, v)] for v in k]
+        colors = ["0.6" if v == 0 else "0.88" for v in k] * 2
+        for ax, grid in zip(self.axes, self.grids):
+            ax.set_xlim(-lim, lim)
+            ax.set_ylim(-lim, lim)
+            grid.set_segments(segs)
+            grid.set_color(colors)
 
     @staticmethod
     def body_displacements(poses: FloatArray) -> FloatArray:
@@ -360,12 +386,17 @@ class ForwardLeftScene(Scene):
         n = int(n)
         g = np.array([x, y, theta])
         self.poses = [powers(R2xS1, g, n), powers(SE2, g, n)]
+        reach = max(float(np.abs(P[:, :2]).max()) for P in self.poses)
+        # the smallest window holding every pose with its body and frame (0.4 x scale) and a margin
+        self._zoom(next((z for z in self.ZOOMS if reach + 0.6 * z / self.LIM <= z), self.ZOOMS[-1]))
+        body = BODY * self.scale
+        axes = np.array([[0.4, 0.0], [0.0, 0.4]]) * self.scale
         for k in range(2):
             P = self.poses[k]
             # (n, k, 2) arrays, not the Sequences of matplotlib's stubs (set_verts' fast path)
-            self.bodies[k].set_verts(SE2.act_on_points(P[:, None, :], BODY))  # type: ignore[arg-type]
+            self.bodies[k].set_verts(SE2.act_on_points(P[:, None, :], body))  # type: ignore[arg-type]
             origin = P[:, :2]
-            tips = SE2.act_on_points(P[:, None, :], np.array([[0.4, 0.0], [0.0, 0.4]]))
+            tips = SE2.act_on_points(P[:, None, :], axes)
             self.frames[k].set_segments(np.concatenate([np.stack([origin, tips[:, 0]], 1),  # type: ignore[arg-type]
                                                         np.stack([origin, tips[:, 1]], 1)]))
             self.frames[k].set_color([PALETTE["vermillion"]] * (n + 1) + [PALETTE["green"]] * (n + 1))
@@ -376,6 +407,25 @@ class ForwardLeftScene(Scene):
             if n > 4:
                 lines.append("...")
             self.texts[k].set_text("in the body frame:\n" + "\n".join(lines))
+            self._place_text(self.texts[k], P)
+
+    def _place_text(self, text: PathText, poses: FloatArray) -> None:
+        """The readout in the lower left corner, or in the upper left one when fewer of the
+        bodies lie under it there: the words never hide the path they describe."""
+        ax = text.ax
+        box = text.get_window_extent().transformed(ax.transAxes.inverted())
+        w, h = box.width + 0.02, box.height + 0.02
+        at = (poses[:, :2] + self.lim) / (2 * self.lim)                 # axes fractions
+        near = 0.6 * self.scale / (2 * self.lim)                           # a body's reach
+        left = at[:, 0] < 0.02 + w + near
+        low = int(np.sum(left & (at[:, 1] < 0.03 + h + near)))
+        high = int(np.sum(left & (at[:, 1] > 0.97 - h - near)))
+        if high < low:
+            text.set_alignment(va="top")
+            text.set_position((0.02, 0.97))
+        else:
+            text.set_alignment(va="bottom")
+            text.set_position((0.02, 0.03))
 
 
 class BodyPointsScene(Scene):

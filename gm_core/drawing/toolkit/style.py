@@ -388,6 +388,14 @@ class PathText:
     def get_text(self) -> str:
         return self.text
 
+    def set_alignment(self, ha: HAlign | None = None, va: VAlign | None = None) -> None:
+        """Anchor the text differently (``ha``, ``va`` as in the constructor; None keeps one):
+        a readout moving to another corner of its axes keeps its anchor at that corner."""
+        ha, va = ha or self.ha, va or self.va
+        if (ha, va) != (self.ha, self.va):
+            self.ha, self.va = ha, va
+            self._show(self.text)
+
     def set_position(self, xy: ArrayLike) -> None:
         self.xy = np.asarray(xy, float)
         self.collection.set_offsets(np.tile(self.xy, (len(self.collection.get_paths()), 1)))
