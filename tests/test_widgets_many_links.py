@@ -98,3 +98,59 @@ def test_gait_curves_have_a_key_naming_each_joint_in_its_colour():
             shown_names = [t for t in panel.scene.names if t.get_visible()]
             assert [t.get_text() for t in shown_names] == [rf"$\alpha_{k + 1}$" for k in range(n - 1)]
             assert [t.get_color() for t in shown_names] == [c.get_color() for c in curves]
+
+
+# Machado, Oliveira & Fernandes (2009), "A physiologically-based model for simulation of color vision
+# deficiency", severity 1.0: linear-RGB matrices for protanopia, deuteranopia and tritanopia
+_CVD = {
+    "normal vision": np.eye(3),
+    "protanopia": np.array([[0.152286, 1.052583, -0.204868], [0.114503, 0.786281, 0.099216],
+                            [-0.003882, -0.048116, 1.051998]]),
+    "deuteranopia": np.array([[0.367322, 0.860646, -0.227968], [0.280085, 0.672501, 0.047413],
+                              [-0.011820, 0.042940, 0.968881]]),
+    "tritanopia": np.array([[1.255528, -0.076749, -0.178779], [-0.078411, 0.930809, 0.147602],
+                            [0.004733, 0.691367, 0.303900]]),
+}
+
+
+def _lab(colours, vision):
+    """CIELAB (D65) of sRGB ``colours`` as seen with ``vision`` (sRGB -> linear -> CVD -> XYZ -> Lab)."""
+    from matplotlib.colors import to_rgb
+
+    c = np.array([to_rgb(x) for x in colours])
+    lin = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    lin = np.clip(lin @ _CVD[vision].T, 0.0, 1.0)
+    xyz = lin @ np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]]).T
+    xyz = xyz / np.array([0.95047, 1.0, 1.08883])
+    f = np.where(xyz > 216 / 24389, np.cbrt(xyz), (24389 / 27 * xyz + 16) / 116)
+    return np.stack([116 * f[:, 1] - 16, 500 * (f[:, 0] - f[:, 1]), 200 * (f[:, 1] - f[:, 2])], -1)
+
+
+def test_joint_colours_are_sequential_and_neighbours_are_told_apart_in_every_colour_vision():
+    """Issue 36: α₁ and α₆ were near-identical blues (the Okabe-Ito blue and sky blue). The joints
+    now take a sequential colour-vision-safe map: lightness rises from joint 1 to the last in
+    normal vision and in the three dichromacies, by at least 10 CIELAB units per joint and with
+    neighbours at least 12 units apart (ΔE*ab), for every chain the panels draw (up to six
+    joints); the panels and the animation use exactly these colours."""
+    from gm_core.drawing.link_chain import animate_chain_gait, joint_colours
+    from gm_core.geometry import chain_stroke, chain_swimmer
+
+    for n in range(2, 7):
+        colours = joint_colours(n)
+        for vision in _CVD:
+            lab = _lab(colours, vision)
+            steps = np.diff(lab[:, 0])
+            gaps = np.linalg.norm(np.diff(lab, axis=0), axis=1)
+            assert steps.min() > 10, f"{n} joints, {vision}: lightness steps {steps.round(1)}"
+            assert gaps.min() > 12, f"{n} joints, {vision}: neighbours only {gaps.min():.1f} apart"
+            assert lab[:, 0].max() < 82, f"{n} joints, {vision}: the last joint too pale on white"
+    p = WaveGaitPanel(links=7)
+    drawn = [ln.get_color() for ln in p.scene.lines if len(ln.get_xdata())]
+    assert drawn == joint_colours(6)
+    p.set(links=4)
+    assert [ln.get_color() for ln in p.scene.lines[:3]] == joint_colours(3)
+    from gm_core.drawing.toolkit.primitives import jshtml
+
+    anim, fig, _ = animate_chain_gait(chain_swimmer(5), chain_stroke(5), n_frames=2, cycles=1)
+    assert [ln.get_color() for ln in fig.axes[0].get_lines()[:4]] == joint_colours(4)
+    assert "<img" in jshtml(anim).data
