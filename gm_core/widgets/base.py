@@ -180,6 +180,16 @@ class Panel(ABC):
                 c.value = v
         self.refresh()
 
+    def follow(self, key: str, value: Any) -> None:
+        """Move control ``key`` to ``value`` without an update: a value the picture already uses,
+        shown by a control that follows the others (a greyed slider under a symmetry). The
+        control then agrees with the picture, and ``values()`` reports ``value`` exactly."""
+        control = self.controls[key]
+        with self.hold():
+            control.value = value
+        self._exact[key] = value
+        self._pinned.pop(key, None)
+
     def hold(self) -> AbstractContextManager[None]:
         panel = self
 
