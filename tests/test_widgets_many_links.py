@@ -36,6 +36,42 @@ def test_chain_slice_panel_shows_the_slice_of_the_designed_chain():
     assert [label for label, _ in p.controls["row"].options] == ["ξˣ (forward)", "ξʸ (sideways)", "ξᶿ (turning)"]
 
 
+def test_chain_slice_panel_refuses_one_joint_twice_on_the_figure():
+    """Issue 36: joint 1 = joint 2 was silently turned into another slice. The math layer refuses
+    it naming the argument; the panel hides the field and the map and says why on the figure,
+    its sliders showing what the student chose; two different joints bring the slice back."""
+    from gm_core.drawing.link_chain import design_chain
+
+    with pytest.raises(ValueError, match="axes must name two different shape variables"):
+        shape_slice(design_chain(5), None, (1, 1))
+    p = ChainSlicePanel(links=5, row=0)
+    p.set(axis1=2, axis2=2)
+    assert (p.controls["axis1"].value, p.controls["axis2"].value) == (2, 2)
+    assert p.scene.same and p.scene.slice is None
+    for flag in p.scene.flags:
+        assert flag.visible and "joint 2 twice" in flag.text.get_text() and "two different joints" in flag.text.get_text()
+    assert not p.scene.field.quiver.get_visible() and not p.scene.map.image.get_visible()
+    assert not p.scene.field.zero_note.get_visible() and not p.scene.field.scale_note.get_visible()
+    p.set(axis2=4)
+    assert not p.scene.same and p.scene.pair == (1, 3) and not any(f.visible for f in p.scene.flags)
+    assert p.scene.field.quiver.get_visible() and p.scene.map.image.get_visible()
+
+
+def test_chain_slice_panel_keeps_two_joints_when_the_chain_gets_shorter():
+    """Fewer links move a slice joint beyond the chain's end onto its last joint; if both land on
+    one joint, joint 1 takes the one before: the sliders and the slice drawn agree."""
+    p = ChainSlicePanel(links=7, row=2)
+    p.set(axis1=5, axis2=6)
+    p.set(links=4)
+    assert [p.controls[k].max for k in ("axis1", "axis2")] == [3, 3]
+    assert (p.controls["axis1"].value, p.controls["axis2"].value) == (2, 3)
+    assert p.scene.pair == (1, 2) and not p.scene.same
+    assert (p.values()["axis1"], p.values()["axis2"]) == (2, 3)
+    p.set(links=7, axis1=6, axis2=2)
+    p.set(links=3)
+    assert (p.controls["axis1"].value, p.controls["axis2"].value) == (1, 2) and p.scene.pair == (0, 1)
+
+
 def test_wave_gait_panel_moves_only_with_a_lag():
     p = WaveGaitPanel(links=5, amplitude=0.9)
     p.set(lag=0.0)

@@ -33,7 +33,7 @@ from typing_extensions import override
 from gm_core.drawing.connection import ROW_LABELS, ConnectionFieldArtist, Limits, math_title, style_shape_axes
 from gm_core.drawing.curvature import CurvatureMapArtist
 from gm_core.drawing.motion import SystemArtist, style_world_axes
-from gm_core.drawing.toolkit.primitives import TrailArtist, animate
+from gm_core.drawing.toolkit.primitives import SingularFlag, TrailArtist, animate
 from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, Scene, freeze_layout, new_figure, readout, signed, title
 from gm_core.geometry import efficiency, optimize_chain_gait, travelling_wave, wave_start
 from gm_core.geometry.optimal import OptimalGait
@@ -105,10 +105,13 @@ def _joint_math(k: int) -> str:
 class ChainSliceScene(Scene):
     """A chain, one row of its connection on a 2-D slice of shape space, and that row's curvature there.
 
-    Values: ``links`` (2-7), ``physics`` (a key of :data:`PHYSICS_LABELS` or a physics name),
+    Values: ``links`` (3-7), ``physics`` (a key of :data:`PHYSICS_LABELS` or a physics name),
     ``row`` (0, 1, 2 = x, y, theta), ``axis1``, ``axis2`` (the two joints spanning the slice,
-    1-based; the other joints stay straight). Options: ``total_length`` (3), ``taper`` (0),
-    ``limits`` of the slice (+-2), ``n_map`` (curvature pixels per side).
+    1-based; one beyond the chain's last joint is the last joint; the other joints stay
+    straight). One joint named twice spans no slice (:func:`~gm_core.systems.shape_slice`
+    refuses it): the field and the map are hidden and a flag on each says so (``same``).
+    Options: ``total_length`` (3), ``taper`` (0), ``limits`` of the slice (+-2), ``n_map``
+    (curvature pixels per side).
     """
 
     FIGSIZE = (9.0, 3.3)
@@ -122,14 +125,14 @@ class ChainSliceScene(Scene):
     def _build(self, links: int, physics: str, axis1: int, axis2: int) -> None:
         self.system = design_chain(links, physics, self.total_length, self.taper)
         n = self.system.n_shape
-        i, j = min(axis1, n) - 1, min(axis2, n) - 1
-        if i == j:
-            j = (i + 1) % n if n > 1 else i
+        # a joint beyond the chain's end is its last joint (the panel's sliders reach it)
+        i = min(check_int(axis1, "axis1", minimum=1, maximum=6, what=" (a joint, 1-based)"), n) - 1
+        j = min(check_int(axis2, "axis2", minimum=1, maximum=6, what=" (a joint, 1-based)"), n) - 1
         self.pair = (i, j)
-        if n == 1:                       # two links: the shape space is a line; show it as a trivial slice
-            self.slice: AffineRestriction | None = None
-            return
-        self.slice = shape_slice(self.system, None, (i, j), limits=self.limits)
+        #: True when both slice joints are one joint: no slice (shape_slice refuses it)
+        self.same = i == j
+        self.slice: AffineRestriction | None = None if self.same else shape_slice(
+            self.system, None, (i, j), limits=self.limits)
 
     @override
     def decorate(self) -> None:
@@ -149,6 +152,9 @@ class ChainSliceScene(Scene):
         self.field = ConnectionFieldArtist(ax1, sliced, 0, color="0.3")
         self.map = CurvatureMapArtist(ax2, sliced, 0, limits=self.limits, n=self.n_map)
         self.text = readout(ax0, 0.02, 0.02)
+        self.flags = [SingularFlag(ax, loc=(0.5, 0.5)) for ax in (ax1, ax2)]
+        for flag in self.flags:
+            flag.text.set_verticalalignment("center")
         # PathText: cheap to redraw when the row changes; MATH_PT for the row's superscript
         self.titles = (title(ax1, size=MATH_PT), title(ax2, size=MATH_PT))
         self._key: tuple[int, str, int, int] | None = None
@@ -158,6 +164,7 @@ class ChainSliceScene(Scene):
         links = check_int(links, "links", minimum=3, maximum=7, what=" (a slice needs two joints)")
         physics = check_option(PHYSICS_LABELS.get(physics, physics), "physics", tuple(PHYSICS_LABELS.values()))
         row = check_int(row, "row", minimum=0, maximum=2)
+        axis1, axis2 = int(axis1), int(axis2)
         key = (links, physics, axis1, axis2)
         if key != self._key:
             self._key = key
@@ -168,8 +175,17 @@ class ChainSliceScene(Scene):
             for ax in self.axes[1:]:
                 ax.set_xlabel(_joint_math(self.pair[0]), fontsize=MATH_PT, labelpad=0)
                 ax.set_ylabel(_joint_math(self.pair[1]), fontsize=MATH_PT, labelpad=0)
-        self.field.set(self.slice, row)
-        self.map.set(self.slice, row)
+        for art in (self.field.quiver, self.map.image, self.field.zero_note, self.field.scale_note):
+            if self.same or art in (self.field.quiver, self.map.image):
+                art.set_visible(not self.same)        # the notes are the field's own (set below)
+        for flag in self.flags:
+            if self.same:
+                flag.show(f"joint {self.pair[0] + 1} twice: no slice.\nChoose two different joints.")
+            else:
+                flag.hide()
+        if not self.same:
+            self.field.set(self.slice, row)
+            self.map.set(self.slice, row)
         self.titles[0].set_text(math_title(f"−A, row {ROW_LABELS[row]}, on the slice"))
         self.titles[1].set_text(math_title(f"curvature D(−A), row {ROW_LABELS[row]}"))
         self.text.set_text(_chain_axes_title(self.system))    # the axis labels name the slice's joints

@@ -47,10 +47,23 @@ class ChainSlicePanel(ScenePanel):
         }
 
     @override
-    def after_update(self, values: dict[str, Any]) -> None:
+    def update(self, **values: Any) -> None:
+        """The slice joints' sliders reach the chain's last joint. A chain made shorter moves a
+        slice joint beyond its end onto the last joint; if that put both on one joint, joint 1
+        takes the joint before it. A student who picks one joint twice is told on the figure
+        (the scene's flags), never silently given another slice."""
         n = int(values.get("links", 4)) - 1
-        for k in ("axis1", "axis2"):
-            self.controls[k].max = n
+        asked = (int(values.get("axis1", 1)), int(values.get("axis2", 2)))
+        axis1, axis2 = min(asked[0], n), min(asked[1], n)
+        if axis1 == axis2 and asked[0] != asked[1]:
+            axis1 = n - 1 if axis2 == n else axis2 + 1   # clamped onto one joint: keep them apart
+        with self.hold():
+            for k in ("axis1", "axis2"):
+                self.controls[k].max = n
+        for k, v in (("axis1", axis1), ("axis2", axis2)):
+            if self.controls[k].value != v:
+                self.follow(k, v)
+        super().update(**{**values, "axis1": axis1, "axis2": axis2})
 
 
 @register
