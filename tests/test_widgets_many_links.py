@@ -87,7 +87,7 @@ def test_optimal_gait_panel_runs_the_optimisation_with_progress_and_keeps_it():
     assert p.scene.result is None and p.bar.value == 0
     seen = []
     p.bar.observe(lambda ch: seen.append(ch["new"]), names="value")
-    res = p.run(animate=False)
+    res = p.run()
     assert res.efficiency > start and res.nit >= 2
     assert len(seen) >= 3 and seen[-1] == p.bar.max               # the bar moved step by step
     assert "done" in p.status.value and f"{res.efficiency:.4f}" in p.status.value
@@ -98,6 +98,45 @@ def test_optimal_gait_panel_runs_the_optimisation_with_progress_and_keeps_it():
     assert p.scene.result is None and p.bar.value == 0 and len(p.scene.best_lines[0].get_xdata()) == 0
     p.set(links=3)                       # the first design again: its result is kept
     assert p.scene.result is res and "optimised" in p.status.value
+
+
+def test_optimal_gait_panel_says_done_only_after_drawing_the_best_gait():
+    """Issue 36: "done" appeared a second or two before the figure. The picture of the best
+    gait is drawn (and, on a live canvas, sent) before the status says "done"."""
+    p = OptimalGaitPanel(links=3)
+    events = []
+    p.fig.canvas.mpl_connect("draw_event", lambda e: events.append(
+        ("draw", p.status.value, len(p.scene.best_lines[0].get_xdata()))))
+    p.status.observe(lambda ch: events.append(("status", ch["new"], None)), names="value")
+    res = p.run()
+    done = next(i for i, e in enumerate(events) if e[0] == "status" and e[1].startswith("done"))
+    drawn = [i for i, e in enumerate(events) if e[0] == "draw" and e[2] > 0]
+    assert drawn and drawn[-1] < done, f"'done' before the best gait was drawn: {events}"
+    assert events[drawn[-1]][1] == "drawing the best gait …"
+    assert f"{res.efficiency:.4f}" in p.status.value and "cell below" in p.status.value
+
+
+def test_optimal_gait_panel_fits_a_screen_and_its_animation_is_the_course_player():
+    """Issue 36: the panel drew its animation inside itself (taller than a 1366 x 768 screen,
+    and it did not start). The panel holds no animation now; ``animation()`` is the course's
+    player, with a play button, for a cell of its own below the panel."""
+    import ipywidgets as W
+
+    p = OptimalGaitPanel(links=3)
+    tree, todo = [], [p.widget]
+    while todo:
+        w = todo.pop()
+        tree.append(w)
+        todo += list(getattr(w, "children", ()))
+    # one Output at most: the figure's static view on a non-widget canvas (Agg here), no player
+    outputs = [w for w in tree if isinstance(w, W.Output)]
+    assert len(outputs) <= 1 and not isinstance(p.fig.canvas, W.DOMWidget)
+    assert p.button in tree and p.status in tree
+    assert p.fig.get_figheight() * p.fig.dpi <= 400          # with its controls, well under 650 px
+    p.run()
+    page = p.animation(n_frames=5, cycles=1).data
+    assert 'class="gm-anim-play"' in page and 'data-frames="5"' in page
+    assert "frames-kept-in-memory" not in page and "<img" in page
 
 
 def test_optimal_gait_panel_animation_and_bad_values():
