@@ -322,3 +322,25 @@ def test_no_picture_leaves_before_the_browser_view_is_initialised(ipympl):
     assert sent == [] and _proper(fig.canvas._data_url)
     _browser_says(fig.canvas, "initialized")
     assert len(sent) == 1 and sent[0].startswith(b"\x89PNG")
+
+
+@pytest.mark.filterwarnings("ignore:Passing unrecognized arguments to super\\(Toolbar\\)")
+def test_course_figures_have_no_toolbar_floating_over_them(ipympl):
+    """Issue 36: ipympl's toolbar fades in over a figure when the pointer hovers on it (it is
+    absolutely positioned, on the left by default) and covered the tick labels. Every figure
+    of the course, a panel's and a static one, is made without it, and without header and
+    footer; a plain matplotlib figure keeps ipympl's defaults (the setting is the course's)."""
+    import matplotlib.pyplot as plt
+
+    from gm_core.drawing.toolkit import new_figure
+    from gm_core.widgets.groups import CircleIsoPanel
+
+    fig, _ = new_figure()
+    panel = CircleIsoPanel()
+    for canvas in (fig.canvas, panel.fig.canvas):
+        assert type(canvas).__module__.startswith("ipympl")
+        assert canvas.toolbar_visible is False
+        assert not canvas.header_visible and not canvas.footer_visible
+    plain = plt.figure()
+    assert plain.canvas.toolbar_visible == "fade-in-fade-out"
+    plt.close("all")

@@ -68,3 +68,16 @@ def test_no_raw_formula_markup_in_markdown(path):
 ])
 def test_the_scanner_itself(text, bad):
     assert [m for _, m in raw_markup(text)] == bad
+
+
+CHAPTERS = sorted(p for p in (ROOT / "book").glob("[0-9][0-9]-*.ipynb") if p.name[:2] not in ("00", "90"))
+
+
+@pytest.mark.parametrize("path", CHAPTERS, ids=lambda p: p.name)
+def test_chapter_title_is_numbered_like_the_others(path):
+    """Every chapter notebook opens with "# N · Title", N its file's number (issue 36: notebook
+    11's title had none)."""
+    first = nbformat.read(path, as_version=4).cells[0]
+    heading = first.source.splitlines()[0] if first.cell_type == "markdown" and first.source else ""
+    number = int(path.name[:2])
+    assert re.fullmatch(rf"# {number} · \S.*", heading), f"{path.name} opens with {heading!r}"

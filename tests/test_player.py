@@ -100,3 +100,46 @@ def test_palette_frames_are_smaller_and_look_the_same(monkeypatch):
         diff = np.abs(np.asarray(a.convert("RGB"), int) - np.asarray(b.convert("RGB"), int))
         assert diff.max() <= 24, f"a pixel changed by {diff.max()} levels"
     assert n_small < 0.6 * n_full, (n_small, n_full)
+
+
+def test_progress_note_counts_the_frames_and_leaves_nothing_behind(monkeypatch):
+    """Issue 36: "drawing the animation ..." lines stayed above finished animations. While jshtml
+    draws, its note says which frame, updated in place; once the player is ready (or the drawing
+    failed) the note is emptied, so nothing stale stays. Outside a kernel no note is shown."""
+    import IPython.display
+
+    shown = []
+
+    class Handle:
+        def update(self, obj):
+            shown.append(obj.data)
+
+    def display(obj, display_id=None):
+        assert display_id is True, "the note needs a display id to be updated in place"
+        shown.append(obj.data)
+        return Handle()
+
+    monkeypatch.setattr(IPython.display, "display", display)
+    monkeypatch.delenv("GM_COURSE_TESTING", raising=False)
+    _, anim = _anim(4)
+    page = jshtml(anim, progress=True)
+    assert "drawing the animation" in shown[0]
+    assert [re.search(r"frame (\d) of 4", t).group(1) for t in shown[1:-1]] == ["1", "2", "3", "4"]
+    assert shown[-1] == "" and "<img" in page.data
+
+    shown.clear()
+    fig, ax = plt.subplots(figsize=(3, 2), dpi=72)
+
+    def broken(k):
+        if k == 2:
+            raise RuntimeError("frame 2 cannot be drawn")
+
+    with pytest.raises(RuntimeError, match="frame 2"):
+        jshtml(animate(fig, broken, frames=range(4)), progress=True)
+    assert shown[-1] == "", "a failed drawing leaves its note behind"
+
+    shown.clear()
+    _, anim = _anim(3)
+    jshtml(anim)                  # not in a Jupyter kernel: no note at all
+    assert shown == []
+    plt.close("all")

@@ -7,6 +7,8 @@ gm_core's mathematics says, computed here by an independent route where one exis
 products, finite differences, scipy.integrate.solve_ivp, scipy.linalg.expm).
 """
 import os
+import sys
+from pathlib import Path
 
 os.environ.setdefault("GM_COURSE_TESTING", "1")
 
@@ -230,7 +232,7 @@ def test_forward_left_poses_and_body_displacements():
     assert SE2.isclose(se2[4], SE2.identity())  # four quarter turns: back home
     verts = p.scene.bodies[1].get_paths()
     assert len(verts) == 5
-    assert np.allclose(verts[2].vertices[:3], SE2.act_on_points(se2[2], BODY))
+    assert np.allclose(verts[2].vertices[:3], SE2.act_on_points(se2[2], BODY * p.scene.scale))
     d = ForwardLeftScene.body_displacements(se2)
     assert np.allclose(d, np.tile([1.0, 1.0], (4, 1)))
     d_add = ForwardLeftScene.body_displacements(add)
@@ -238,6 +240,55 @@ def test_forward_left_poses_and_body_displacements():
     assert "forward and to the right" in p.scene.texts[0].get_text()
     slide(p, n=1)
     assert len(p.scene.bodies[0].get_paths()) == 2
+
+
+def test_forward_left_window_holds_every_pose_and_the_words_leave_the_path_alone():
+    """Issue 36: n long steps of (R^2 x S^1, +) left the axes. Every body and frame stays inside
+    the window at the corners of the sliders, the smallest window that holds them is chosen, and
+    the readout sits in the corner where no body lies under it."""
+    p = ForwardLeftPanel()
+    for x, y, theta, n in [(2.0, 2.0, 0.0, 8), (-2.0, -2.0, -0.17, 8), (2.0, -2.0, 0.3, 8),
+                           (-2.0, 2.0, np.pi, 5), (1.0, 1.0, np.pi / 2, 2), (0.3, -0.2, 2.0, 8)]:
+        p.set(x=x, y=y, theta=theta, n=n)
+        lim = p.scene.axes[0].get_xlim()[1]
+        for ax, bodies, frames in zip(p.scene.axes, p.scene.bodies, p.scene.frames):
+            assert ax.get_xlim() == (-lim, lim) and ax.get_ylim() == (-lim, lim)   # one window for both
+            drawn = np.concatenate([np.concatenate([q.vertices for q in bodies.get_paths()]),
+                                    np.concatenate(frames.get_segments())])
+            assert np.abs(drawn).max() < lim, f"g = {(x, y, theta)}, n = {n}: drawn out to {np.abs(drawn).max():.2f}"
+        smaller = [z for z in ForwardLeftScene.ZOOMS if z < lim]
+        reach = max(np.abs(P[:, :2]).max() for P in p.scene.poses)
+        assert all(reach > z - 0.6 * z / ForwardLeftScene.LIM for z in smaller), "a smaller window would do"
+        fig = p.fig
+        fig.canvas.draw()
+        for ax, text, bodies in zip(p.scene.axes, p.scene.texts, p.scene.bodies):
+            words = text.get_window_extent()
+            # no body under the words: each body's pixels stay outside the readout's box
+            for q in bodies.get_paths():
+                px = ax.transData.transform(q.vertices)
+                inside = ((px[:, 0] > words.x0) & (px[:, 0] < words.x1)
+                          & (px[:, 1] > words.y0) & (px[:, 1] < words.y1))
+                assert not inside.any(), f"g = {(x, y, theta)}, n = {n}: a body lies under the words"
+
+
+def test_circle_names_never_cover_each_other_or_the_captions():
+    """Issue 36: a₁'s name sat on the caption when a₁ was near the bottom of the circle, and the
+    names of coinciding points covered each other. Over a grid of both sliders the figure
+    standard's checker (tests/figstd.py) finds no overlap and every name stays near its point."""
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import figstd
+
+    p = CircleIsoPanel()
+    found = []
+    for a1 in np.arange(0.0, 1.0, 0.125):
+        for a2 in np.arange(0.0, 1.0, 0.125):
+            p.set(a1=a1, a2=a2)
+            found += [f"a1 = {a1}, a2 = {a2}: {m}" for m in figstd.check_figure(p.fig)]
+            ang = 2 * np.pi * np.array([a1, a2, (a1 + a2) % 1])
+            for name, a in zip(p.scene.names[1], ang):
+                r = np.hypot(*name.xy)
+                assert 1.1 < r < 1.6 and abs(np.angle(np.exp(1j * (np.arctan2(name.xy[1], name.xy[0]) - a)))) < 0.8
+    assert not found, "\n".join(found[:10])
 
 
 def test_body_points_world_position():

@@ -134,6 +134,32 @@ def test_three_link_mobile_follows_sliders_and_base_link():
     np.testing.assert_allclose(-gs[0, :2], gs[2, :2], atol=1e-12)
 
 
+def test_three_link_mobile_greyed_alpha2_shows_the_angle_the_shape_uses():
+    """Issue 36: under "odd" the greyed α₂ slider kept a value the shape did not use. Now it
+    follows α₁ (±α₁), its readout is the relative angle of links 2 and 3 as drawn, moving it
+    costs no second update, and back to "free" the chain does not jump."""
+    p = ThreeLinkMobilePanel()
+    p.set(alpha1=0.3, alpha2=-0.9, shape="free")
+    updates = []
+    real = p.scene.set
+    p.scene.set = lambda **v: (updates.append(v), real(**v))[1]
+    for shape, sign in (("odd", -1.0), ("even", 1.0)):
+        for a1 in (0.6, -1.7, 2.2):
+            updates.clear()
+            p.set(shape=shape, alpha1=a1)
+            a2 = p.controls["alpha2"]
+            assert a2.disabled and a2.value == sign * a1 and p.values()["alpha2"] == sign * a1
+            thetas = p.art.last["g"][:, 2]
+            assert np.isclose(thetas[2] - thetas[1], a2.value)          # the readout is what is drawn
+            assert len(updates) == 1, "moving the greyed slider updated the picture again"
+    drawn = p.art.last["g"].copy()
+    p.set(shape="free")
+    assert not p.controls["alpha2"].disabled and p.controls["alpha2"].value == 2.2
+    np.testing.assert_allclose(p.art.last["g"], drawn, atol=1e-12)
+    labels = dict((v, k) for k, v in p.controls["shape"].options)
+    assert labels["odd"] == "odd: α₂ = −α₁" and labels["even"] == "even: α₂ = α₁"
+
+
 def test_two_link_mobile_matches_213():
     p = TwoLinkMobilePanel()
     p.set(x=0.0, y=0.0, theta=0.0, alpha1=0.9, base_link=0)

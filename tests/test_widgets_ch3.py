@@ -168,6 +168,35 @@ def test_static_figures_and_animation():
     plt.close("all")
 
 
+def test_zero_note_never_covers_a_singular_line():
+    """Issue 36: notebook 09's "≡ 0" box sat on the kinematic snake's singular line on the
+    window's top edge. In the regimes figure every shown note's box, as drawn, crosses no
+    singular line (the red contour of draw_singular_set) and stays inside its axes."""
+    from matplotlib.contour import ContourSet
+
+    systems = [KinematicSnake(), FloatingSnake(), LowReSwimmer(), HighReSwimmer()]
+    fig, axes = regimes_figure(systems)
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    shown = 0
+    for k, s in enumerate(systems):
+        for i in range(3):
+            ax = axes[k, i]
+            notes = [t for t in ax.texts if t.get_visible() and t.get_text().startswith("≡ 0")]
+            lines = [path.transformed(c.get_transform()) for c in ax.collections if isinstance(c, ContourSet)
+                     for path in c.get_paths() if len(path.vertices)]
+            for note in notes:
+                shown += 1
+                box = note.get_bbox_patch().get_window_extent(renderer)
+                assert ax.get_window_extent(renderer).contains(box.x0, box.y0) and \
+                    ax.get_window_extent(renderer).contains(box.x1, box.y1), f"{s.name} row {i}: note outside"
+                assert not any(line.intersects_bbox(box, filled=False) for line in lines), \
+                    f"{s.name} row {i}: the ≡ 0 note covers a singular line"
+    assert shown == 3       # the snake's sideways row and the floating snake's two translation rows
+    import matplotlib.pyplot as plt
+    plt.close("all")
+
+
 def test_singular_set_of_the_snake_includes_the_fold_lines_on_the_window_edge():
     # D = 4 sin((a1 - a2)/2) cos(a1/2) cos(a2/2) for equal links: zero on a1 = a2 and on a_i = +-pi
     import matplotlib.pyplot as plt

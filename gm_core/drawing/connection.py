@@ -130,6 +130,10 @@ class ConnectionFieldArtist:
 
     #: a row whose longest arrow is below this fraction of the largest entry of A is "small"
     SMALL: ClassVar[float] = 0.05
+    #: where the "≡ 0" note may sit (its centre, in axes fractions), in order of preference: the
+    #: first one whose box crosses no singular shape of the system (:meth:`place_zero_note`)
+    NOTE_SPOTS: ClassVar[tuple[tuple[float, float], ...]] = (
+        (0.5, 0.86), (0.5, 0.5), (0.5, 0.14), (0.68, 0.3), (0.32, 0.7), (0.68, 0.7), (0.32, 0.3))
 
     def __init__(self, ax: Axes, system: LocomotionSystem, row: int, n: GridSize | None = None,
                  limits: Limits | None = None, clip: float = 3.0, color: ColorType = "k", **kw: Any) -> None:
@@ -146,7 +150,8 @@ class ConnectionFieldArtist:
         # a row much smaller than the largest entry of A is drawn enlarged and says by how much
         note: dict[str, Any] = dict(transform=ax.transAxes, fontsize=9, color="0.25", visible=False, zorder=6,
                     bbox=dict(boxstyle="round,pad=0.25", fc="white", ec="0.6", alpha=0.9))
-        self.zero_note = ax.text(0.5, 0.96, "≡ 0: zero everywhere", ha="center", va="top", **note)
+        self.zero_note = ax.text(*self.NOTE_SPOTS[0], "≡ 0\neverywhere", ha="center", va="center",
+                                 multialignment="center", **note)
         self.scale_note = ax.text(0.97, 0.03, "", ha="right", va="bottom", **note)
         self.set(system, row)
 
@@ -189,12 +194,53 @@ class ConnectionFieldArtist:
         self.zero = not top > 0
         self.quiver.set_visible(not self.zero)
         self.zero_note.set_visible(self.zero)
+        if self.zero:
+            self.place_zero_note()
         #: how much the arrows are enlarged against the largest entry of A on the grid (None: not)
         self.enlarged = biggest / top if own and top > 0 and top < self.SMALL * biggest else None
         if self.enlarged is not None:
             self.scale_note.set_text(f"small row: arrows enlarged ×{self.enlarged:.2g}")
         self.scale_note.set_visible(self.enlarged is not None)
         return self
+
+
+    def _note_size(self) -> tuple[float, float]:
+        """The "≡ 0" note's box (text and its rounded pad) in fractions of its axes' size, a
+        quarter larger than measured: the axes shrink a little when the figure is laid out."""
+        from matplotlib.textpath import TextToPath
+
+        note = self.zero_note
+        size = float(note.get_fontproperties().get_size_in_points())
+        lines = note.get_text().split("\n")
+        sizes = [TextToPath().get_text_width_height_descent(t, note.get_fontproperties(), False) for t in lines]
+        w = max(s[0] for s in sizes)
+        h = size * 1.2 * (len(lines) - 1) + sizes[-1][1]   # 1.2: the default line spacing
+        pad = 2 * 0.25 * size + 2          # the box's pad on both sides, and its edge (pt)
+        fig = self.ax.get_figure(root=True)
+        assert fig is not None                             # an artist of an axes on a figure
+        box = self.ax.get_position()
+        return (1.25 * (w + pad) / (box.width * fig.get_figwidth() * 72),
+                1.25 * (h + pad) / (box.height * fig.get_figheight() * 72))
+
+    def place_zero_note(self) -> tuple[float, float]:
+        """Move the "≡ 0" note to the first of :attr:`NOTE_SPOTS` where its box hides no singular
+        shape of the system (no sign change of det omega_xi under it, the red lines of
+        :func:`draw_singular_set`, which may lie on the window's edge): the note never covers the
+        lines that frame the regions of shape space. Returns the spot (axes fractions)."""
+        spot = self.NOTE_SPOTS[0]
+        if self.system.may_be_singular:
+            w, h = self._note_size()
+            (x0, x1), (y0, y1) = self.ax.get_xlim(), self.ax.get_ylim()
+            a1, a2, d = singular_contour_grid(self.system, 81, ((x0, x1), (y0, y1)), pad=0.0)
+            fx, fy = (a1 - x0) / (x1 - x0), (a2 - y0) / (y1 - y0)
+            step = 1.0 / 80                                 # one grid cell, so a line between samples is seen
+            for cx, cy in self.NOTE_SPOTS:
+                under = d[(np.abs(fx - cx) <= w / 2 + step) & (np.abs(fy - cy) <= h / 2 + step)]
+                if np.isfinite(under).all() and (np.all(under > 0) or np.all(under < 0)):
+                    spot = (cx, cy)
+                    break
+        self.zero_note.set_position(spot)
+        return spot
 
 
 #: Shape-space windows are drawn this fraction wider on each side, so that singular lines on the

@@ -9,6 +9,7 @@ from typing import Any, ClassVar, TypedDict
 
 import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
+from numpy.typing import ArrayLike
 from typing_extensions import override
 
 from gm_core.drawing.toolkit.axes import plane
@@ -105,14 +106,22 @@ class SlideRuleScene(Scene):
 class CircleIsoScene(Scene):
     """(S^1, + mod 1) vs SO(2): adding cycles on the circle = multiplying rotation matrices, (1.xvi).
 
-    Values ``a1``, ``a2`` in cycles [0, 1).
+    Values ``a1``, ``a2`` in cycles [0, 1). Each point (left) and arrow tip (right) carries its
+    name just outside the circle; names whose points are close are moved apart along the circle
+    (:meth:`place_names`), and the two captions sit below every name, so no text covers another
+    whatever the sliders say.
     """
 
     G: ClassVar[S1] = S1(1.0)
 
-    FIGSIZE = (7.6, 3.2)
+    FIGSIZE = (7.6, 3.6)
     NCOLS = 2
-    MARGINS = dict(left=0.01, right=0.99, bottom=0.02, top=0.88, wspace=0.04)
+    MARGINS = dict(left=0.01, right=0.99, bottom=0.02, top=0.9, wspace=0.04)
+    #: the names keep this far from the centre (data units; the circle has radius 1)
+    NAME_RADIUS: ClassVar[float] = 1.1
+    #: the captions' top edge and the axes' limits: below the lowest a name can reach
+    CAPTION_Y: ClassVar[float] = -1.42
+    YLIM: ClassVar[tuple[float, float]] = (-1.72, 1.45)
 
     @override
     def decorate(self) -> None:
@@ -120,7 +129,7 @@ class CircleIsoScene(Scene):
         for ax in self.axes:
             ax.plot(np.cos(t), np.sin(t), color="0.7")
             ax.set_xlim(-1.75, 1.75)
-            ax.set_ylim(-1.45, 1.45)
+            ax.set_ylim(*self.YLIM)
             ax.set_aspect("equal")
             ax.axis("off")
         title(self.axes[0], r"circle $(\mathbb{S}^1$, + mod 1): add cycles", size=MATH_PT)
@@ -134,13 +143,50 @@ class CircleIsoScene(Scene):
                                 zorder=5)
         self.vecs = ArrowSet(ax_r, color=[PALETTE["blue"], PALETTE["orange"], PALETTE["vermillion"]], n=3, width=0.012)
         self.check = ArrowSet(ax_r, color="k", width=0.005)
-        self.readout = PathText(ax_s, 0, -1.3, "", size=9, ha="center")
-        self.r_readout = PathText(ax_r, 0, -1.3, "", size=MATH_PT, ha="center")
+        self.readout = PathText(ax_s, 0, self.CAPTION_Y, "", size=9, ha="center", va="top")
+        self.r_readout = PathText(ax_r, 0, self.CAPTION_Y, "", size=MATH_PT, ha="center", va="top")
         # a key on the picture: each point (left) and arrow tip (right) carries its name
         colors = (PALETTE["blue"], PALETTE["orange"], PALETTE["vermillion"])
         names = (r"$a_1$", r"$a_2$", r"$a_1 \oplus a_2$")
         self.names = [[PathText(ax, 0, 0, n, size=MATH_PT, color=c, ha="center", va="center")
                        for n, c in zip(names, colors)] for ax in (ax_s, ax_r)]
+        # each name's box about its anchor, in data units (its glyphs are fixed; so is the layout)
+        self._name_boxes = [self._data_box(name) for name in self.names[0]]
+
+    def _data_box(self, name: PathText) -> FloatArray:
+        """(x0, y0, x1, y1) of ``name``'s glyphs about its anchor, in data units of its axes."""
+        ax = name.ax
+        pos = ax.get_position(original=True)
+        w_in, h_in = pos.width * self.fig.get_figwidth(), pos.height * self.fig.get_figheight()
+        (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+        per_unit = min(w_in / (x1 - x0), h_in / (y1 - y0))    # inches per data unit (equal aspect)
+        pts = np.concatenate([p.vertices for p in name.collection.get_paths()])
+        return np.concatenate([pts.min(0), pts.max(0)]) / per_unit
+
+    @classmethod
+    def place_names(cls, angles: ArrayLike, boxes: ArrayLike, step: float = 0.08,
+                    pad: float = 0.04) -> FloatArray:
+        """Anchors (n, 2) for names of the points at ``angles`` (radians) on the unit circle.
+
+        ``boxes`` (n, 4) are the names' (x0, y0, x1, y1) about their anchors. Each name lies just
+        outside :attr:`NAME_RADIUS` in its point's direction; a name that would touch one placed
+        before it moves along the circle, ``step`` radians at a time, the nearer way first."""
+        boxes = np.asarray(boxes, float)
+        placed: list[FloatArray] = []
+        out = np.zeros((len(boxes), 2))
+        for k, (a, box) in enumerate(zip(np.asarray(angles, float), boxes)):
+            corners = np.array([[box[0], box[1]], [box[0], box[3]], [box[2], box[1]], [box[2], box[3]]])
+            for j in range(80):
+                shift = step * ((j + 1) // 2) * (1 if j % 2 else -1)
+                u = np.array([np.cos(a + shift), np.sin(a + shift)])
+                centre = (cls.NAME_RADIUS + np.max(-corners @ u)) * u   # whole box outside the radius
+                mine = np.concatenate([centre, centre]) + box
+                if all(mine[0] >= q[2] + pad or q[0] >= mine[2] + pad or mine[1] >= q[3] + pad
+                       or q[1] >= mine[3] + pad for q in placed):
+                    break
+            placed.append(mine)
+            out[k] = centre
+        return out
 
     @override
     def set(self, a1: float = 0.2, a2: float = 0.35) -> None:
@@ -159,10 +205,10 @@ class CircleIsoScene(Scene):
         self.mismatch = float(np.max(np.abs(M - self.sum_matrix)))
         self.readout.set_text(f"{a1:.2f} + {a2:.2f} mod 1 = {s[0]:.2f} cycles")
         self.r_readout.set_text(r"$\max\,|R(a_1)R(a_2) - R(a_1 \oplus a_2)|$" + f" = {self.mismatch:.1e}")
+        anchors = self.place_names(ang, self._name_boxes)
         for labels in self.names:
-            for k, (lab, a) in enumerate(zip(labels, ang)):
-                r = 1.17 + 0.08 * k   # the sum a little further out, clear of a1 or a2 when a2 ~ 0
-                lab.set_position((r * np.cos(a), r * np.sin(a)))
+            for lab, xy in zip(labels, anchors):
+                lab.set_position(xy)
 
 
 # ================================================================================ 1.3 SE(2)
@@ -262,10 +308,17 @@ class ForwardLeftScene(Scene):
 
     Each step's displacement, read in the body frame it starts from, is printed: constant in
     SE(2) ("forward and to the left" for g = (1, 1, pi/2)), changing in (R^2 x S^1, +).
+
+    Both axes show the same square window, the smallest of :attr:`ZOOMS` that holds every pose
+    of both paths with their bodies (n long steps in (R^2 x S^1, +) reach 8 times as far as one);
+    the grid spacing and the drawn bodies grow with the window, so they look the same size.
     """
 
     N_MAX: ClassVar[int] = 8
     LIM: ClassVar[float] = 4.5
+    #: half-widths of the window, multiples of LIM: the panel's farthest pose (eight steps of
+    #: (-2, -2, -0.17) in SE(2)) is 20.6 from the origin along an axis
+    ZOOMS: ClassVar[tuple[float, ...]] = (4.5, 9.0, 13.5, 18.0, 22.5, 27.0)
 
     FIGSIZE = (9, 4.4)
     NCOLS = 2
@@ -274,7 +327,7 @@ class ForwardLeftScene(Scene):
     @override
     def decorate(self) -> None:
         for ax in self.axes:
-            plane(ax, self.LIM)
+            plane(ax, self.LIM, grid=False)
         title(self.axes[0], r"$(\mathbb{R}^2 \times \mathbb{S}^1, +)$:  g + g + …", size=MATH_PT)
         title(self.axes[1], "SE(2):  g ∘ g ∘ …", size=MATH_PT)
 
@@ -284,16 +337,35 @@ class ForwardLeftScene(Scene):
         self.frames: list[LineCollection] = []
         self.steps: list[LineCollection] = []
         self.texts: list[PathText] = []
+        self.grids: list[LineCollection] = []
         for ax, color in zip(self.axes, (PALETTE["purple"], PALETTE["blue"])):
+            grid = LineCollection([], linewidths=0.7, zorder=0)
             bodies = PolyCollection([], facecolors=color, edgecolors="k", alpha=0.4, linewidths=0.8)
             frames = LineCollection([], linewidths=1.8, zorder=4)
             steps = LineCollection([], colors=color, linewidths=1.2, linestyles="--")
-            for c in (bodies, frames, steps):
+            for c in (grid, bodies, frames, steps):
                 ax.add_collection(c)
+            self.grids.append(grid)
             self.bodies.append(bodies)
             self.frames.append(frames)
             self.steps.append(steps)
             self.texts.append(PathText(ax, 0.02, 0.03, "", size=7.5, va="bottom", coords="axes"))
+        self.lim = 0.0
+        self.scale = 1.0
+
+    def _zoom(self, lim: float) -> None:
+        """Show the window [-lim, lim]^2 on both axes, with a grid line every lim / 4.5 units."""
+        if lim == self.lim:
+            return
+        self.lim, self.scale = lim, lim / self.LIM
+        k = np.arange(-np.floor(self.LIM), np.floor(self.LIM) + 1) * self.scale
+        segs = [[(v, -lim), (v, lim)] for v in k] + [[(-lim, v), (lim, v)] for v in k]
+        colors = ["0.6" if v == 0 else "0.88" for v in k] * 2
+        for ax, grid in zip(self.axes, self.grids):
+            ax.set_xlim(-lim, lim)
+            ax.set_ylim(-lim, lim)
+            grid.set_segments(segs)
+            grid.set_color(colors)
 
     @staticmethod
     def body_displacements(poses: FloatArray) -> FloatArray:
@@ -314,12 +386,17 @@ class ForwardLeftScene(Scene):
         n = int(n)
         g = np.array([x, y, theta])
         self.poses = [powers(R2xS1, g, n), powers(SE2, g, n)]
+        reach = max(float(np.abs(P[:, :2]).max()) for P in self.poses)
+        # the smallest window holding every pose with its body and frame (0.4 x scale) and a margin
+        self._zoom(next((z for z in self.ZOOMS if reach + 0.6 * z / self.LIM <= z), self.ZOOMS[-1]))
+        body = BODY * self.scale
+        axes = np.array([[0.4, 0.0], [0.0, 0.4]]) * self.scale
         for k in range(2):
             P = self.poses[k]
             # (n, k, 2) arrays, not the Sequences of matplotlib's stubs (set_verts' fast path)
-            self.bodies[k].set_verts(SE2.act_on_points(P[:, None, :], BODY))  # type: ignore[arg-type]
+            self.bodies[k].set_verts(SE2.act_on_points(P[:, None, :], body))  # type: ignore[arg-type]
             origin = P[:, :2]
-            tips = SE2.act_on_points(P[:, None, :], np.array([[0.4, 0.0], [0.0, 0.4]]))
+            tips = SE2.act_on_points(P[:, None, :], axes)
             self.frames[k].set_segments(np.concatenate([np.stack([origin, tips[:, 0]], 1),  # type: ignore[arg-type]
                                                         np.stack([origin, tips[:, 1]], 1)]))
             self.frames[k].set_color([PALETTE["vermillion"]] * (n + 1) + [PALETTE["green"]] * (n + 1))
@@ -330,6 +407,25 @@ class ForwardLeftScene(Scene):
             if n > 4:
                 lines.append("...")
             self.texts[k].set_text("in the body frame:\n" + "\n".join(lines))
+            self._place_text(self.texts[k], P)
+
+    def _place_text(self, text: PathText, poses: FloatArray) -> None:
+        """The readout in the lower left corner, or in the upper left one when fewer of the
+        bodies lie under it there: the words never hide the path they describe."""
+        ax = text.ax
+        box = text.get_window_extent().transformed(ax.transAxes.inverted())
+        w, h = box.width + 0.02, box.height + 0.02
+        at = (poses[:, :2] + self.lim) / (2 * self.lim)                 # axes fractions
+        near = 0.6 * self.scale / (2 * self.lim)                           # a body's reach
+        left = at[:, 0] < 0.02 + w + near
+        low = int(np.sum(left & (at[:, 1] < 0.03 + h + near)))
+        high = int(np.sum(left & (at[:, 1] > 0.97 - h - near)))
+        if high < low:
+            text.set_alignment(va="top")
+            text.set_position((0.02, 0.97))
+        else:
+            text.set_alignment(va="bottom")
+            text.set_position((0.02, 0.03))
 
 
 class BodyPointsScene(Scene):

@@ -24,6 +24,7 @@ from matplotlib.animation import FuncAnimation
 from matplotlib.artist import Artist
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 from matplotlib.text import Text
 from matplotlib.typing import ColorType
 from numpy.typing import ArrayLike
@@ -32,7 +33,7 @@ from typing_extensions import override
 from gm_core.drawing.connection import ROW_LABELS, ConnectionFieldArtist, Limits, math_title, style_shape_axes
 from gm_core.drawing.curvature import CurvatureMapArtist
 from gm_core.drawing.motion import SystemArtist, style_world_axes
-from gm_core.drawing.toolkit.primitives import TrailArtist, animate
+from gm_core.drawing.toolkit.primitives import SingularFlag, TrailArtist, animate
 from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, Scene, freeze_layout, new_figure, readout, signed, title
 from gm_core.geometry import efficiency, optimize_chain_gait, travelling_wave, wave_start
 from gm_core.geometry.optimal import OptimalGait
@@ -44,11 +45,27 @@ from gm_core.systems.restricted import AffineRestriction
 from gm_core.validation import FloatArray, check_int, check_option
 
 __all__ = ["ChainSliceScene", "WaveGaitScene", "OptimalGaitScene", "animate_chain_gait", "links_comparison_figure",
-           "continuum_figure", "design_chain", "PHYSICS_LABELS"]
+           "continuum_figure", "design_chain", "PHYSICS_LABELS", "JOINT_MAP", "JOINT_MAP_TOP", "joint_colours"]
 
 #: Dropdown labels of the physics of :class:`~gm_core.systems.LinkChain`.
 PHYSICS_LABELS = {"low Re (drag)": "low_re", "high Re (added mass)": "high_re", "floating (momentum)": "floating"}
-JOINT_COLOURS = [PALETTE[k] for k in ("blue", "orange", "green", "vermillion", "purple", "sky", "yellow")]
+#: The joints' colour map: sequential and colour-vision safe (viridis, perceptually uniform, its
+#: lightness rising monotonically for every common colour-vision deficiency), from the head's joint
+#: (dark) to the tail's (light), stopped at JOINT_MAP_TOP short of its pale yellow end.
+JOINT_MAP, JOINT_MAP_TOP = "viridis", 0.85
+
+
+def joint_colours(n: int) -> list[str]:
+    """The colours of ``n`` joints' curves and names, joint 1 first: ``n`` evenly spaced samples of
+    :data:`JOINT_MAP`. A wave running along the body reads as a run of colour, and neighbouring
+    joints, the pairs a student compares, differ in lightness as much as ``n`` allows (for six
+    joints by more than 10 units of CIELAB lightness, in every colour vision; tests check it)."""
+    from matplotlib import colormaps
+    from matplotlib.colors import to_hex
+
+    n = check_int(n, "n", minimum=1, maximum=100)
+    cmap = colormaps[JOINT_MAP]
+    return [to_hex(cmap(JOINT_MAP_TOP * k / max(n - 1, 1))) for k in range(n)]
 
 
 def design_chain(links: int, physics: str = "low_re", total_length: float = 3.0, taper: float = 0.0,
@@ -88,10 +105,13 @@ def _joint_math(k: int) -> str:
 class ChainSliceScene(Scene):
     """A chain, one row of its connection on a 2-D slice of shape space, and that row's curvature there.
 
-    Values: ``links`` (2-7), ``physics`` (a key of :data:`PHYSICS_LABELS` or a physics name),
+    Values: ``links`` (3-7), ``physics`` (a key of :data:`PHYSICS_LABELS` or a physics name),
     ``row`` (0, 1, 2 = x, y, theta), ``axis1``, ``axis2`` (the two joints spanning the slice,
-    1-based; the other joints stay straight). Options: ``total_length`` (3), ``taper`` (0),
-    ``limits`` of the slice (+-2), ``n_map`` (curvature pixels per side).
+    1-based; one beyond the chain's last joint is the last joint; the other joints stay
+    straight). One joint named twice spans no slice (:func:`~gm_core.systems.shape_slice`
+    refuses it): the field and the map are hidden and a flag on each says so (``same``).
+    Options: ``total_length`` (3), ``taper`` (0), ``limits`` of the slice (+-2), ``n_map``
+    (curvature pixels per side).
     """
 
     FIGSIZE = (9.0, 3.3)
@@ -105,14 +125,14 @@ class ChainSliceScene(Scene):
     def _build(self, links: int, physics: str, axis1: int, axis2: int) -> None:
         self.system = design_chain(links, physics, self.total_length, self.taper)
         n = self.system.n_shape
-        i, j = min(axis1, n) - 1, min(axis2, n) - 1
-        if i == j:
-            j = (i + 1) % n if n > 1 else i
+        # a joint beyond the chain's end is its last joint (the panel's sliders reach it)
+        i = min(check_int(axis1, "axis1", minimum=1, maximum=6, what=" (a joint, 1-based)"), n) - 1
+        j = min(check_int(axis2, "axis2", minimum=1, maximum=6, what=" (a joint, 1-based)"), n) - 1
         self.pair = (i, j)
-        if n == 1:                       # two links: the shape space is a line; show it as a trivial slice
-            self.slice: AffineRestriction | None = None
-            return
-        self.slice = shape_slice(self.system, None, (i, j), limits=self.limits)
+        #: True when both slice joints are one joint: no slice (shape_slice refuses it)
+        self.same = i == j
+        self.slice: AffineRestriction | None = None if self.same else shape_slice(
+            self.system, None, (i, j), limits=self.limits)
 
     @override
     def decorate(self) -> None:
@@ -132,6 +152,9 @@ class ChainSliceScene(Scene):
         self.field = ConnectionFieldArtist(ax1, sliced, 0, color="0.3")
         self.map = CurvatureMapArtist(ax2, sliced, 0, limits=self.limits, n=self.n_map)
         self.text = readout(ax0, 0.02, 0.02)
+        self.flags = [SingularFlag(ax, loc=(0.5, 0.5)) for ax in (ax1, ax2)]
+        for flag in self.flags:
+            flag.text.set_verticalalignment("center")
         # PathText: cheap to redraw when the row changes; MATH_PT for the row's superscript
         self.titles = (title(ax1, size=MATH_PT), title(ax2, size=MATH_PT))
         self._key: tuple[int, str, int, int] | None = None
@@ -141,6 +164,7 @@ class ChainSliceScene(Scene):
         links = check_int(links, "links", minimum=3, maximum=7, what=" (a slice needs two joints)")
         physics = check_option(PHYSICS_LABELS.get(physics, physics), "physics", tuple(PHYSICS_LABELS.values()))
         row = check_int(row, "row", minimum=0, maximum=2)
+        axis1, axis2 = int(axis1), int(axis2)
         key = (links, physics, axis1, axis2)
         if key != self._key:
             self._key = key
@@ -151,8 +175,17 @@ class ChainSliceScene(Scene):
             for ax in self.axes[1:]:
                 ax.set_xlabel(_joint_math(self.pair[0]), fontsize=MATH_PT, labelpad=0)
                 ax.set_ylabel(_joint_math(self.pair[1]), fontsize=MATH_PT, labelpad=0)
-        self.field.set(self.slice, row)
-        self.map.set(self.slice, row)
+        for art in (self.field.quiver, self.map.image, self.field.zero_note, self.field.scale_note):
+            if self.same or art in (self.field.quiver, self.map.image):
+                art.set_visible(not self.same)        # the notes are the field's own (set below)
+        for flag in self.flags:
+            if self.same:
+                flag.show(f"joint {self.pair[0] + 1} twice: no slice.\nChoose two different joints.")
+            else:
+                flag.hide()
+        if not self.same:
+            self.field.set(self.slice, row)
+            self.map.set(self.slice, row)
         self.titles[0].set_text(math_title(f"−A, row {ROW_LABELS[row]}, on the slice"))
         self.titles[1].set_text(math_title(f"curvature D(−A), row {ROW_LABELS[row]}"))
         self.text.set_text(_chain_axes_title(self.system))    # the axis labels name the slice's joints
@@ -172,14 +205,22 @@ class ChainSliceScene(Scene):
 
 def _joint_names(ax: Axes, n_max: int) -> list[Text]:
     """The key of the joint curves: each joint's name, in its curve's colour, along the top of the
-    gait axes (curves stay below 1.5 rad there); :func:`_show_joint_names` shows the chain's."""
+    gait axes (curves stay below 1.5 rad there); :func:`_show_joints` shows the chain's."""
     return [ax.text(0.04 + 0.16 * k, 0.97, _joint_math(k), color=c, fontsize=MATH_PT, ha="left", va="top",
-                    transform=ax.transAxes) for k, c in enumerate(JOINT_COLOURS[:n_max])]
+                    transform=ax.transAxes) for k, c in enumerate(joint_colours(n_max))]
 
 
-def _show_joint_names(names: Sequence[Text], n: int) -> None:
+def _show_joints(names: Sequence[Text], curves: Sequence[Sequence[Line2D]], n: int) -> None:
+    """Show the names of a chain's ``n`` joints and colour them and each list of joint curves
+    with :func:`joint_colours` of ``n`` (curves beyond ``n`` hold no data and are not drawn)."""
+    colours = joint_colours(n)
     for k, name in enumerate(names):
         name.set_visible(k < n)
+        if k < n:
+            name.set_color(colours[k])
+    for lines in curves:
+        for line, c in zip(lines, colours):
+            line.set_color(c)
 
 
 def _gait_and_motion_axes(axes: Sequence[Axes], total_length: float, gait_title: str, motion_title: str) -> None:
@@ -218,7 +259,7 @@ class WaveGaitScene(Scene):
     @override
     def create(self) -> None:
         ax0, ax1 = self.axes
-        self.lines = [ax0.plot([], [], color=c, lw=1.8)[0] for c in JOINT_COLOURS[:6]]
+        self.lines = [ax0.plot([], [], color=c, lw=1.8)[0] for c in joint_colours(6)]
         self.names = _joint_names(ax0, 6)
         self.start = PartsArtist(ax1, facecolor=PALETTE["orange"], alpha=0.2, edgecolor="0.5")
         self.end = PartsArtist(ax1)
@@ -246,7 +287,7 @@ class WaveGaitScene(Scene):
                 line.set_data(t, self.traj.r[:, k])
             else:
                 line.set_data([], [])
-        _show_joint_names(self.names, self.system.n_shape)
+        _show_joints(self.names, [self.lines], self.system.n_shape)
         self.start.set(self.system, self.traj.g[0], self.traj.r[0])
         self.end.set(self.system, self.g, self.traj.r[-1])
         self.trail.set(self.traj.g[:, :2])
@@ -281,7 +322,7 @@ class OptimalGaitScene(Scene):
     @override
     def create(self) -> None:
         ax0, ax1 = self.axes
-        colours = JOINT_COLOURS[:self.MAX_JOINTS]
+        colours = joint_colours(self.MAX_JOINTS)
         self.start_lines = [ax0.plot([], [], color=c, lw=1.0, ls="--", alpha=0.7)[0] for c in colours]
         self.best_lines = [ax0.plot([], [], color=c, lw=2.0)[0] for c in colours]
         self.names = _joint_names(ax0, self.MAX_JOINTS)
@@ -312,7 +353,7 @@ class OptimalGaitScene(Scene):
                     line.set_data(t, r[:, k])
                 else:
                     line.set_data([], [])
-        _show_joint_names(self.names, self.system.n_shape)
+        _show_joints(self.names, [self.start_lines, self.best_lines], self.system.n_shape)
         traj = trajectory(self.system, gait, n_frames=41, substeps=4)
         self.first.set(self.system, traj.g[0], traj.r[0])
         self.last.set(self.system, traj.g[-1], traj.r[-1])
@@ -359,8 +400,8 @@ def animate_chain_gait(system: LocomotionSystem, gait: Gait, n_frames: int = 60,
     T = gait.period * cycles
     t = np.linspace(0, T, 400)
     r = gait(t)
-    for k in range(system.n_shape):
-        ax0.plot(t, r[:, k], color=JOINT_COLOURS[k % len(JOINT_COLOURS)], lw=1.8, label=_joint_math(k))
+    for k, colour in enumerate(joint_colours(system.n_shape)):
+        ax0.plot(t, r[:, k], color=colour, lw=1.8, label=_joint_math(k))
     ax0.set_xlim(0, T)
     ax0.set_xlabel("t", fontsize=9, labelpad=0)
     ax0.set_ylabel("joint angles (rad)", fontsize=9, labelpad=0)

@@ -180,6 +180,26 @@ class Panel(ABC):
                 c.value = v
         self.refresh()
 
+    def draw_now(self) -> None:
+        """Draw the figure in full now and send it to a live canvas at once (webagg's ``draw``),
+        instead of asking the browser to ask for it: whatever is said after this call (a status
+        line) reaches the page after the picture. A key frame still follows (see KeyFrames)."""
+        if self.fig is None:
+            return
+        self.fig.canvas.draw()
+        if self.keyframes is not None:
+            self.keyframes.touch()
+
+    def follow(self, key: str, value: Any) -> None:
+        """Move control ``key`` to ``value`` without an update: a value the picture already uses,
+        shown by a control that follows the others (a greyed slider under a symmetry). The
+        control then agrees with the picture, and ``values()`` reports ``value`` exactly."""
+        control = self.controls[key]
+        with self.hold():
+            control.value = value
+        self._exact[key] = value
+        self._pinned.pop(key, None)
+
     def hold(self) -> AbstractContextManager[None]:
         panel = self
 

@@ -121,6 +121,7 @@ class MobileChainPanel(ScenePanel):
 
     title = "Mobile articulated system (figs. 2.5, 2.6, 2.8): base link, shape and symmetry"
     scene_class = MobileChainScene
+    scene: MobileChainScene
     default_lengths: ClassVar[tuple[float, ...]] = (1.0, 1.0, 1.0)
 
     @override
@@ -136,14 +137,23 @@ class MobileChainPanel(ScenePanel):
             c[f"alpha{j + 1}"] = slider([0.6, -0.6, 0.4][j % 3], -2.5, 2.5, description=_joint_label(f"alpha{j + 1}"))
         c["base_link"] = W.IntSlider(value=(n - 1) // 2, min=0, max=n - 1, description="base link")
         if n == 3:
-            c["shape"] = W.Dropdown(options=["free", "even", "odd"], value="free", description="shape")
+            # each symmetry says what it does to α₂ (fig. 2.6); the values stay "even" and "odd"
+            c["shape"] = W.Dropdown(options=[("free", "free"), ("even: α₂ = α₁", "even"), ("odd: α₂ = −α₁", "odd")],
+                                    value="free", description="shape")
         c["all_frames"] = W.Checkbox(value=False, description="show f and h frames")
         return c
 
     @override
     def after_update(self, values: dict[str, Any]) -> None:
+        """Under a symmetry the α₂ slider is greyed and shows the α₂ the shape uses (±α₁), so its
+        readout never disagrees with the picture; back to "free", α₂ starts from that value and
+        the chain does not jump."""
         if "alpha2" in self.controls:
-            self.controls["alpha2"].disabled = values.get("shape", "free") != "free"
+            symmetric = values.get("shape", "free") != "free"
+            self.controls["alpha2"].disabled = symmetric
+            used = float(self.scene.shape(values)[1])
+            if symmetric and values["alpha2"] != used:
+                self.follow("alpha2", used)
 
 
 @register

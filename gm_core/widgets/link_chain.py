@@ -2,7 +2,7 @@
 gait, optimise its gait live and watch it swim."""
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import ipywidgets as W
 import numpy as np
@@ -13,6 +13,9 @@ from gm_core.drawing.link_chain import PHYSICS_LABELS, ChainSliceScene, OptimalG
 from gm_core.drawing.toolkit.primitives import jshtml
 from gm_core.geometry import OptimalGait
 from gm_core.widgets.base import ScenePanel, int_slider, register, slider
+
+if TYPE_CHECKING:
+    from IPython.display import HTML
 
 __all__ = ["ChainSlicePanel", "WaveGaitPanel", "OptimalGaitPanel"]
 
@@ -47,10 +50,23 @@ class ChainSlicePanel(ScenePanel):
         }
 
     @override
-    def after_update(self, values: dict[str, Any]) -> None:
+    def update(self, **values: Any) -> None:
+        """The slice joints' sliders reach the chain's last joint. A chain made shorter moves a
+        slice joint beyond its end onto the last joint; if that put both on one joint, joint 1
+        takes the joint before it. A student who picks one joint twice is told on the figure
+        (the scene's flags), never silently given another slice."""
         n = int(values.get("links", 4)) - 1
-        for k in ("axis1", "axis2"):
-            self.controls[k].max = n
+        asked = (int(values.get("axis1", 1)), int(values.get("axis2", 2)))
+        axis1, axis2 = min(asked[0], n), min(asked[1], n)
+        if axis1 == axis2 and asked[0] != asked[1]:
+            axis1 = n - 1 if axis2 == n else axis2 + 1   # clamped onto one joint: keep them apart
+        with self.hold():
+            for k in ("axis1", "axis2"):
+                self.controls[k].max = n
+        for k, v in (("axis1", axis1), ("axis2", axis2)):
+            if self.controls[k].value != v:
+                self.follow(k, v)
+        super().update(**{**values, "axis1": axis1, "axis2": axis2})
 
 
 @register
@@ -74,14 +90,14 @@ class WaveGaitPanel(ScenePanel):
 @register
 class OptimalGaitPanel(ScenePanel):
     """Design a chain (links, taper, physics, Fourier order), press "optimise" to find its most
-    efficient gait (a progress bar counts the optimiser's steps), then watch the gait and its
-    animation. ``panel.run()`` does what the button does (for notebooks and tests)."""
+    efficient gait (a progress bar counts the optimiser's steps), then read the gait and one cycle
+    of its motion. ``panel.run()`` does what the button does (for notebooks and tests);
+    ``panel.animation()`` is the gait shown as the course's player, for a cell of its own below
+    the panel (panel and player together would not fit a laptop's screen)."""
 
     title = "Design a chain and optimise its gait"
     scene_class = OptimalGaitScene
     scene: OptimalGaitScene
-    #: the design whose animation is shown below the panel
-    _shown: tuple[int, str, float, int] | None = None
 
     @override
     def controls_spec(self) -> dict[str, W.ValueWidget]:
@@ -100,24 +116,21 @@ class OptimalGaitPanel(ScenePanel):
                                tooltip="find the most efficient gait of this chain (a few seconds)")
         self.bar = W.IntProgress(value=0, min=0, max=40, layout=W.Layout(width="160px"))
         self.status = W.HTML("")
-        self.movie = W.Output()
         self.button.on_click(lambda _: self.run())
 
     @override
     def after_update(self, values: dict[str, Any]) -> None:
-        if self._shown != self.scene.key:      # the animation belongs to another design
-            self.movie.clear_output()
-            self._shown = None
         result = self.scene.result
         self.bar.value = self.bar.max if result is not None else 0
         self.status.value = f"optimised: efficiency {result.efficiency:.4f}" if result is not None else ""
 
-    def run(self, animate: bool = True) -> OptimalGait:
-        """Optimise the design shown with a live progress bar, then show the gait and, if ``animate``,
-        its animation below the panel. Returns the OptimalGait."""
+    def run(self) -> OptimalGait:
+        """Optimise the design shown with a live progress bar, then draw its best gait. The status
+        says "done" only once the picture of the best gait has been sent to the page (drawn now,
+        not on the browser's next request). Returns the OptimalGait."""
         self.button.disabled = True
         self.bar.value = 0
-        self.status.value = "optimising ..."
+        self.status.value = "optimising …"
 
         def progress(it: int, value: float) -> None:
             self.bar.value = min(it, self.bar.max)
@@ -125,26 +138,26 @@ class OptimalGaitPanel(ScenePanel):
 
         try:
             res = self.scene.optimize(callback=progress)
+            self.bar.value = self.bar.max
+            self.status.value = "drawing the best gait …"
+            self.draw_now()
         finally:
             self.button.disabled = False
-        self.bar.value = self.bar.max
-        self.status.value = f"done: efficiency {res.efficiency:.4f} after {res.nit} steps"
-        self.redraw()
-        if animate:
-            from IPython.display import display
-
-            anim, fig, _ = self.scene.animation(n_frames=30, cycles=1)
-            self.movie.clear_output()
-            with self.movie:
-                display(jshtml(anim))
-            self._shown = self.scene.key
+        self.status.value = (f"done: efficiency {res.efficiency:.4f} after {res.nit} steps "
+                             "(its animation: the cell below)")
         return res
+
+    def animation(self, n_frames: int = 40, cycles: int = 2) -> HTML:
+        """The gait shown (the best one once optimised, else the start wave) as an animation in the
+        course's player (:func:`~gm_core.drawing.toolkit.primitives.jshtml`): the output of a cell
+        of its own, which plays like every other animation of the course."""
+        anim, _, _ = self.scene.animation(n_frames=n_frames, cycles=cycles)
+        return jshtml(anim)
 
     @property
     @override
     def widget(self) -> W.Widget:
         if getattr(self, "_box", None) is None:
             self._box = W.VBox([super().widget, W.HBox([self.button, self.bar, self.status],
-                                                       layout=W.Layout(align_items="center", grid_gap="0 10px")),
-                                self.movie])
+                                                       layout=W.Layout(align_items="center", grid_gap="0 10px"))])
         return self._box

@@ -26,6 +26,7 @@ from gm_core.drawing.toolkit.player import (
 from gm_core.drawing.toolkit.primitives import (
     BodyArtist,
     FrameArtist,
+    ProgressNote,
     SingularFlag,
     TrailArtist,
     animate,
@@ -67,6 +68,7 @@ __all__ = [
     "ArrowSet", "arrow", "set_arrows", "title", "xticks", "yticks", "axis_label", "axes_row",
     "text_panel", "Scene", "plane", "square_axes", "plain_3d", "wire", "testing",
     "n_frames", "FrameArtist", "BodyArtist", "TrailArtist", "SingularFlag", "animate", "jshtml",
+    "ProgressNote",
     "player_html", "MODES", "Blitter", "KeyFrames", "can_blit", "hold_pictures_until_view",
     "sends_differences",
 ]

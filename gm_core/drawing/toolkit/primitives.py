@@ -31,7 +31,7 @@ if TYPE_CHECKING:
     from IPython.display import HTML
 
 __all__ = ["testing", "n_frames", "FrameArtist", "BodyArtist", "TrailArtist",
-           "SingularFlag", "animate", "jshtml"]
+           "SingularFlag", "animate", "jshtml", "ProgressNote"]
 
 
 def testing() -> bool:
@@ -144,6 +144,7 @@ class _KeptAnimation(FuncAnimation):
     gm_figure: Figure
     gm_interval: float
     gm_palette: bool
+    gm_frames: int
 
 
 def animate(fig: Figure, update: Callable[[Any], Iterable[Artist] | None], frames: int | Iterable[Any],
@@ -155,26 +156,30 @@ def animate(fig: Figure, update: Callable[[Any], Iterable[Artist] | None], frame
     smooth colour maps, which it would band.
     """
     if np.isscalar(frames):
-        frames = n_frames(int(cast(SupportsInt, frames)))   # a scalar here: a count of frames
+        frames = count = n_frames(int(cast(SupportsInt, frames)))   # a scalar here: a count of frames
     else:
         frames = list(cast(Iterable[Any], frames))   # not a scalar: the frames themselves
         if testing():
             idx = np.linspace(0, len(frames) - 1, n_frames(len(frames))).round().astype(int)
             frames = [frames[i] for i in idx]
+        count = len(frames)
     anim = _KeptAnimation(fig, update, frames=frames, interval=interval, blit=False, **kw)
     anim.gm_figure = fig   # read by jshtml (FuncAnimation keeps its figure and interval privately)
     anim.gm_interval = interval
     anim.gm_palette = bool(palette)
+    anim.gm_frames = count   # for jshtml's progress note
     return anim
 
 
 class _FrameCollector(AbstractMovieWriter):
-    """A movie writer (matplotlib's public writer interface) that keeps every frame as a PNG data URL."""
+    """A movie writer (matplotlib's public writer interface) that keeps every frame as a PNG data
+    URL; ``on_frame(k)`` (if given) is called after frame ``k`` (from 1) is kept."""
 
-    def __init__(self, palette: bool = False) -> None:
+    def __init__(self, palette: bool = False, on_frame: Callable[[int], object] | None = None) -> None:
         super().__init__(fps=20)
         self.frames: list[str] = []
         self.palette = palette
+        self.on_frame = on_frame
 
     @override
     def setup(self, fig: Figure, outfile: str | pathlib.Path, dpi: float | None = None) -> None:
@@ -183,6 +188,8 @@ class _FrameCollector(AbstractMovieWriter):
     @override
     def grab_frame(self, **savefig_kwargs: Any) -> None:
         self.frames.append(_png_data_url(self.fig, self.dpi, self.palette, **savefig_kwargs))
+        if self.on_frame is not None:
+            self.on_frame(len(self.frames))
 
     @override
     def finish(self) -> None:
@@ -208,13 +215,70 @@ def _png_data_url(fig: Figure, dpi: float, palette: bool = False, **savefig_kwar
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
 
 
-def jshtml(anim: FuncAnimation, default_mode: str = "loop") -> HTML:
+def _in_kernel() -> bool:
+    """True inside a Jupyter kernel (where a display can be updated in place)."""
+    try:
+        from IPython import get_ipython
+    except ImportError:   # IPython is a dependency of the widgets, not of the drawing layer
+        return False
+    return getattr(get_ipython(), "kernel", None) is not None
+
+
+class ProgressNote:
+    """A one-line note shown while something is drawn, updated in place and removed when done.
+
+    ``ProgressNote("drawing the animation")`` displays the line (with an IPython display id),
+    ``update(k, n)`` says ``frame k of n``, and ``done()`` replaces it by nothing, so no stale
+    "drawing ..." line stays above the result. Outside a kernel (``show=False``) it does nothing.
+    Also a context manager: ``done()`` runs on exit, whatever happened.
+    """
+
+    def __init__(self, what: str = "drawing the animation", show: bool | None = None) -> None:
+        self.what = what
+        self.shown = _in_kernel() if show is None else bool(show)
+        self.handle: Any = None
+        if self.shown:
+            from IPython.display import HTML, display
+
+            self.handle = display(HTML(self._html(f"{what} …")), display_id=True)
+
+    @staticmethod
+    def _html(text: str) -> str:
+        return f'<span class="gm-progress-note" style="color: #555">{text}</span>'
+
+    def update(self, k: int, n: int) -> None:
+        """Say that step ``k`` of ``n`` is done."""
+        if self.handle is not None:
+            from IPython.display import HTML
+
+            self.handle.update(HTML(self._html(f"{self.what}: frame {k} of {n} …")))
+
+    def done(self) -> None:
+        """Remove the note (its output becomes empty): nothing stale stays on the page."""
+        if self.handle is not None:
+            from IPython.display import HTML
+
+            self.handle.update(HTML(""))
+            self.handle = None
+
+    def __enter__(self) -> ProgressNote:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.done()
+
+
+def jshtml(anim: FuncAnimation, default_mode: str = "loop", progress: bool | None = None) -> HTML:
     """An IPython HTML object that plays ``anim`` in the page, with no live kernel and offline.
 
     Every frame is rendered at the figure standard's resolution through ``anim.save`` (a movie
     writer that keeps PNG frames); :func:`gm_core.drawing.toolkit.player.player_html` writes the player:
     the first frame is the image's own source (a picture before, or without, any script), the
     icons are inline SVG and the script is the course's own (no CDN, no request).
+
+    While the frames are drawn, a :class:`ProgressNote` says which one (``progress``: default in a
+    Jupyter kernel only); it is removed when the player is ready, so a notebook needs no
+    "drawing the animation ..." line of its own, which would stay behind.
     """
     from IPython.display import HTML
 
@@ -224,8 +288,11 @@ def jshtml(anim: FuncAnimation, default_mode: str = "loop") -> HTML:
     if fig is None:
         raise TypeError("jshtml needs an animation made by gm_core.drawing.toolkit.primitives.animate")
     fig.set_dpi(DPI)          # frames at the standard's resolution: 1 inch = 100 CSS px
-    writer = _FrameCollector(palette=getattr(anim, "gm_palette", False))
-    anim.save("frames-kept-in-memory", writer=writer, dpi=DPI)
+    n = getattr(anim, "gm_frames", None)
+    with ProgressNote("drawing the animation", show=progress) as note:
+        writer = _FrameCollector(palette=getattr(anim, "gm_palette", False),
+                                 on_frame=None if n is None else (lambda k: note.update(k, n)))
+        anim.save("frames-kept-in-memory", writer=writer, dpi=DPI)
     plt.close(fig)
     return HTML(player_html(writer.frames, interval=getattr(anim, "gm_interval", 50),
                             width=fig.get_figwidth() * DPI, mode=default_mode))

@@ -174,7 +174,8 @@ def new_figure(nrows: int = 1, ncols: int = 1, *, figsize: Sequence[float] = (6,
     The width is capped at :data:`MAX_WIDTH_IN` (the height shrinks with it), the resolution is
     :data:`DPI`, and the layout is constrained unless ``layout=None`` (then give explicit margins
     with :func:`margins`). Under ipympl (``%matplotlib widget``) the toolbar header is hidden and
-    no picture is sent before the browser's view is ready (:func:`.blit.hold_pictures_until_view`).
+    no picture is sent before the browser's view is ready (:func:`.blit.hold_pictures_until_view`);
+    its hover toolbar, which would float over the tick labels, is switched off.
 
     ``axes`` is what :func:`matplotlib.pyplot.subplots` returns, and is typed as it types it: one
     ``Axes`` for a 1 x 1 grid, an array of them with ``squeeze=False``, otherwise either (``Any``:
@@ -189,6 +190,12 @@ def new_figure(nrows: int = 1, ncols: int = 1, *, figsize: Sequence[float] = (6,
         canvas.header_visible = False
         canvas.footer_visible = False
         canvas.resizable = False
+    if hasattr(canvas, "toolbar_visible"):
+        # ipympl's toolbar floats over the figure (absolutely positioned, wherever
+        # toolbar_position puts it) and fades in on hover, covering tick labels; the course's
+        # figures are fixed pictures (panels are blitted and never panned or zoomed), so it is
+        # switched off as ipympl documents: canvas.toolbar_visible = False
+        canvas.toolbar_visible = False
     hold_pictures_until_view(fig)   # ipympl: no picture before the browser's view is ready
     return fig, ax
 
@@ -387,6 +394,14 @@ class PathText:
 
     def get_text(self) -> str:
         return self.text
+
+    def set_alignment(self, ha: HAlign | None = None, va: VAlign | None = None) -> None:
+        """Anchor the text differently (``ha``, ``va`` as in the constructor; None keeps one):
+        a readout moving to another corner of its axes keeps its anchor at that corner."""
+        ha, va = ha or self.ha, va or self.va
+        if (ha, va) != (self.ha, self.va):
+            self.ha, self.va = ha, va
+            self._show(self.text)
 
     def set_position(self, xy: ArrayLike) -> None:
         self.xy = np.asarray(xy, float)
