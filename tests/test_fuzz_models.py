@@ -262,6 +262,12 @@ GEOMETRY_CASES = [
     Case("row_scaled", GE.row_scaled, {"values": np.array([[0.2, 1e-15, -0.1], [0.19, 0.0, -0.1]]), "floor": 0.05}),
     Case("field_rms", GE.field_rms, {"system": SWIMMER, "grid": np.array([[0.4, -0.9], [0.1, 0.2]])},
          objects={"system"}, out_tail=(3,)),
+    Case("random_start", lambda n_joints, seed, scale, center: GE.random_start(
+        n_joints, seed, scale=scale, center=center)(0.3), {"n_joints": 3, "seed": 4, "scale": 0.8, "center": 0.5},
+         ints={"n_joints", "seed"}, out_tail=(3,)),
+    Case("links_cross", lambda chain, gait, samples: np.array(GE.links_cross(chain, gait, samples)),
+         {"chain": GE.chain_swimmer(3), "gait": GE.chain_stroke(3), "samples": 64}, objects={"chain", "gait"},
+         ints={"samples"}),
 ]
 SLOW_CASES += [
     Case("stokes_estimate", GE.stokes_estimate, {"system": SWIMMER, "gait": GAIT, "rtol": 1e-6},

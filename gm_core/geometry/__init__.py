@@ -8,10 +8,23 @@ book's (``xi = -A(r) r_dot``, (3.10)).
 * :mod:`.coordinates`: ``reframe``, ``centre_of_mass``, ``drift_and_turn``, ``centre_of_mass_coordinates``, ``minimum_perturbation_coordinates``;
 * :mod:`.metrics`: ``dissipation_metric``, ``path_length``, ``efficiency``;
 * :mod:`.optimal`: ``fourier_gait``, ``optimize_gait``; :mod:`.strokes`: ``sysplotter_stroke``;
-  :mod:`.chain_strokes`: optimal strokes of 3-, 4- and 5-link chains (``chain_stroke``);
+  :mod:`.chain_strokes`: optimal strokes of 3-, 4- and 5-link chains (``chain_stroke``), the local
+  maxima they were chosen from (``chain_optima``, ``chain_starts``) and ``links_cross``;
 * :mod:`.estimates`: ``shaped_gait``, ``displacement_estimates``, ``row_scaled``, ``field_rms`` (notebook 10's panels).
 """
-from gm_core.geometry.chain_strokes import CHAIN_STROKES, chain_stroke, chain_swimmer, optimize_chain_gait, wave_start
+from gm_core.geometry.chain_strokes import (
+    CHAIN_OPTIMA,
+    CHAIN_STROKES,
+    OTHER_CHAIN_OPTIMA,
+    chain_optima,
+    chain_starts,
+    chain_stroke,
+    chain_swimmer,
+    links_cross,
+    optimize_chain_gait,
+    random_start,
+    wave_start,
+)
 from gm_core.geometry.coordinates import (
     centre_of_mass,
     centre_of_mass_coordinates,
@@ -44,4 +57,5 @@ __all__ = ["constraint_curvature", "connection_derivative", "connection_curl", "
            "FourierGait", "OptimalGait", "fourier_gait", "travelling_wave", "gait_objective", "optimize_gait",
            "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer",
            "CHAIN_STROKES", "chain_stroke", "chain_swimmer", "wave_start", "optimize_chain_gait",
+           "CHAIN_OPTIMA", "OTHER_CHAIN_OPTIMA", "chain_optima", "chain_starts", "links_cross", "random_start",
            "FRAMES", "Estimates", "displacement_estimates", "field_rms", "row_scaled", "shaped_gait"]
