@@ -10,11 +10,11 @@ LAB_ARGS ?=
 # Jupyter refuses to start as root unless told; only then (containers, CI) is the flag added.
 ROOT_FLAG := $(if $(filter 0,$(shell id -u)),--ServerApp.allow_root=True,)
 PYTEST_ARGS ?=
-# make test runs on this many pytest-xdist workers, `--dist loadgroup`: a notebook and the tests
-# reading its record share an xdist_group, so it is executed once (tests/nbrun.py);
-# TEST_WORKERS=0 runs in one process. More workers than cores: the notebook and browser tests
-# spend much of their time waiting for a kernel or the page, and the other workers fill those waits.
-TEST_WORKERS ?= 4
+# make test runs on this many pytest-xdist workers (one per core of the course's 2-core machines),
+# `--dist loadgroup`: a notebook and the tests reading its record share an xdist_group, so it
+# is executed once (tests/nbrun.py); TEST_WORKERS=0 runs in one process. More workers only add
+# JupyterLab servers and browsers (one per worker that runs a browser test) competing for the cores.
+TEST_WORKERS ?= 2
 
 .PHONY: setup test-tools lab lab-settings test test-kits exercises workspace bench screenshots gradescope kits site clean help
 

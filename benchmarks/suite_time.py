@@ -163,7 +163,7 @@ def main(argv=None):
     ap.add_argument("--last", action="store_true", help="print the table of the latest run, run nothing")
     ap.add_argument("--args", default="", help="PYTEST_ARGS for make test (e.g. \"-m 'not browser'\")")
     ap.add_argument("--direct", action="store_true",
-                    help="run `python -m pytest -n 4` with this interpreter instead of `make setup` + `make test` "
+                    help="run `python -m pytest -n 2 --dist loadgroup` with this interpreter instead of `make setup` + `make test` "
                          "(for a shared venv that make must not re-install)")
     ap.add_argument("--log", default=str(ROOT / "benchmarks" / "results" / "suite_time.log"),
                     help="where make's output goes (default benchmarks/results/, git-ignored)")
@@ -178,7 +178,7 @@ def main(argv=None):
     env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
     with open(args.log, "w") as log:
         if args.direct:
-            cmd = [sys.executable, "-m", "pytest", "-n", "4", *shlex.split(args.args)]
+            cmd = [sys.executable, "-m", "pytest", "-n", "2", "--dist", "loadgroup", *shlex.split(args.args)]
         else:
             subprocess.run(["make", "setup"], cwd=ROOT, stdout=log, stderr=subprocess.STDOUT, env=env)
             cmd = ["make", "test"] + ([f"PYTEST_ARGS={args.args}"] if args.args else [])
