@@ -9,7 +9,7 @@ import numpy as np
 from typing_extensions import override
 
 from gm_core.checks.answers import describe, is_starter
-from gm_core.checks.parts import Part, outcome_error
+from gm_core.checks.parts import Part, first_value
 from gm_core.checks.sandbox import Probe, ProbeOutcome, Unattempted, Wrong
 
 if TYPE_CHECKING:
@@ -76,10 +76,7 @@ class ChoicePart(Part):
 
     @override
     def judge(self, outcomes: list[ProbeOutcome]) -> str:
-        o: ProbeOutcome = outcomes[0] if outcomes else {"k": "crash", "m": ""}
-        if o["k"] != "ok":
-            outcome_error(o, "your answer", "no arguments")
-        value = o["v"]
+        value = first_value(outcomes, "your answer", "no arguments")
         if isinstance(value, str) and value.strip().strip("().").strip() == "":
             raise Unattempted()
         if not isinstance(value, (str, int)):

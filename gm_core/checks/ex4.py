@@ -18,7 +18,7 @@ from gm_core.checks import gait_samples
 from gm_core.checks.answers import fmt_value
 from gm_core.checks.choice import ChoicePart
 from gm_core.checks.exercise import Exercise
-from gm_core.checks.parts import CustomPart, Mistake, ValuePart, outcome_error
+from gm_core.checks.parts import CustomPart, Mistake, ValuePart, first_value
 from gm_core.checks.sandbox import ProbeOutcome, Wrong
 
 if TYPE_CHECKING:
@@ -174,10 +174,7 @@ def _judge_42a(outcomes: list[ProbeOutcome]) -> str:
     from gm_core.geometry import drift_and_turn
     from gm_core.systems.gaits import Gait
 
-    o: ProbeOutcome = outcomes[0] if outcomes else {"k": "crash", "m": ""}
-    if o["k"] != "ok":
-        outcome_error(o, "your gait", "the times of one period")
-    r = gait_samples.grid(o["v"], 2)
+    r = gait_samples.grid(first_value(outcomes, "your gait", "the times of one period"), 2)
     if np.max(np.abs(r)) > 2 * np.pi:
         raise Wrong("your gait reaches joint angles beyond 2 pi: the links would pass through each "
                     "other. Keep the loop within about (-3, 3) in each angle.")

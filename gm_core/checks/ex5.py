@@ -19,7 +19,7 @@ from gm_core.checks import gait_samples
 from gm_core.checks.answers import fmt_value
 from gm_core.checks.choice import ChoicePart
 from gm_core.checks.exercise import Exercise
-from gm_core.checks.parts import CustomPart, outcome_error
+from gm_core.checks.parts import CustomPart, first_value
 from gm_core.checks.sandbox import ProbeOutcome, Wrong
 
 if TYPE_CHECKING:
@@ -50,11 +50,9 @@ def _judge_51a(outcomes: list[ProbeOutcome]) -> str:
     from gm_core.systems.gaits import Gait
     from gm_core.systems.motion import net_displacement
 
-    o: ProbeOutcome = outcomes[0] if outcomes else {"k": "crash", "m": ""}
-    if o["k"] != "ok":
-        outcome_error(o, "your gait", "the times of one period")
-    r = gait_samples.grid(o["v"], _JOINTS, " (the four-link swimmer has three joints: alpha1, "
-                           "alpha2, alpha3)")
+    r = gait_samples.grid(first_value(outcomes, "your gait", "the times of one period"), _JOINTS,
+                          " (the four-link swimmer has three joints: alpha1, "
+                          "alpha2, alpha3)")
     if np.linalg.norm(r[-1] - r[0]) > 1e-6 * max(1.0, float(np.max(np.abs(r)))):
         raise Wrong(f"your gait does not close: r(0) = {fmt_value(r[0])} but r(T) = "
                     f"{fmt_value(r[-1])}. A gait must come back to its first shape after one period.")

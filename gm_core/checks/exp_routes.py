@@ -9,7 +9,7 @@ import numpy as np
 import numpy.typing as npt
 
 from gm_core.checks.answers import fmt_value, is_starter, match_shape, to_numbers
-from gm_core.checks.parts import FunctionPart, outcome_error, probe_rng, rng_inputs, salted
+from gm_core.checks.parts import FunctionPart, first_value, outcome_error, probe_rng, rng_inputs, salted
 from gm_core.checks.sandbox import Probe, ProbeOutcome, Unattempted, Wrong
 from gm_core.groups import SE2, wrap_angle
 
@@ -177,8 +177,7 @@ def _d_mistakes(k: str) -> list[tuple[Route, str]]:
 def routes_judge(outcomes: list[ProbeOutcome]) -> str:
     """The judge of 1.4(d): every route matches its reference step for step, or a message says
     which route is wrong and, for a known mistake, how."""
-    if not outcomes or outcomes[0]["k"] != "ok":
-        outcome_error(outcomes[0] if outcomes else {"k": "crash", "m": ""}, "your dict", "")
+    first_value(outcomes, "your dict", "")
     calls = _d_calls()
     if len(outcomes) != len(calls) + 1:
         raise Wrong("the check could not evaluate every route.")

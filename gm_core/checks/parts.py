@@ -103,6 +103,15 @@ def outcome_error(o: ProbeOutcome, what: str, label: str) -> NoReturn:
     raise Wrong(f"{what} could not be checked further after an earlier call stopped.")
 
 
+def first_value(outcomes: list[ProbeOutcome], what: str, label: str) -> Any:
+    """The value of the first probe outcome; :func:`outcome_error` when it is not "ok" (or there
+    is none: a crash)."""
+    o: ProbeOutcome = outcomes[0] if outcomes else {"k": "crash", "m": ""}
+    if o["k"] != "ok":
+        outcome_error(o, what, label)
+    return o["v"]
+
+
 # ------------------------------------------------------------------------------ parts
 class Part(ABC):
     """One checkable part. Subclasses implement :meth:`probes` and :meth:`judge`.
@@ -646,10 +655,7 @@ class ValuePart(Part):
 
     @override
     def judge(self, outcomes: list[ProbeOutcome]) -> str:
-        o: ProbeOutcome = outcomes[0] if outcomes else {"k": "crash", "m": ""}
-        if o["k"] != "ok":
-            outcome_error(o, "your answer", "no arguments")
-        value = o["v"]
+        value = first_value(outcomes, "your answer", "no arguments")
         if not (isinstance(value, float) if not self.shape
                 else isinstance(value, np.ndarray) and value.shape == self.shape):
             raise Wrong(f"{self.expects_text} was expected.")
