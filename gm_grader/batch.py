@@ -60,6 +60,7 @@ from pathlib import Path
 from typing import Any, TypeAlias
 
 from gm_core.checks import channel
+from gm_core.checks.answer_key import KEYS_PACKAGE, keys_installed
 from gm_core.checks.exercise import REGISTRY, exercise_ids
 from gm_core.checks.parts import Part
 from gm_core.checks.protocol import Limits
@@ -446,12 +447,17 @@ def grade(paths: Sequence[str | Path], out_dir: str | Path,
           assignment: Assignment | None = None) -> dict[str, Any]:
     """Grade every submission under ``paths``; write results.json and grades.csv; return results.
 
-    Raises :class:`SandboxUnavailable` when no sandbox can run here (nothing is written),
+    Raises :class:`SandboxUnavailable` when no sandbox can run here and
+    :class:`~gm_grader.view.NoAnswerKeys` when this copy of the course cannot judge (the graded
+    build; nothing is written in either case),
     ``ValueError`` when the output folder, a submission or the staging folder lies where every
     sandbox can read it, and :class:`GraderFaults` *after writing every grade it could* when the
     grader failed on some notebook or could not write a report file."""
     t0 = time.monotonic()
     settings = settings or GradeSettings()
+    if not keys_installed():
+        raise view.NoAnswerKeys(f"this copy of the course has no answer keys ({KEYS_PACKAGE}), so "
+                                "it cannot judge: grade with the full course, not the graded build")
     _report.check_visibility(settings.visibility)
     assignment = assignment or Assignment()
     weights = {**(weights or {}), **assignment.weights}
@@ -541,6 +547,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"grade: refusing to run student notebooks without a sandbox: {exc}. Install "
               "bubblewrap, or pass --no-sandbox where each submission already runs in its own "
               "container (Gradescope).", file=sys.stderr)
+        return 3
+    except view.NoAnswerKeys as exc:
+        print(f"grade: {exc}", file=sys.stderr)
         return 3
     except GraderFaults as exc:
         faults, results = exc.causes, exc.results

@@ -10,6 +10,9 @@ inputs of this run (the salt the kernel was given).
 
 The last accepted check call of a part decides it (as the student's own last check did); a part
 with no accepted call gets a message saying why (never checked, or the notebook stopped first).
+A part whose answer key the notebook asked for (``.reference``, ``.solution()``...: the graded
+build has none, :mod:`gm_core.checks.answer_key`) gets no marks, whatever its checks sent, and
+its row says where it asked.
 """
 from __future__ import annotations
 
@@ -98,6 +101,7 @@ def summarise(run: RunResult, ex: Exercise, sources: Mapping[int, str]) -> Summa
 
     ``sources`` maps cell indices to their source (to name a cell by its first line)."""
     latest: dict[str, tuple[Evidence, int | None]] = {}
+    asked: dict[str, tuple[str, int | None]] = {}
     rejected: dict[str, int] = {}
     cells: dict[int, CellEnded] = {}
     problem, notes = "", []
@@ -111,6 +115,9 @@ def summarise(run: RunResult, ex: Exercise, sources: Mapping[int, str]) -> Summa
                 continue                                  # ignored, not an offence
             except ProtocolError as exc:
                 rejected[str(exc)] = rejected.get(str(exc), 0) + 1
+                continue
+            if ev.outcomes is Withheld.KEY_ASKED:
+                asked.setdefault(ev.part, (ev.output, r.cell))
                 continue
             latest[ev.part] = (ev, r.cell)
         elif isinstance(r, CellStarted):
@@ -159,7 +166,12 @@ def summarise(run: RunResult, ex: Exercise, sources: Mapping[int, str]) -> Summa
             f"{n} x {why}" for why, n in sorted(rejected.items())))
     parts: dict[str, PartResult] = {}
     for name, part in ex.parts.items():
-        if name in latest:
+        if name in asked:
+            what, cell = asked[name]
+            msg = (f"the notebook asked for this part's answer key ({what[:60]}) in {where(cell)}; "
+                   "a graded run has no answer keys or worked solutions, so this part gets no marks")
+            parts[name] = PartResult(Verdict(FAILED, msg, part.title), cell)
+        elif name in latest:
             ev, cell = latest[name]
             parts[name] = PartResult(judge_part(part, ev), cell)
         else:

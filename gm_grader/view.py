@@ -8,7 +8,10 @@ The sandbox's root is an empty file system of bubblewrap's own. Into it, read-on
   ``passwd``/``group`` of two lines written here (root and the sandbox's user), never the host's;
 * the Python the grader runs on (its prefixes, site-packages and the user site, if any);
 * the course's two packages, ``gm_core`` and ``gm_grader`` (not the folder around them: no
-  ``solutions/``, no grading folder that happens to sit beside them);
+  ``solutions/``, no grading folder that happens to sit beside them), as the **graded build**:
+  the answer keys' folder (:data:`gm_core.checks.answer_key.KEYS_PACKAGE`) is an empty,
+  read-only folder there, so no part can say what a right answer is inside (the grader judges
+  with its own keys, outside);
 * the run's own inbox (its staged notebook and configuration), at ``/tmp/.gm-in``.
 
 Writable: a fresh ``/tmp`` and ``/dev/shm``, each capped at ``Limits.tmp_mb``; ``/dev`` holds
@@ -28,6 +31,7 @@ user runs the sandbox as that user inside a user namespace of its own (bubblewra
 """
 from __future__ import annotations
 
+import importlib.util
 import os
 import secrets
 import shutil
@@ -39,6 +43,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from gm_core.checks.answer_key import KEYS_PACKAGE
 from gm_core.checks.protocol import Limits
 
 PKG_PARENT = Path(__file__).resolve().parents[1]   # the folder holding gm_core and gm_grader
@@ -111,6 +116,30 @@ def course_roots(course: Path | None = None) -> list[Path]:
     default :data:`PKG_PARENT`)."""
     course = PKG_PARENT if course is None else course
     return [course / p for p in COURSE_PACKAGES if (course / p).is_dir()]
+
+
+class NoAnswerKeys(RuntimeError):
+    """The grader's own copy of the course has no answer keys, so it cannot judge."""
+
+
+def keys_dir() -> Path:
+    """The folder of the answer keys in the grader's course, which every sandbox sees empty."""
+    spec = importlib.util.find_spec(KEYS_PACKAGE)
+    if spec is None or not spec.submodule_search_locations:
+        raise NoAnswerKeys(f"this copy of the course has no answer keys ({KEYS_PACKAGE}): grade "
+                           "with the full course, not the graded build")
+    return Path(list(spec.submodule_search_locations)[0]).resolve()
+
+
+def _keys_dirs(course: Path | None) -> list[str]:
+    """The answer keys' folders a sandbox must see empty: the grader's own, and the given
+    course's (when that is another copy)."""
+    found = {keys_dir()}
+    if course is not None:
+        other = Path(course, *KEYS_PACKAGE.split("."))
+        if other.is_dir():
+            found.add(other.resolve())
+    return sorted(map(str, found))
 
 
 def _system_paths() -> list[Path]:
@@ -213,6 +242,8 @@ def bwrap_args(inbox: Path, etc: tuple[Path, Path], identity: Identity, limits: 
     args += ["--size", cap, "--perms", "1777", "--tmpfs", "/tmp"]
     roots = _outermost([*python_roots(), *course_roots(course)])
     args += _ro_binds(roots, made, bound)
+    for hidden in _keys_dirs(course):          # the graded build: no answer keys inside
+        args += ["--perms", "0555", "--tmpfs", hidden, "--remount-ro", hidden]
     args += ["--ro-bind", str(inbox), INBOX]
     args += ["--proc", "/proc", "--dev", "/dev",
              "--size", cap, "--perms", "1777", "--tmpfs", "/dev/shm", "--remount-ro", "/dev"]
@@ -259,6 +290,9 @@ def preflight(limits: Limits | None = None, env: dict[str, str] | None = None) -
         inbox = make_inbox(private)
         etc = write_identity_files(private / "etc", identity)
         code = ("import os, gm_core.checks.channel, gm_grader.runner, nbformat\n"
+                "from gm_core.checks.answer_key import keys_installed\n"
+                "assert not keys_installed(), 'the answer keys can be imported inside'\n"
+                f"assert not os.listdir({str(keys_dir())!r}), 'the answer keys can be read inside'\n"
                 "assert os.getuid() != 0 and os.geteuid() != 0, 'the sandbox runs as root'\n"
                 f"assert os.getuid() == {identity.uid}, 'the sandbox runs as the wrong user'\n"
                 f"assert os.path.isdir({INBOX!r}) and os.access('/tmp', os.W_OK)\n")
@@ -282,4 +316,4 @@ def preflight(limits: Limits | None = None, env: dict[str, str] | None = None) -
 
 __all__ = ["Identity", "sandbox_identity", "python_roots", "course_roots", "visible_roots",
            "exposed", "bwrap_args", "command", "make_inbox", "write_identity_files",
-           "preflight", "PKG_PARENT", "INBOX", "DROP", "ETC_KEPT"]
+           "preflight", "keys_dir", "NoAnswerKeys", "PKG_PARENT", "INBOX", "DROP", "ETC_KEPT"]

@@ -182,7 +182,7 @@ def test_progress_aggregates_parts():
 
 def test_exercise_check_with_dict():
     ex = checks.ex1_1
-    out = ex.check({"a": "b", "b": sorted(ex.b.correct)[0]})
+    out = ex.check({"a": "b", "b": sorted(ex.b.key.correct)[0]})
     assert all(v.passed for v in out.values()) and progress()["1.1"] == PASSED
     assert ex.check("not a dict") == {}
 

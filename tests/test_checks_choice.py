@@ -15,7 +15,7 @@ pytestmark = pytest.mark.usefixtures("clean")
 
 
 def test_correct_positions_are_balanced_across_the_course():
-    positions = collections.Counter(list(p.options).index(sorted(p.correct)[0]) for _, _, p in CHOICES)
+    positions = collections.Counter(list(p.options).index(sorted(p.key.correct)[0]) for _, _, p in CHOICES)
     assert len(CHOICES) >= 10
     n_letters = min(len(p.options) for _, _, p in CHOICES)
     fair = len(CHOICES) / n_letters
@@ -24,7 +24,7 @@ def test_correct_positions_are_balanced_across_the_course():
 
 
 def test_the_longest_option_is_not_a_tell():
-    longest = sum(max(p.options.values(), key=len) == p.options[sorted(p.correct)[0]]
+    longest = sum(max(p.options.values(), key=len) == p.options[sorted(p.key.correct)[0]]
                   for _, _, p in CHOICES)
     assert longest <= len(CHOICES) // 4, f"the correct option is the longest in {longest} questions"
 
@@ -76,6 +76,6 @@ def test_solution_views_are_recorded(capsys):
 
 def test_widget_records_and_reads_letters():
     w = checks.ex3_4.c.widget()
-    w.radio.value = sorted(checks.ex3_4.c.correct)[0]
+    w.radio.value = sorted(checks.ex3_4.c.key.correct)[0]
     w.button.click()
     assert "passed" in w.feedback.value

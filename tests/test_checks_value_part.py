@@ -1,12 +1,13 @@
 """ValuePart, the declarative form of a one-value part (gm_core.checks.parts): a part declared by
-class attributes gets its probe, its judge and its default reference and wrong answers from the
-base class."""
+class attributes gets its probe and its judge from the base class, and its key (a ValueKey) its
+default reference and wrong answers from the expected value and the mistakes."""
 import numpy as np
 import pytest
 from checkhelpers import assert_check_failed, assert_check_passed, assert_check_unattempted
 
+from gm_core.checks.answer_key import Mistake, ValueKey, provide
 from gm_core.checks.exercise import REGISTRY, Exercise
-from gm_core.checks.parts import Mistake, ValuePart
+from gm_core.checks.parts import ValuePart
 
 pytestmark = pytest.mark.usefixtures("clean")
 
@@ -14,25 +15,27 @@ pytestmark = pytest.mark.usefixtures("clean")
 class DiscArea(ValuePart):
     name = "a"
     prompt = "The area of the unit disc (a number)"
-    expected = np.pi
-    mistakes = [Mistake(2 * np.pi, "that is the circumference 2 pi r, not the area."),
-                Mistake(1.0, "that is r^2 without pi.", 0.05)]
     hints = ["The area of a disc of radius r is pi r^2."]
-    solution_text = "pi r^2 = pi for r = 1."
+
+
+QUARTER_TURN = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0]])
 
 
 class Rotation(ValuePart):
     name = "b"
     prompt = "The rotation matrix by pi/2 (a 2 x 3 array: the matrix and a zero column)"
-    expected = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0]])
     shape = (2, 3)
-    mistakes = [Mistake(np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]]), "that turns by -pi/2.")]
     success = "Correct: a quarter turn."
 
 
 @pytest.fixture
 def parts():
     ex = Exercise("9.7", "values", [DiscArea(), Rotation(weight=1.0)])
+    provide(ex,
+            a=ValueKey(expected=np.pi, solution_text="pi r^2 = pi for r = 1.",
+                       mistakes=[Mistake(2 * np.pi, "that is the circumference 2 pi r, not the area."),
+                                 Mistake(1.0, "that is r^2 without pi.", 0.05)]),
+            b=ValueKey(expected=QUARTER_TURN, mistakes=[Mistake(-QUARTER_TURN, "that turns by -pi/2.")]))
     try:
         yield ex.a, ex.b
     finally:
@@ -59,7 +62,7 @@ def test_a_declared_value_part_judges_like_a_checker(parts):
 
 def test_an_array_value_part_compares_entry_by_entry(parts):
     _, rot = parts
-    good = Rotation.expected
+    good = QUARTER_TURN
     v = assert_check_passed(rot, good.tolist())
     assert v.message == "Correct: a quarter turn."
     assert_check_failed(rot, -good, mentions="-pi/2")
@@ -81,7 +84,7 @@ def test_the_judge_reads_only_plain_outcomes(parts):
 
 def test_a_declaration_names_its_part_and_nothing_unknown():
     class Nameless(ValuePart):
-        expected = 1.0
+        rtol = 0.1
 
     with pytest.raises(TypeError, match="must declare a name and a prompt"):
         Nameless()

@@ -137,7 +137,7 @@ def test_numbers_in_messages_are_written_as_a_person_writes_them():
 def test_a_number_for_a_choice_says_which_option_it_is(answer, letter):
     p = checks.ex1_1.a
     v = p.check(answer, quiet=True)
-    assert v.status == (PASSED if letter in p.correct else FAILED)       # the verdict is unchanged
+    assert v.status == (PASSED if letter in p.key.correct else FAILED)       # the verdict is unchanged
     assert f"You answered {answer}: numbers count the options from 0, so {answer} is option ({letter})" \
         in v.message, v.message
     assert "You answered" not in p.check(letter, quiet=True).message

@@ -6,10 +6,12 @@ then kills its parent; an honest classmate whose answers are slow (1.5 s per cal
 every call form and reassigns an answer after checking it, with a cell that sleeps forever; a
 forger (a post_run_cell hook printing evidence, all-"skip", replayed, mistyped, extra and
 secret-less records, a deep-JSON record, a deep expression, an output flood, a loop that ignores
-SIGINT); one real solution and its untouched exercise. Each must get exactly its deserved
-grade, with the course, the classmate and the results untouched and no process left behind.
-Further runs (no kernels, or one) cover assignments, leftovers, bad files, empty uploads and the
-refusal to run without a sandbox. Six kernel runs in all."""
+SIGINT); two key seekers (issue 38: the reference reached through a hook, a patched emitter, a
+thread, directly, by the run's secret, and the worked solution looked for on disk); one real
+solution and its untouched exercise. Each must get exactly its deserved grade, with the course,
+the classmate and the results untouched and no process left behind. Further runs (no kernels,
+or one) cover assignments, leftovers, bad files, empty uploads and the refusal to run without a
+sandbox."""
 import csv
 import hashlib
 import inspect
@@ -105,9 +107,9 @@ def forger_cells():
             "P = ex1_2.parts\n"
             "rec('a', [{'k': 'ok', 'v': 'skip'}] * len(P['a'].probes()))             # all skip\n"
             "salt = channel.probe_salt()\nchannel.set_probe_salt(None)\n"
-            "rec('b', [{'k': 'ok', 'v': nd(P['b'].ref(*a))} for a in P['b'].inputs()])  # replayed\n"
+            "rec('b', [{'k': 'ok', 'v': nd(np.diag(a[0]))} for a in P['b'].inputs()])  # replayed\n"
             "channel.set_probe_salt(salt)\n"
-            "right = [{'k': 'ok', 'v': nd(P['c'].ref(*a))} for a in P['c'].inputs()]\n"
+            "right = [{'k': 'ok', 'v': nd(np.diag(a[0]))} for a in P['c'].inputs()]  # by hand\n"
             "rec('c', right, n='0' * 32)                                            # no secret\n"
             "rec('c', [{'k': 'ok', 'v': True}] * len(right))                        # mistyped\n"
             "rec('c', right + right)                                                # extra\n"
@@ -116,6 +118,53 @@ def forger_cells():
             "for _ in range(200):\n    sys.stdout.write('x' * 100_000 + '\\n')     # 20 MB of output",
             "x = " + "-" * 5000 + "1",
             "import signal\nsignal.signal(signal.SIGINT, signal.SIG_IGN)\nwhile True:\n    pass"]
+
+
+def key_seeker_cells():
+    """Three ways to full marks with wrong answers, each through the answer key: an IPython
+    post_run_cell hook re-checking with the reference (a), the function that emits outcomes
+    replaced to send the reference's (b), a thread re-checking with the reference after the
+    last cell starts (c)."""
+    return ["import numpy as np, threading, time\nfrom gm_core.checks import ex1_2, channel\n"
+            "from gm_core.checks.sandbox import collect\n"
+            "def quietly(f):\n    try:\n        f()\n    except Exception:\n        pass\n"
+            "get_ipython().events.register('post_run_cell', "
+            "lambda *a: quietly(lambda: ex1_2.a.check(ex1_2.a.reference)))\n"
+            "ex1_2.a.check(lambda h, g: h + g)",
+            "send = channel.emit\n"
+            "def emit(part, outcomes, output=''):\n"
+            "    try:\n        outcomes = collect(part.reference, part.probes(), raw=True)[0]\n"
+            "    except Exception:\n        pass\n"
+            "    send(part, outcomes, output)\n"
+            "channel.emit = emit\n"
+            "ex1_2.b.check(lambda h, g: np.diag(g))",
+            "def later():\n    time.sleep(0.2)\n    quietly(lambda: ex1_2.c.check(ex1_2.c.reference))\n"
+            "threading.Thread(target=later).start()\n"
+            "ex1_2.c.check(lambda h, g: np.eye(2))",
+            "time.sleep(1.5)"]
+
+
+def solution_seeker_cells():
+    """Three more: the reference checked directly (a); the worked solution notebook and the key
+    files looked for wherever the course lives, and run if found (b); the run's secret used to
+    write well-formed outcomes computed from the key's reference function, after .solution() (c)."""
+    return ["import numpy as np, json, os, glob, runpy\nimport gm_core\nfrom gm_core.checks import ex1_2, channel\n"
+            "try:\n    ex1_2.a.check(ex1_2.a.reference)\nexcept Exception:\n    ex1_2.a.check(lambda h, g: h + g)",
+            "root = os.path.dirname(os.path.dirname(gm_core.__file__))\n"
+            "found = [p for pat in ('solutions/ex1_2.ipynb', 'gm_core/checks/keys/*.py', '**/ex1_2.ipynb')\n"
+            "         for p in glob.glob(os.path.join(root, pat), recursive=True) + glob.glob('/' + pat)]\n"
+            "answer_b = lambda h, g: h + g + 1.0\n"
+            "for p in found:\n"
+            "    if p.endswith('.py'):\n        runpy.run_path(p)\n"
+            "    else:\n        cells = json.load(open(p))['cells']\n"
+            "        exec('\\n'.join(''.join(c['source']) for c in cells if c['cell_type'] == 'code'))\n"
+            "ex1_2.b.check(answer_b)\nprint(found)",
+            "ex1_2.c.solution()\n"
+            "fd, nonce = channel._STATE.fd, channel._STATE.nonce\n"
+            "nd = lambda x: {'__nd__': [2, 2], 'd': np.asarray(x, float).ravel().tolist()}\n"
+            "out = [{'k': 'ok', 'v': nd(ex1_2.c.ref(*a))} for a in ex1_2.c.inputs()]\n"
+            "os.write(fd, (json.dumps({'kind': 'evidence', 'nonce': nonce, 'exercise': '1.2', "
+            "'part': 'c', 'outcomes': out, 'output': ''}) + '\\n').encode())"]
 
 
 def tamper_cells(out, honest, neighbour):
@@ -204,6 +253,8 @@ def batch(tmp_path_factory):
     out = tmp / "out"
     honest = write_nb(tmp / "honest" / "ex1_2.ipynb", honest_cells())
     write_nb(tmp / "forger" / "ex1_2.ipynb", forger_cells())
+    write_nb(tmp / "keyseeker" / "ex1_2.ipynb", key_seeker_cells())
+    write_nb(tmp / "solseeker" / "ex1_2.ipynb", solution_seeker_cells())
     neighbour = tmp / "not-in-this-batch" / "ex1_2.ipynb"          # another upload, not graded now
     neighbour.parent.mkdir()
     neighbour.write_text("{}")
@@ -217,7 +268,7 @@ def batch(tmp_path_factory):
     t = time.monotonic()
     proc = subprocess.Popen([sys.executable, "-m", "gm_grader", *map(str, (
         tmp / "tamper", tmp / "honest", tmp / "forger", tmp / "staller", tmp / "bomb", tmp / "solutions",
-        tmp / "exercises", "--out", out, "--cell-timeout", "4", "--jobs", "3", "--memory", "2048",
+        tmp / "exercises", tmp / "keyseeker", tmp / "solseeker", "--out", out, "--cell-timeout", "4", "--jobs", "3", "--memory", "2048",
         "--max-processes", "64"))], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
         cwd=tmp, env=env())
     stdout, stderr = proc.communicate(timeout=900)
@@ -254,6 +305,24 @@ def test_forged_evidence_never_passes(batch):
     msg = rows["c"]["message"]
     assert "rejected evidence" in msg and "this run's secret" in msg and "not valid JSON" in msg
     assert "wrong number of outcomes" in msg and "malformed outcomes" in msg
+
+
+ASKED = "asked for this part's answer key"
+
+
+@needs_sandbox
+def test_the_answer_key_is_out_of_reach_and_asking_for_it_earns_nothing(batch):
+    """Issue 38's forging routes through the reference (a hook, a patched emitter, a thread, the
+    reference itself, the solution notebook, the secret with the key's outcomes) score 0, and
+    each row says why; the honest classmate in the same batch keeps full marks."""
+    seek, sol = rows_of(batch, "keyseeker"), rows_of(batch, "solseeker")
+    assert scores(batch, "keyseeker") == scores(batch, "solseeker") == {"a": 0.0, "b": 0.0, "c": 0.0}
+    for part in "abc":
+        assert ASKED in seek[part]["message"], seek[part]
+    assert ASKED in sol["a"]["message"] and "(reference)" in sol["a"]["message"], sol["a"]
+    assert ASKED in sol["c"]["message"] and "(solution())" in sol["c"]["message"], sol["c"]
+    assert ASKED not in sol["b"]["message"] and "differ" in sol["b"]["message"], sol["b"]  # nothing found
+    assert scores(batch, "honest") == {"a": 2.0, "b": 2.0, "c": 2.0}
 
 
 @needs_sandbox
@@ -313,12 +382,12 @@ def test_results_are_gradescope_ready(batch):
     held = CGROUPS or os.geteuid() != 0
     total = 6 + 2 + 4 + (4 if held else 2) + 2          # honest, tamper, staller, bomb, solution
     assert res["score"] == pytest.approx(sum(t["score"] for t in res["tests"])) == total
-    assert len(res["tests"]) == len(batch["rows"]) == 5 * 3 + 2 * 2
+    assert len(res["tests"]) == len(batch["rows"]) == 7 * 3 + 2 * 2
     for t in res["tests"]:
         assert {"name", "number", "score", "max_score", "output", "visibility", "status"} <= set(t)
         assert 0 <= t["score"] <= t["max_score"] and t["visibility"] == "visible"
         assert not t["name"].startswith("/") and str(batch["tmp"]) not in t["name"] + t["output"]
-    assert f"{total} / 34 points" in batch["stdout"]
+    assert f"{total} / 46 points" in batch["stdout"]
 
 
 @needs_sandbox
@@ -672,17 +741,20 @@ def _in_sandbox(script, course=None, tmp=None):
 @needs_sandbox
 def test_a_sandbox_sees_the_course_not_what_lies_beside_it():
     """A sandbox sees the course's packages, never the folder around them (solutions/, a grading
-    folder beside them) nor a folder elsewhere: nothing is hidden, it was never put there."""
+    folder beside them) nor a folder elsewhere: it was never put there. The answer keys' folder
+    is there, empty (the graded build)."""
     import shutil
     import tempfile
     base = Path(tempfile.mkdtemp(prefix="gm-hide-", dir="/var/tmp"))
     try:
         (base / "bob").mkdir()
         (base / "bob" / "ex1_1.ipynb").write_text("secret")
-        res = _in_sandbox(f"cat {base}/bob/ex1_1.ipynb; ls {ROOT}; ls {ROOT}/gm_core/checks")
+        res = _in_sandbox(f"cat {base}/bob/ex1_1.ipynb; ls {ROOT}; ls {ROOT}/gm_core/checks; "
+                          f"echo keys:; ls -A {ROOT}/gm_core/checks/keys; echo :keys")
         assert "secret" not in res.stdout and "No such file" in res.stderr
         assert "parts.py" in res.stdout                             # the course's code is there
         assert "solutions" not in res.stdout and "gm_core" in res.stdout
+        assert "keys:\n:keys" in res.stdout                         # the graded build: no keys
     finally:
         shutil.rmtree(base)
 

@@ -11,6 +11,7 @@ import pytest
 
 from gm_core import checks
 from gm_core.checks import store
+from gm_core.checks.answer_key import FunctionKey, provide
 from gm_core.checks.exercise import REGISTRY, Exercise, exercise_ids, progress, reset_progress
 from gm_core.checks.parts import FunctionPart
 from gm_core.checks.store import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED
@@ -68,7 +69,7 @@ def test_progress_is_saved_in_the_workspace_across_kernels(workspace):
 
 
 def ex_b_letter():
-    return sorted(checks.ex1_1.b.correct)[0]
+    return sorted(checks.ex1_1.b.key.correct)[0]
 
 
 def test_outside_a_workspace_progress_stays_in_memory(tmp_path):
@@ -176,9 +177,9 @@ def test_a_typo_is_an_attribute_error_naming_the_parts():
 def test_a_new_exercise_module_only_needs_to_register():
     import numpy as np
     try:
-        Exercise("9.1", "test exercise", [FunctionPart(
-            "a", "double it", ref=lambda t: 2 * t, inputs=lambda: [(1.0,), (2.5,)],
-            arg_names=("t",), shape=(), reference=lambda t: 2 * t)])
+        ex = Exercise("9.1", "test exercise", [FunctionPart(
+            "a", "double it", inputs=lambda: [(1.0,), (2.5,)], arg_names=("t",), shape=())])
+        provide(ex, a=FunctionKey(ref=lambda t: 2 * t))
         assert "9.1" in exercise_ids() and checks.ex9_1.a.check(lambda t: 2 * t, quiet=True).passed
         assert progress()["9.1"] == IN_PROGRESS or progress()["9.1"] == PASSED
         assert "9.1" in checks.EXERCISE_IDS

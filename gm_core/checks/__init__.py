@@ -19,7 +19,9 @@ progress is saved in ``workspace/.progress.json``; ``reset_progress()`` forgets 
 
 Adding a chapter: write a module in this folder creating its ``Exercise`` objects (they register
 themselves) and add its name to ``EXERCISE_MODULES``; its exercises are then available as
-``gm_core.checks.exN_M`` and listed by ``progress()``.
+``gm_core.checks.exN_M`` and listed by ``progress()``. What a right answer is goes into a module
+of the same name in :mod:`gm_core.checks.keys` (imported there), which the graded build leaves
+out (:mod:`gm_core.checks.answer_key`).
 
 numpy only at import time: sympy is used only for sympy answers and ipywidgets only for widgets.
 """
@@ -29,6 +31,17 @@ import importlib
 import re
 from typing import TYPE_CHECKING, Any
 
+from gm_core.checks.answer_key import (
+    AnswerKey,
+    AnswerKeyHidden,
+    ChoiceKey,
+    FunctionKey,
+    JudgeKey,
+    Mistake,
+    TupleKey,
+    ValueKey,
+    keys_installed,
+)
 from gm_core.checks.choice import ChoicePart
 from gm_core.checks.exercise import (
     REGISTRY,
@@ -40,7 +53,7 @@ from gm_core.checks.exercise import (
     reset_progress,
     solutions_viewed,
 )
-from gm_core.checks.parts import CustomPart, FunctionPart, Mistake, Part, TuplePart, ValuePart, Verdict
+from gm_core.checks.parts import CustomPart, FunctionPart, Part, TuplePart, ValuePart, Verdict
 from gm_core.checks.sandbox import set_time_limit
 from gm_core.checks.store import FAILED, IN_PROGRESS, PASSED, UNATTEMPTED, pending_updates
 
@@ -58,6 +71,8 @@ __all__ = [
     "Verdict", "EXERCISE_IDS", "PASSED", "FAILED", "UNATTEMPTED", "IN_PROGRESS", "set_time_limit",
     "course_updates", "pending_updates", "solutions_viewed",
     "Part", "FunctionPart", "TuplePart", "ChoicePart", "CustomPart", "ValuePart", "Mistake", "Exercise",
+    "AnswerKey", "FunctionKey", "TupleKey", "ValueKey", "ChoiceKey", "JudgeKey", "AnswerKeyHidden",
+    "keys_installed",
 ] + ["ex" + i.replace(".", "_") for i in exercise_ids()]
 
 

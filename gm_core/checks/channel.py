@@ -12,7 +12,9 @@ never the notebook's printed output, and judges in its own process.
 
 The lines are the messages of :mod:`gm_core.checks.protocol`: a :class:`~.protocol.CheckBegun`
 when a check starts (the runner stops the cell clock while probes run: each probe has its own
-per-call limit), then the :class:`~.protocol.Evidence` of the call.
+per-call limit), then the :class:`~.protocol.Evidence` of the call. A notebook that asks a part
+for its answer key (the graded build has none, :mod:`gm_core.checks.answer_key`) sends an Evidence
+saying so (:func:`key_requested`).
 """
 from __future__ import annotations
 
@@ -38,7 +40,7 @@ if TYPE_CHECKING:
     from gm_core.checks.parts import Part
 
 __all__ = ["open_channel", "time_limit", "set_probe_salt", "probe_salt", "active", "begin", "emit",
-           "MAX_RECORD_BYTES"]
+           "key_requested", "MAX_RECORD_BYTES"]
 
 MAX_RECORD_BYTES = 4_000_000
 
@@ -133,3 +135,11 @@ def emit(part: Part, outcomes: Sequence[Mapping[str, object]] | str, output: str
     if len(data) > MAX_RECORD_BYTES:
         data = encode_kernel_message(Evidence(ev.nonce, ev.exercise, ev.part, Withheld.TOO_LARGE))
     _write(data)
+
+
+def key_requested(part: Part, asked: str) -> None:
+    """Tell the grader that the notebook asked ``part`` for its answer key (``asked``: which
+    attribute or method), which the graded build does not have: the part gets no marks."""
+    if active():
+        _send(Evidence(_STATE.nonce, _exercise_id(part), part.name, Withheld.KEY_ASKED,
+                       str(asked)[:200]))

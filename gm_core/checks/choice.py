@@ -2,12 +2,12 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from typing_extensions import override
 
+from gm_core.checks.answer_key import AnswerKey, ChoiceKey
 from gm_core.checks.answers import describe, is_starter
 from gm_core.checks.parts import Part, first_value
 from gm_core.checks.sandbox import Probe, ProbeOutcome, Unattempted, Wrong
@@ -29,17 +29,26 @@ class ChoicePart(Part):
 
     kind: str = "choice"
     weight: float = 1.0
+    key_type = ChoiceKey
 
-    def __init__(self, name: str, prompt: str, options: dict[str, str], correct: str | Iterable[str],
-                 feedback: dict[str, str] | None = None, **kw: Any) -> None:
+    def __init__(self, name: str, prompt: str, options: dict[str, str], **kw: Any) -> None:
         super().__init__(name, prompt, **kw)
-        self.options = dict(options)  # letter -> text
-        self.correct = set(correct) if not isinstance(correct, str) else {correct}
-        self.feedback = dict(feedback or {})
-        if self.reference is None:
-            self.reference = sorted(self.correct)[0]
-        if not self.wrong:  # default: every other option
-            self.wrong = [k for k in self.options if k not in self.correct]
+        self.options = dict(options)  # letter -> text; the correct ones are in the key
+
+    @override
+    def check_key(self, key: AnswerKey) -> None:
+        if isinstance(key, ChoiceKey):
+            unknown = sorted(set(key.correct) - set(self.options))
+            if unknown or not key.correct:
+                raise ValueError(f"the key of {self.title} must name options it has (correct: "
+                                 f"{sorted(key.correct)}, options: {', '.join(self.options)})")
+
+    @property
+    @override
+    def wrong(self) -> list[Any]:
+        """The key's wrong answers, by default every option that is not correct."""
+        key = self.key_as(ChoiceKey, "wrong")
+        return list(key.wrong) or [k for k in self.options if k not in key.correct]
 
     @staticmethod
     def _read(answer: Any) -> int | str:
@@ -92,9 +101,10 @@ class ChoicePart(Part):
         # counted from 1 sees why the verdict is about another option than they meant
         note = (f"(You answered {value}: numbers count the options from 0, so {value} is option "
                 f"({k}); giving the letter is clearer.) " if isinstance(value, int) else "")
-        if k in self.correct:
-            return note + self.feedback.get(k, "Correct.")
-        raise Wrong(note + self.feedback.get(k, "Not this one: reread the section the prompt cites."))
+        key = self.key_as(ChoiceKey)
+        if k in key.correct:
+            return note + key.feedback.get(k, "Correct.")
+        raise Wrong(note + key.feedback.get(k, "Not this one: reread the section the prompt cites."))
 
     def markdown_table(self) -> str:
         """The options as the markdown table the exercise notebook shows."""

@@ -6,8 +6,12 @@ Design (after Kaggle's learntools and otter-grader): every exercise part has ``c
 1. **collect** -- ``part.probes()`` are small functions ``probe(answer) -> plain data`` (numbers,
    float arrays, strings). They are the only code that touches the student's answer, and they
    run in a separate, killable process under a time limit (:mod:`gm_core.checks.sandbox`).
-2. **judge** -- ``part.judge(outcomes)`` compares those plain outcomes with the reference, here,
-   in the checking process. Nothing the student's code does can change the judge.
+2. **judge** -- ``part.judge(outcomes)`` compares those plain outcomes with the part's answer
+   key (:mod:`gm_core.checks.answer_key`), here, in the checking process. Nothing the student's
+   code does can change the judge.
+
+A part holds only what a student may see and what reads the answer; what a right answer is lives
+in its key (``part.key``, provided by :mod:`gm_core.checks.keys`), which the graded build lacks.
 
 The grader (:mod:`gm_grader.batch`) uses the same split: the probes run inside the student's
 notebook kernel at each check call, the judging in the grading process. ``check`` never raises (unless
@@ -20,13 +24,24 @@ from __future__ import annotations
 import copy
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from typing import Any, Literal, NamedTuple, NoReturn, overload
+from typing import Any, ClassVar, Literal, NoReturn, TypeVar, overload
 
 import numpy as np
 import numpy.typing as npt
 from typing_extensions import override
 
 from gm_core.checks import channel, store
+from gm_core.checks.answer_key import (
+    AnswerKey,
+    AnswerKeyHidden,
+    FunctionKey,
+    JudgeKey,
+    Mistake,
+    TupleKey,
+    ValueKey,
+    key_of,
+    keys_installed,
+)
 from gm_core.checks.answers import (
     describe,
     fmt_args,
@@ -51,6 +66,12 @@ from gm_core.checks.sandbox import (
 from gm_core.checks.store import FAILED, PASSED, UNATTEMPTED
 from gm_core.checks.wording import differing_entries
 from gm_core.groups import wrap_angle
+
+K = TypeVar("K", bound=AnswerKey)
+
+#: What a check says in the graded build, which has no keys to judge with.
+SENT_TO_GRADER = ("Sent to the grader: this copy of the course is the graded build, which has no "
+                  "answer keys, so the grader judges your answer after the run.")
 
 
 class Verdict:
@@ -116,29 +137,58 @@ def first_value(outcomes: list[ProbeOutcome], what: str, label: str) -> Any:
 class Part(ABC):
     """One checkable part. Subclasses implement :meth:`probes` and :meth:`judge`.
 
-    Attributes used by the tests: ``reference`` (a correct answer), ``wrong`` (plausible wrong
-    answers), ``starter`` (what the exercise notebook starts with), ``weight`` (grading points).
-    Subclasses default ``reference`` and ``wrong`` from what the part already declares (the
-    reference function, the registered mistakes, the correct option), so a declaration names
-    only what is new.
+    A part declares what a student sees (``prompt``, ``hints``, ``starter``: what the exercise
+    notebook starts with) and its ``weight`` (grading points); its answer key
+    (:attr:`key`, of the part's ``key_type``) says what a right answer is. The tests use the key's
+    ``reference`` (a correct answer) and ``wrong`` (plausible wrong answers), also readable as
+    ``part.reference`` and ``part.wrong``.
     """
 
     kind: str = "numeric"
     weight: float = 2.0
+    #: The kind of answer key this part is judged with.
+    key_type: ClassVar[type[AnswerKey]] = AnswerKey
 
-    def __init__(self, name: str, prompt: str, hints: Sequence[str] = (), solution_text: str = "",
-                 reference: Any = None, wrong: Sequence[Any] = (), starter: Any = None,
+    def __init__(self, name: str, prompt: str, hints: Sequence[str] = (), starter: Any = None,
                  weight: float | None = None) -> None:
         self.name = name
         self.prompt = prompt
         self.hints = list(hints)
-        self.solution_text = solution_text
-        self.reference = reference
-        self.wrong = list(wrong)
         self.starter = starter
         if weight is not None:
             self.weight = float(weight)
         self.exercise: Exercise | None = None  # set by Exercise
+
+    # -- the answer key (absent in the graded build: AnswerKeyHidden, reported to the grader)
+    def key_as(self, kind: type[K], asked: str = "key") -> K:
+        """The part's answer key, checked to be a ``kind``."""
+        key = key_of(self, asked)
+        if not isinstance(key, kind):
+            raise TypeError(f"the key of {self.title} is a {type(key).__name__}, not a {kind.__name__}")
+        return key
+
+    def check_key(self, key: AnswerKey) -> None:  # noqa: B027 - most parts take any key of their kind
+        """Raise ValueError if ``key`` does not fit this part (called by :func:`~.answer_key.provide`)."""
+
+    @property
+    def key(self) -> AnswerKey:
+        """The part's answer key (:mod:`gm_core.checks.answer_key`)."""
+        return self.key_as(self.key_type)
+
+    @property
+    def reference(self) -> Any:
+        """A correct answer, as a student would give it."""
+        return self.key_as(AnswerKey, "reference").correct_answer()
+
+    @property
+    def wrong(self) -> list[Any]:
+        """Plausible wrong answers (the tests try each)."""
+        return list(self.key_as(AnswerKey, "wrong").wrong)
+
+    @property
+    def solution_text(self) -> str:
+        """The key result ``solution()`` shows."""
+        return self.key_as(AnswerKey, "solution()").solution_text
 
     @property
     def id(self) -> str:
@@ -167,6 +217,8 @@ class Part(ABC):
     def verdict(self, outcomes: list[ProbeOutcome], output: str = "") -> Verdict:
         """A Verdict from plain outcomes (used by check() and by the grader). Never raises."""
         try:
+            if not keys_installed():   # the graded build: the grader judges with its own keys
+                return Verdict(UNATTEMPTED, SENT_TO_GRADER, self.title, output)
             if not isinstance(outcomes, list) or len(outcomes) != len(self.probes()):
                 raise Wrong("the check could not evaluate your answer completely.")
             message = self.judge(outcomes)
@@ -252,10 +304,16 @@ class Part(ABC):
             f"\nFull derivation: {self.solution_path()} (the solutions/ folder of the course)"
 
     def solution(self) -> None:
-        """Show the key result and where the worked notebook is (recorded in your progress)."""
+        """Show the key result and where the worked notebook is (recorded in your progress). The
+        graded build has no solutions: it says so (and the grader gives the part no marks)."""
         if self.exercise is not None:
             store.record_solution_view(self.exercise.id, self.name)
-        show("solution", self.title, self.solution_text_full())
+        try:
+            text = self.solution_text_full()
+        except AnswerKeyHidden as exc:
+            show(FAILED, self.title, str(exc))
+            return
+        show("solution", self.title, text)
 
     def _record(self, status: str) -> None:
         # "unattempted" (the starter, or a choice that names no option) never overwrites a
@@ -267,32 +325,24 @@ class Part(ABC):
 class FunctionPart(Part):
     """The answer is a function (or a sympy expression, or a constant) compared with a reference.
 
-    ``ref(*args)`` gives the expected array; ``inputs()`` yields argument tuples. A sympy answer is
-    evaluated with its symbols matched by name to ``sympy_names`` (values ``sympy_args(*args)``).
-    ``mistakes``: ``(wrong_function, message)`` pairs; a message is given only when the answer
-    equals that wrong function on every input checked. ``angles``: output entries compared
-    modulo 2 pi. ``postprocess(out, args)`` normalises a student's output (runs with the probes).
-    ``reference`` defaults to ``ref``; ``wrong`` is every mistake's function plus any further
-    plausible wrong answers given as ``wrong=``.
+    ``inputs()`` yields argument tuples; the key (:class:`~.answer_key.FunctionKey`) gives the
+    expected array ``ref(*args)`` and the known mistakes. A sympy answer is evaluated with its
+    symbols matched by name to ``sympy_names`` (values ``sympy_args(*args)``). ``angles``: output
+    entries compared modulo 2 pi. ``postprocess(out, args)`` normalises a student's output (runs
+    with the probes).
     """
 
     kind = "function"
+    key_type = FunctionKey
 
-    def __init__(self, name: str, prompt: str, ref: Callable[..., npt.ArrayLike],
-                 inputs: Callable[[], Iterable[tuple[Any, ...]]],
+    def __init__(self, name: str, prompt: str, inputs: Callable[[], Iterable[tuple[Any, ...]]],
                  *, arg_names: Sequence[str], shape: tuple[int, ...], rtol: float = 1e-6, atol: float = 1e-8,
-                 mistakes: Sequence[tuple[Callable[..., npt.ArrayLike], str]] = (),
                  postprocess: Callable[[Any, tuple[Any, ...]], Any] | None = None,
                  sympy_names: Sequence[str] | None = None,
                  sympy_args: Callable[..., tuple[Any, ...]] | None = None,
                  sympy_ok: Callable[..., bool] | None = None,
                  angles: Sequence[int] = (), what: str = "your function", **kw: Any) -> None:
-        known = [fn for fn, _ in mistakes]
-        if kw.get("reference") is None:
-            kw["reference"] = ref
-        kw["wrong"] = known + [w for w in kw.get("wrong", ()) if all(w is not k for k in known)]
         super().__init__(name, prompt, **kw)
-        self.ref = ref
         self.inputs = inputs
         self.arg_names = tuple(arg_names)
         self.sympy_names = tuple(sympy_names) if sympy_names is not None else self.arg_names
@@ -300,7 +350,6 @@ class FunctionPart(Part):
         self.sympy_ok = sympy_ok
         self.shape = tuple(shape)
         self.rtol, self.atol = rtol, atol
-        self.mistakes = list(mistakes)
         self.postprocess = postprocess
         self.angles = tuple(angles)
         self.what = what
@@ -369,8 +418,17 @@ class FunctionPart(Part):
         with np.errstate(all="ignore"):
             return ~(np.abs(diff) <= self.atol + self.rtol * np.abs(expected))
 
+    @property
+    def ref(self) -> Callable[..., npt.ArrayLike]:
+        """The reference function of the key."""
+        return self.key_as(FunctionKey, "ref").ref
+
     @override
     def judge(self, outcomes: list[ProbeOutcome]) -> str:
+        return self.judge_with(self.key_as(FunctionKey), outcomes)
+
+    def judge_with(self, key: FunctionKey, outcomes: list[ProbeOutcome]) -> str:
+        """:meth:`judge` with ``key`` (a :class:`TuplePart` judges each component with its own)."""
         all_args = list(self.inputs())
         what = self.what
         got_all: list[Any] = []
@@ -400,11 +458,11 @@ class FunctionPart(Part):
             got_all.append(got)
         if len(outcomes) != len(all_args) or all(g is None for g in got_all):
             raise Wrong("the check could not evaluate your answer on every input.")
-        expected = [np.asarray(self.ref(*a), dtype=float) for a in all_args]
+        expected = [np.asarray(key.ref(*a), dtype=float) for a in all_args]
         bad = [i for i, g in enumerate(got_all) if g is not None and not self.close(g, expected[i])]
         if not bad:
             return self.success
-        for wrong_f, msg in self.mistakes:
+        for wrong_f, msg in key.mistakes:
             if self._matches_everywhere(wrong_f, all_args, got_all):
                 raise Wrong(msg)
         i = bad[0]
@@ -444,14 +502,12 @@ class TuplePart(Part):
     """An answer made of several named components, each judged like a :class:`FunctionPart`."""
 
     kind = "tuple"
+    key_type = TupleKey
 
     def __init__(self, name: str, prompt: str, components: Sequence[tuple[str, FunctionPart]],
-                 extra: Callable[[list[Any]], str | None] | None = None, **kw: Any) -> None:
+                 **kw: Any) -> None:
         super().__init__(name, prompt, **kw)
-        self.components = list(components)  # [(label, FunctionPart)]
-        if self.reference is None:  # default: each component's reference
-            self.reference = tuple(part.reference for _, part in self.components)
-        self.extra = extra  # optional judge(values by component) for a property of the whole
+        self.components = list(components)  # [(label, FunctionPart)]; keys: TupleKey.components
 
     def _values(self, answer: Any) -> list[Any]:
         labels = [lbl for lbl, _ in self.components]
@@ -478,6 +534,12 @@ class TuplePart(Part):
         return values
 
     @override
+    def check_key(self, key: AnswerKey) -> None:
+        if isinstance(key, TupleKey) and len(key.components) != len(self.components):
+            raise ValueError(f"the key of {self.title} has {len(key.components)} components; the "
+                             f"part has {len(self.components)}")
+
+    @override
     def probes(self) -> list[Probe]:
         def probe(i: int, part: FunctionPart, args: tuple[Any, ...]) -> Probe:
             return lambda ans: part.student_value(self._values(ans)[i], args)
@@ -493,11 +555,12 @@ class TuplePart(Part):
         first = outcomes[0]
         if first["k"] != "ok":
             outcome_error(first, "your answer", "no arguments")
+        keys = self.key_as(TupleKey).components
         k = 1
-        for label, part in self.components:
+        for (label, part), key in zip(self.components, keys):
             n = len(list(part.inputs()))
             try:
-                part.judge(outcomes[k:k + n])
+                part.judge_with(key, outcomes[k:k + n])
             except Unattempted:
                 raise Wrong(f"{label}: the function still returns None.") from None
             except Wrong as w:
@@ -507,12 +570,15 @@ class TuplePart(Part):
 
 
 class CustomPart(Part):
-    """A part with its own probes and judge: ``make_probes() -> [probe]``, ``judge(outcomes)``."""
+    """A part with its own probes, ``make_probes() -> [probe]``, judged by its key's own judge
+    (:class:`~.answer_key.JudgeKey`)."""
+
+    key_type = JudgeKey
 
     def __init__(self, name: str, prompt: str, make_probes: Callable[[], list[Probe]],
-                 judge: Callable[[list[ProbeOutcome]], str], kind: str = "custom", **kw: Any) -> None:
+                 kind: str = "custom", **kw: Any) -> None:
         super().__init__(name, prompt, **kw)
-        self._make_probes, self._judge = make_probes, judge
+        self._make_probes = make_probes
         self.kind = kind
 
     @override
@@ -521,18 +587,7 @@ class CustomPart(Part):
 
     @override
     def judge(self, outcomes: list[ProbeOutcome]) -> str:
-        return self._judge(outcomes)
-
-
-class Mistake(NamedTuple):
-    """A plausible wrong value for a :class:`ValuePart` and the message it deserves.
-
-    ``tol``: how close (absolutely) an answer must come to ``value`` to be taken for this mistake;
-    None: the part's own tolerance (``atol + rtol * |value|``)."""
-
-    value: npt.ArrayLike
-    message: str
-    tol: float | None = None
+        return self.key_as(JudgeKey).judge(outcomes)
 
 
 class ValuePart(Part):
@@ -542,37 +597,33 @@ class ValuePart(Part):
         class DiscArea(ValuePart):
             name = "a"
             prompt = "The area of the unit disc (a number)"
-            expected = np.pi
             rtol = 1e-6
-            mistakes = [Mistake(2 * np.pi, "that is the circumference 2 pi r, not the area.")]
             hints = ["The area of a disc of radius r is pi r^2."]
-            solution_text = "pi r^2 = pi for r = 1."
 
         ex9_1 = Exercise("9.1", "Discs", [DiscArea()])
+
+    and its key in the chapter's key module (:mod:`gm_core.checks.keys`)::
+
+        provide(ex9_1, a=ValueKey(expected=np.pi, solution_text="pi r^2 = pi for r = 1.",
+                mistakes=[Mistake(2 * np.pi, "that is the circumference 2 pi r, not the area.")]))
 
     The probe and the judge come from this class. The probe reads the answer as plain numbers:
     the starter value is unattempted; a bool, text, a function or the wrong number of entries gets
     a message saying what was expected (``expects``, ``wrong_size``). The judge passes a value
-    within ``atol + rtol * |expected|`` of ``expected`` (entry by entry for an array) with
-    ``success``; otherwise it raises the message of the first of ``mistakes`` the value is close
-    to, else says how it is off (:meth:`far_message`). A value that is not finite gets
-    ``not_finite``.
+    within ``atol + rtol * |expected|`` of the key's expected value (entry by entry for an array)
+    with ``success`` (or the key's own success message); otherwise it raises the message of the
+    first of the key's mistakes the value is close to, else says how it is off
+    (:meth:`far_message`). A value that is not finite gets ``not_finite``.
 
-    ``reference`` defaults to ``expected`` and ``wrong`` to the mistakes' values; ``kind``,
-    ``weight`` and ``starter`` are those of :class:`Part`. Keyword arguments of the constructor
-    override the class attributes (``DiscArea(weight=1.0)``). A value that is costly to compute
-    (not at import) comes from overriding :meth:`expected_value` (then declare ``reference``);
-    mistakes that depend on it from :meth:`known_mistakes`; messages with numbers in them from
-    :meth:`success_message` and :meth:`far_message`.
+    ``kind``, ``weight`` and ``starter`` are those of :class:`Part`. Keyword arguments of the
+    constructor override the class attributes (``DiscArea(weight=1.0)``).
     """
 
     kind = "number"
-    #: The expected value (a number, or an array of ``shape``); see :meth:`expected_value`.
-    expected: npt.ArrayLike | None = None
+    key_type = ValueKey
     rtol: float = 1e-6
     atol: float = 1e-8
     shape: tuple[int, ...] = ()
-    mistakes: Sequence[Mistake] = ()
     #: What the answer should be, in messages ("one number"); empty: said from ``shape``.
     expects: str = ""
     wrong_size: str = "your answer has {size} numbers (shape {shape}); {expects} was expected."
@@ -580,11 +631,11 @@ class ValuePart(Part):
     success: str = "Correct."
 
     def __init__(self, **overrides: Any) -> None:
-        declarable = ("name", "prompt", "hints", "solution_text", "reference", "wrong", "starter", "weight")
+        declarable = ("name", "prompt", "hints", "starter", "weight")
         unknown = sorted(set(overrides) - set(declarable))
         if unknown:
             raise TypeError(f"{type(self).__name__}() got unexpected arguments {unknown}; declare "
-                            "the rest as class attributes")
+                            "the rest as class attributes, and what a right answer is in its key")
 
         def declared(key: str, default: Any = None) -> Any:
             return overrides[key] if key in overrides else getattr(type(self), key, default)
@@ -592,12 +643,8 @@ class ValuePart(Part):
         name, prompt = declared("name"), declared("prompt")
         if not (isinstance(name, str) and isinstance(prompt, str)):
             raise TypeError(f"{type(self).__name__} must declare a name and a prompt (class attributes)")
-        reference, wrong = declared("reference"), declared("wrong")
-        super().__init__(name, prompt, hints=declared("hints", ()),
-                         solution_text=declared("solution_text", ""),
-                         reference=self.expected if reference is None else reference,
-                         wrong=[m[0] for m in self.mistakes] if wrong is None else wrong,
-                         starter=declared("starter"), weight=declared("weight"))
+        super().__init__(name, prompt, hints=declared("hints", ()), starter=declared("starter"),
+                         weight=declared("weight"))
 
     # -- student side (runs in the sandbox)
     def read(self, answer: Any) -> float | np.ndarray:
@@ -626,14 +673,12 @@ class ValuePart(Part):
         return "one number" if not self.shape else f"an array of shape {self.shape}"
 
     def expected_value(self) -> npt.ArrayLike:
-        """The value a right answer is close to (default: ``expected``)."""
-        if self.expected is None:
-            raise NotImplementedError(f"{type(self).__name__} declares no expected value")
-        return self.expected
+        """The value a right answer is close to (the key's)."""
+        return self.key_as(ValueKey, "expected").expected_value()
 
     def known_mistakes(self, expected: npt.ArrayLike) -> list[Mistake]:
-        """The mistakes tried, in order, on a value that is not close to ``expected``."""
-        return [Mistake(*m) for m in self.mistakes]
+        """The mistakes tried, in order, on a value that is not close to ``expected`` (the key's)."""
+        return self.key_as(ValueKey, "mistakes").known_mistakes(expected)
 
     def close(self, value: npt.ArrayLike, target: npt.ArrayLike, tol: float | None = None) -> bool:
         """``value`` within ``tol`` of ``target`` (default: ``atol + rtol * |target|``), entry by entry."""
@@ -645,8 +690,9 @@ class ValuePart(Part):
             return bool(np.all(np.abs(got - want) <= bound))
 
     def success_message(self, value: float | np.ndarray, expected: npt.ArrayLike) -> str:
-        """The message of a right answer (default: ``success``)."""
-        return self.success
+        """The message of a right answer (the key's, default: ``success``)."""
+        said = self.key_as(ValueKey).success
+        return self.success if said is None else said(value, expected)
 
     def far_message(self, value: float | np.ndarray, expected: npt.ArrayLike) -> str:
         """The message of a value that is neither right nor a known mistake."""
@@ -695,5 +741,5 @@ def rng_inputs(seed: int, n: int, make: Callable[[np.random.Generator], Sequence
     return inputs
 
 
-__all__ = ["Verdict", "Part", "FunctionPart", "TuplePart", "CustomPart", "ValuePart", "Mistake",
-           "outcome_error", "rng_inputs", "probe_rng", "salted"]
+__all__ = ["Verdict", "Part", "FunctionPart", "TuplePart", "CustomPart", "ValuePart",
+           "outcome_error", "rng_inputs", "probe_rng", "salted", "SENT_TO_GRADER"]

@@ -178,6 +178,7 @@ class Withheld(Enum):
     STOPPED = "stopped"              # the check stopped before its probes finished
     UNSERIALISABLE = "unserialisable"
     TOO_LARGE = "too large"
+    KEY_ASKED = "asked for the answer key"   # the notebook asked the graded build for a key
 
 
 @dataclass(frozen=True)
@@ -250,6 +251,8 @@ def decode_evidence(line: bytes | str, *, nonce: str, exercise: str,
     raw = rec["outcomes"]
     if raw == Withheld.STOPPED.value:
         return Evidence(nonce, exercise, part, Withheld.STOPPED, output)
+    if raw == Withheld.KEY_ASKED.value:
+        return Evidence(nonce, exercise, part, Withheld.KEY_ASKED, output)
     if not isinstance(raw, list) or len(raw) != probes[part]:
         raise ProtocolError(f"a record for part {part} with the wrong number of outcomes")
     try:
