@@ -292,6 +292,19 @@ def test_low_re_swimmer_matches_corrected_3_44_for_equal_links():
     assert not np.allclose(connection_from_pfaffian(F_draft), s.connection(r), atol=1e-3)
 
 
+def test_slender_link_drag_is_the_drafts_3_41_to_3_43_at_drag_ratio_2():
+    """Notebook 11's statement: the draft's (3.41)-(3.43), with its overall constant k_d and
+    half-length L, are diag(l, k l, k l^3/12) with l = 2 L and k = 2, times k_d / 2."""
+    from gm_core.systems.fluids import slender_link_drag
+    for L, k_d in [(0.5, 1.0), (0.25, 3.0), (1.3, 0.7)]:
+        ell, xi = sp.symbols("ell xi")
+        draft = [sp.integrate(sp.Rational(1, 2) * k_d * xi, (ell, -L, L)) / xi,     # (3.41)
+                 sp.integrate(k_d * xi, (ell, -L, L)) / xi,                        # (3.42)
+                 sp.integrate(k_d * ell * ell * xi, (ell, -L, L)) / xi]            # (3.43)
+        np.testing.assert_allclose(np.diag([float(d) for d in draft]),
+                                   k_d / 2 * slender_link_drag(2 * L, 2.0), rtol=1e-12)
+
+
 def test_ellipse_added_mass_and_high_re_momentum():
     a, b, rho = 0.5, 0.05, 1.3
     Ma = ellipse_added_mass(a, b, rho)
