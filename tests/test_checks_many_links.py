@@ -81,3 +81,16 @@ def test_adversarial_answers_give_a_verdict_quickly_and_cannot_change_the_judge(
     v = ml.ex5_1.a.check(cheat, quiet=True)
     assert v.status == FAILED and "at least 0.3" in v.message
     assert ml.ex5_1.a.check(travelling_wave(3, 1.2, 1.0), quiet=True).status == PASSED
+
+
+def test_a_negative_lag_swims_the_same_distance_the_other_way():
+    """The check-yourself answer of solutions/ex5_1: the wave with lag -lag is the loop run
+    backwards (g -> g^-1) and mirrored through the straight shape (conjugation by the reflection
+    (x, y, theta) -> (x, -y, -theta)); g(T) has no rotation, so x changes sign and y does not.
+    Checked on the sampled trajectory, a route apart from net_displacement's."""
+    for lag in (0.5, 1.0, 1.6):
+        forward = trajectory(chain_swimmer(4), travelling_wave(3, 1.2, lag), n_frames=401).g[-1]
+        back = trajectory(chain_swimmer(4), travelling_wave(3, 1.2, -lag), n_frames=401).g[-1]
+        assert abs(forward[2]) < 1e-9 and abs(back[2]) < 1e-9, (lag, forward, back)
+        assert abs(forward[0]) > 0.1
+        assert np.allclose(back[:2], [-forward[0], forward[1]], rtol=1e-6, atol=1e-9), (lag, forward, back)
