@@ -16,7 +16,7 @@ PYTEST_ARGS ?=
 # JupyterLab servers and browsers (one per worker that runs a browser test) competing for the cores.
 TEST_WORKERS ?= 2
 
-.PHONY: setup test-tools lab lab-settings test test-kits exercises workspace bench screenshots gradescope kits site clean help
+.PHONY: setup test-tools lab lab-settings test test-kits exercises workspace bench screenshots gradescope kits student-build site clean help
 
 help:
 	@echo "make lab        set up and open JupyterLab on the course (book/00-start-here.ipynb)"
@@ -26,6 +26,7 @@ help:
 	@echo "make screenshots  a PNG of every figure of the course + index.html in build/screenshots/"
 	@echo "make gradescope  the Gradescope autograder zip in build/gradescope/ (EXERCISES=\"1.4 2.1\" for some)"
 	@echo "make kits       otter-grader master notebooks and nbgrader source notebooks in build/kits/"
+	@echo "make student-build  the course without answer keys, for graded students, in build/student/"
 	@echo "make site       the course website, offline, in build/site/_build/html/ (checked in headless Chromium)"
 
 $(PY):
@@ -97,7 +98,12 @@ gradescope: setup
 # otter-grader / nbgrader versions of the exercises (their tools live in .venv-kits, made from PyPI).
 kits: setup
 	$(PY) tools/export_kits.py $(if $(EXERCISES),--exercises $(EXERCISES),)
+	$(PY) tools/student_build.py --out build/kits/student
 	$(PY) tools/venvs.py kits
+
+# The course a graded student installs (otter-grader, nbgrader): no answer keys, no solutions.
+student-build: setup
+	$(PY) tools/student_build.py --wheel
 
 # The website: Jupyter Book 1 in its own .venv-site (PyPI), front-end files from npm (site/), every
 # page executed, built, then opened in headless Chromium with the network blocked (axe-core too).

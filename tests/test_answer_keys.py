@@ -4,7 +4,6 @@ neither judge nor reveal an answer, and tells the grader when a notebook asks.""
 import ast
 import json
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -28,6 +27,8 @@ from gm_core.checks.parts import FunctionPart, TuplePart, rng_inputs
 from gm_core.checks.sandbox import encode
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tools"))
+import student_build  # noqa: E402
 PARTS = [(ex_id, name) for ex_id in exercise_ids() for name in REGISTRY[ex_id].parts]
 
 
@@ -147,10 +148,9 @@ def test_the_graded_build_cannot_judge_or_reveal_and_reports_who_asked(tmp_path)
     """The course without its keys' folder (what the grader's sandbox shows): every part still
     lists its probes, a check says the grader will judge, every key is hidden, and asking
     (here ``solution()``) sends the grader a record saying so."""
-    build = tmp_path / "graded"
-    shutil.copytree(ROOT / "gm_core", build / "gm_core",
-                    ignore=shutil.ignore_patterns("__pycache__", "keys"))
+    build = student_build.build(tmp_path / "student")
     assert not (build / "gm_core" / "checks" / "keys").exists()
+    assert (build / "gm_core" / "checks" / "answer_key.py").exists() and not (build / "solutions").exists()
     env = {**os.environ, "PYTHONPATH": str(build), "MPLBACKEND": "Agg", "GM_CHECKS_NO_FORK": "1"}
     res = subprocess.run([sys.executable, "-c", GRADED_BUILD_SCRIPT], capture_output=True,
                          text=True, env=env, cwd=tmp_path, timeout=300)
@@ -174,3 +174,16 @@ def test_a_keys_defaults_come_from_what_it_declares():
     key = FunctionKey(ref=ref, mistakes=[(w, "sign")], wrong=[w, np.sin])
     assert key.reference is ref and list(key.wrong) == [w, np.sin]
     assert isinstance(JudgeKey(judge=lambda o: "ok").judge([]), str)
+
+
+@pytest.mark.slow
+def test_the_student_wheel_has_no_keys_and_says_so_in_its_version(tmp_path):
+    """`make student-build` (tools/student_build.py --wheel): the wheel a graded student installs
+    holds the course without its answer keys, marked +student."""
+    import zipfile
+    tree = student_build.build(tmp_path)
+    whl = student_build.wheel(tree, tmp_path)
+    names = zipfile.ZipFile(whl).namelist()
+    assert "+student" in whl.name
+    assert "gm_core/checks/answer_key.py" in names and "gm_core/checks/parts.py" in names
+    assert not [n for n in names if n.startswith("gm_core/checks/keys") or "solutions" in n], names

@@ -429,7 +429,10 @@ def test_assignment_leftovers_bad_files_and_no_sandbox(tmp_path):
     for leftover in ("course-update", "Copy1", "Copy of", "checkpoint"):
         assert leftover in r["output"], r["output"]
     assert "homework.ipynb" in r["output"] and "not one of the course's exercise" in r["output"]
-    assert ("Grader note" in r["output"]) != CGROUPS
+    assert ("cgroup could be made" in r["output"]) != CGROUPS
+    # the checkout's answer keys are open to everyone: without the sandbox the notebooks could
+    # read them, and the report says so (the Gradescope kit closes them: test_gradescope_kit)
+    assert "could read the answer keys" in r["output"], r["output"]
 
 
 def test_empty_upload_says_so_and_no_sandbox_means_refusal(tmp_path):

@@ -184,14 +184,18 @@ def provide(exercise: Exercise, **keys: AnswerKey) -> None:
 
 
 def keys_installed() -> bool:
-    """Whether this build of the course has the answer keys (False in the graded build)."""
+    """Whether this build of the course has the answer keys (False in the graded build, where
+    the package is missing, or its folder is empty or unreadable: then Python finds at most a
+    namespace package without a file)."""
     try:
-        importlib.import_module(KEYS_PACKAGE)
+        module = importlib.import_module(KEYS_PACKAGE)
     except ModuleNotFoundError as exc:
         if exc.name is not None and KEYS_PACKAGE.startswith(exc.name):
             return False
         raise
-    return True
+    except PermissionError:
+        return False
+    return getattr(module, "__file__", None) is not None
 
 
 def key_of(part: Part, asked: str = "key") -> AnswerKey:
