@@ -156,19 +156,25 @@ def test_the_repository_is_set_in_one_place_and_every_link_follows(tmp_path):
     sys.path.insert(0, str(ROOT / "tools"))
     import set_repository
 
-    for name in ("pyproject.toml", "README.md", "CITATION.cff"):
+    files = ("pyproject.toml", "README.md", "CITATION.cff", set_repository.START_PAGE)
+    (tmp_path / "book").mkdir()
+    for name in files:
         (tmp_path / name).write_text((ROOT / name).read_text())
     old, _ = set_repository.read(tmp_path)
     changed = set_repository.write("https://github.com/some-university/geomech-2027", "fall27", tmp_path)
-    assert sorted(changed) == ["CITATION.cff", "README.md", "pyproject.toml"]
+    assert sorted(changed) == ["00-start-here.ipynb", "CITATION.cff", "README.md", "pyproject.toml"]
     assert set_repository.read(tmp_path) == ("https://github.com/some-university/geomech-2027", "fall27")
     assert set_repository.problems(tmp_path) == []
     readme = (tmp_path / "README.md").read_text()
     link = "https://mybinder.org/v2/gh/some-university/geomech-2027/fall27?urlpath=lab/tree/book/00-start-here.ipynb"
     assert readme.count(link) == (ROOT / "README.md").read_text().count(set_repository.binder_url("book/00-start-here.ipynb"))
     assert re.search(r"\[!\[[^\]]*Binder[^\]]*\]\([^)]*badge[^)]*\)\]\(" + re.escape(link) + r"\)", readme)
+    start = json.loads((tmp_path / set_repository.START_PAGE).read_text())
+    start_text = "".join(start["cells"][0]["source"])
+    assert f"[Binder]({link})" in start_text, "the start page opens itself on Binder"
+    assert "[course website](https://some-university.github.io/geomech-2027/)" in start_text
     old_path = old.removeprefix("https://github.com/")
-    for name in ("pyproject.toml", "README.md", "CITATION.cff"):
+    for name in files:
         assert old_path not in (tmp_path / name).read_text(), f"{name} still names {old}"
     assert yaml.safe_load((tmp_path / "CITATION.cff").read_text())["repository-code"] == \
         "https://github.com/some-university/geomech-2027"

@@ -4,7 +4,9 @@
 
 The repository and branch live in ``pyproject.toml`` under ``[tool.gm-course]``. From them come
 the Binder badge and launch link of ``README.md`` (which open ``book/00-start-here.ipynb`` in
-JupyterLab), ``repository-code`` of ``CITATION.cff``, and, when the site is built, every page's
+JupyterLab), the start page's own Binder and website links, the website's address (GitHub Pages:
+``https://OWNER.github.io/NAME/``, where ``.github/workflows/site.yml`` publishes it),
+``repository-code`` of ``CITATION.cff``, and, when the site is built, every page's
 "open in JupyterLab on Binder" link, the theme's repository button and the links to files that
 are not pages (``tools/build_site.py`` reads them). This script rewrites the value and the links
 written in files; ``--check`` only reports whether the files agree with it (exit 1 if not).
@@ -27,6 +29,8 @@ GITHUB = re.compile(r"https://github\.com/([A-Za-z0-9][A-Za-z0-9-]{0,38})/([A-Za
 BRANCH = re.compile(r"[A-Za-z0-9][A-Za-z0-9._/-]{0,100}")
 # Binder links written in files (any repository, any branch, any path), and the badge around one.
 BINDER_LINK = re.compile(r"https://mybinder\.org/v2/gh/[^/\s)]+/[^/\s)]+/[^?\s)]+\?urlpath=lab/tree/[^\s)]+")
+# The website's address on GitHub Pages, as written in files.
+SITE_LINK = re.compile(r"https://[A-Za-z0-9-]+\.github\.io/[A-Za-z0-9._-]+/")
 TOOL_TABLE = re.compile(r"(\[tool\.gm-course\]\n(?:#.*\n)*)repository = \"[^\"]*\"\nbranch = \"[^\"]*\"\n")
 CFF_REPO = re.compile(r'^repository-code: "[^"]*"$', re.M)
 
@@ -47,6 +51,16 @@ def binder_url(path: str, root: Path = ROOT, repository: str | None = None, bran
     return f"https://mybinder.org/v2/gh/{m.group(1)}/{m.group(2)}/{branch}?urlpath=lab/tree/{path}"
 
 
+def site_url(root: Path = ROOT, repository: str | None = None) -> str:
+    """The website's address: GitHub Pages of the repository (a project site)."""
+    if repository is None:
+        repository, _ = read(root)
+    m = GITHUB.fullmatch(repository)
+    if not m:
+        raise ValueError(f"repository: a https://github.com/OWNER/NAME address, not {repository!r}")
+    return f"https://{m.group(1).lower()}.github.io/{m.group(2)}/"
+
+
 def file_url(path: str, root: Path = ROOT) -> str:
     """The repository's page of ``path`` (a file the site does not publish)."""
     repository, branch = read(root)
@@ -56,23 +70,28 @@ def file_url(path: str, root: Path = ROOT) -> str:
 def expected(root: Path = ROOT) -> dict[str, list[str]]:
     """{file: the links it must hold} for the current [tool.gm-course]."""
     repository, _ = read(root)
-    return {"README.md": [binder_url(START_PAGE, root)], "CITATION.cff": [f'repository-code: "{repository}"']}
+    start, site = binder_url(START_PAGE, root), site_url(root)
+    return {"README.md": [start, site], START_PAGE: [start, site],
+            "CITATION.cff": [f'repository-code: "{repository}"']}
 
 
 def problems(root: Path = ROOT) -> list[str]:
     """What disagrees with [tool.gm-course]: a missing link, or a Binder link to anything else."""
     out = []
-    start = binder_url(START_PAGE, root)
+    start, site = binder_url(START_PAGE, root), site_url(root)
     for name, needs in expected(root).items():
         text = (root / name).read_text()
         out += [f"{name}: missing {n}" for n in needs if n not in text]
         out += [f"{name}: {link} does not derive from [tool.gm-course]"
                 for link in BINDER_LINK.findall(text) if link != start]
+        out += [f"{name}: {link} does not derive from [tool.gm-course]"
+                for link in SITE_LINK.findall(text) if link != site]
     return out
 
 
 def write(repository: str, branch: str = "main", root: Path = ROOT) -> list[str]:
-    """Set [tool.gm-course] and rewrite the links of README.md and CITATION.cff; return the files changed."""
+    """Set [tool.gm-course] and rewrite the links of README.md, the start page and CITATION.cff;
+    return the files changed."""
     if not isinstance(repository, str) or not GITHUB.fullmatch(repository.rstrip("/")):
         raise ValueError(f"repository: a https://github.com/OWNER/NAME address (Binder builds GitHub "
                          f"repositories), not {repository!r}")
@@ -84,9 +103,9 @@ def write(repository: str, branch: str = "main", root: Path = ROOT) -> list[str]
     if not TOOL_TABLE.search(text):
         raise ValueError("pyproject.toml has no [tool.gm-course] table with repository and branch")
     new = {py: TOOL_TABLE.sub(lambda m: f'{m.group(1)}repository = "{repository}"\nbranch = "{branch}"\n', text, count=1)}
-    start = binder_url(START_PAGE, root, repository, branch)
-    readme = root / "README.md"
-    new[readme] = BINDER_LINK.sub(start, readme.read_text())
+    start, site = binder_url(START_PAGE, root, repository, branch), site_url(root, repository)
+    for page in (root / "README.md", root / START_PAGE):
+        new[page] = SITE_LINK.sub(site, BINDER_LINK.sub(start, page.read_text()))
     cff = root / "CITATION.cff"
     new[cff] = CFF_REPO.sub(f'repository-code: "{repository}"', cff.read_text(), count=1)
     changed = []
