@@ -9,7 +9,7 @@ from scipy.linalg import expm
 
 from gm_core import SE2
 from gm_core.checks.ex1 import ex1_2, ex1_3, ex1_4, ex1_5
-from gm_core.checks.exp_routes import EXP_METHODS, _exp_ref, helix_ref
+from gm_core.checks.keys.ex1 import EXP_METHODS, _exp_ref, helix_ref
 
 pytestmark = pytest.mark.usefixtures("clean")
 
@@ -59,7 +59,7 @@ def test_reference_methods_converge_at_the_expected_rates():
 def test_lifted_action_references_match_finite_differences():
     rng = np.random.default_rng(0)
     for (g,) in ex1_3.b.components[0][1].inputs():
-        refs = [f for _, f in [(lbl, p.ref) for lbl, p in ex1_3.b.components]]
+        refs = [key.ref for key in ex1_3.b.key.components]
         e = SE2.identity()
         assert np.allclose(refs[0](g), SE2.numerical_left_lifted_action(SE2.inverse(g), g), atol=1e-6)
         assert np.allclose(refs[1](g), SE2.numerical_left_lifted_action(g, e), atol=1e-6)

@@ -8,7 +8,7 @@ import sympy as sp
 
 from gm_core import SE2, checks
 from gm_core.checks.exercise import REGISTRY, exercise_ids
-from gm_core.checks.exp_routes import EXP_METHODS, _euler, _taylor
+from gm_core.checks.keys.ex1 import EXP_METHODS, _euler, _taylor
 from gm_core.checks.parts import FunctionPart
 from gm_core.checks.store import FAILED, PASSED, UNATTEMPTED
 
@@ -180,22 +180,23 @@ def test_show_that_parts_check_the_property():
 
 # ------------------------------------------------------------------ every mistake message fires
 MISTAKES = [(ex_id, name, i) for ex_id in exercise_ids() for name, p in REGISTRY[ex_id].parts.items()
-            if isinstance(p, FunctionPart) and p.kind == "function" for i in range(len(p.mistakes))]
+            if isinstance(p, FunctionPart) and p.kind == "function" for i in range(len(p.key.mistakes))]
 
 
 @pytest.mark.parametrize("ex_id,name,i", MISTAKES)
 def test_every_registered_mistake_message_fires_on_its_own_wrong_answer(ex_id, name, i):
     p = REGISTRY[ex_id].parts[name]
-    wrong_f, msg = p.mistakes[i]
+    wrong_f, msg = p.key.mistakes[i]
     v = p.check(wrong_f, quiet=True)
-    earlier = [m for _, m in p.mistakes[:i]]
+    earlier = [m for _, m in p.key.mistakes[:i]]
     assert v.status == FAILED and (v.message == msg or v.message in earlier), (v.message, msg)
 
 
 def test_every_tuple_component_mistake_fires():
     for ex in REGISTRY.values():
         for p in ex.parts.values():
-            for label, comp in getattr(p, "components", []):
+            components = zip(p.components, p.key.components) if hasattr(p, "components") else []
+            for (label, _), comp in components:
                 for wrong_f, msg in comp.mistakes:
                     answer = list(p.reference)
                     answer[[lbl for lbl, _ in p.components].index(label)] = wrong_f

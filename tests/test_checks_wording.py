@@ -12,6 +12,7 @@ from gm_core import checks
 from gm_core.checks.choice import ChoicePart
 from gm_core.checks.exercise import REGISTRY, exercise_ids
 from gm_core.checks.parts import FunctionPart, TuplePart, Verdict
+from gm_core.checks.sandbox import Wrong
 from gm_core.checks.store import FAILED, PASSED
 from gm_core.checks.wording import differing_entries, entry_name, ordinal
 
@@ -54,15 +55,28 @@ def test_an_entry_of_a_higher_array_says_how_it_counts():
 
 
 def _function_parts():
-    """Every FunctionPart of the course with the label its message carries (TuplePart components too)."""
+    """Every FunctionPart of the course with the label its message carries and its key (TuplePart
+    components too, with their keys in the tuple's key)."""
     out = []
     for ex_id in exercise_ids():
         for name, part in REGISTRY[ex_id].parts.items():
             if isinstance(part, FunctionPart):
-                out.append((f"{ex_id}{name}", part))
+                out.append((f"{ex_id}{name}", part, part.key))
             elif isinstance(part, TuplePart):
-                out += [(f"{ex_id}{name} {label}", p) for label, p in part.components]
+                out += [(f"{ex_id}{name} {label}", p, key)
+                        for (label, p), key in zip(part.components, part.key.components)]
     return out
+
+
+def _verdict(part, key, outcomes):
+    """``part.verdict(outcomes)``; a TuplePart's component, which has no key of its own, is judged
+    with ``key`` as its tuple judges it."""
+    if part.exercise is not None:
+        return part.verdict(outcomes)
+    try:
+        return Verdict(PASSED, part.judge_with(key, outcomes), part.title)
+    except Wrong as w:
+        return Verdict(FAILED, str(w), part.title)
 
 
 FUNCTION_PARTS = _function_parts()
@@ -70,20 +84,20 @@ FUNCTION_PARTS = _function_parts()
 
 def test_the_course_has_function_parts_with_arrays():
     assert len(FUNCTION_PARTS) >= 15
-    assert any(len(p.shape) == 2 for _, p in FUNCTION_PARTS) and any(len(p.shape) == 1 for _, p in FUNCTION_PARTS)
+    assert any(len(p.shape) == 2 for _, p, _ in FUNCTION_PARTS) and any(len(p.shape) == 1 for _, p, _ in FUNCTION_PARTS)
 
 
-@pytest.mark.parametrize("label, part", FUNCTION_PARTS, ids=[lbl for lbl, _ in FUNCTION_PARTS])
-def test_a_wrong_last_entry_is_named_in_words(label, part):
+@pytest.mark.parametrize("label, part, key", FUNCTION_PARTS, ids=[lbl for lbl, _, _ in FUNCTION_PARTS])
+def test_a_wrong_last_entry_is_named_in_words(label, part, key):
     """The reference's values with its last entry off by 1, as the sandbox would hand them to the
     judge: the verdict fails and names that entry counted from 1 ("the third entry", "the entry in
     the third row and second column"), never by a 0-based index."""
     outcomes = []
     for args in part.inputs():
-        v = np.array(part.ref(*args), dtype=float)
+        v = np.array(key.ref(*args), dtype=float)
         v.flat[-1] += 1.0
         outcomes.append({"k": "ok", "v": v})
-    verdict = part.verdict(outcomes)
+    verdict = _verdict(part, key, outcomes)
     assert verdict.status == FAILED
     if int(np.prod(part.shape)) > 1 and "different value" in verdict.message:
         last = tuple(s - 1 for s in part.shape)
