@@ -180,15 +180,15 @@ def test_show_that_parts_check_the_property():
 
 # ------------------------------------------------------------------ every mistake message fires
 MISTAKES = [(ex_id, name, i) for ex_id in exercise_ids() for name, p in REGISTRY[ex_id].parts.items()
-            if isinstance(p, FunctionPart) and p.kind == "function" for i in range(len(p.mistakes))]
+            if isinstance(p, FunctionPart) and p.kind == "function" for i in range(len(p.key.mistakes))]
 
 
 @pytest.mark.parametrize("ex_id,name,i", MISTAKES)
 def test_every_registered_mistake_message_fires_on_its_own_wrong_answer(ex_id, name, i):
     p = REGISTRY[ex_id].parts[name]
-    wrong_f, msg = p.mistakes[i]
+    wrong_f, msg = p.key.mistakes[i]
     v = p.check(wrong_f, quiet=True)
-    earlier = [m for _, m in p.mistakes[:i]]
+    earlier = [m for _, m in p.key.mistakes[:i]]
     assert v.status == FAILED and (v.message == msg or v.message in earlier), (v.message, msg)
 
 
