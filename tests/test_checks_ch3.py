@@ -4,8 +4,8 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from gm_core import SE2
-from gm_core.checks import ex3
 from gm_core.checks.ex3 import ex3_1, ex3_3, ex3_4
+from gm_core.checks.keys import ex3
 from gm_core.systems import Ackerman, DifferentialDrive, HighReSwimmer, LowReSwimmer
 from gm_core.systems.connection import connection_from_pfaffian
 from gm_core.systems.fluids import ellipse_added_mass

@@ -125,7 +125,7 @@ def test_arc_bends_the_wrong_way_fires():
 
 
 def test_missing_wheel_radius_is_named():
-    from gm_core.checks.ex3 import ackerman_rear
+    from gm_core.checks.keys.ex3 import ackerman_rear
     assert "wheel radius R" in failed(checks.ex3_3.a, lambda al, R, L: ackerman_rear(al, 1.0, L))
 
 

@@ -29,11 +29,11 @@ def test_registered_with_the_engine():
 
 @pytest.mark.parametrize("part", [curv.ex4_1.a, curv.ex4_1.c, curv.ex4_2.b])
 def test_choice_parts_have_feedback_for_every_option(part):
-    assert part.check(sorted(part.correct)[0], quiet=True).status == PASSED
+    assert part.check(sorted(part.key.correct)[0], quiet=True).status == PASSED
     for k in part.options:
-        if k not in part.correct:
+        if k not in part.key.correct:
             v = part.check(k, quiet=True)
-            assert v.status == FAILED and v.message == part.feedback[k]
+            assert v.status == FAILED and v.message == part.key.feedback[k]
     assert part.check("z", quiet=True).status == UNATTEMPTED       # names no option: not recorded
 
 
@@ -70,7 +70,7 @@ def test_exercise_4_1_numbers_in_the_key():
     assert round(stokes_estimate(mid, C)[0] - stokes_estimate(mid, A)[0], 3) == -0.197
     assert eA < eC < 0                       # both backward; A further: the key of (a)
     assert np.hypot(*net_displacement(mp, A)[:2]) > np.hypot(*net_displacement(mp, C)[:2])
-    assert curv.ex4_1.a.correct == {"c"} and curv.ex4_1.c.correct == {"d"}
+    assert curv.ex4_1.a.key.correct == {"c"} and curv.ex4_1.c.key.correct == {"d"}
 
 
 def test_area_sum_verdicts():

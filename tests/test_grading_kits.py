@@ -147,8 +147,8 @@ def _run(bin_dir, args, cwd, timeout=600):
 
 def _wrong(nb):
     """A plausible wrong 3.2: a wrong letter for part a, the right letter for part b."""
-    right_b = sorted(REGISTRY[EX].parts["b"].correct)[0]
-    wrong_a = sorted(set("abcd") - set(REGISTRY[EX].parts["a"].correct))[0]
+    right_b = sorted(REGISTRY[EX].parts["b"].key.correct)[0]
+    wrong_a = sorted(set("abcd") - set(REGISTRY[EX].parts["a"].key.correct))[0]
     seen = set()
     for cell in nb.cells:
         if cell.cell_type == "code" and cell.source.startswith("answer_a = None"):
