@@ -29,6 +29,7 @@ from gm_core.checks.sandbox import encode
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tools"))
 import student_build  # noqa: E402
+
 PARTS = [(ex_id, name) for ex_id in exercise_ids() for name in REGISTRY[ex_id].parts]
 
 
