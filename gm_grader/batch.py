@@ -421,8 +421,6 @@ def judge(the_plan: Plan, runs: Mapping[Path, RunResult | Fault], assignment: As
         note = _limits_note(ran, settings.sandbox)
         if note:
             lines.insert(0, note)
-        if not settings.sandbox and view.keys_readable_without_sandbox():
-            lines.insert(0, _KEYS_OPEN_NOTE.format(keys=view.keys_dir()))
     rows: list[Row] = []
     for item in the_plan.items:
         if isinstance(item, NotGraded):
@@ -492,21 +490,16 @@ def grade(paths: Sequence[str | Path], out_dir: str | Path,
     return results
 
 
-#: The report's header line when notebooks ran without a sandbox and could read the answer keys.
-_KEYS_OPEN_NOTE = ("Grader note: the notebooks ran without a sandbox (--no-sandbox) and could read "
-                   "the answer keys ({keys}); grade as root with that folder closed to others "
-                   "(chmod -R go-rwx, as the Gradescope kit's setup.sh does), or with the sandbox.")
-
-
 def _limits_note(cgroups: Sequence[Sequence[str]], sandbox: bool) -> str | None:
     """The report's header line when a notebook ran without its own cgroups (else None);
     ``cgroups``: the cgroup controllers each run had."""
     missing = sorted({c for kinds in cgroups for c in ("pids", "memory") if c not in kinds})
     if not missing:
         return None
-    what = {"pids": "its processes were bounded by RLIMIT_NPROC of its own user"
-                    if os.geteuid() == 0 else "its processes were bounded per user (RLIMIT_NPROC), "
-                    "not per notebook",
+    what = {"pids": ("its processes were bounded by RLIMIT_NPROC of the sandbox's own user"
+                     if sandbox else "the number of its processes was not bounded (RLIMIT_NPROC "
+                     "does not hold root)") if os.geteuid() == 0 else "its processes were bounded "
+                    "per user (RLIMIT_NPROC), not per notebook",
             "memory": "its memory was limited per process (RLIMIT_AS), not for the whole tree"}
     end = ("the sandbox's pid namespace still ended every process with it" if sandbox else
            "processes that left the kernel's session may have outlived it")

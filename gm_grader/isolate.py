@@ -18,7 +18,8 @@ The sandbox (``bwrap``, Debian's ``bubblewrap`` package) gives the notebook's ke
   (``pids.max``, the memory limit) wherever this process may create them (cgroup v1 or v2); at the
   end, or at a limit, every process in them is killed and they are removed. Where none can be
   made (``GM_GRADE_NO_CGROUPS=1`` also says so) the sandbox's pid namespace still ends every
-  process with it, but the memory limit is per process: the grader says so in its report.
+  process with it, but the memory limit is per process (and without a sandbox a root grader's
+  processes are not bounded in number): the grader says so in its report.
 
 Evidence comes back on a pipe created here before the sandbox starts and inherited by the
 runner (:mod:`gm_grader.runner`); the grader reads at most ``MAX_EVIDENCE_BYTES`` of it. Nothing the
@@ -27,10 +28,7 @@ sandbox writes anywhere else is read.
 Without bubblewrap (or where user namespaces are forbidden) :func:`sandbox_problem` says why
 and the grader refuses unless told ``--no-sandbox`` (for a container per submission, as on
 Gradescope): then the runner is a plain child process with the same limits and its own process
-group, killed at the end; a root grader still runs it as a fresh uid of its own
-(:func:`gm_grader.view.unsandboxed_identity`), which reads only what others may (not the answer
-keys once their folder is closed, as the Gradescope kit's ``setup.sh`` does) and writes only its
-own scratch folder and the system's ``/tmp``.
+group, killed at the end.
 """
 from __future__ import annotations
 
@@ -319,7 +317,7 @@ def run_submission(notebook: str | Path, *, limits: Limits, sandbox: bool = True
         inbox = view.make_inbox(private)
         name = "submission.ipynb"
         shutil.copyfile(notebook, inbox / name)
-        identity = view.sandbox_identity() if sandbox else view.unsandboxed_identity()
+        identity = view.sandbox_identity() if sandbox else None
         inside = view.INBOX if sandbox else str(inbox)
         fonts = _stage_font_cache(inbox / "mpl")
         rfd, wfd = os.pipe()
@@ -333,15 +331,11 @@ def run_submission(notebook: str | Path, *, limits: Limits, sandbox: bool = True
         for f in inbox.rglob("*"):
             f.chmod(0o755 if f.is_dir() else 0o644)   # the sandbox's user reads them; no one writes
         cmd = [sys.executable, "-m", "gm_grader.runner", f"{inside}/config.json"]
-        if sandbox and identity is not None:
+        if identity is not None:
             etc = view.write_identity_files(private / "etc", identity)
             cmd = view.command(inbox, etc, identity, limits, cmd)
         else:
             (private / "tmp").mkdir()
-            if identity is not None:   # --no-sandbox as root: the notebook runs as its own uid
-                os.chown(private / "tmp", identity.uid, identity.gid)
-                os.chmod(private, 0o711)   # it may pass through to its inbox and tmp, not list
-                cmd = view.dropped(identity, cmd)
         cgroups = _Cgroups(limits, f"gm-grade-{os.getpid()}-{secrets.token_hex(4)}")
         cmd, preexec = _limited(cmd, limits, cgroups,
                                 own_user=identity is not None and identity.drop)

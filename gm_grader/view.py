@@ -259,38 +259,13 @@ def bwrap_args(inbox: Path, etc: tuple[Path, Path], identity: Identity, limits: 
     return args
 
 
-def dropped(identity: Identity, program: Sequence[str]) -> list[str]:
-    """``program`` run as ``identity`` (:data:`DROP` first when the grader is root, else as is)."""
-    drop = ([sys.executable, "-I", "-S", "-c", DROP, str(identity.uid), str(identity.gid)]
-            if identity.drop else [])
-    return [*drop, *program]
-
-
 def command(inbox: Path, etc: tuple[Path, Path], identity: Identity, limits: Limits,
             program: Sequence[str], course: Path | None = None) -> list[str]:
     """The whole command running ``program`` in a sandbox (bwrap, then the drop to the run's
     user when bubblewrap runs as root)."""
-    return ["bwrap", *bwrap_args(inbox, etc, identity, limits, course), "--",
-            *dropped(identity, program)]
-
-
-def unsandboxed_identity() -> Identity | None:
-    """Who a notebook runs as with ``--no-sandbox``: a root grader (a Gradescope container) still
-    drops it to a fresh uid of its own (:data:`DROP`), so it cannot read what only root may (the
-    answer keys once the kit's ``setup.sh`` has closed their folder, the results); a user's grader
-    runs it as that user (None)."""
-    return sandbox_identity() if os.geteuid() == 0 else None
-
-
-def keys_readable_without_sandbox() -> bool:
-    """Whether a notebook run with ``--no-sandbox`` can read the answer keys: always when the
-    grader is not root; as root, unless the keys' folder is closed to others (owned by another
-    user, no read or search bit for others: ``chmod go-rwx``, as the Gradescope kit's setup does).
-    The notebook's fresh uid owns nothing and is in no group."""
-    if os.geteuid() != 0:
-        return True
-    st = keys_dir().stat()
-    return bool(st.st_mode & 0o005)
+    drop = ([sys.executable, "-I", "-S", "-c", DROP, str(identity.uid), str(identity.gid)]
+            if identity.drop else [])
+    return ["bwrap", *bwrap_args(inbox, etc, identity, limits, course), "--", *drop, *program]
 
 
 def make_inbox(private: Path) -> Path:
@@ -341,5 +316,4 @@ def preflight(limits: Limits | None = None, env: dict[str, str] | None = None) -
 
 __all__ = ["Identity", "sandbox_identity", "python_roots", "course_roots", "visible_roots",
            "exposed", "bwrap_args", "command", "make_inbox", "write_identity_files",
-           "preflight", "keys_dir", "NoAnswerKeys", "dropped", "unsandboxed_identity",
-           "keys_readable_without_sandbox", "PKG_PARENT", "INBOX", "DROP", "ETC_KEPT"]
+           "preflight", "keys_dir", "NoAnswerKeys", "PKG_PARENT", "INBOX", "DROP", "ETC_KEPT"]

@@ -16,9 +16,7 @@ The zip holds, at its top (where Gradescope expects them):
 * ``assignment.json``: the exercises the assignment expects (and any weights), handed to the
   grader's ``--assignment``, so a missing notebook still gets its rows with 0 points;
 * ``kit.json``: the grading options. The grader runs with ``--no-sandbox``, as its README says for
-  Gradescope, where every submission has its own container (``--sandbox`` keeps bubblewrap); as
-  root it runs each notebook as a fresh uid of its own, and ``setup.sh`` closes the answer keys'
-  folder to others, so a notebook meets the graded build (no keys) as in the sandbox.
+  Gradescope, where every submission has its own container (``--sandbox`` keeps bubblewrap).
 
 Both scripts take their
 paths from ``GM_AUTOGRADER_ROOT`` (default ``/autograder``) and the Python that makes the venv
@@ -58,13 +56,6 @@ fi
 "$PYTHON" -m venv "$ROOT/gm-venv"
 "$ROOT/gm-venv/bin/python" -m pip install --quiet --disable-pip-version-check "$SRC/course[grader]"
 "$ROOT/gm-venv/bin/python" -c "import gm_core, gm_grader, nbclient; print('gm-course installed:', gm_core.__file__)"
-# The answer keys are for the grader only: the grader (root) runs each notebook as a fresh uid,
-# which cannot open a folder closed to others, so inside a notebook the course is the graded build.
-if [ "$(id -u)" = 0 ]; then
-  KEYS="$("$ROOT/gm-venv/bin/python" -c "from gm_grader.view import keys_dir; print(keys_dir())")"
-  chmod -R go-rwx "$KEYS"
-  echo "answer keys closed to the notebooks: $KEYS"
-fi
 """
 
 RUN_AUTOGRADER = r"""#!/usr/bin/env bash
