@@ -81,3 +81,52 @@ def test_chapter_title_is_numbered_like_the_others(path):
     heading = first.source.splitlines()[0] if first.cell_type == "markdown" and first.source else ""
     number = int(path.name[:2])
     assert re.fullmatch(rf"# {number} · \S.*", heading), f"{path.name} opens with {heading!r}"
+
+
+def display_math_inside_paragraphs(text):
+    """The ``$$...$$`` formulas of ``text`` (code removed) that share a paragraph with prose: the
+    website's MyST parser reads a display formula only as a paragraph of its own (a blank line
+    before and after), and then mis-pairs every ``$`` after it; JupyterLab renders either form."""
+    text = _COMMENT.sub("", _INLINE_CODE.sub("", _FENCED.sub("", text)))
+    bad = []
+    for m in re.finditer(r"\$\$.+?\$\$", text, re.S):
+        before, after = text[:m.start()], text[m.end():]
+        alone_before = before == "" or before.endswith("\n\n") or before.rstrip(" ").endswith("\n\n")
+        alone_after = after.strip(" ") == "" or after.lstrip(" ").startswith("\n\n") \
+            or after.lstrip(" ") == "\n"
+        if not (alone_before and alone_after):
+            bad.append(m.group()[:60])
+    return bad
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_display_math_stands_in_its_own_paragraph(path):
+    nb = nbformat.read(path, as_version=4)
+    found = [f"cell {i}: {f!r}" for i, cell in enumerate(nb.cells) if cell.cell_type == "markdown"
+             for f in display_math_inside_paragraphs(cell.source)]
+    assert not found, (f"{path.relative_to(ROOT)}: put a blank line before and after each $$...$$ "
+                       "(the website shows the rest of the paragraph as raw TeX otherwise):\n"
+                       + "\n".join(found))
+
+
+@pytest.mark.parametrize("text, bad", [
+    ("so\n\n$$a = b$$\n\nthen", []),
+    ("$$a = b$$", []),
+    ("so\n$$a = b$$\nthen", ["$$a = b$$"]),
+    ("so\n\n$$a\n= b$$\nthen", ["$$a\n= b$$"]),
+    ("code `$$x$$` inline", []),
+])
+def test_the_display_math_scanner_itself(text, bad):
+    assert display_math_inside_paragraphs(text) == bad
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_page_titles_hold_no_math(path):
+    """A notebook's title (its ``# `` heading) is also its entry in the website's side bar on every
+    page and the browser tab's title, and pages without formulas load no MathJax: there
+    ``$\\mathbb{R}$`` would show raw. Titles use plain Unicode (ℝ⁺, ×, ξ)."""
+    nb = nbformat.read(path, as_version=4)
+    found = [line for cell in nb.cells if cell.cell_type == "markdown"
+             for line in _FENCED.sub("", cell.source).splitlines()
+             if line.startswith("# ") and _MATH.search(line)]
+    assert not found, f"{path.relative_to(ROOT)}: math in the title: {found}"
