@@ -109,6 +109,7 @@ def gradescope(tmp_path_factory):
     return results
 
 
+@pytest.mark.xdist_group("gradescope")   # one worker builds the autograder folder and grades once
 @pytest.mark.parametrize("ex", EXERCISES)
 def test_gradescope_grades_solution_full_and_starter_zero(ex, gradescope):
     def score(name):
