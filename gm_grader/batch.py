@@ -73,7 +73,7 @@ from gm_grader import probe, view
 from gm_grader import report as _report
 from gm_grader.clock import check_caps
 from gm_grader.evidence import Summary, collect, decide, summarise
-from gm_grader.isolate import RunResult, run_submission, sandbox_problem, startup_fault
+from gm_grader.isolate import RunResult, run_env, run_submission, sandbox_problem, startup_fault
 from gm_grader.staging import MAX_NOTEBOOK_BYTES, Upload, leftover_reason, stage
 
 _EXACT = re.compile(r"ex(\d+)_(\d+)\.ipynb")
@@ -325,8 +325,14 @@ def run(the_plan: Plan, settings: GradeSettings) -> dict[Path, Ran | Fault]:
     checked answers in another, ``settings.jobs`` notebooks at a time: {path: what the runs
     brought back, or the grader's failure to run them}."""
     done: dict[Path, Ran | Fault] = {}
+    own_user = False
+    if not settings.sandbox and the_plan.runs:
+        own_user, note = view.unsandboxed_user(run_env("/tmp"))
+        if note:
+            print(f"gm-grade: warning: {note}", file=sys.stderr)
     with ThreadPoolExecutor(max_workers=max(1, int(settings.jobs))) as pool:
-        futures = {pool.submit(_run_one, item, settings): item.path for item in the_plan.runs}
+        futures = {pool.submit(_run_one, item, settings, own_user): item.path
+                   for item in the_plan.runs}
         for fut, path in futures.items():
             try:
                 done[path] = fut.result()
@@ -335,12 +341,13 @@ def run(the_plan: Plan, settings: GradeSettings) -> dict[Path, Ran | Fault]:
     return done
 
 
-def _run_one(item: ToRun, settings: GradeSettings) -> Ran | Fault:
+def _run_one(item: ToRun, settings: GradeSettings, own_user: bool = False) -> Ran | Fault:
     """The notebook's run, then (the notebook over, however it ended) the grader's calls of the
     answers it carried, on probe inputs of a salt drawn now (:mod:`gm_grader.probe`)."""
     ex, limits = REGISTRY[item.exercise], settings.limits
     caps = check_caps(ex, limits.time_limit)
-    first = run_submission(item.path, limits=limits, sandbox=settings.sandbox, caps=caps)
+    first = run_submission(item.path, limits=limits, sandbox=settings.sandbox, caps=caps,
+                           own_user=own_user)
     fault = startup_fault(first)
     if fault:
         return Fault(fault)
@@ -353,7 +360,7 @@ def _run_one(item: ToRun, settings: GradeSettings) -> Ran | Fault:
         path = folder / "calls.ipynb"
         path.write_text(json.dumps(nb), encoding="utf-8")
         calls = run_submission(path, limits=limits, sandbox=settings.sandbox, caps=caps,
-                               salt=secrets.randbits(62))
+                               salt=secrets.randbits(62), own_user=own_user)
     finally:
         shutil.rmtree(folder, ignore_errors=True)
     fault = startup_fault(calls)

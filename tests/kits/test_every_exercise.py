@@ -101,7 +101,7 @@ def gradescope(tmp_path_factory):
         for ex in EXERCISES:
             shutil.copyfile(folder / f"{_stem(ex)}.ipynb", sub / f"{_stem(ex)}.ipynb")
         env = {k: v for k, v in os.environ.items() if k not in {"PYTHONPATH", "VIRTUAL_ENV"}}
-        env.update(GM_AUTOGRADER_ROOT=str(root), GM_AUTOGRADER_PYTHON=sys.executable)
+        env.update(GM_AUTOGRADER_ROOT=str(root), GM_AUTOGRADER_PYTHON=venvs.AUTOGRADER_PYTHON)
         run = subprocess.run([str(root / "source" / "run_autograder")], cwd=root, env=env,
                              capture_output=True, text=True, timeout=3600)
         assert run.returncode == 0, run.stderr[-3000:]
