@@ -75,7 +75,7 @@ test: setup test-tools
 # Every exercise through every grading kit (otter-grader, nbgrader, Gradescope), as each
 # instructor's tool runs it: tests/kits/, collected only here (each tool runs every notebook).
 test-kits: setup test-tools
-	GM_TEST_KITS=1 env -u PYTHONDONTWRITEBYTECODE $(PY) -m pytest -n 2 tests/kits
+	GM_TEST_KITS=1 env -u PYTHONDONTWRITEBYTECODE $(PY) -m pytest -n 2 --dist loadgroup tests/kits
 
 exercises: setup
 	$(PY) tools/make_exercises.py

@@ -13,12 +13,16 @@ exercise notebook ``exN_M.ipynb`` in it:
    by cell in a fresh kernel (:mod:`gm_grader.runner`), each cell under ``--cell-timeout`` seconds not
    counting its checks' probes, each probe under ``--time-limit`` seconds as in the student's own
    kernel, the whole notebook under ``--notebook-timeout``;
-2. every ``check(...)`` call the notebook makes sends, **at the moment it is called**, the plain
-   outcomes of that part's probes on a pipe opened before the student's first cell
-   (:mod:`gm_core.checks.channel`), with this run's secret; the probe inputs are salted per run;
-3. every part is **judged here**, in the grading process, by its untouched checkers, from the
-   last accepted check call of that part (:mod:`gm_grader.evidence`); malformed, forged-looking or
-   unverifiable evidence is rejected and reported, never passed.
+2. every ``check(...)`` call the notebook makes sends, **at the moment it is called**, on a pipe
+   opened before the student's first cell (:mod:`gm_core.checks.channel`, with this run's
+   secret), the outcomes of that part's probes -- the student's feedback, weighing nothing --
+   and the answer itself as it was then, pickled by value;
+3. once the notebook has ended (however it ended), the grader draws new probe inputs and calls
+   the last checked answer of every part **in a fresh sandbox of its own**, holding nothing of
+   the submission but those answers (:mod:`gm_grader.probe`), and every part is **judged here**,
+   in the grading process, by its untouched checkers, from the plain outcomes of those calls
+   (:mod:`gm_grader.evidence`); malformed, forged-looking or unverifiable evidence is rejected
+   and reported, never passed.
 
 Outputs: ``DIR/results.json`` (Gradescope's format: relative test names, ``visibility``) and
 ``DIR/grades.csv``, one row per notebook and part, both written atomically by this process after
@@ -65,11 +69,11 @@ from gm_core.checks.exercise import REGISTRY, exercise_ids
 from gm_core.checks.parts import Part
 from gm_core.checks.protocol import Limits
 from gm_core.checks.store import FAILED, PASSED
+from gm_grader import probe, view
 from gm_grader import report as _report
-from gm_grader import view
 from gm_grader.clock import check_caps
-from gm_grader.evidence import summarise
-from gm_grader.isolate import RunResult, run_submission, sandbox_problem, startup_fault
+from gm_grader.evidence import Summary, collect, decide, summarise
+from gm_grader.isolate import RunResult, run_env, run_submission, sandbox_problem, startup_fault
 from gm_grader.staging import MAX_NOTEBOOK_BYTES, Upload, leftover_reason, stage
 
 _EXACT = re.compile(r"ex(\d+)_(\d+)\.ipynb")
@@ -99,6 +103,16 @@ class Fault:
     """The grader's own failure on one notebook: not the student's doing."""
 
     cause: str
+
+
+@dataclass(frozen=True)
+class Ran:
+    """One notebook's two sandboxed runs: the notebook itself, and the grader's own calls of the
+    answers its checks carried (:mod:`gm_grader.probe`; None when no part carried one)."""
+
+    notebook: RunResult
+    calls: RunResult | None = None
+    call_sources: Mapping[int, str] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -306,26 +320,53 @@ def plan(uploads: Sequence[Upload], assignment: Assignment) -> Plan:
 
 
 # ------------------------------------------------------------------------------ run
-def run(the_plan: Plan, settings: GradeSettings) -> dict[Path, RunResult | Fault]:
-    """Run every readable notebook of the plan in its sandbox, ``settings.jobs`` at a time:
-    {path: what its run brought back, or the grader's failure to run it}."""
-    salt = secrets.randbits(62)
-    limits = settings.limits
-    done: dict[Path, RunResult | Fault] = {}
+def run(the_plan: Plan, settings: GradeSettings) -> dict[Path, Ran | Fault]:
+    """Run every readable notebook of the plan in its sandbox, then the grader's own calls of its
+    checked answers in another, ``settings.jobs`` notebooks at a time: {path: what the runs
+    brought back, or the grader's failure to run them}."""
+    done: dict[Path, Ran | Fault] = {}
+    own_user = False
+    if not settings.sandbox and the_plan.runs:
+        own_user, note = view.unsandboxed_user(run_env("/tmp"))
+        if note:
+            print(f"gm-grade: warning: {note}", file=sys.stderr)
     with ThreadPoolExecutor(max_workers=max(1, int(settings.jobs))) as pool:
-        futures = {pool.submit(run_submission, item.path, limits=limits, sandbox=settings.sandbox,
-                               salt=salt,
-                               caps=check_caps(REGISTRY[item.exercise], limits.time_limit)): item.path
+        futures = {pool.submit(_run_one, item, settings, own_user): item.path
                    for item in the_plan.runs}
         for fut, path in futures.items():
             try:
-                result = fut.result()
+                done[path] = fut.result()
             except Exception as exc:  # noqa: BLE001 - the grader's own failure: said, not hidden
                 done[path] = Fault(f"the grader could not run it ({type(exc).__name__}: {exc})"[:300])
-                continue
-            fault = startup_fault(result)
-            done[path] = Fault(fault) if fault else result
     return done
+
+
+def _run_one(item: ToRun, settings: GradeSettings, own_user: bool = False) -> Ran | Fault:
+    """The notebook's run, then (the notebook over, however it ended) the grader's calls of the
+    answers it carried, on probe inputs of a salt drawn now (:mod:`gm_grader.probe`)."""
+    ex, limits = REGISTRY[item.exercise], settings.limits
+    caps = check_caps(ex, limits.time_limit)
+    first = run_submission(item.path, limits=limits, sandbox=settings.sandbox, caps=caps,
+                           own_user=own_user)
+    fault = startup_fault(first)
+    if fault:
+        return Fault(fault)
+    answers = collect(first, ex).answers()
+    if not answers:
+        return Ran(first)
+    nb = probe.notebook(ex.id, answers)
+    folder = Path(tempfile.mkdtemp(prefix="gm-calls-"))
+    try:
+        path = folder / "calls.ipynb"
+        path.write_text(json.dumps(nb), encoding="utf-8")
+        calls = run_submission(path, limits=limits, sandbox=settings.sandbox, caps=caps,
+                               salt=secrets.randbits(62), own_user=own_user)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    fault = startup_fault(calls)
+    if fault:
+        return Fault(f"the grader's own calls of the answers did not run: {fault}")
+    return Ran(first, calls, _sources(nb))
 
 
 # ------------------------------------------------------------------------------ judge
@@ -354,10 +395,10 @@ def _sources(notebook: Notebook) -> dict[int, str]:
     return sources
 
 
-def _judge_one(item: ToRun, result: RunResult | Fault | None, assignment: Assignment,
+def _judge_one(item: ToRun, result: Ran | Fault | None, assignment: Assignment,
                weights: Mapping[str, float], lines: list[str], faults: list[str]) -> list[Row]:
     ex_id, rel = item.exercise, item.rel
-    if isinstance(result, RunResult) and item.notebook is not None:
+    if isinstance(result, Ran) and item.notebook is not None:
         try:
             return _judged(item, result, assignment, weights, lines)
         except Exception as exc:  # noqa: BLE001 - the grader's own failure: said, not hidden
@@ -378,16 +419,23 @@ def _noted(msg: str, note: str) -> str:
     return f"{msg} (Note: {note}.)" if note else msg
 
 
-def _judged(item: ToRun, result: RunResult, assignment: Assignment,
+def _summarised(run: RunResult, ex_id: str, sources: Mapping[int, str]) -> Summary:
+    """``run`` judged here on the probe inputs of its salt."""
+    old = channel.probe_salt()
+    try:
+        channel.set_probe_salt(run.salt)
+        return summarise(run, REGISTRY[ex_id], sources)
+    finally:
+        channel.set_probe_salt(old)
+
+
+def _judged(item: ToRun, result: Ran, assignment: Assignment,
             weights: Mapping[str, float], lines: list[str]) -> list[Row]:
     ex_id, rel = item.exercise, item.rel
     assert item.notebook is not None
-    old = channel.probe_salt()
-    try:
-        channel.set_probe_salt(result.salt)
-        summary = summarise(result, REGISTRY[ex_id], _sources(item.notebook))
-    finally:
-        channel.set_probe_salt(old)
+    summary = decide(REGISTRY[ex_id], _summarised(result.notebook, ex_id, _sources(item.notebook)),
+                     None if result.calls is None else
+                     _summarised(result.calls, ex_id, result.call_sources))
     if summary.problem:
         lines.append(f"{rel}: {summary.problem}")
     notes = summary.notes
@@ -409,14 +457,14 @@ def _failed_with(message: str) -> Callable[[str, Part], tuple[str, str]]:
     return lambda name, part: (FAILED, message)
 
 
-def judge(the_plan: Plan, runs: Mapping[Path, RunResult | Fault], assignment: Assignment,
+def judge(the_plan: Plan, runs: Mapping[Path, Ran | Fault], assignment: Assignment,
           weights: Mapping[str, float], settings: GradeSettings,
           faults: list[str] | None = None) -> tuple[list[Row], list[str]]:
     """The report's rows, in the plan's order, and its overall lines; the grader's own failures
     are added to ``faults`` (and said in the lines and the rows: never the student's)."""
     faults = [] if faults is None else faults
     lines = list(the_plan.notes)
-    ran = [r.cgroups for r in runs.values() if isinstance(r, RunResult)]
+    ran = [r.notebook.cgroups for r in runs.values() if isinstance(r, Ran)]
     if ran:
         note = _limits_note(ran, settings.sandbox)
         if note:
@@ -573,5 +621,5 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 __all__ = ["grade", "plan", "run", "judge", "main", "identify", "leftover_reason",
-           "load_assignment", "SandboxUnavailable", "GraderFaults", "Fault", "GradeSettings",
+           "load_assignment", "SandboxUnavailable", "GraderFaults", "Fault", "Ran", "GradeSettings",
            "Assignment", "Plan", "ToRun", "Missing", "NotGraded", "MAX_NOTEBOOK_BYTES"]

@@ -8,8 +8,12 @@ value of plain numbers/text (arrays with a consistent shape). Anything else is c
 *rejected* and reported. The judge then runs here, on the grader's own checkers, with the probe
 inputs of this run (the salt the kernel was given).
 
-The last accepted check call of a part decides it (as the student's own last check did); a part
-with no accepted call gets a message saying why (never checked, or the notebook stopped first).
+The last accepted check call of a part names its answer (as the student's own last check did);
+its outcomes are the student's feedback and weigh nothing. What decides the part is the grader's
+own call of that answer after the notebook has ended, on inputs drawn then, in a fresh sandbox
+(:mod:`gm_grader.probe`): :func:`decide` takes each part's verdict from that run and the
+notebook's run only for where the part was checked and why a part has no answer. A part with no
+accepted call gets a message saying why (never checked, or the notebook stopped first).
 A part whose answer key the notebook asked for (``.reference``, ``.solution()``...: the graded
 build has none, :mod:`gm_core.checks.answer_key`) gets no marks, whatever its checks sent, and
 its row says where it asked.
@@ -88,6 +92,9 @@ class Summary:
     problem: str = ""
     notes: tuple[str, ...] = ()
     sources: Mapping[int, str] = field(default_factory=dict)
+    #: each part's last accepted evidence (its carried answer), and the parts that asked for a key
+    checked: Mapping[str, Evidence] = field(default_factory=dict)
+    asked: frozenset[str] = frozenset()
 
     def where(self, i: int | None) -> str:
         """A cell named for the reader: its number and its first line."""
@@ -96,17 +103,27 @@ class Summary:
         return f"cell {i + 1} (`{_snippet(self.sources.get(i, ''))}`)"
 
 
-def summarise(run: RunResult, ex: Exercise, sources: Mapping[int, str]) -> Summary:
-    """Every part of ``ex`` judged from one run, with the run's problem and notes.
+@dataclass(frozen=True)
+class Collected:
+    """A run's accepted evidence, parsed and not judged: each part's last check call (and its
+    cell), the first request for each part's answer key, and the rejected lines by reason."""
 
-    ``sources`` maps cell indices to their source (to name a cell by its first line)."""
+    latest: dict[str, tuple[Evidence, int | None]]
+    asked: dict[str, tuple[str, int | None]]
+    rejected: dict[str, int]
+
+    def answers(self) -> dict[str, str]:
+        """{part: carried answer} of the parts whose last check carried one (none that asked for
+        its key: such a part gets no marks whatever it sends)."""
+        return {name: ev.answer for name, (ev, _) in self.latest.items()
+                if ev.answer and name not in self.asked}
+
+
+def collect(run: RunResult, ex: Exercise) -> Collected:
+    """Parse every evidence line of ``run`` for ``ex`` (no judging: safe in any thread)."""
     latest: dict[str, tuple[Evidence, int | None]] = {}
     asked: dict[str, tuple[str, int | None]] = {}
     rejected: dict[str, int] = {}
-    cells: dict[int, CellEnded] = {}
-    problem, notes = "", []
-    running: int | None = None
-    fatal = done = False
     for r in run.records:
         if isinstance(r, EvidenceLine):
             try:
@@ -120,7 +137,21 @@ def summarise(run: RunResult, ex: Exercise, sources: Mapping[int, str]) -> Summa
                 asked.setdefault(ev.part, (ev.output, r.cell))
                 continue
             latest[ev.part] = (ev, r.cell)
-        elif isinstance(r, CellStarted):
+    return Collected(latest, asked, rejected)
+
+
+def summarise(run: RunResult, ex: Exercise, sources: Mapping[int, str]) -> Summary:
+    """Every part of ``ex`` judged from one run's outcomes, with the run's problem and notes.
+
+    ``sources`` maps cell indices to their source (to name a cell by its first line)."""
+    got = collect(run, ex)
+    latest, asked, rejected = got.latest, got.asked, got.rejected
+    cells: dict[int, CellEnded] = {}
+    problem, notes = "", []
+    running: int | None = None
+    fatal = done = False
+    for r in run.records:
+        if isinstance(r, CellStarted):
             running = r.index
         elif isinstance(r, CellEnded):
             cells[r.index] = r
@@ -179,7 +210,43 @@ def summarise(run: RunResult, ex: Exercise, sources: Mapping[int, str]) -> Summa
                    f"no check of this part ran in the notebook (call ex{ex.id.replace('.', '_')}."
                    f"{name}.check(...) in a cell, and run it)")
             parts[name] = PartResult(Verdict(FAILED, msg, part.title), None)
-    return Summary(parts, problem, tuple(notes), sources)
+    return Summary(parts, problem, tuple(notes), sources,
+                   {name: ev for name, (ev, _) in latest.items()}, frozenset(asked))
 
 
-__all__ = ["parse_line", "judge_part", "summarise", "Summary", "PartResult"]
+def decide(ex: Exercise, notebook: Summary, calls: Summary | None) -> Summary:
+    """The grade of every part: from ``calls`` (the grader's own calls of the carried answers,
+    :mod:`gm_grader.probe`; None when no part carried one), never from the outcomes the notebook
+    sent. The notebook's run still says where each part was checked, why a part has no answer
+    (never checked, stopped first, asked for its key) and what the notebook did that the grader
+    flags."""
+    parts = dict(notebook.parts)
+    notes = list(notebook.notes)
+    if calls is not None and calls.problem:
+        notes.append(f"the grader's own calls of your answers were cut short: {calls.problem}")
+    for name, part in ex.parts.items():
+        ev = notebook.checked.get(name)
+        if name in notebook.asked or ev is None:
+            continue                          # no marks, and the notebook's run says why
+        cell = parts[name].cell
+        if not ev.answer:
+            why = ev.unsent or "the check stopped before it could send it"
+            msg = (f"your answer could not be handed to the grader: {why}. Define it from "
+                   "numbers, arrays and functions only, then check it again")
+            parts[name] = PartResult(Verdict(FAILED, msg, part.title), cell)
+            continue
+        final = calls.checked.get(name) if calls is not None else None
+        if calls is None or final is None:
+            msg = ("the grader's own call of your answer did not finish"
+                   + (f" ({calls.problem})" if calls is not None and calls.problem else ""))
+            parts[name] = PartResult(Verdict(FAILED, msg, part.title), cell)
+        elif final.stopped and final.output:
+            parts[name] = PartResult(Verdict(FAILED, final.output, part.title), cell)
+        else:                                 # judged by summarise, on the calls' inputs
+            parts[name] = PartResult(calls.parts[name].verdict, cell)
+    return Summary(parts, notebook.problem, tuple(notes), notebook.sources, notebook.checked,
+                   notebook.asked)
+
+
+__all__ = ["parse_line", "judge_part", "collect", "Collected", "summarise", "decide", "Summary",
+           "PartResult"]

@@ -232,7 +232,8 @@ class _Cgroups:
 
 
 # ------------------------------------------------------------------------------ one run
-def _env(home: str) -> dict[str, str]:
+def run_env(home: str) -> dict[str, str]:
+    """The environment of a graded run whose writable folders are under ``home``."""
     keep = {k: v for k, v in os.environ.items() if k in ("PATH", "LANG", "LC_ALL", "TZ")}
     pp = [str(view.PKG_PARENT)]
     return {**keep, "PYTHONPATH": os.pathsep.join(pp), "HOME": f"{home}/home",
@@ -298,9 +299,12 @@ class _OuterClock:
 
 def run_submission(notebook: str | Path, *, limits: Limits, sandbox: bool = True,
                    nonce: str | None = None, salt: int | None = None,
-                   caps: Mapping[str, float] | None = None) -> RunResult:
+                   caps: Mapping[str, float] | None = None, own_user: bool = False) -> RunResult:
     """Run ``notebook`` (a staged copy: a plain file of the grader's) in its sandbox; return what
     it brought back.
+
+    ``own_user`` (without a sandbox, a root grader): run it as a fresh uid of its own
+    (:func:`gm_grader.view.unsandboxed_user` says whether that works here).
 
     ``caps``: {"<exercise>/<part>": seconds} the longest honest check of each part may take
     (:func:`gm_grader.clock.check_caps`), credited on the cell clocks."""
@@ -317,7 +321,7 @@ def run_submission(notebook: str | Path, *, limits: Limits, sandbox: bool = True
         inbox = view.make_inbox(private)
         name = "submission.ipynb"
         shutil.copyfile(notebook, inbox / name)
-        identity = view.sandbox_identity() if sandbox else None
+        identity = view.sandbox_identity() if sandbox or own_user else None
         inside = view.INBOX if sandbox else str(inbox)
         fonts = _stage_font_cache(inbox / "mpl")
         rfd, wfd = os.pipe()
@@ -331,18 +335,22 @@ def run_submission(notebook: str | Path, *, limits: Limits, sandbox: bool = True
         for f in inbox.rglob("*"):
             f.chmod(0o755 if f.is_dir() else 0o644)   # the sandbox's user reads them; no one writes
         cmd = [sys.executable, "-m", "gm_grader.runner", f"{inside}/config.json"]
-        if identity is not None:
+        if sandbox and identity is not None:
             etc = view.write_identity_files(private / "etc", identity)
             cmd = view.command(inbox, etc, identity, limits, cmd)
         else:
             (private / "tmp").mkdir()
+            if identity is not None:     # no sandbox: the run's own user, in its own /tmp only
+                os.chmod(private, 0o711)
+                os.chown(private / "tmp", identity.uid, identity.gid)
+                cmd = view.dropped(identity, cmd)
         cgroups = _Cgroups(limits, f"gm-grade-{os.getpid()}-{secrets.token_hex(4)}")
         cmd, preexec = _limited(cmd, limits, cgroups,
                                 own_user=identity is not None and identity.drop)
         started = time.monotonic()
         outer = _OuterClock(limits, caps, started)
         proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                                stderr=subprocess.STDOUT, pass_fds=(wfd,), env=_env(scratch),
+                                stderr=subprocess.STDOUT, pass_fds=(wfd,), env=run_env(scratch),
                                 cwd=str(private if not sandbox else "/"), preexec_fn=preexec,
                                 start_new_session=True)
         os.close(wfd)

@@ -218,12 +218,15 @@ def _copy_font_cache(src: str, dst: str) -> None:
 
 
 def _setup_source(wfd: int, config: RunnerConfig) -> str:
-    """The hidden first cell: bind the kernel's end of the evidence pipe, set the per-call limit."""
+    """The hidden first cell: bind the kernel's end of the evidence pipe (answers carried by
+    :func:`gm_grader.probe.dumps`), set the per-call limit."""
     limit = config.limits.time_limit
     return ("import gm_core.checks.channel as __gm_grading, gm_core.checks.sandbox as __gm_sandbox\n"
-            f"__gm_grading.open_channel({wfd}, {config.nonce!r}, {config.salt!r}, {limit!r})\n"
+            "import gm_grader.probe as __gm_probe\n"
+            f"__gm_grading.open_channel({wfd}, {config.nonce!r}, {config.salt!r}, {limit!r}, "
+            "__gm_probe.dumps)\n"
             f"__gm_sandbox.set_time_limit({limit!r})\n"
-            "del __gm_grading, __gm_sandbox")
+            "del __gm_grading, __gm_sandbox, __gm_probe")
 
 
 def run(config: RunnerConfig) -> int:

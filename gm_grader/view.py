@@ -263,9 +263,51 @@ def command(inbox: Path, etc: tuple[Path, Path], identity: Identity, limits: Lim
             program: Sequence[str], course: Path | None = None) -> list[str]:
     """The whole command running ``program`` in a sandbox (bwrap, then the drop to the run's
     user when bubblewrap runs as root)."""
-    drop = ([sys.executable, "-I", "-S", "-c", DROP, str(identity.uid), str(identity.gid)]
-            if identity.drop else [])
-    return ["bwrap", *bwrap_args(inbox, etc, identity, limits, course), "--", *drop, *program]
+    return ["bwrap", *bwrap_args(inbox, etc, identity, limits, course), "--",
+            *dropped(identity, program)]
+
+
+def dropped(identity: Identity, program: Sequence[str]) -> list[str]:
+    """``program``, run as ``identity`` (:data:`DROP` first when it is a root grader's own uid)."""
+    if not identity.drop:
+        return list(program)
+    return [sys.executable, "-I", "-S", "-c", DROP, str(identity.uid), str(identity.gid),
+            *program]
+
+
+#: What a run without a sandbox needs its own user to do: start the grader's Python, import the
+#: runner and the course, and say whether the answer keys are in its reach.
+_CAN_RUN = ("import gm_grader.runner, gm_core.checks.channel, nbclient\n"
+            "from gm_core.checks.answer_key import keys_installed\n"
+            "print('gm-keys-readable' if keys_installed() else 'gm-keys-hidden')")
+
+
+def unsandboxed_user(env: dict[str, str]) -> tuple[bool, str]:
+    """Without bubblewrap (``--no-sandbox``: a container per submission, as on Gradescope), a root
+    grader still runs each notebook as a fresh uid of its own (:data:`DROP`), so that what only
+    root may read -- the answer keys, once the kit's ``setup.sh`` has made them so -- stays out of
+    the notebook's reach. (drop?, why not / what to fix): ``(True, "")`` when that user can run
+    the grader's Python and the course and cannot read the keys; ``(True, note)`` when it can
+    read them; ``(False, why)`` when a user of its own cannot run the grader's Python here (it lives
+    in a folder only root may enter, say), and then notebooks run as the grader's own user."""
+    if os.geteuid() != 0:
+        return False, "the grader does not run as root, so notebooks run as its own user"
+    probe = sandbox_identity()
+    try:
+        res = subprocess.run(dropped(probe, [sys.executable, "-c", _CAN_RUN]), env=env, cwd="/",
+                             capture_output=True, text=True, timeout=120)
+    except (OSError, subprocess.SubprocessError) as exc:
+        return False, f"a user of its own could not be tried ({type(exc).__name__})"
+    said = res.stdout.strip().splitlines()[-1:] if res.returncode == 0 else []
+    if said == ["gm-keys-hidden"]:
+        return True, ""
+    if said == ["gm-keys-readable"]:
+        return True, (f"the answer keys ({keys_dir()}) are readable by the notebooks' own user: "
+                      "make them readable by root only (chmod -R go-rwx), as the Gradescope "
+                      "kit's setup.sh does")
+    last = (res.stderr.strip().splitlines() or ["no message"])[-1][:200]
+    return False, (f"a user of its own cannot run the grader's Python here ({last}); notebooks "
+                   "run as root and can read everything root can, the answer keys included")
 
 
 def make_inbox(private: Path) -> Path:
@@ -316,4 +358,4 @@ def preflight(limits: Limits | None = None, env: dict[str, str] | None = None) -
 
 __all__ = ["Identity", "sandbox_identity", "python_roots", "course_roots", "visible_roots",
            "exposed", "bwrap_args", "command", "make_inbox", "write_identity_files",
-           "preflight", "keys_dir", "NoAnswerKeys", "PKG_PARENT", "INBOX", "DROP", "ETC_KEPT"]
+           "preflight", "keys_dir", "NoAnswerKeys", "dropped", "unsandboxed_user", "PKG_PARENT", "INBOX", "DROP", "ETC_KEPT"]

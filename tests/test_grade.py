@@ -12,6 +12,7 @@ solution and its untouched exercise. Each must get exactly its deserved grade, w
 the classmate and the results untouched and no process left behind. Further runs (no kernels,
 or one) cover assignments, leftovers, bad files, empty uploads and the refusal to run without a
 sandbox."""
+import base64
 import csv
 import hashlib
 import inspect
@@ -102,7 +103,7 @@ def forger_cells():
             "fd, nonce = channel._STATE.fd, channel._STATE.nonce\n"
             "def rec(part, o, n=nonce):\n"
             "    os.write(fd, (json.dumps({'kind': 'evidence', 'nonce': n, 'exercise': '1.2', "
-            "'part': part, 'outcomes': o, 'output': ''}) + '\\n').encode())\n"
+            "'part': part, 'outcomes': o, 'output': '', 'answer': '', 'unsent': ''}) + '\\n').encode())\n"
             "def nd(x):\n    x = np.asarray(x, float)\n    return {'__nd__': list(x.shape), 'd': x.ravel().tolist()}\n"
             "P = ex1_2.parts\n"
             "rec('a', [{'k': 'ok', 'v': 'skip'}] * len(P['a'].probes()))             # all skip\n"
@@ -132,10 +133,10 @@ def key_seeker_cells():
             "lambda *a: quietly(lambda: ex1_2.a.check(ex1_2.a.reference)))\n"
             "ex1_2.a.check(lambda h, g: h + g)",
             "send = channel.emit\n"
-            "def emit(part, outcomes, output=''):\n"
+            "def emit(part, outcomes, output='', answer=None):\n"
             "    try:\n        outcomes = collect(part.reference, part.probes(), raw=True)[0]\n"
             "    except Exception:\n        pass\n"
-            "    send(part, outcomes, output)\n"
+            "    send(part, outcomes, output, answer)\n"
             "channel.emit = emit\n"
             "ex1_2.b.check(lambda h, g: np.diag(g))",
             "def later():\n    time.sleep(0.2)\n    quietly(lambda: ex1_2.c.check(ex1_2.c.reference))\n"
@@ -164,7 +165,25 @@ def solution_seeker_cells():
             "nd = lambda x: {'__nd__': [2, 2], 'd': np.asarray(x, float).ravel().tolist()}\n"
             "out = [{'k': 'ok', 'v': nd(ex1_2.c.ref(*a))} for a in ex1_2.c.inputs()]\n"
             "os.write(fd, (json.dumps({'kind': 'evidence', 'nonce': nonce, 'exercise': '1.2', "
-            "'part': 'c', 'outcomes': out, 'output': ''}) + '\\n').encode())"]
+            "'part': 'c', 'outcomes': out, 'output': '', 'answer': '', 'unsent': ''}) + '\\n').encode())"]
+
+
+def outcome_forger_cells():
+    """Wrong answers checked while the function that sends outcomes is replaced to send those of
+    the right answers (as a notebook with the answer key would once have): the outcomes a notebook
+    sends weigh nothing, its answers are called again by the grader (a, b). And an answer that
+    holds a lock, which cannot be handed to the grader, gets a message saying so (c)."""
+    return ["import numpy as np, threading\nfrom gm_core.checks import ex1_2, channel\n"
+            "from gm_core.checks.sandbox import collect\n"
+            "right = {'a': lambda h, g: h * g, 'b': lambda h, g: np.diag(h)}\n"
+            "send = channel.emit\n"
+            "def emit(part, outcomes, output='', answer=None):\n"
+            "    send(part, collect(right[part.name], part.probes(), raw=True)[0], output, answer)\n"
+            "channel.emit = emit\n"
+            "ex1_2.a.check(lambda h, g: h + g)\nex1_2.b.check(lambda h, g: np.diag(g))",
+            "channel.emit = send\nlock = threading.Lock()\n"
+            "def answer_c(h, g):\n    with lock:\n        return np.diag(h)\n\n"
+            "ex1_2.c.check(answer_c)"]
 
 
 def tamper_cells(out, honest, neighbour):
@@ -255,6 +274,7 @@ def batch(tmp_path_factory):
     write_nb(tmp / "forger" / "ex1_2.ipynb", forger_cells())
     write_nb(tmp / "keyseeker" / "ex1_2.ipynb", key_seeker_cells())
     write_nb(tmp / "solseeker" / "ex1_2.ipynb", solution_seeker_cells())
+    write_nb(tmp / "outcomes" / "ex1_2.ipynb", outcome_forger_cells())
     neighbour = tmp / "not-in-this-batch" / "ex1_2.ipynb"          # another upload, not graded now
     neighbour.parent.mkdir()
     neighbour.write_text("{}")
@@ -268,7 +288,8 @@ def batch(tmp_path_factory):
     t = time.monotonic()
     proc = subprocess.Popen([sys.executable, "-m", "gm_grader", *map(str, (
         tmp / "tamper", tmp / "honest", tmp / "forger", tmp / "staller", tmp / "bomb", tmp / "solutions",
-        tmp / "exercises", tmp / "keyseeker", tmp / "solseeker", "--out", out, "--cell-timeout", "4", "--jobs", "3", "--memory", "2048",
+        tmp / "exercises", tmp / "keyseeker", tmp / "solseeker", tmp / "outcomes",
+        "--out", out, "--cell-timeout", "4", "--jobs", "3", "--memory", "2048",
         "--max-processes", "64"))], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
         cwd=tmp, env=env())
     stdout, stderr = proc.communicate(timeout=900)
@@ -308,6 +329,18 @@ def test_forged_evidence_never_passes(batch):
 
 
 ASKED = "asked for this part's answer key"
+
+
+@needs_sandbox
+def test_the_grade_comes_from_the_graders_own_calls_not_the_notebooks_outcomes(batch):
+    rows = rows_of(batch, "outcomes")
+    assert scores(batch, "outcomes") == {"a": 0.0, "b": 0.0, "c": 0.0}, rows
+    for part in "ab":                    # judged on the grader's calls of the wrong answers
+        assert rows[part]["status"] == "failed" and "Correct" not in rows[part]["message"], rows
+        assert "checked in cell 1" in rows[part]["message"], rows[part]
+    assert "added the parameters" in rows["a"]["message"]     # the mistake h + g makes
+    assert "could not be handed to the grader" in rows["c"]["message"], rows["c"]
+    assert "lock" in rows["c"]["message"], rows["c"]
 
 
 @needs_sandbox
@@ -381,13 +414,14 @@ def test_results_are_gradescope_ready(batch):
     res = batch["results"]
     held = CGROUPS or os.geteuid() != 0
     total = 6 + 2 + 4 + (4 if held else 2) + 2          # honest, tamper, staller, bomb, solution
-    assert res["score"] == pytest.approx(sum(t["score"] for t in res["tests"])) == total
-    assert len(res["tests"]) == len(batch["rows"]) == 7 * 3 + 2 * 2
+    assert res["score"] == pytest.approx(sum(t["score"] for t in res["tests"])) == total, \
+        {(r["notebook"], r["part"]): r["score"] for r in batch["rows"] if float(r["score"])}
+    assert len(res["tests"]) == len(batch["rows"]) == 8 * 3 + 2 * 2
     for t in res["tests"]:
         assert {"name", "number", "score", "max_score", "output", "visibility", "status"} <= set(t)
         assert 0 <= t["score"] <= t["max_score"] and t["visibility"] == "visible"
         assert not t["name"].startswith("/") and str(batch["tmp"]) not in t["name"] + t["output"]
-    assert f"{total} / 46 points" in batch["stdout"]
+    assert f"{total} / 52 points" in batch["stdout"]
 
 
 @needs_sandbox
@@ -486,7 +520,7 @@ def test_assignment_validation(tmp_path):
 def evidence_line(o, nonce="s", ex="1.2", name="a", **kw):
     """A kernel's evidence line, written by hand (as a forger would)."""
     return json.dumps({"kind": "evidence", "nonce": nonce, "exercise": ex, "part": name,
-                       "outcomes": o, "output": "", **kw})
+                       "outcomes": o, "output": "", "answer": "", "unsent": "", **kw})
 
 
 @pytest.mark.parametrize("outcomes", [None, {}, "x", [], "stopped", "too large",
@@ -708,6 +742,39 @@ def test_every_way_a_run_ends_gives_every_part_a_row_and_a_reason():
             assert not v.passed and (phrase in v.message if phrase else "no check" in v.message), (what, v)
 
 
+def test_a_part_is_decided_by_the_graders_calls_and_says_why_when_they_give_nothing():
+    ex = REGISTRY["1.2"]
+    part = ex.parts["a"]
+    right = [{"k": "ok", "v": {"__nd__": [2], "d": list(map(float, part.ref(*a)))}}
+             for a in part.inputs()]
+    wrong = [{"k": "ok", "v": {"__nd__": [2], "d": [9.0, 9.0]}} for _ in part.inputs()]
+    carried = base64.b64encode(b"an answer").decode()
+
+    def run_of(*lines, done=True):
+        recs = [Started(), *(EvidenceLine(cell=1, line=ln) for ln in lines),
+                CellEnded(index=1, status=CellStatus.OK)]
+        return RunResult(records=(*recs, *([Done()] if done else [])), nonce="s", salt=0)
+
+    sources = {1: "ex1_2.a.check(f)"}
+    notebook = _evidence.summarise(run_of(evidence_line(right, answer=carried),
+                                          evidence_line(right, name="b", unsent="a lock")), ex, sources)
+    assert notebook.parts["a"].verdict.passed          # its own outcomes would have passed ...
+    for calls, says in ((run_of(evidence_line(wrong)), "different value"),
+                        (run_of(done=False), "did not finish"),
+                        (None, "did not finish"),
+                        (run_of(evidence_line("stopped", output="could not be rebuilt (X)")),
+                         "could not be rebuilt")):
+        got = _evidence.decide(ex, notebook, None if calls is None else
+                               _evidence.summarise(calls, ex, {}))
+        a = got.parts["a"]
+        assert not a.verdict.passed and says in a.verdict.message and a.cell == 1, (says, a)
+        assert "could not be handed to the grader: a lock" in got.parts["b"].verdict.message
+        assert "no check of this part ran" in got.parts["c"].verdict.message
+    got = _evidence.decide(ex, notebook, _evidence.summarise(run_of(evidence_line(right)), ex, {}))
+    assert got.parts["a"].verdict.passed                # ... and the grader's calls decide
+    assert _evidence.collect(run_of(evidence_line(right, answer=carried)), ex).answers() == {"a": carried}
+
+
 @needs_sandbox
 def test_the_notebook_limit_ends_the_sandbox_and_everything_in_it(tmp_path, monkeypatch):
     import tempfile
@@ -840,10 +907,11 @@ def test_an_outcome_survives_its_codec(o):
 
 
 @settings(max_examples=100, deadline=None)
-@given(st.lists(outcomes(), max_size=4), _text, st.sampled_from([None, *P.Withheld]))
-def test_evidence_and_announcements_survive_their_codec(outs, output, withheld):
-    got = P.Withheld.STOPPED if withheld is P.Withheld.STOPPED else tuple(outs)
-    ev = P.Evidence("n" * 32, "1.2", "a", got, output)
+@given(st.lists(outcomes(), max_size=4), _text, st.sampled_from([None, *P.Withheld]),
+       st.binary(max_size=64), st.text(max_size=P.MAX_UNSENT))
+def test_evidence_and_announcements_survive_their_codec(outs, output, withheld, answer, unsent):
+    got = withheld if withheld is not None else tuple(outs)
+    ev = P.Evidence("n" * 32, "1.2", "a", got, output, base64.b64encode(answer).decode(), unsent)
     line = P.encode_kernel_message(ev)
     assert line.endswith(b"\n") and line.count(b"\n") == 1
     assert P.decode_evidence(line, nonce="n" * 32, exercise="1.2", probes={"a": len(outs)}) == ev
@@ -921,7 +989,8 @@ def test_malformed_evidence_is_rejected_for_the_reason_the_report_gives():
              "a record without this run's secret": evidence_line(ok, nonce="t"),
              "a record for a part this exercise does not have": evidence_line(ok, name="b"),
              "a record for part a with the wrong number of outcomes": evidence_line(ok * 2),
-             "a record for part a with malformed outcomes": evidence_line([{"k": "ok", "v": 1, "m": ""}])}
+             "a record for part a with malformed outcomes": evidence_line([{"k": "ok", "v": 1, "m": ""}]),
+             "a record for part a with a malformed answer": evidence_line(ok, answer="{not base64}")}
     for why, line in cases.items():
         with pytest.raises(P.ProtocolError, match=re.escape(why)):
             P.decode_evidence(line, nonce="s", exercise="1.2", probes={"a": 1})

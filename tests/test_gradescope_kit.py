@@ -29,7 +29,7 @@ pytestmark = pytest.mark.slow   # setup.sh installs the course into the kit's ve
 
 def _env(root):
     env = {k: v for k, v in os.environ.items() if k not in {"PYTHONPATH", "VIRTUAL_ENV"}}
-    env.update(GM_AUTOGRADER_ROOT=str(root), GM_AUTOGRADER_PYTHON=sys.executable)
+    env.update(GM_AUTOGRADER_ROOT=str(root), GM_AUTOGRADER_PYTHON=venvs.AUTOGRADER_PYTHON)
     return env
 
 
@@ -113,6 +113,42 @@ def test_nothing_submitted_lists_every_part_with_zero(autograder):
     full = run(root, {"ex1_1.ipynb": ROOT / "solutions" / "ex1_1.ipynb"})
     assert r["score"] == 0 and r["tests"] and all(t["score"] == 0 for t in r["tests"]), r
     assert sum(t["max_score"] for t in r["tests"]) == sum(t["max_score"] for t in full["tests"])
+
+
+def _seeker(root):
+    """A submission that looks for the answers instead of giving them: (a) through the answer
+    key (the course's own function for it); (b) on disk -- the key files in the installed
+    course, the worked solution in the autograder's source, /etc/shadow -- giving the right
+    answer to (b) only if it could read any of them, or runs as root."""
+    import nbformat
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [nbformat.v4.new_code_cell(c) for c in (
+        "import glob, os\nimport gm_core\nfrom gm_core.checks import ex1_1\n"
+        "from gm_core.checks.answer_key import key_of",
+        "try:\n    ex1_1.a.check(key_of(ex1_1.a).correct_answer())\n"
+        "except Exception:\n    ex1_1.a.check('a')",
+        "course = os.path.dirname(gm_core.__file__)\n"
+        f"paths = glob.glob(os.path.join(course, 'checks', 'keys', '*.py')) + [\n"
+        f"    os.path.join(course, 'checks', 'keys', 'ex1.py'), '/etc/shadow',\n"
+        f"    {str(root / 'source' / 'course' / 'solutions' / 'ex1_1.ipynb')!r}]\n"
+        "read = []\nfor p in paths:\n    try:\n        read.append(len(open(p).read()))\n"
+        "    except OSError:\n        pass\n"
+        "ex1_1.b.check('c' if read or os.getuid() == 0 else 'a')")]
+    return nbformat.writes(nb)
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason="as a user, notebooks run as the grader's own user")
+def test_a_root_grader_runs_notebooks_as_their_own_user_out_of_reach_of_the_keys(autograder, tmp_path):
+    root, _ = autograder
+    seeker = tmp_path / "ex1_1.ipynb"
+    seeker.write_text(_seeker(root))
+    r = run(root, {"ex1_1.ipynb": seeker})
+    by_part = {t["name"].rsplit(" part ", 1)[-1][:1]: t for t in r["tests"]}
+    assert r["score"] == 0, r
+    assert "answer key" in by_part["a"]["output"], by_part["a"]
+    assert "answer key" not in by_part["b"]["output"], by_part["b"]   # nothing read, not root
+    full = run(root, {"ex1_1.ipynb": ROOT / "solutions" / "ex1_1.ipynb"})
+    assert full["score"] == sum(t["max_score"] for t in full["tests"]) > 0   # honest: full
 
 
 def test_bad_options_are_refused_clearly(tmp_path):

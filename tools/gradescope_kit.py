@@ -56,6 +56,12 @@ fi
 "$PYTHON" -m venv "$ROOT/gm-venv"
 "$ROOT/gm-venv/bin/python" -m pip install --quiet --disable-pip-version-check "$SRC/course[grader]"
 "$ROOT/gm-venv/bin/python" -c "import gm_core, gm_grader, nbclient; print('gm-course installed:', gm_core.__file__)"
+# Gradescope's container has no sandbox, so the grader runs every notebook as a user of its own:
+# only root may read the answer keys and the course's source (solutions included); that user
+# may only enter $ROOT and run the venv's Python.
+KEYS="$("$ROOT/gm-venv/bin/python" -c "import gm_core.checks.keys as k, os; print(os.path.dirname(k.__file__))")"
+chmod -R go-rwx "$KEYS" "$SRC"
+chmod go+x "$ROOT"
 """
 
 RUN_AUTOGRADER = r"""#!/usr/bin/env bash

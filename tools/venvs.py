@@ -3,7 +3,7 @@
     python tools/venvs.py kits     # .venv-kits: otter-grader, nbgrader (+ the course's core and [lab] deps)
     python tools/venvs.py site     # .venv-site: Jupyter Book 1 / myst-nb, playwright (+ the same),
                                    # and the site's npm files (site/node_modules)
-    python tools/venvs.py gradescope   # .venv-gradescope: an autograder folder made by the
+    python tools/venvs.py gradescope   # GRADESCOPE: an autograder folder made by the
                                    # Gradescope kit's own setup.sh (tests/test_gradescope_kit.py)
 
 Each venv lives in the repository (git-ignored) and is made from PyPI with the venv's own pip the
@@ -81,7 +81,14 @@ def ensure(name: str, quiet: bool = True) -> Path:
     return venv / "bin"
 
 
-GRADESCOPE = ROOT / ".venv-gradescope"
+#: The Gradescope autograder folder. As root it lives where any user may enter (the grader runs
+#: each notebook as a user of its own, which must reach the venv's Python: a clone in a 0700
+#: temporary folder would hide it), shared by the clones of this machine; else in the checkout.
+GRADESCOPE = (Path("/var/tmp/gm-course-autograder") if os.geteuid() == 0
+              else ROOT / ".venv-gradescope")
+#: The Python that makes its venv: the system's, as on Gradescope's image (a Python under /root,
+#: pyenv's say, cannot be run by the notebooks' own user); else this one.
+AUTOGRADER_PYTHON = "/usr/bin/python3" if Path("/usr/bin/python3").exists() else sys.executable
 
 
 def unpack_kit(kit: Path, root: Path) -> None:
@@ -99,13 +106,13 @@ def unpack_kit(kit: Path, root: Path) -> None:
 def run_setup(root: Path) -> subprocess.CompletedProcess:
     """The kit's setup.sh, in ``root`` (GM_AUTOGRADER_ROOT), with this Python making its venv."""
     env = {k: v for k, v in os.environ.items() if k not in {"PYTHONPATH", "VIRTUAL_ENV"}}
-    env.update(GM_AUTOGRADER_ROOT=str(root), GM_AUTOGRADER_PYTHON=sys.executable)
+    env.update(GM_AUTOGRADER_ROOT=str(root), GM_AUTOGRADER_PYTHON=AUTOGRADER_PYTHON)
     return subprocess.run(["bash", str(root / "source" / "setup.sh")], cwd=root, env=env,
                           capture_output=True, text=True, timeout=1800)
 
 
 def gradescope() -> Path:
-    """An autograder folder (``.venv-gradescope``) whose ``gm-venv`` the Gradescope kit's own
+    """An autograder folder (:data:`GRADESCOPE`) whose ``gm-venv`` the Gradescope kit's own
     setup.sh made, in a fresh folder, from the package index: made again whenever the course's
     requirements or setup.sh change. A test unpacks the current zip into it and runs setup.sh
     again (which then only installs the course from the zip), instead of downloading numpy,
@@ -119,9 +126,12 @@ def gradescope() -> Path:
     stamp = GRADESCOPE / ".gm-stamp"
     if stamp.exists() and stamp.read_text().strip() == digest and (GRADESCOPE / "gm-venv" / "bin" / "python").exists():
         return GRADESCOPE
+    if GRADESCOPE.is_symlink() or (GRADESCOPE.exists() and GRADESCOPE.stat().st_uid != os.geteuid()):
+        raise VenvError(f"{GRADESCOPE} is a link or someone else's: remove it by hand")
     if GRADESCOPE.exists():
         shutil.rmtree(GRADESCOPE)
-    GRADESCOPE.mkdir()
+    GRADESCOPE.mkdir(mode=0o755)
+    GRADESCOPE.chmod(0o755)
     kit = gradescope_kit.build_kit(GRADESCOPE / "kit.zip", exercises=["1.1"])
     unpack_kit(kit, GRADESCOPE)
     res = run_setup(GRADESCOPE)

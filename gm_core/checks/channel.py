@@ -7,8 +7,13 @@ runner created before the kernel started, and records this run's nonce and probe
 ``set_time_limit`` or ``check(time_limit=...)`` in the notebook may lower it, not raise it). From then on every ``part.check(...)``
 in the notebook, whatever form the call takes (keywords, ``Exercise.check({...})``, an alias, a
 helper function), writes one line to that pipe at the moment it is called: the part, and the
-plain outcomes its probes produced on the answer *as it was then*. The grader reads that pipe,
-never the notebook's printed output, and judges in its own process.
+plain outcomes its probes produced on the answer *as it was then* (the student's feedback; they
+carry no weight in the grade), and the answer itself as it was then, as text made by the
+grader's carrier (the hidden cell passes :func:`gm_grader.probe.dumps`: a pickle by value). The
+grader reads that pipe, never the notebook's printed output. It never loads an answer itself: after
+the notebook has ended it chooses new probe inputs and calls the last checked answer of every part
+in a fresh sandbox of its own (:mod:`gm_grader.probe`), then judges the plain outcomes there
+in its own process.
 
 The lines are the messages of :mod:`gm_core.checks.protocol`: a :class:`~.protocol.CheckBegun`
 when a check starts (the runner stops the cell clock while probes run: each probe has its own
@@ -19,12 +24,14 @@ saying so (:func:`key_requested`).
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from gm_core.checks.protocol import (
+    MAX_ANSWER,
     MAX_OUTPUT,
+    MAX_UNSENT,
     CheckBegun,
     Evidence,
     KernelMessage,
@@ -40,7 +47,7 @@ if TYPE_CHECKING:
     from gm_core.checks.parts import Part
 
 __all__ = ["open_channel", "time_limit", "set_probe_salt", "probe_salt", "active", "begin", "emit",
-           "key_requested", "MAX_RECORD_BYTES"]
+           "key_requested", "carry_answers", "carried", "MAX_RECORD_BYTES"]
 
 MAX_RECORD_BYTES = 4_000_000
 
@@ -53,17 +60,45 @@ class _Channel:
     nonce: str = ""
     salt: int | None = None
     time_limit: float | None = None
+    carrier: Callable[[object], str] | None = None
 
 
 _STATE = _Channel()
 
 
-def open_channel(fd: int, nonce: str, salt: int | None, time_limit: float | None = None) -> None:
-    """Bind the evidence pipe (called by the grader's runner before any student code runs)."""
-    _STATE.fd, _STATE.nonce = int(fd), str(nonce)
+def open_channel(fd: int, nonce: str, salt: int | None, time_limit: float | None = None,
+                 carrier: Callable[[object], str] | None = None) -> None:
+    """Bind the evidence pipe (called by the grader's runner before any student code runs);
+    ``carrier`` turns a checked answer into text for the grader (None: answers are not sent)."""
+    _STATE.fd, _STATE.nonce, _STATE.carrier = int(fd), str(nonce), carrier
     set_probe_salt(salt)
     if time_limit is not None:     # the runner also makes it the default (sandbox.set_time_limit)
         _STATE.time_limit = float(time_limit)
+
+
+def carry_answers(on: bool) -> None:
+    """Stop sending answers (``on=False``: the grader's own calls of an answer,
+    :mod:`gm_grader.probe`, send only outcomes)."""
+    if not on:
+        _STATE.carrier = None
+
+
+def carried(answer: object) -> tuple[str, str]:
+    """``answer`` as the grader's carrier writes it, or ``("", why not)`` (``("", "")`` when no
+    carrier was given)."""
+    carrier = _STATE.carrier
+    if carrier is None:
+        return "", ""
+    try:
+        text = carrier(answer)
+    except KeyboardInterrupt:
+        raise
+    except BaseException as exc:  # noqa: BLE001 - a lock, a generator, an open file...
+        return "", (f"it holds something that cannot be copied out of the notebook "
+                    f"({type(exc).__name__}: {exc})")[:MAX_UNSENT]
+    if not isinstance(text, str) or len(text) > MAX_ANSWER:
+        return "", "it is too large to hand over, with everything it refers to"
+    return text, ""
 
 
 def time_limit() -> float | None:
@@ -119,21 +154,25 @@ def _outcome(raw: object) -> Outcome:
         return Outcome(OutcomeKind.CRASH, message="unreadable result")
 
 
-def emit(part: Part, outcomes: Sequence[Mapping[str, object]] | str, output: str = "") -> None:
+def emit(part: Part, outcomes: Sequence[Mapping[str, object]] | str, output: str = "",
+         answer: object = None) -> None:
     """Send the evidence of one check call: the probes' plain outcomes (or ``"stopped"``), the
-    captured output."""
+    captured output and the checked ``answer`` (pickled, see :func:`carried`)."""
     if not active():
         return
     got: tuple[Outcome, ...] | Withheld = (
         tuple(_outcome(o) for o in outcomes) if isinstance(outcomes, list) else Withheld.STOPPED)
-    ev = Evidence(_STATE.nonce, _exercise_id(part), part.name, got, str(output)[:MAX_OUTPUT])
+    text, unsent = carried(answer)
+    ev = Evidence(_STATE.nonce, _exercise_id(part), part.name, got, str(output)[:MAX_OUTPUT],
+                  text, unsent)
     try:
         data = encode_kernel_message(ev)
     except (TypeError, ValueError):
         data = encode_kernel_message(Evidence(ev.nonce, ev.exercise, ev.part,
-                                              Withheld.UNSERIALISABLE, ev.output))
+                                              Withheld.UNSERIALISABLE, ev.output, text, unsent))
     if len(data) > MAX_RECORD_BYTES:
-        data = encode_kernel_message(Evidence(ev.nonce, ev.exercise, ev.part, Withheld.TOO_LARGE))
+        data = encode_kernel_message(Evidence(ev.nonce, ev.exercise, ev.part, Withheld.TOO_LARGE,
+                                              "", text, unsent))
     _write(data)
 
 

@@ -251,8 +251,9 @@ class Part(ABC):
         (a doctest-style cell expects nothing) and a failed one raises AssertionError with the
         same message.
 
-        While the grader runs the notebook, the plain outcomes are also sent, at this call, on
-        the grader's evidence channel (:mod:`gm_core.checks.channel`): the part is judged as it was now."""
+        While the grader runs the notebook, the answer as it is now is also sent, at this call, on
+        the grader's evidence channel (:mod:`gm_core.checks.channel`): the grader calls it later,
+        on inputs of its own, outside this kernel."""
         channel.begin(self)
         raw = None
         try:
@@ -264,7 +265,8 @@ class Part(ABC):
             verdict = Verdict(FAILED, f"The check stopped unexpectedly ({type(exc).__name__}).",
                               self.title)
         finally:
-            channel.emit(self, raw if raw is not None else "stopped", "" if raw is None else output)
+            channel.emit(self, raw if raw is not None else "stopped", "" if raw is None else output,
+                         answer)
         self._record(verdict.status)
         if not quiet:
             try:

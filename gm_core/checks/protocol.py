@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from enum import Enum
@@ -31,7 +32,7 @@ __all__ = [
     "Flooded", "Fatal", "Done", "Limits", "RunnerConfig", "encode_outcome", "decode_outcome",
     "encode_kernel_message", "decode_check_begun", "decode_evidence", "encode_record",
     "decode_record", "encode_config", "decode_config", "MAX_EVIDENCE_LINE", "MAX_DEPTH",
-    "MAX_TEXT", "MAX_MESSAGE", "MAX_OUTPUT", "MAX_PART_KEY",
+    "MAX_TEXT", "MAX_MESSAGE", "MAX_OUTPUT", "MAX_PART_KEY", "MAX_ANSWER", "MAX_UNSENT",
 ]
 
 #: Characters of a kernel's evidence line the grader reads at most.
@@ -42,6 +43,9 @@ MAX_DEPTH = 12
 MAX_TEXT, MAX_MESSAGE, MAX_OUTPUT = 600, 2000, 2000
 #: Characters of a part's key ("1.4/a") in a check's announcement.
 MAX_PART_KEY = 78
+#: Characters of a checked answer carried to the grader (base64 of its pickle), and of the reason
+#: an answer could not be carried.
+MAX_ANSWER, MAX_UNSENT = 1_000_000, 300
 #: Characters of a message in a runner record (a fatal error, a flood note).
 MAX_RECORD_TEXT = 2000
 
@@ -190,13 +194,18 @@ class CheckBegun:
 
 @dataclass(frozen=True)
 class Evidence:
-    """One check call's evidence: the part, and its probes' outcomes on the answer at that call."""
+    """One check call's evidence: the part, its probes' outcomes on the answer at that call (the
+    student's feedback; no weight in a grade), and the answer itself as it was then, carried to the
+    grader (``answer``: base64 of its pickle, which only a sandbox ever loads) or why it could not
+    be (``unsent``)."""
 
     nonce: str
     exercise: str
     part: str
     outcomes: tuple[Outcome, ...] | Withheld
     output: str = ""
+    answer: str = ""
+    unsent: str = ""
 
     @property
     def stopped(self) -> bool:
@@ -205,7 +214,8 @@ class Evidence:
 
 KernelMessage: TypeAlias = CheckBegun | Evidence
 _BEGIN, _EVIDENCE = "begin", "evidence"
-_EVIDENCE_KEYS = {"kind", "nonce", "exercise", "part", "outcomes", "output"}
+_EVIDENCE_KEYS = {"kind", "nonce", "exercise", "part", "outcomes", "output", "answer", "unsent"}
+_BASE64 = re.compile(r"[A-Za-z0-9+/]*={0,2}")
 
 
 def encode_kernel_message(msg: KernelMessage) -> bytes:
@@ -215,8 +225,10 @@ def encode_kernel_message(msg: KernelMessage) -> bytes:
     outcomes: JSON = (msg.outcomes.value if isinstance(msg.outcomes, Withheld)
                       else [encode_outcome(o) for o in msg.outcomes])
     return (_dumps({"kind": _EVIDENCE, "nonce": msg.nonce, "exercise": msg.exercise,
-                    "part": msg.part, "outcomes": outcomes,
-                    "output": msg.output[:MAX_OUTPUT]}) + "\n").encode()
+                    "part": msg.part, "outcomes": outcomes, "output": msg.output[:MAX_OUTPUT],
+                    "answer": msg.answer if len(msg.answer) <= MAX_ANSWER else "",
+                    "unsent": (msg.unsent if len(msg.answer) <= MAX_ANSWER else "too large")
+                    [:MAX_UNSENT]}) + "\n").encode()
 
 
 def decode_check_begun(line: bytes | str) -> CheckBegun:
@@ -248,18 +260,21 @@ def decode_evidence(line: bytes | str, *, nonce: str, exercise: str,
     if not isinstance(part, str) or part not in probes:
         raise ProtocolError("a record for a part this exercise does not have")
     output = rec["output"][:MAX_OUTPUT] if isinstance(rec["output"], str) else ""
+    answer, unsent = rec["answer"], rec["unsent"]
+    if not (isinstance(answer, str) and len(answer) <= MAX_ANSWER and _BASE64.fullmatch(answer)
+            and isinstance(unsent, str) and len(unsent) <= MAX_UNSENT):
+        raise ProtocolError(f"a record for part {part} with a malformed answer")
     raw = rec["outcomes"]
-    if raw == Withheld.STOPPED.value:
-        return Evidence(nonce, exercise, part, Withheld.STOPPED, output)
-    if raw == Withheld.KEY_ASKED.value:
-        return Evidence(nonce, exercise, part, Withheld.KEY_ASKED, output)
+    for withheld in Withheld:
+        if raw == withheld.value:
+            return Evidence(nonce, exercise, part, withheld, output, answer, unsent)
     if not isinstance(raw, list) or len(raw) != probes[part]:
         raise ProtocolError(f"a record for part {part} with the wrong number of outcomes")
     try:
         outcomes = tuple(decode_outcome(o) for o in raw)
     except ProtocolError:
         raise ProtocolError(f"a record for part {part} with malformed outcomes") from None
-    return Evidence(nonce, exercise, part, outcomes, output)
+    return Evidence(nonce, exercise, part, outcomes, output, answer, unsent)
 
 
 # ------------------------------------------------------------------------------ runner -> grader
