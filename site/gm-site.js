@@ -2,6 +2,7 @@
    Static copies of ipywidgets sliders are drawn by the widget manager without an accessible
    name: give each slider handle the text of its widget's label (WCAG 4.1.2). */
 (function () {
+  var here = document.currentScript ? document.currentScript.src : '';
   function nameSliders(root) {
     root.querySelectorAll('.widget-slider, .jupyter-widget-slider').forEach(function (w) {
       var label = w.querySelector('.widget-label, label');
@@ -41,12 +42,48 @@
       img.setAttribute('alt', text ? text.slice(0, 300) : 'Figure drawn by the exercise');
     });
   }
+  /* The search page shows an excerpt of each page found, as text: its formulas arrive as TeX
+     (\(L_h g = hg\)), and Sphinx loads MathJax only on pages that have formulas of their own.
+     Load the site's MathJax (beside this script in _static/) and typeset each excerpt as it
+     arrives (p.context); each is marked data-gm-math="done" once typeset (tools/check_site.py waits for it). */
+  var mathjax = null;
+  function loadMathJax() {
+    if (window.MathJax && window.MathJax.typesetPromise) return Promise.resolve();
+    if (!mathjax) {
+      mathjax = new Promise(function (ready) {
+        window.MathJax = {startup: {typeset: false}};
+        var s = document.createElement('script');
+        s.src = here.replace(/gm-site\.js(\?.*)?$/, 'mathjax/tex-mml-chtml.js');
+        s.onload = function () { window.MathJax.startup.promise.then(ready); };
+        document.head.appendChild(s);
+      });
+    }
+    return mathjax;
+  }
+  /* An excerpt is a window of 240 characters: a formula cut at either end is dropped. */
+  function wholeFormulas(p) {
+    var t = p.textContent, u = t;
+    var open = u.lastIndexOf('\\('), shut = u.lastIndexOf('\\)');
+    if (open > shut) u = u.slice(0, open) + '...';
+    open = u.indexOf('\\('); shut = u.indexOf('\\)');
+    if (shut >= 0 && (open < 0 || shut < open)) u = '...' + u.slice(shut + 2);
+    if (u !== t) p.textContent = u;
+  }
+  function searchMath() {
+    var fresh = document.querySelectorAll('#search-results li p.context:not([data-gm-math])');
+    if (!fresh.length) return;
+    var nodes = Array.prototype.slice.call(fresh);
+    nodes.forEach(function (n) { n.setAttribute('data-gm-math', 'pending'); wholeFormulas(n); });
+    loadMathJax().then(function () { return window.MathJax.typesetPromise(nodes); })
+      .then(function () { nodes.forEach(function (n) { n.setAttribute('data-gm-math', 'done'); }); });
+  }
   function start() {
     nameSliders(document);
     sweeps(document);
     describeImages(document);
-    new MutationObserver(function () { nameSliders(document); sweeps(document); describeImages(document); })
-      .observe(document.body, {childList: true, subtree: true});
+    new MutationObserver(function () {
+      nameSliders(document); sweeps(document); describeImages(document); searchMath();
+    }).observe(document.body, {childList: true, subtree: true});
   }
   if (document.readyState === 'loading') { document.addEventListener('DOMContentLoaded', start); } else { start(); }
 })();

@@ -4,7 +4,7 @@ in headless Chromium with the network blocked (tools/check_site.py).
 The subset is as small as keeps every check meaningful: chapter 3 (live panels shown as
 pictures, formulas, and a pre-rendered slider sweep, which is the course's player: it is played
 and its slider moved) and exercise 1.1 (check widgets drawn by the widget manager from the saved
-state). A page holding an ipympl canvas is written beside them to show that ipympl's front end,
+state), and a search whose excerpts hold formulas (typeset there too). A page holding an ipympl canvas is written beside them to show that ipympl's front end,
 served by the site, draws it. `make site` builds and checks every page. The build runs in its own
 venv (.venv-site, Jupyter Book 1 from PyPI, made by tools/venvs.py in set-up); the front-end files
 come from npm (site/package.json) and the ipympl wheel. Skipped, saying why, only when Chromium,
@@ -30,6 +30,7 @@ import venvs  # noqa: E402
 
 PAGES = ["book/03-velocities", "exercises/ex1_1"]
 CH = "book/03-velocities"
+SEARCH = "search.html?q=lifted+action"      # chapter 3's excerpts hold formulas
 
 pytestmark = pytest.mark.slow
 
@@ -52,7 +53,7 @@ def site(tmp_path_factory, playwright):
     assert res.returncode == 0, res.stdout[-3000:] + res.stderr[-3000:]
     html = out / "_build" / "html"
     report = json.loads((out / "report.json").read_text())
-    results = check_site.check(html, [p + ".html" for p in PAGES], playwright=playwright)
+    results = check_site.check(html, [p + ".html" for p in PAGES] + [SEARCH], playwright=playwright)
     return html, report, {r["page"]: r for r in results}
 
 
@@ -71,6 +72,7 @@ def test_the_check_saw_pictures_formulas_sweeps_and_widgets(site):
     assert ch["math_rendered"] >= 10, "the chapter's formulas are rendered by MathJax"
     assert ch["sweeps"] == 1 and ch["animations"] >= 1, "TangentSpacePanel's sweep was played and moved"
     assert results["exercises/ex1_1.html"]["widgets"] >= 1, "the check widget is drawn from its saved state"
+    assert results[SEARCH]["math_rendered"] >= 1, "the search page typesets its excerpts' formulas"
 
 
 def test_swept_panels_come_from_the_site_config(site):

@@ -49,6 +49,19 @@ _RAW_MATH = r"""() => {
 }"""
 
 
+#: The search page has finished: its status says so and every result's excerpt (a page's, not a
+#: section's, which has a description instead) is typeset (site/gm-site.js marks each one).
+_SEARCH_DONE = r"""() => {
+  const status = document.querySelector('#search-results p.search-summary');
+  const items = [...document.querySelectorAll('#search-results li')];
+  return status && status.textContent.startsWith('Search finished') && items.length > 0 &&
+    items.every(li => li.querySelector(':scope > span') ||
+                      li.querySelector(':scope > p.context[data-gm-math="done"]'));
+}"""
+#: Searches whose excerpts hold formulas (checked beside every page).
+SEARCHES = ("search.html?q=lifted+action", "search.html?q=exponential+map")
+
+
 class _Quiet(http.server.SimpleHTTPRequestHandler):
     def log_message(self, *args):
         pass
@@ -86,6 +99,8 @@ def check_page(page, base, path):
     page.on("pageerror", lambda e: errors.append(str(e)[:300]))
     page.goto(base + path, wait_until="load")
     _settle(page)
+    if "?q=" in path:                      # a search: every excerpt shown and typeset
+        page.wait_for_function(_SEARCH_DONE, timeout=30000)
     page.wait_for_function("() => !window.MathJax || !MathJax.startup || MathJax.startup.promise", timeout=20000)
     page.evaluate("() => window.MathJax && MathJax.startup ? MathJax.startup.promise : null")
     out = {"page": path, "failed": failed, "outside": outside, "errors": errors}
@@ -171,6 +186,7 @@ def check(html_dir, pages=None, playwright=None):
         pages = sorted(p.relative_to(html_dir).as_posix() for d in ("book", "exercises")
                        for p in (html_dir / d).glob("*.html"))
         pages += sorted(p.name for p in html_dir.glob("*.html"))      # index, genindex, search
+        pages += list(SEARCHES)
     srv = serve(html_dir)
     base = f"http://127.0.0.1:{srv.server_address[1]}/"
     results = []
