@@ -228,7 +228,6 @@ class GaitStokesScene(Scene):
         axb.axhline(0.0, color="0.4", lw=0.8, zorder=0.5)
         axb.legend(handles=[Patch(color=c, label=n) for c, n in zip(self.COLORS, Estimates.NAMES)],
                    loc="upper center", ncols=3, handlelength=1.2, columnspacing=1.0)
-        axb.set_title("numbers: in the table below", loc="left")
 
     COLORS: ClassVar[tuple[str, str, str]] = ("k", PALETTE["vermillion"], PALETTE["grey"])
 
