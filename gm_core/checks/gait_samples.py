@@ -9,17 +9,39 @@ so a "gait" that only knows the checker's sample times (a table of them) is not 
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
+from typing_extensions import override
 
 from gm_core.checks.answers import describe, fmt_value, sample_gait
 from gm_core.checks.parts import probe_rng
 from gm_core.checks.sandbox import Wrong
+from gm_core.validation import FloatArray
 
 N_SAMPLES = 256
 N_EXTRA = 16
 _SEED = 42
+
+
+class LazyGait:
+    """A gait t -> r(t) that ``make()`` builds the first time it is called (so a key module that
+    lists reference and wrong gaits imports nothing heavy), shown as ``label``."""
+
+    def __init__(self, make: Callable[[], Callable[[npt.ArrayLike], FloatArray]], label: str) -> None:
+        self.make, self.label = make, label
+        self._gait: Callable[[npt.ArrayLike], FloatArray] | None = None
+
+    def __call__(self, t: npt.ArrayLike) -> FloatArray:
+        if self._gait is None:
+            self._gait = self.make()
+        return self._gait(t)
+
+    @override
+    def __repr__(self) -> str:
+        return self.label
 
 
 def extra_fractions() -> np.ndarray:

@@ -8,7 +8,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
-from typing_extensions import override
 
 from gm_core.checks import gait_samples
 from gm_core.checks.answer_key import ChoiceKey, JudgeKey, Mistake, ValueKey, provide
@@ -18,6 +17,8 @@ from gm_core.checks.parts import ValuePart, first_value
 from gm_core.checks.sandbox import ProbeOutcome, Wrong
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from gm_core.validation import FloatArray
 
 
@@ -124,20 +125,14 @@ def _judge_42a(outcomes: list[ProbeOutcome]) -> str:
     return f"Correct: it turns by {turn:+.3f} rad while its centre of mass moves only {drift:.4f}."
 
 
-class _CircleGait:
-    """circle_gait(radius, centre), built only when called (keeps the import of this module light)."""
-
-    def __init__(self, radius: float, centre: tuple[float, float] = (0.0, 0.0)) -> None:
-        self.radius, self.centre = radius, centre
-
-    def __call__(self, t: npt.ArrayLike) -> FloatArray:
+def _circle_gait(radius: float, centre: tuple[float, float] = (0.0, 0.0)) -> gait_samples.LazyGait:
+    """circle_gait(radius, centre), built only when called."""
+    def make() -> Callable[[npt.ArrayLike], FloatArray]:
         from gm_core.systems.gaits import circle_gait
 
-        return circle_gait(self.radius, self.centre)(t)
+        return circle_gait(radius, centre)
 
-    @override
-    def __repr__(self) -> str:
-        return f"circle_gait({self.radius}, {self.centre})"
+    return gait_samples.LazyGait(make, f"circle_gait({radius}, {centre})")
 
 
 provide(
@@ -145,8 +140,8 @@ provide(
     a=JudgeKey(
         judge=_judge_42a,
         solution_text="For example circle_gait(0.5, (1.5, 1.5)): about -0.26 rad, drift about 0.006.",
-        reference=_CircleGait(0.5, (1.5, 1.5)),
-        wrong=[_CircleGait(1.0, (1.5, 1.5)), _CircleGait(0.5), _CircleGait(0.5, (1.5, -1.5)),
+        reference=_circle_gait(0.5, (1.5, 1.5)),
+        wrong=[_circle_gait(1.0, (1.5, 1.5)), _circle_gait(0.5), _circle_gait(0.5, (1.5, -1.5)),
                lambda t: np.stack([1.5 + 0.5 * np.cos(2 * np.pi * t), 1.5 + t], -1)]),
     b=ChoiceKey(
         correct="a",

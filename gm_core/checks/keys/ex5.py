@@ -5,7 +5,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
-from typing_extensions import override
 
 from gm_core.checks import gait_samples
 from gm_core.checks.answer_key import ChoiceKey, JudgeKey, provide
@@ -15,6 +14,8 @@ from gm_core.checks.parts import first_value
 from gm_core.checks.sandbox import ProbeOutcome, Wrong
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from gm_core.validation import FloatArray
 
 
@@ -44,21 +45,14 @@ def _judge_51a(outcomes: list[ProbeOutcome]) -> str:
     return f"Correct: it moves the swimmer {d:.3f} per cycle (turning {g[2]:+.3f} rad)."
 
 
-class _Wave:
-    """travelling_wave(3, amplitude, lag), built only when called (keeps this module's import light)."""
-
-    def __init__(self, amplitude: float, lag: float) -> None:
-        self.amplitude, self.lag = amplitude, lag
-
-    def __call__(self, t: npt.ArrayLike) -> FloatArray:
+def _wave(amplitude: float, lag: float) -> gait_samples.LazyGait:
+    """travelling_wave(3, amplitude, lag), built only when called."""
+    def make() -> Callable[[npt.ArrayLike], FloatArray]:
         from gm_core.geometry import travelling_wave
 
-        g = travelling_wave(JOINTS, self.amplitude, self.lag, period=1.0)
-        return g(t)
+        return travelling_wave(JOINTS, amplitude, lag, period=1.0)
 
-    @override
-    def __repr__(self) -> str:
-        return f"travelling_wave(3, {self.amplitude}, {self.lag}, period=1)"
+    return gait_samples.LazyGait(make, f"travelling_wave(3, {amplitude}, {lag}, period=1)")
 
 
 provide(
@@ -66,8 +60,8 @@ provide(
     a=JudgeKey(
         judge=_judge_51a,
         solution_text="For example travelling_wave(3, 1.2, 1.0): about 0.38 per cycle.",
-        reference=_Wave(1.2, 1.0),
-        wrong=[_Wave(1.2, 0.0), _Wave(0.6, 1.0), _Wave(1.5, 1.0), _Wave(1.2, 2.8),
+        reference=_wave(1.2, 1.0),
+        wrong=[_wave(1.2, 0.0), _wave(0.6, 1.0), _wave(1.5, 1.0), _wave(1.2, 2.8),
                lambda t: np.stack([np.sin(2 * np.pi * t)] * 2, -1)]),
     b=ChoiceKey(
         correct="a",
