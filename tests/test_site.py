@@ -4,9 +4,10 @@ in headless Chromium with the network blocked (tools/check_site.py).
 The subset is as small as keeps every check meaningful: chapter 3 (live panels shown as
 pictures, formulas, and a pre-rendered slider sweep, which is the course's player: it is played
 and its slider moved) and exercise 1.1 (check widgets drawn by the widget manager from the saved
-state), and a search whose excerpts hold formulas (typeset there too). A page holding an ipympl canvas is written beside them to show that ipympl's front end,
-served by the site, draws it. `make site` builds and checks every page. The build runs in its own
-venv (.venv-site, Jupyter Book 1 from PyPI, made by tools/venvs.py in set-up); the front-end files
+state), and a search whose excerpts hold formulas (typeset there too). A page holding an ipympl
+canvas is written beside them to show that ipympl's front end, served by the site, draws it.
+`make site` builds and checks every page. The build runs in its own venv (.venv-site, Jupyter
+Book 1 from PyPI, made by tools/venvs.py in set-up); the front-end files
 come from npm (site/package.json) and the ipympl wheel. Skipped, saying why, only when Chromium,
 npm or the packages are not to be had."""
 import json
