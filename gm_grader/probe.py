@@ -58,7 +58,7 @@ def call(exercise: str, part: str, data: str) -> None:
     except KeyboardInterrupt:
         raise
     except BaseException as exc:  # noqa: BLE001 - whatever the pickle holds, say so and go on
-        channel.emit(the_part, "stopped", f"your answer could not be rebuilt outside the "
-                     f"notebook ({type(exc).__name__}: {str(exc)[:120]})")
+        channel.emit(the_part, "stopped", "your answer could not be rebuilt outside the "
+                     f"notebook ({type(exc).__name__[:40]} while loading it)")
         return
     the_part.check(answer, quiet=True)

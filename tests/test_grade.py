@@ -168,11 +168,14 @@ def solution_seeker_cells():
             "'part': 'c', 'outcomes': out, 'output': '', 'answer': '', 'unsent': ''}) + '\\n').encode())"]
 
 
-def outcome_forger_cells():
+def outcome_forger_cells(out):
     """Wrong answers checked while the function that sends outcomes is replaced to send those of
     the right answers (as a notebook with the answer key would once have): the outcomes a notebook
-    sends weigh nothing, its answers are called again by the grader (a, b). And an answer that
-    holds a lock, which cannot be handed to the grader, gets a message saying so (c)."""
+    sends weigh nothing, its answers are called again by the grader (a); an answer whose pickle
+    runs code when the grader's sandbox loads it, there trying to write into the grader's output
+    folder (b). And an answer that holds a lock, which cannot be handed to the grader, gets a
+    message saying so (c)."""
+    forge = f"open({str(out / 'grades.csv')!r}, 'w').write('forged')"
     return ["import numpy as np, threading\nfrom gm_core.checks import ex1_2, channel\n"
             "from gm_core.checks.sandbox import collect\n"
             "right = {'a': lambda h, g: h * g, 'b': lambda h, g: np.diag(h)}\n"
@@ -180,7 +183,9 @@ def outcome_forger_cells():
             "def emit(part, outcomes, output='', answer=None):\n"
             "    send(part, collect(right[part.name], part.probes(), raw=True)[0], output, answer)\n"
             "channel.emit = emit\n"
-            "ex1_2.a.check(lambda h, g: h + g)\nex1_2.b.check(lambda h, g: np.diag(g))",
+            "class Loaded:\n    def __reduce__(self):\n"
+            f"        return (exec, ({forge!r},))\n"
+            "ex1_2.a.check(lambda h, g: h + g)\nex1_2.b.check(Loaded())",
             "channel.emit = send\nlock = threading.Lock()\n"
             "def answer_c(h, g):\n    with lock:\n        return np.diag(h)\n\n"
             "ex1_2.c.check(answer_c)"]
@@ -274,7 +279,7 @@ def batch(tmp_path_factory):
     write_nb(tmp / "forger" / "ex1_2.ipynb", forger_cells())
     write_nb(tmp / "keyseeker" / "ex1_2.ipynb", key_seeker_cells())
     write_nb(tmp / "solseeker" / "ex1_2.ipynb", solution_seeker_cells())
-    write_nb(tmp / "outcomes" / "ex1_2.ipynb", outcome_forger_cells())
+    write_nb(tmp / "outcomes" / "ex1_2.ipynb", outcome_forger_cells(out))
     neighbour = tmp / "not-in-this-batch" / "ex1_2.ipynb"          # another upload, not graded now
     neighbour.parent.mkdir()
     neighbour.write_text("{}")
@@ -339,6 +344,8 @@ def test_the_grade_comes_from_the_graders_own_calls_not_the_notebooks_outcomes(b
         assert rows[part]["status"] == "failed" and "Correct" not in rows[part]["message"], rows
         assert "checked in cell 1" in rows[part]["message"], rows[part]
     assert "added the parameters" in rows["a"]["message"]     # the mistake h + g makes
+    assert "could not be rebuilt outside the notebook" in rows["b"]["message"], rows["b"]
+    assert batch["snapshot"]["grades.csv"] != b"forged"      # the grader's own sandbox held it
     assert "could not be handed to the grader" in rows["c"]["message"], rows["c"]
     assert "lock" in rows["c"]["message"], rows["c"]
 

@@ -24,6 +24,7 @@ saying so (:func:`key_requested`).
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -94,11 +95,21 @@ def carried(answer: object) -> tuple[str, str]:
     except KeyboardInterrupt:
         raise
     except BaseException as exc:  # noqa: BLE001 - a lock, a generator, an open file...
-        return "", (f"it holds something that cannot be copied out of the notebook "
-                    f"({type(exc).__name__}: {exc})")[:MAX_UNSENT]
+        return "", _cannot_copy(exc)
     if not isinstance(text, str) or len(text) > MAX_ANSWER:
         return "", "it is too large to hand over, with everything it refers to"
     return text, ""
+
+
+_CANNOT_PICKLE = re.compile(r"cannot pickle '([A-Za-z_][\w.]{0,60})' object")
+
+
+def _cannot_copy(exc: BaseException) -> str:
+    """Why an answer could not be carried, in the grader's own words: the kind of object pickle
+    named, never text the answer's own code chose."""
+    m = _CANNOT_PICKLE.search(str(exc))
+    what = f"a {m.group(1)}" if m else f"something that cannot be copied ({type(exc).__name__[:40]})"
+    return f"it holds {what}, which cannot be copied out of the notebook"[:MAX_UNSENT]
 
 
 def time_limit() -> float | None:
