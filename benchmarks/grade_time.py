@@ -56,7 +56,7 @@ def main(argv=None):
                 calls = run_submission(path, limits=Limits(), sandbox=sandbox)
                 calls_s = time.monotonic() - t
             at = {r.kind: r.at for r in run.records}
-            verdicts = decide(ex, _judged(run, ex), _judged(calls, ex)).parts
+            verdicts = decide(ex, summarise(run, ex, {}, judge=False), _judged(calls, ex)).parts
             got = sum(r.verdict.passed for r in verdicts.values())
             kernel = at.get(RecordKind.KERNEL, float("nan"))
             cells = at.get(RecordKind.DONE, float("nan")) - kernel

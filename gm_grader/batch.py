@@ -433,7 +433,8 @@ def _judged(item: ToRun, result: Ran, assignment: Assignment,
             weights: Mapping[str, float], lines: list[str]) -> list[Row]:
     ex_id, rel = item.exercise, item.rel
     assert item.notebook is not None
-    summary = decide(REGISTRY[ex_id], _summarised(result.notebook, ex_id, _sources(item.notebook)),
+    notebook = summarise(result.notebook, REGISTRY[ex_id], _sources(item.notebook), judge=False)
+    summary = decide(REGISTRY[ex_id], notebook,
                      None if result.calls is None else
                      _summarised(result.calls, ex_id, result.call_sources))
     if summary.problem:

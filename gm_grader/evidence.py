@@ -140,10 +140,13 @@ def collect(run: RunResult, ex: Exercise) -> Collected:
     return Collected(latest, asked, rejected)
 
 
-def summarise(run: RunResult, ex: Exercise, sources: Mapping[int, str]) -> Summary:
+def summarise(run: RunResult, ex: Exercise, sources: Mapping[int, str], *,
+              judge: bool = True) -> Summary:
     """Every part of ``ex`` judged from one run's outcomes, with the run's problem and notes.
 
-    ``sources`` maps cell indices to their source (to name a cell by its first line)."""
+    ``sources`` maps cell indices to their source (to name a cell by its first line).
+    ``judge=False`` (the notebook's own run, whose outcomes weigh nothing): a checked part's
+    verdict is left for :func:`decide` to take from the grader's calls."""
     got = collect(run, ex)
     latest, asked, rejected = got.latest, got.asked, got.rejected
     cells: dict[int, CellEnded] = {}
@@ -204,7 +207,9 @@ def summarise(run: RunResult, ex: Exercise, sources: Mapping[int, str]) -> Summa
             parts[name] = PartResult(Verdict(FAILED, msg, part.title), cell)
         elif name in latest:
             ev, cell = latest[name]
-            parts[name] = PartResult(judge_part(part, ev), cell)
+            parts[name] = PartResult(judge_part(part, ev) if judge else
+                                     Verdict(FAILED, "not judged: see the grader's calls", part.title),
+                                     cell)
         else:
             msg = (f"this part was not checked before {problem}" if problem else
                    f"no check of this part ran in the notebook (call ex{ex.id.replace('.', '_')}."

@@ -779,6 +779,14 @@ def test_a_part_is_decided_by_the_graders_calls_and_says_why_when_they_give_noth
         assert "no check of this part ran" in got.parts["c"].verdict.message
     got = _evidence.decide(ex, notebook, _evidence.summarise(run_of(evidence_line(right)), ex, {}))
     assert got.parts["a"].verdict.passed                # ... and the grader's calls decide
+    unjudged = _evidence.summarise(run_of(evidence_line(right, answer=carried),
+                                          evidence_line(right, name="b", unsent="a lock")), ex, sources,
+                                   judge=False)          # as the grader reads the notebook's run
+    def decided(first):
+        parts = _evidence.decide(ex, first, _evidence.summarise(run_of(evidence_line(wrong)), ex, {})).parts
+        return {n: (r.verdict.status, r.verdict.message, r.cell) for n, r in parts.items()}
+
+    assert decided(unjudged) == decided(notebook)
     assert _evidence.collect(run_of(evidence_line(right, answer=carried)), ex).answers() == {"a": carried}
 
 
