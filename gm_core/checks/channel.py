@@ -48,7 +48,7 @@ if TYPE_CHECKING:
     from gm_core.checks.parts import Part
 
 __all__ = ["open_channel", "time_limit", "set_probe_salt", "probe_salt", "active", "begin", "emit",
-           "key_requested", "carry_answers", "carried", "MAX_RECORD_BYTES"]
+           "key_requested", "stop_carrying_answers", "carried", "MAX_RECORD_BYTES"]
 
 MAX_RECORD_BYTES = 4_000_000
 
@@ -77,11 +77,10 @@ def open_channel(fd: int, nonce: str, salt: int | None, time_limit: float | None
         _STATE.time_limit = float(time_limit)
 
 
-def carry_answers(on: bool) -> None:
-    """Stop sending answers (``on=False``: the grader's own calls of an answer,
-    :mod:`gm_grader.probe`, send only outcomes)."""
-    if not on:
-        _STATE.carrier = None
+def stop_carrying_answers() -> None:
+    """From now on send only outcomes (the grader's own calls of an answer,
+    :mod:`gm_grader.probe`, carry nothing back)."""
+    _STATE.carrier = None
 
 
 def carried(answer: object) -> tuple[str, str]:
