@@ -301,7 +301,7 @@ def test_bad_input_is_named():
     with pytest.raises(ValueError, match="physics"):
         LinkChain((1, 1, 1), "viscous")
     with pytest.raises(ValueError, match="frame"):
-        LinkChain((1, 1, 1), frame="tail")
+        LinkChain((1, 1, 1), frame="head")
     with pytest.raises(ValueError, match="drag_ratio"):
         LinkChain((1, 1, 1), drag_ratio=-1)
     with pytest.raises(ValueError, match="masses"):

@@ -13,6 +13,10 @@ are :func:`gm_core.chains.link_chain_poses` and :func:`gm_core.chains.link_chain
 * ``"floating"``: links of mass m_i (``masses``, default the lengths) and inertia m_i l_i^2 / 12
   (or ``inertias``) in free space; zero momentum.
 
+``link_diagonals`` (N, 3), when given, replaces those link matrices by diag(d_i): measured or
+published per-link coefficients, links that carry no load (zero rows; sysplotter's inactive
+links), or another tool's coefficients to compare with (:mod:`gm_core.systems.catalog`).
+
 The system matrix ``sum J_i^T M_i J_i`` (:meth:`LinkChain.metric`, (3.39), (3.47)) has the total
 wrench or momentum as its top rows: the Pfaffian. No shape is singular (the locked block is
 positive definite). Body frames (``frame``, :data:`FRAMES`):
@@ -27,6 +31,7 @@ positive definite). Body frames (``frame``, :data:`FRAMES`):
 * ``"com middle"``: the centre of mass with the middle frame's axes, the frame of section 3.4.3
   in which the draft writes the floating snake's connection (3.38) (the default of
   :class:`~gm_core.systems.FloatingSnake`); its theta row is the middle frame's;
+* ``"tail"``: the centre of link 1 along that link (sysplotter's ``'tail'`` base frame);
 * ``"minimum perturbation"``: Hatton's frame over ``bounds``, composed on top of the middle frame
   (or, through :meth:`LinkChain.with_frame`, of the frame the chain was in;
   :mod:`gm_core.systems.minimum_perturbation`).
@@ -53,12 +58,23 @@ from gm_core.validation import FloatArray, as_array, check_int, check_option, ch
 __all__ = ["LinkChain", "PHYSICS", "FRAMES", "MAX_LINKS"]
 
 PHYSICS = ("low_re", "high_re", "floating")
-FRAMES = ("middle", "com", "com middle", "minimum perturbation")
+FRAMES = ("middle", "com", "com middle", "tail", "minimum perturbation")
 #: Suffix of a chain's name when :meth:`LinkChain.with_frame` moves it to these frames.
-FRAME_SUFFIX = {"com": " (centre of mass, mean orientation)", "minimum perturbation": " (minimum perturbation)"}
+FRAME_SUFFIX = {"com": " (centre of mass, mean orientation)", "tail": " (tail link)",
+                "minimum perturbation": " (minimum perturbation)"}
 #: Most links a chain may have (a typo such as 10**6 links must not hang the kernel).
 MAX_LINKS = 200
 _PHYSICS_NAMES = {"low_re": "low-Reynolds", "high_re": "high-Reynolds", "floating": "floating"}
+
+
+def _link_diagonals(value, N):
+    """``value`` as N triples (d_x, d_y, d_theta) >= 0 whose sum over the links is positive in every entry."""
+    d = as_array(value, "link_diagonals", (N, 3), what=" (per link, the diagonal of its drag or mass matrix)")
+    if d.ndim != 2:
+        raise ValueError(f"link_diagonals must have shape ({N}, 3), one row per link; got shape {d.shape}")
+    if np.any(d < 0) or np.any(d.sum(0) <= 0) or np.any(d > 1e12):
+        raise ValueError("link_diagonals must be >= 0 (at most 1e12) with every column's sum over the links positive")
+    return tuple(tuple(float(x) for x in row) for row in d)
 
 
 def _per_link(value, name, N, what):
@@ -84,8 +100,8 @@ class LinkChain(LocomotionSystem):
 
     def __init__(self, lengths: ArrayLike = (1.0, 1.0, 1.0), physics: str = "low_re", *, drag_ratio: float = 2.0,
                  masses: ArrayLike | None = None, inertias: ArrayLike | None = None, aspect_ratio: float = 10.0,
-                 fluid_density: float = 1.0, body_density: float = 0.0, frame: Any = "middle", bounds: Any = None,
-                 nodes: int | None = None) -> None:
+                 fluid_density: float = 1.0, body_density: float = 0.0, link_diagonals: ArrayLike | None = None,
+                 frame: Any = "middle", bounds: Any = None, nodes: int | None = None) -> None:
         if isinstance(lengths, (str, bytes)) or np.ndim(lengths) != 1 or not 2 <= np.size(lengths) <= MAX_LINKS:
             raise ValueError(f"lengths must be a sequence of N positive link lengths, 2 <= N <= {MAX_LINKS}; "
                              f"got {lengths!r:.80}")
@@ -104,6 +120,7 @@ class LinkChain(LocomotionSystem):
         self.masses = self.lengths if masses is None else _per_link(masses, "masses", N, " (the link masses)")
         self.inertias = (tuple(m * l ** 2 / 12 for m, l in zip(self.masses, self.lengths)) if inertias is None
                          else _per_link(inertias, "inertias", N, " (the links' moments of inertia about their centres)"))
+        self.link_diagonals = None if link_diagonals is None else _link_diagonals(link_diagonals, N)
         self._diag = np.array([np.diag(M) for M in self.link_matrices()])          # (N, 3): all diagonal
         self._L = np.array(self.lengths)
         self._base = (N - 1) // 2                 # the kernels' base: the middle link (odd N), the one before the middle joint
@@ -149,7 +166,8 @@ class LinkChain(LocomotionSystem):
 
     def _options(self):
         return dict(physics=self.physics, drag_ratio=self.drag_ratio, masses=self.masses, inertias=self.inertias,
-                    aspect_ratio=self.aspect_ratio, fluid_density=self.fluid_density, body_density=self.body_density)
+                    aspect_ratio=self.aspect_ratio, fluid_density=self.fluid_density, body_density=self.body_density,
+                    link_diagonals=self.link_diagonals)
 
     def with_frame(self, frame: Any, bounds: Any = None, nodes: int | None = None) -> LinkChain:
         """The same chain (same class, same physics) seen from another body frame (one of
@@ -178,7 +196,10 @@ class LinkChain(LocomotionSystem):
 
     # -- physics -------------------------------------------------------------------------------
     def link_matrices(self) -> list[FloatArray]:
-        """The (3, 3) link matrices in the links' centre frames: drag, or mass plus added mass."""
+        """The (3, 3) link matrices in the links' centre frames: drag, or mass plus added mass
+        (or ``diag(link_diagonals[i])`` when those were given)."""
+        if self.link_diagonals is not None:
+            return [np.diag(d) for d in self.link_diagonals]
         if self.physics == "low_re":
             return [slender_link_drag(l, self.drag_ratio) for l in self.lengths]
         if self.physics == "floating":
@@ -227,6 +248,9 @@ class LinkChain(LocomotionSystem):
                 cb, sb = np.cos(t), np.sin(t)
                 dt = np.broadcast_to((w[..., None] * B2).sum(0), dx.shape)
             return (x, y, t, cb, sb), (cb * dx + sb * dy, cb * dy - sb * dx, dt)
+        if frame == "tail":
+            (B0, B1, B2) = B
+            return tuple(p[0] for p in P), (B0[0], B1[0], np.broadcast_to(B2[0], B0[0].shape))
         return self._middle_pose(P, B, a)
 
     def _middle_pose(self, P, B, a):
