@@ -10,7 +10,8 @@
   vanish;
 * the system laws (``@system_law``, jaxlie's ``general_group_test`` pattern, like
   tests/test_group_laws.py): what holds for every locomotion system, written once and run over
-  every system of ALL_SYSTEMS plus LinkChain variants, a Reframed system and a SlenderBody, at
+  every system of ALL_SYSTEMS plus LinkChain variants, a Reframed system, a SlenderBody and a
+  modal chain with inert links from sysplotter's catalog, at
   the batch shapes (), (1,) and (3, 1, 2). A system added to ALL_SYSTEMS gets every law.
 """
 import warnings
@@ -36,6 +37,7 @@ from gm_core.systems import (
     LowReSwimmer,
     Reframed,
     SlenderBody,
+    catalog,
 )
 from gm_core.systems.base import LocomotionSystem, SystemPart, rectangle_outline
 from gm_core.systems.connection import connection_from_mass_matrix, connection_from_pfaffian
@@ -434,7 +436,7 @@ def test_other_bad_parameters():
     with pytest.raises(ValueError, match="body_density"):
         HighReSwimmer(body_density=-1.0)
     with pytest.raises(ValueError, match="frame"):
-        FloatingSnake(frame="tail")
+        FloatingSnake(frame="head")
 
 
 @pytest.mark.parametrize("name", list(ALL_SYSTEMS))
@@ -534,6 +536,8 @@ LAW_SYSTEMS = {
     "LinkChain(4, floating)": LinkChain((1.0, 0.8, 1.2, 1.0), "floating", masses=(1.0, 2.0, 1.0, 0.5)),
     "Reframed(LowReSwimmer, centre of mass)": Reframed(LowReSwimmer(), CentreOfMassFrame(LowReSwimmer())),
     "SlenderBody": SlenderBody(),
+    "LinkChain(4, low_re, tail)": LinkChain((1.0, 0.8, 1.2, 1.0), "low_re", frame="tail"),
+    "catalog: flapper_highRe": catalog.load("flapper_highRe"),
 }
 LAW_SHAPES = [(), (1,), (3, 1, 2)]
 SYSTEM_LAWS = settings(max_examples=4, deadline=None)
