@@ -30,10 +30,13 @@ over_shapes = pytest.mark.parametrize("shape", SHAPES, ids=["scalar", "one", "3x
 @st.composite
 def algebra(draw, G, shape, scale=3.0, principal=False):
     """Algebra vectors ``shape + (tangent_dim,)``; ``principal`` keeps periodic parts inside
-    (-k/2, k/2) so that log(exp(xi)) = xi."""
+    (-k/2, k/2), and the whole vector inside the ball |xi| < ``G.principal_radius`` when the
+    group declares one, so that log(exp(xi)) = xi."""
     n = math.prod(shape) * G.tangent_dim
     u = np.array(draw(st.lists(st.floats(-1.0, 1.0), min_size=n, max_size=n))).reshape(shape + (G.tangent_dim,))
     out = scale * u
+    if principal and G.principal_radius is not None:
+        out = 0.98 * G.principal_radius * u / math.sqrt(G.tangent_dim)      # |u| <= sqrt(dim)
     for j, p in enumerate(G.periods):
         if p is not None and principal:
             out[..., j] = 0.49 * p * u[..., j]

@@ -9,6 +9,9 @@ as R^n), the way jaxlie's ``register_lie_group`` does:
 * ``tangent_dim``  dimension of the Lie algebra, the trailing axis of ``xi``
 * ``matrix_size``  n of the n x n matrix representation
 * ``periods``      per coordinate, ``None`` or the period after which it repeats (angles)
+* ``principal_radius``  ``None``, or the radius rho of the ball |xi| < rho on which log(exp(xi)) = xi,
+  for a group whose principal domain is a ball rather than one period per coordinate (pi for
+  SO(3)); tests draw principal algebra vectors from it and ``periods``
 
 and implements the abstract methods (``compose``, ``inverse``, lifted actions, ``hat``/``vee``,
 ``exp``/``log``, ``matrix``/``from_matrix``, ``nearest_element``). Everything else (adjoints,
@@ -134,6 +137,7 @@ class LieGroup(abc.ABC):
     param_dim: ClassVar[int] = 0
     tangent_dim: ClassVar[int] = 0
     matrix_size: ClassVar[int] = 0
+    principal_radius: ClassVar[float | None] = None
 
     def __init__(self) -> None:
         ok = (self.param_dim >= 1 and self.tangent_dim >= 1 and self.matrix_size >= 1
