@@ -528,7 +528,8 @@ def test_rolling_disk_bad_input_names_the_argument():
 
 # ------------------------------------------------------------------ the system laws
 #: Every system the laws run over: ALL_SYSTEMS, then chains of four links under each physics, a
-#: system seen from another body frame and the continuous slender body.
+#: system seen from another body frame and the continuous slender body. (A tabulated connection is
+#: only piecewise smooth, so the derivative laws do not hold across its cells; tests/test_catalog.py.)
 LAW_SYSTEMS = {
     **ALL_SYSTEMS,
     "LinkChain(4, low_re)": LinkChain((1.0, 0.8, 1.2, 1.0), "low_re"),

@@ -203,6 +203,24 @@ def run_file(root: Path, name: str) -> dict:
     return out
 
 
+GRANULAR = ROOT / "gm_core" / "systems" / "sysplotter_granular.json"
+
+
+def write_granular_table(root: Path, commit: str) -> None:
+    """three_link_granular's measured connection (Granular_Local_Connection_Matrix.mat) as JSON, for the catalog."""
+    from scipy.io import loadmat
+
+    mat = loadmat(root / "UserFiles" / "GenericUser" / "Systems" / "Granular_Local_Connection_Matrix.mat")
+    a1, a2 = mat["alpha1"], mat["alpha2"]          # ndgrid: a1 varies along rows, a2 along columns
+    out = {"source": "OSU-LRAM/GeometricSystemPlotter (MIT licence), UserFiles/GenericUser/Systems/"
+                     "Granular_Local_Connection_Matrix.mat", "sysplotter_commit": commit,
+           "alpha1": a1[:, 0].tolist(), "alpha2": a2[0, :].tolist()}
+    for key in ("Ax1", "Ax2", "Ay1", "Ay2", "Atheta1", "Atheta2"):
+        out[key] = mat[key].tolist()
+    GRANULAR.write_text(json.dumps(out) + "\n")
+    print(f"wrote {GRANULAR.relative_to(ROOT)}")
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("sysplotter", type=Path, help="a checkout of OSU-LRAM/GeometricSystemPlotter")
@@ -218,6 +236,8 @@ def main(argv: list[str] | None = None) -> int:
     commit = args.commit or subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
     version = subprocess.run(["octave", "--version"], capture_output=True, text=True).stdout.splitlines()[0]
     data.update({"sysplotter_commit": commit or data.get("sysplotter_commit", "unknown"), "octave": version})
+    if "three_link_granular" in names:
+        write_granular_table(root, data["sysplotter_commit"])
     for name in names:
         out = run_file(root, name)
         data["files"][name] = out

@@ -47,6 +47,7 @@ from gm_core.systems.diff_drive import DifferentialDrive
 from gm_core.systems.kinematic_snake import KinematicSnake
 from gm_core.systems.link_chain import LinkChain
 from gm_core.systems.restricted import AffineRestriction
+from gm_core.systems.tabulated import TabulatedConnection
 from gm_core.validation import FloatArray
 
 __all__ = ["SysplotterFile", "ParityRow", "names", "load", "sysplotter_view", "sysplotter_files", "reference", "parity",
@@ -213,6 +214,8 @@ def _files() -> dict[str, SysplotterFile]:
                     differs=PI_OVER_8),
         _chain_file("diffdrive", "differential-drive car (wheel radius 2, half-axle 1)", 2.5, 2,
                     lambda: DifferentialDrive(wheel_radius=2.0, half_width=1.0), metric="none"),
+        _chain_file("three_link_granular", "three links in granular media: a measured 21 x 21 table, symmetry-averaged",
+                    2.5, 2, _granular, metric="none"),
         _chain_file("three_link_kinematic", "three links on wheels (kinematic snake), 3 equal", np.pi / 2, 2,
                     lambda: KinematicSnake((1 / 3,) * 3), metric="none"),
     ]
@@ -239,8 +242,6 @@ def _not_yet() -> dict[str, SysplotterFile]:
         SysplotterFile("triangle_lowRe", _CONTINUOUS + ": a triangle wave of curvature", _box(12, 2), missing=body),
         SysplotterFile("triangle_lowRe_two_waves", _CONTINUOUS + ": a triangle wave of two periods", _box(12, 2),
                        missing=body),
-        SysplotterFile("three_link_granular", "three links in granular media, a tabulated connection", _box(2.5, 2),
-                       missing="needs a tabulated connection (sysplotter's measured 21 x 21 table)"),
         SysplotterFile("three_link_HighRe_panelMethod", "high-Re ellipses interacting through a panel method", _box(2.0, 2),
                        missing="needs interacting added mass between links (sysplotter's panel method)"),
         SysplotterFile("symmetricTapeMeasure", "a floating looped chain (tape-measure swimmer)", _box(1.0, 2),
@@ -252,6 +253,17 @@ def _not_yet() -> dict[str, SysplotterFile]:
                        missing="needs a system whose position lives on SO(3) rather than SE(2)"),
     ]
     return {f.name: f for f in files}
+
+
+def _granular() -> TabulatedConnection:
+    """sysplotter's granular three-link swimmer: its table (stored as sysplotter_granular.json by
+    tools/sysplotter_reference.py), x and y rows times the length scale 1/3, negated (the file's
+    ``A = -...``), averaged over the three-link symmetries (its four_way_symmetry '3link')."""
+    data = json.loads(resources.files("gm_core.systems").joinpath("sysplotter_granular.json").read_text())
+    scale = np.array([1 / 3, 1 / 3, 1.0])[:, None, None, None]
+    T = np.array([[data["Ax1"], data["Ax2"]], [data["Ay1"], data["Ay2"]], [data["Atheta1"], data["Atheta2"]]])
+    return TabulatedConnection((data["alpha1"], data["alpha2"]), -scale * T, symmetry="three link",
+                               body=_low_re(3), name="three_link_granular")
 
 
 def _trig_modes() -> FloatArray:
