@@ -1,7 +1,7 @@
 """Lie groups of chapter 1 behind one interface (numpy only).
 
 Every group is a singleton object with the same methods, so a formula written once works on
-(R, +), (R^n, +), (R+, x), SO(2), S^1, (R^2 x S^1, +) and SE(2):
+(R, +), (R^n, +), (R+, x), SO(2), S^1, (R^2 x S^1, +), SE(2) and the scale-shift group R+ x| R:
 
 =====================  ===================================================  ==============
 method                 meaning                                              book
@@ -31,18 +31,20 @@ multiple of 2 pi are the same element; compare with :meth:`LieGroup.isclose`, an
 (which wraps to (-pi, pi], exactly for every finite angle) to get the principal coordinates.
 
 Files: ``base.py`` (the abstract interface, angle reduction), ``additive.py`` (R^n, SO(2), S^1,
-R^2 x S^1), ``rplus.py`` ((R+, x)), ``se2.py`` (SE(2)). A new group subclasses
-:class:`LieGroup`, declares its dimensions and implements the abstract methods.
+R^2 x S^1), ``rplus.py`` ((R+, x)), ``se2.py`` (SE(2)), ``scale_shift.py`` (R+ x| R, the affine
+maps x -> a x + b of the line). A new group subclasses :class:`LieGroup`, declares its
+dimensions and implements the abstract methods.
 """
 from __future__ import annotations
 
 from gm_core.groups.additive import MAX_RN_DIM, S1, SO2, R2xS1, Rn
 from gm_core.groups.base import TWO_PI, LieGroup, check_group, matvec, wrap_angle, wrap_periodic
 from gm_core.groups.rplus import RPlus
+from gm_core.groups.scale_shift import ScaleShift
 from gm_core.groups.se2 import SE2
 
 __all__ = [
-    "LieGroup", "Rn", "R", "R2", "RPlus", "SO2", "S1", "R2xS1", "SE2", "wrap_angle", "matvec",
+    "LieGroup", "Rn", "R", "R2", "RPlus", "SO2", "S1", "R2xS1", "SE2", "ScaleShift", "wrap_angle", "matvec",
     "ALL_GROUPS", "check_group", "wrap_periodic", "TWO_PI", "MAX_RN_DIM",
 ]
 
@@ -51,4 +53,4 @@ R2 = Rn(2)
 
 #: Every group of chapter 1, for tests and demos that loop over them.
 ALL_GROUPS = {"R": R, "R2": R2, "RPlus": RPlus, "SO2": SO2, "S1": S1(), "S1_cycles": S1(1.0),
-              "R2xS1": R2xS1, "SE2": SE2}
+              "R2xS1": R2xS1, "SE2": SE2, "ScaleShift": ScaleShift}
