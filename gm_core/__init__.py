@@ -13,11 +13,26 @@ import importlib
 from typing import Any
 
 from gm_core import renamed
-from gm_core.groups import ALL_GROUPS, R2, S1, SE2, SO2, SO3, LieGroup, R, R2xS1, Rn, RPlus, matvec, wrap_angle
+from gm_core.groups import (
+    ALL_GROUPS,
+    R2,
+    S1,
+    SE2,
+    SO2,
+    SO3,
+    LieGroup,
+    R,
+    R2xS1,
+    Rn,
+    RPlus,
+    ScaleShift,
+    matvec,
+    wrap_angle,
+)
 from gm_core.validation import SingularShapeError
 
 __all__ = [
-    "LieGroup", "Rn", "R", "R2", "RPlus", "SO2", "S1", "R2xS1", "SE2", "SO3", "ALL_GROUPS", "wrap_angle",
+    "LieGroup", "Rn", "R", "R2", "RPlus", "SO2", "S1", "R2xS1", "SE2", "ScaleShift", "SO3", "ALL_GROUPS", "wrap_angle",
     "matvec", "SingularShapeError",
 ]
 

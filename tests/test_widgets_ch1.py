@@ -45,6 +45,7 @@ from gm_core.widgets.groups import (
     CircleIsoPanel,
     ForwardLeftPanel,
     LeftRightActionPanel,
+    ScaleShiftActionPanel,
     SlideRulePanel,
 )
 from gm_core.widgets.observers import FramesPanel, ObserverPanel
@@ -92,14 +93,14 @@ def quiver_uv(q):
 def test_every_ch1_panel_is_registered_and_builds():
     modules = (spaces, axioms, groups, tangent, vector_fields, observers, geodesics)
     names = [n for n, c in PANELS.items() if c.__module__ in {m.__name__ for m in modules}]
-    assert {n for m in modules for n in m.__all__} <= set(names) and len(names) == 22
+    assert {n for m in modules for n in m.__all__} <= set(names) and len(names) == 23
     rng = np.random.default_rng(0)
     for n in names:
         p = PANELS[n]()
         p.update(**p.sample_values(rng))
         p.naive_update(**p.sample_values(rng))  # the baseline must also run
         if p.fig is not None:
-            plt.close(p.fig)   # 22 panels: pyplot would keep every figure open
+            plt.close(p.fig)   # 23 panels: pyplot would keep every figure open
 
 
 # ---------------------------------------------------------------- 1.1 configuration spaces
@@ -298,6 +299,27 @@ def test_body_points_world_position():
     x, y = p.scene.point.get_data()
     assert np.allclose([x[0], y[0]], want[:2])
     assert p.scene.matrix_mismatch < 1e-12
+
+
+def test_scale_shift_panel_moves_the_grid_and_the_flows_by_matrix_products():
+    """The scale-shift panel's dots and lines, read back, are the matrix route: [[α, β], [0, 1]]
+    times [[a, b], [0, 1]] on either side for the grid, scipy's expm for exp(tξ) and its images."""
+    import scipy.linalg
+
+    p = slide(ScaleShiftActionPanel(), alpha=0.7, beta=-0.4, u=-0.8, v=1.3)
+    H = np.array([[0.7, -0.4], [0.0, 1.0]])
+    grid = [np.array([[a, b], [0.0, 1.0]]) for a in (0.5, 1.0, 1.5, 2.0) for b in (-1.0, -0.5, 0.0, 0.5, 1.0)]
+    left, right = (np.asarray(d.get_offsets()) for d in p.scene.moved_dots)
+    assert np.allclose(left, [(H @ M)[0] for M in grid], atol=1e-14)
+    assert np.allclose(right, [(M @ H)[0] for M in grid], atol=1e-14)
+    t = np.linspace(-1.5, 1.5, 61)
+    E = [scipy.linalg.expm(s * np.array([[-0.8, 1.3], [0.0, 0.0]])) for s in t]
+    for k, flow in enumerate(p.scene.flows):
+        assert np.allclose(np.c_[p.scene.subgroup_lines[k].get_data()], [M[0] for M in E], atol=1e-12)
+        want = [(H @ M)[0] if k == 0 else (M @ H)[0] for M in E]
+        assert np.allclose(np.c_[flow.get_data()], want, atol=1e-12)
+        assert np.allclose(p.scene.h_marks[k].get_data(), [[0.7], [-0.4]])
+    assert "0.70" in p.scene.formulas[0].get_text() and "-0.40" in p.scene.formulas[1].get_text()
 
 
 def test_path_text_renders_and_updates():

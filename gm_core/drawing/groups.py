@@ -1,5 +1,6 @@
 """Lie groups and SE(2) (book sections 1.2-1.3): the slide rule,
-the circle vs SO(2), left and right actions, repeated steps, points on a rigid body.
+the circle vs SO(2), left and right actions, repeated steps, points on a rigid body, and the
+scale-shift group's actions on its half-plane.
 
 The group axioms ("group or not?") are drawn by :mod:`.group_or_not`.
 """
@@ -8,20 +9,21 @@ from __future__ import annotations
 from typing import Any, ClassVar, TypedDict
 
 import numpy as np
-from matplotlib.collections import LineCollection, PolyCollection
+from matplotlib.collections import LineCollection, PathCollection, PolyCollection
+from matplotlib.lines import Line2D
 from numpy.typing import ArrayLike
 from typing_extensions import override
 
 from gm_core.drawing.toolkit.axes import plane
 from gm_core.drawing.toolkit.primitives import BodyArtist, FrameArtist
 from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, ArrowSet, PathText, Scene, arrow, set_arrows, title
-from gm_core.groups import S1, SE2, R2xS1
+from gm_core.groups import S1, SE2, R2xS1, ScaleShift
 from gm_core.groups.axioms import powers
 from gm_core.groups.base import TWO_PI
 from gm_core.validation import FloatArray
 
 __all__ = ["BODY", "SlideRuleScene", "CircleIsoScene",
-           "LeftRightActionScene", "ForwardLeftScene", "BodyPointsScene"]
+           "LeftRightActionScene", "ForwardLeftScene", "BodyPointsScene", "ScaleShiftActionScene"]
 
 BODY = BodyArtist.triangle(0.35)
 
@@ -466,3 +468,109 @@ class BodyPointsScene(Scene):
         self.text.set_text(f"body point ({px:.2f}, {py:.2f}) → world ({self.world[0]:.2f}, "
                            f"{self.world[1]:.2f})\nmatrix (1.12) agrees to {self.matrix_mismatch:.0e}")
 
+
+# ================================================================================ R+ x| R
+class ScaleShiftActionScene(Scene):
+    """The scale-shift group R+ x| R (semi-direct product (1.xix)) acting on its own half-plane a > 0.
+
+    Values ``alpha``, ``beta`` (the acting element h = (alpha, beta)) and ``u``, ``v`` (an algebra
+    vector xi). Each axes shows a grid of elements g = (a, b) (grey) and its image under the left
+    action h o g (left axes) or the right action g o h (right axes), together with the
+    one-parameter subgroup exp(t xi) through e (dashed) and its image, h o exp(t xi) or
+    exp(t xi) o h: the left- or right-invariant flow through h, (1.46)-(1.47).
+    """
+
+    #: the grid of elements g that the actions move: a in A_GRID, b in B_GRID
+    A_GRID: ClassVar[FloatArray] = np.array([0.5, 1.0, 1.5, 2.0])
+    B_GRID: ClassVar[FloatArray] = np.array([-1.0, -0.5, 0.0, 0.5, 1.0])
+    #: times of the drawn one-parameter subgroup
+    T: ClassVar[FloatArray] = np.linspace(-1.5, 1.5, 61)
+    #: a dot on the drawn flows every MARK_EVERY samples of T (every half unit of time)
+    MARK_EVERY: ClassVar[int] = 10
+    XLIM: ClassVar[tuple[float, float]] = (-0.6, 5.4)
+    YLIM: ClassVar[tuple[float, float]] = (-3.1, 3.1)
+
+    FIGSIZE = (9, 4.4)
+    NCOLS = 2
+    MARGINS = dict(left=0.02, right=0.98, bottom=0.17, top=0.92, wspace=0.06)
+
+    @override
+    def decorate(self) -> None:
+        x0, x1 = self.XLIM
+        y0, y1 = self.YLIM
+        lines = [[(v, y0), (v, y1)] for v in range(0, int(x1) + 1)] + \
+                [[(x0, v), (x1, v)] for v in range(int(np.ceil(y0)), int(y1) + 1)]
+        for ax in self.axes:
+            ax.set_xlim(x0, x1)
+            ax.set_ylim(y0, y1)
+            ax.set_aspect("equal")
+            ax.set_xticks([])
+            ax.set_yticks([])
+            ax.add_collection(LineCollection(lines, colors="0.9", linewidths=0.6, zorder=0))
+            ax.axvspan(x0, 0.0, color="0.85", zorder=0)            # a <= 0: no element
+            ax.plot([0, 0], [y0, y1], color="0.3", lw=1.0, zorder=1)
+            ax.plot([0, x1], [0, 0], color="0.6", lw=0.8, zorder=1)
+            PathText(ax, x1 - 0.1, 0.12, "a", size=9, ha="right", va="bottom")
+            PathText(ax, 0.12, y1 - 0.1, "b", size=9, ha="left", va="top")
+            ax.plot([1.0], [0.0], "o", color="k", ms=5, zorder=6)         # the identity e = (1, 0)
+        title(self.axes[0], r"left action  $g \mapsto h\circ g$", size=MATH_PT)
+        title(self.axes[1], r"right action  $g \mapsto g\circ h$", size=MATH_PT)
+
+    @override
+    def create(self) -> None:
+        a, b = np.meshgrid(self.A_GRID, self.B_GRID, indexing="ij")
+        self.grid = np.stack([a, b], -1)                       # (n_a, n_b, 2) elements g
+        self.moved: list[LineCollection] = []
+        self.moved_dots: list[PathCollection] = []
+        self.subgroup_lines: list[Line2D] = []
+        self.flows: list[Line2D] = []
+        self.h_marks: list[Line2D] = []
+        self.formulas: list[PathText] = []
+        for ax, color in zip(self.axes, (PALETTE["left"], PALETTE["right"])):
+            ax.add_collection(LineCollection(self._mesh(self.grid), colors="0.55", linewidths=0.8, zorder=2))
+            ax.scatter(self.grid[..., 0].ravel(), self.grid[..., 1].ravel(), s=10, color="0.45", zorder=3)
+            mesh = LineCollection([], colors=color, linewidths=1.0, zorder=4)
+            ax.add_collection(mesh)
+            self.moved.append(mesh)
+            self.moved_dots.append(ax.scatter(self.grid[..., 0].ravel(), self.grid[..., 1].ravel(), s=14,
+                                              color=color, zorder=5))
+            # a dot every half unit of t: the flows are straight rays, run at an exponential pace
+            self.subgroup_lines.append(ax.plot([], [], color="k", ls="--", lw=1.2, marker="o", ms=3,
+                                               markevery=self.MARK_EVERY, zorder=5)[0])
+            self.flows.append(ax.plot([], [], color=color, lw=2.0, marker="o", ms=4, markevery=self.MARK_EVERY,
+                                      zorder=5)[0])
+            self.h_marks.append(ax.plot([], [], "*", color=PALETTE["vermillion"], ms=12, mec="k", mew=0.6,
+                                        zorder=7)[0])
+            self.formulas.append(PathText(ax, 0.5, 0.0, "", size=MATH_PT, ha="center", va="top", coords="axes",
+                                          offset=(0, -5)))
+        words = ("scale everything by α about (0, 0), then shift by β\n"
+                 "dashed: exp(tξ);  thick: h∘exp(tξ);  dots every ½ in t",
+                 "scale a by α, shift b by β a: a shear\n"
+                 "dashed: exp(tξ);  thick: exp(tξ)∘h;  dots every ½ in t")
+        for ax, text in zip(self.axes, words):
+            PathText(ax, 0.5, 0.0, text, size=8, ha="center", va="top", coords="axes", offset=(0, -24))
+
+    @staticmethod
+    def _mesh(points: FloatArray) -> list[FloatArray]:
+        """The grid's lines through ``points (n_a, n_b, 2)``: each row and each column as a polyline."""
+        return [points[i] for i in range(points.shape[0])] + [points[:, j] for j in range(points.shape[1])]
+
+    @override
+    def set(self, alpha: float = 1.5, beta: float = 0.5, u: float = 0.6, v: float = 1.0) -> None:
+        G = ScaleShift
+        h = np.array([alpha, beta])
+        xi = np.array([u, v])
+        self.left_images = G.compose(h, self.grid)             # h o g for every g of the grid
+        self.right_images = G.compose(self.grid, h)            # g o h
+        self.subgroup = G.exp(self.T[:, None] * xi)
+        self.left_flow = G.compose(h, self.subgroup)           # h o exp(t xi), (1.46)
+        self.right_flow = G.compose(self.subgroup, h)          # exp(t xi) o h, (1.47)
+        for k, (images, flow) in enumerate(((self.left_images, self.left_flow),
+                                            (self.right_images, self.right_flow))):
+            self.moved[k].set_segments(self._mesh(images))
+            self.moved_dots[k].set_offsets(images.reshape(-1, 2))
+            self.subgroup_lines[k].set_data(self.subgroup[:, 0], self.subgroup[:, 1])
+            self.flows[k].set_data(flow[:, 0], flow[:, 1])
+            self.h_marks[k].set_data([alpha], [beta])
+        self.formulas[0].set_text(rf"$h\circ g = ({alpha:.2f}\,a,\ {alpha:.2f}\,b {beta:+.2f})$")
+        self.formulas[1].set_text(rf"$g\circ h = ({alpha:.2f}\,a,\ b {beta:+.2f}\,a)$")

@@ -1,7 +1,7 @@
 """Lie groups of chapter 1 behind one interface (numpy only).
 
 Every group is a singleton object with the same methods, so a formula written once works on
-(R, +), (R^n, +), (R+, x), SO(2), S^1, (R^2 x S^1, +), SE(2) and SO(3):
+(R, +), (R^n, +), (R+, x), SO(2), S^1, (R^2 x S^1, +), SE(2), the scale-shift group R+ x| R and SO(3):
 
 =====================  ===================================================  ==============
 method                 meaning                                              book
@@ -33,19 +33,21 @@ SO(3) is the exception: its coordinates are a rotation vector r, and every map r
 principal one, |r| <= pi (``principal_radius``), since no single coordinate carries the angle.
 
 Files: ``base.py`` (the abstract interface, angle reduction), ``additive.py`` (R^n, SO(2), S^1,
-R^2 x S^1), ``rplus.py`` ((R+, x)), ``se2.py`` (SE(2)), ``so3.py`` (SO(3) in rotation vectors). A
-new group subclasses :class:`LieGroup`, declares its dimensions and implements the abstract methods.
+R^2 x S^1), ``rplus.py`` ((R+, x)), ``se2.py`` (SE(2)), ``scale_shift.py`` (R+ x| R, the affine
+maps x -> a x + b of the line), ``so3.py`` (SO(3) in rotation vectors). A new group subclasses
+:class:`LieGroup`, declares its dimensions and implements the abstract methods.
 """
 from __future__ import annotations
 
 from gm_core.groups.additive import MAX_RN_DIM, S1, SO2, R2xS1, Rn
 from gm_core.groups.base import TWO_PI, LieGroup, check_group, matvec, wrap_angle, wrap_periodic
 from gm_core.groups.rplus import RPlus
+from gm_core.groups.scale_shift import ScaleShift
 from gm_core.groups.se2 import SE2
 from gm_core.groups.so3 import SO3
 
 __all__ = [
-    "LieGroup", "Rn", "R", "R2", "RPlus", "SO2", "S1", "R2xS1", "SE2", "SO3", "wrap_angle", "matvec",
+    "LieGroup", "Rn", "R", "R2", "RPlus", "SO2", "S1", "R2xS1", "SE2", "ScaleShift", "SO3", "wrap_angle", "matvec",
     "ALL_GROUPS", "check_group", "wrap_periodic", "TWO_PI", "MAX_RN_DIM",
 ]
 
@@ -54,4 +56,4 @@ R2 = Rn(2)
 
 #: Every group of chapter 1 (and SO(3)), for tests and demos that loop over them.
 ALL_GROUPS = {"R": R, "R2": R2, "RPlus": RPlus, "SO2": SO2, "S1": S1(), "S1_cycles": S1(1.0),
-              "R2xS1": R2xS1, "SE2": SE2, "SO3": SO3}
+              "R2xS1": R2xS1, "SE2": SE2, "ScaleShift": ScaleShift, "SO3": SO3}

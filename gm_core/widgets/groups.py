@@ -1,5 +1,5 @@
-"""Sections 1.2-1.3 panels: the slide rule, the circle isomorphism and SE(2) acting
-(scenes of :mod:`gm_core.drawing.groups`).
+"""Sections 1.2-1.3 panels: the slide rule, the circle isomorphism, SE(2) acting and the
+scale-shift group acting on its half-plane (scenes of :mod:`gm_core.drawing.groups`).
 """
 from __future__ import annotations
 
@@ -12,11 +12,13 @@ from gm_core.drawing.groups import (
     CircleIsoScene,
     ForwardLeftScene,
     LeftRightActionScene,
+    ScaleShiftActionScene,
     SlideRuleScene,
 )
 from gm_core.widgets.base import ScenePanel, int_slider, register, se2_sliders, slider
 
-__all__ = ["SlideRulePanel", "CircleIsoPanel", "LeftRightActionPanel", "ForwardLeftPanel", "BodyPointsPanel"]
+__all__ = ["SlideRulePanel", "CircleIsoPanel", "LeftRightActionPanel", "ForwardLeftPanel", "BodyPointsPanel",
+           "ScaleShiftActionPanel"]
 
 PI = float(np.pi)
 
@@ -88,3 +90,18 @@ class BodyPointsPanel(ScenePanel):
         c["px"] = slider(0.6, -0.8, 0.8, description="body point pᵇ: x")
         c["py"] = slider(0.3, -0.4, 0.4, description="body point pᵇ: y")
         return c
+
+
+@register
+class ScaleShiftActionPanel(ScenePanel):
+    """R+ ⋉ R, the maps x ↦ αx + β: left and right actions of h on a grid, and exp(tξ), (1.xix), (1.46)-(1.47)."""
+
+    title = "Scale-shift group: h∘g vs g∘h on the half-plane, and exp(tξ)"
+    scene_class = ScaleShiftActionScene
+
+    @override
+    def controls_spec(self) -> dict[str, W.ValueWidget]:
+        return {"alpha": slider(1.5, 0.4, 2.0, description="h: scale α"),
+                "beta": slider(0.5, -1.0, 1.0, description="h: shift β"),
+                "u": slider(0.6, -1.0, 1.0, description="ξ: scale rate u"),
+                "v": slider(1.0, -1.5, 1.5, description="ξ: shift rate v")}
