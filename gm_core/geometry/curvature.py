@@ -31,6 +31,7 @@ from gm_core.systems.motion import (
     curvature_form,
     exterior_derivative,
     fd_connection_derivative,
+    position_group,
     trusted_dimension,
 )
 from gm_core.validation import FloatArray, SingularShapeError, as_array, check_int, positive_number
@@ -112,7 +113,7 @@ def constraint_curvature(system: LocomotionSystem, r: ArrayLike, *, method: str 
         if n == 2:
             F = F[..., None, None] * np.array([[0.0, 1.0], [-1.0, 0.0]])
     else:
-        F = curvature_form(*fd_connection_derivative(system, r))
+        F = curvature_form(*fd_connection_derivative(system, r), group=position_group(system))
     if pair is not None:
         return F[..., i, j]
     return F[..., 0, 1] if n == 2 else F

@@ -22,6 +22,7 @@ from gm_core.systems.low_re import LowReSwimmer
 from gm_core.systems.minimum_perturbation import MinimumPerturbationFrame
 from gm_core.systems.reframed import BodyFrame, CentreOfMassFrame, PoseFrame, Reframed
 from gm_core.systems.restricted import AffineRestriction, shape_slice
+from gm_core.systems.rotors import Rotors
 from gm_core.systems.slender_body import SlenderBody, chain_approximation, serpenoid_modes
 from gm_core.systems.tabulated import TabulatedConnection
 from gm_core.systems.three_link import ThreeLinkSystem
@@ -30,7 +31,7 @@ __all__ = ["LocomotionSystem", "SystemPart", "ThreeLinkSystem", "DifferentialDri
            "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer",
            "LinkChain", "BodyFrame", "PoseFrame", "CentreOfMassFrame", "Reframed", "MinimumPerturbationFrame",
            "AffineRestriction", "shape_slice", "SlenderBody", "chain_approximation", "serpenoid_modes",
-           "TabulatedConnection", "ALL_SYSTEMS"]
+           "TabulatedConnection", "Rotors", "ALL_SYSTEMS"]
 
 
 #: One default instance of each system of chapter 3, keyed by class name (like ALL_GROUPS): the

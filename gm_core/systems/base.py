@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from typing_extensions import override
 
+from gm_core.groups import SE2, LieGroup
 from gm_core.systems.connection import SINGULAR_TOL, connection_from_pfaffian, pfaffian_determinant
 from gm_core.systems.motion import (
     CheckedSystem,
@@ -79,7 +80,10 @@ class LocomotionSystem(CheckedSystem, metaclass=SystemMeta):
     """
 
     name: str = "system"
-    #: Dimension of the position group SE(2) (the rows of the connection), the same for every system.
+    #: The group the position lives in: SE(2) for every locomotor in the plane (SO(3) for a body
+    #: turning in space); gaits are integrated in it and the curvature takes its bracket.
+    position_group: ClassVar[LieGroup] = SE2
+    #: Dimension of the position group (the rows of the connection), the same for every system.
     n_position: ClassVar[int] = 3
     #: Dimension n of the shape space (fixed per class for most systems, set per instance for chains).
     n_shape: int = 2
@@ -132,7 +136,7 @@ class LocomotionSystem(CheckedSystem, metaclass=SystemMeta):
         ``F_ij = -(d_i A_j - d_j A_i) + [A_i, A_j]`` (:func:`gm_core.systems.motion.curvature_form`);
         for two shape variables the one component F_12 is returned as (..., 3). NaN at singular shapes.
         """
-        F = curvature_form(*self.connection_derivative(r))
+        F = curvature_form(*self.connection_derivative(r), group=self.position_group)
         return F[..., 0, 1] if self.n_shape == 2 else F
 
     def shape_metric(self, r: ArrayLike) -> FloatArray:

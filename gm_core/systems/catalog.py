@@ -47,6 +47,7 @@ from gm_core.systems.diff_drive import DifferentialDrive
 from gm_core.systems.kinematic_snake import KinematicSnake
 from gm_core.systems.link_chain import LinkChain
 from gm_core.systems.restricted import AffineRestriction
+from gm_core.systems.rotors import Rotors
 from gm_core.systems.tabulated import TabulatedConnection
 from gm_core.validation import FloatArray
 
@@ -216,6 +217,8 @@ def _files() -> dict[str, SysplotterFile]:
                     lambda: DifferentialDrive(wheel_radius=2.0, half_width=1.0), metric="none"),
         _chain_file("three_link_granular", "three links in granular media: a measured 21 x 21 table, symmetry-averaged",
                     2.5, 2, _granular, metric="none"),
+        _chain_file("twin_rotor", "a body in space (SO(3)) with two rotors on one axis, opposite ways, J / I = 1", 2.5, 2,
+                    lambda: Rotors(((0, 0, 1), (0, 0, -1)), (1.0, 1.0), np.eye(3), name="twin_rotor"), metric="none"),
         _chain_file("three_link_kinematic", "three links on wheels (kinematic snake), 3 equal", np.pi / 2, 2,
                     lambda: KinematicSnake((1 / 3,) * 3), metric="none"),
     ]
@@ -249,8 +252,6 @@ def _not_yet() -> dict[str, SysplotterFile]:
         SysplotterFile("asymmetricTapeMeasure", "an asymmetric looped chain", _box(1.0, 3),
                        missing="needs closed bodies; sysplotter itself cannot evaluate this file (it calls two "
                                "functions that exist nowhere in its repository)"),
-        SysplotterFile("twin_rotor", "two rotors on SO(3)", _box(2.5, 2),
-                       missing="needs a system whose position lives on SO(3) rather than SE(2)"),
     ]
     return {f.name: f for f in files}
 

@@ -11,7 +11,8 @@ where ``A`` is the *local connection*. This module holds the parts shared by eve
 * :func:`check_gait`: does a gait meet a singular shape?
 * :func:`net_displacement`, :func:`trajectory`: reconstruction of the position trajectory by
   integrating ``g_dot = T_e L_g xi`` with a fourth-order Magnus (Lie-group) integrator built on
-  ``SE2.exp``, so every step stays exactly in SE(2).
+  the position group's ``exp``, so every step stays exactly in the group: SE(2), or the group a
+  system names as its ``position_group`` (SO(3) for a body turning in space, :func:`position_group`).
 
 The routes to the connection (:func:`connection_from_pfaffian`, (3.11)-(3.17);
 :func:`connection_from_mass_matrix` and :func:`metric_from_jacobians`, (3.39)-(3.40)) live in
@@ -35,7 +36,7 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
-from gm_core.groups import SE2, matvec
+from gm_core.groups import SE2, LieGroup, matvec
 from gm_core.systems.gaits import Gait, GaitLike, as_gait
 from gm_core.systems.pacing import constant_rate_path
 from gm_core.validation import FloatArray, SingularShapeError, as_array, check_int, positive_number, real_number
@@ -169,12 +170,24 @@ def exterior_derivative(dA: ArrayLike) -> FloatArray:
     return np.swapaxes(dA, -1, -2) - dA
 
 
-def curvature_form(A: ArrayLike, dA: ArrayLike) -> FloatArray:
+def position_group(system: Any) -> LieGroup:
+    """The Lie group a system's position lives in: its ``position_group`` attribute, SE(2) if it has none.
+
+    It must have a three-dimensional algebra (the three rows of the connection); TypeError otherwise.
+    """
+    G = getattr(system, "position_group", SE2)
+    if not isinstance(G, LieGroup) or G.tangent_dim != 3 or G.param_dim != 3:
+        raise TypeError(f"system.position_group must be a gm_core Lie group with three coordinates and a "
+                        f"three-dimensional algebra (SE2, SO3); got {G!r:.60}")
+    return G
+
+
+def curvature_form(A: ArrayLike, dA: ArrayLike, group: LieGroup = SE2) -> FloatArray:
     """Constraint curvature 2-form D(-A) (..., 3, n, n) from A (..., 3, n) and its derivative dA (..., 3, n, n).
 
     ``F[..., :, i, j] = -(d_i A_j - d_j A_i) + [A_i, A_j]`` (Hatton & Choset 2015, with the book's
-    sign xi = -A r_dot), antisymmetric in (i, j): one se(2) component per pair of shape
-    directions. NaN where A or dA is not finite.
+    sign xi = -A r_dot), antisymmetric in (i, j): one algebra component per pair of shape
+    directions, the bracket that of ``group`` (se(2) by default). NaN where A or dA is not finite.
     """
     A = np.asarray(A, dtype=float)
     ext = exterior_derivative(dA)
@@ -183,7 +196,7 @@ def curvature_form(A: ArrayLike, dA: ArrayLike) -> FloatArray:
         A = np.where(ok[..., None, None], A, 0.0)
         ext = np.where(ok[..., None, None, None], ext, np.nan)
     X = np.moveaxis(A, -2, -1)                                      # (..., n, 3): the columns A_i
-    br = SE2.bracket(X[..., :, None, :], X[..., None, :, :])          # (..., n, n, 3)
+    br = group.bracket(X[..., :, None, :], X[..., None, :, :])        # (..., n, n, 3)
     return -ext + np.moveaxis(br, -1, -3)
 
 
@@ -310,25 +323,25 @@ def _increments(system, gait, lo, hi, with_det=False):
     k = lo.size
     x1, x2 = xi[:k], xi[k:]
     hh = h[:, None]
-    om = hh / 2 * (x1 + x2) + _MAGNUS_C * hh ** 2 * SE2.bracket(x1, x2)
+    om = hh / 2 * (x1 + x2) + _MAGNUS_C * hh ** 2 * position_group(system).bracket(x1, x2)
     return om, sq, (system.singularity(r) if with_det else None)
 
 
-def _product(E):
-    """g = E_0 E_1 ... E_{N-1} for SE(2) elements E (N, 3), by pairwise (tree) reduction."""
+def _product(G, E):
+    """g = E_0 E_1 ... E_{N-1} for elements E (N, 3) of the group G, by pairwise (tree) reduction."""
     while E.shape[0] > 1:
         if E.shape[0] % 2:
-            E = np.vstack([E, np.zeros((1, 3))])
-        E = SE2.compose(E[0::2], E[1::2])
+            E = np.vstack([E, G.identity((1,))])
+        E = G.compose(E[0::2], E[1::2])
     return E[0]
 
 
-def _cumulative(E):
-    """Prefix products P_k = E_0 ... E_k (N, 3), by a Hillis-Steele scan (log2 N vectorized steps)."""
+def _cumulative(G, E):
+    """Prefix products P_k = E_0 ... E_k (N, 3) in G, by a Hillis-Steele scan (log2 N vectorized steps)."""
     P = E.copy()
     d = 1
     while d < P.shape[0]:
-        P[d:] = SE2.compose(P[:-d], P[d:])
+        P[d:] = G.compose(P[:-d], P[d:])
         d *= 2
     return P
 
@@ -354,21 +367,22 @@ def _adaptive(system, gait, rtol, with_det):
     integrand is then noisy at that level, as near a singular shape where A is computed with
     cancellation). Returns (g, est / scale, met).
     """
+    G = position_group(system)
     n0 = _steps_for(gait, 512)
     edges = np.linspace(0.0, 1.0, n0 + 1)
     lo, hi = edges[:-1], edges[1:]
     mid = 0.5 * (lo + hi)
     om, sq, d = _increments(system, gait, np.concatenate([lo, lo, mid]), np.concatenate([hi, mid, hi]), with_det)
-    E = SE2.exp(om)
+    E = G.exp(om)
     full, Ea, Eb = E[:n0], E[n0:2 * n0], E[2 * n0:]
     nodes_s, nodes_d = [sq], [d]
     used, history = 3 * n0, []
     while True:
         if with_det:
             _scan(system, gait, np.concatenate(nodes_s), np.concatenate(nodes_d))
-        two = SE2.compose(Ea, Eb)
-        e = np.max(np.abs(two - full), axis=-1)
-        P = _cumulative(two)
+        two = G.compose(Ea, Eb)
+        e = np.max(np.abs(G.difference(two, full)), axis=-1)
+        P = _cumulative(G, two)
         g = P[-1]
         scale = max(1.0, float(np.max(np.abs(g))))
         budget = 15 * rtol * scale / (1.0 + 2.0 * float(np.max(np.abs(P[:, :2]))))
@@ -392,7 +406,7 @@ def _adaptive(system, gait, rtol, with_det):
         used += om.shape[0]
         nodes_s.append(sq)
         nodes_d.append(d)
-        Ec = SE2.exp(om)
+        Ec = G.exp(om)
         k = c_lo.size
         keep = np.ones(lo.size, bool)
         keep[split] = False
@@ -445,7 +459,8 @@ def net_displacement(system: SystemLike, gait: GaitLike, *, steps: int | None = 
         om, sq, d = _increments(system, gait, edges[:-1], edges[1:], with_det)
         if with_det:
             _scan(system, gait, sq, d)
-        return _product(SE2.exp(om))
+        G = position_group(system)
+        return _product(G, G.exp(om))
     g, est, met = _adaptive(system, gait, float(rtol), with_det)
     if not met:
         warnings.warn(f"net_displacement did not meet rtol = {rtol:g}: estimated relative error {est:.2g} "
@@ -498,8 +513,9 @@ def trajectory(system: SystemLike, gait: GaitLike, n_frames: int = 101, *, cycle
     om, sq, d = _increments(system, gait, edges[:-1], edges[1:], with_det)
     if with_det:
         _scan(system, gait, sq, d)
-    P = _cumulative(SE2.exp(om))[substeps - 1::substeps]
-    g = np.vstack([g0[None], SE2.compose(g0, P)])
+    G = position_group(system)
+    P = _cumulative(G, G.exp(om))[substeps - 1::substeps]
+    g = np.vstack([g0[None], G.compose(g0, P)])
     return Trajectory(t=t, g=g, r=gait(t))
 
 
@@ -524,7 +540,8 @@ def displacement_until(system: SystemLike, gait: GaitLike, t: ArrayLike, *, step
     om, sq, d = _increments(system, part, edges[:-1], edges[1:], bool(getattr(system, "may_be_singular", False)))
     if d is not None:
         _scan(system, part, sq, d)
-    return SE2.compose(g0, _product(SE2.exp(om)))
+    G = position_group(system)
+    return G.compose(g0, _product(G, G.exp(om)))
 
 
 def drive(system: SystemLike, r0: ArrayLike, r_dot: ArrayLike, duration: float, n_frames: int = 81) -> Trajectory:
