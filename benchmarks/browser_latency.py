@@ -14,8 +14,11 @@ not overlap. A notebook without a live panel gets a row saying so; a notebook th
 row with the error, and the run goes on.
 
 The row "(minimal panel)" is a plain ipywidgets slider moving one Line2D on an ipympl canvas with
-draw_idle (the browser tests' self-check notebook), measured first in the same run: the floor set
-by the browser -> kernel -> ipympl PNG round trip. "<=min" says whether a panel's median is at or
+draw_idle (the browser tests' self-check notebook): the floor set by the browser -> kernel ->
+ipympl PNG round trip. It is measured in the same run, before every notebook and once more at the
+end (``--floor-moves`` moves each time), and its row pools all those moves, so that a machine whose
+load drifts during the run weighs on the floor as it does on the panels (``--floor-once``: only
+once, first, with ``--moves`` moves). "<=min" says whether a panel's median is at or
 below it (issue 36, item 8). "pics" is the median number of pictures the canvas showed per move
 (a blitting panel shows a difference image and, 0.25 s later, a whole key frame); "canvas" the
 ipympl canvas size in pixels. Times depend on the machine's load: the heading prints it.
@@ -318,6 +321,9 @@ def main(argv=None):
                     help="slider moves timed per panel (default 20)")
     ap.add_argument("--timeout", type=float, default=15.0, help="seconds a move may take before it counts as missed")
     ap.add_argument("--no-baseline", action="store_true", help="skip the minimal-panel row")
+    ap.add_argument("--floor-once", action="store_true", help="measure the minimal panel once, first, not between notebooks")
+    ap.add_argument("--floor-moves", type=int, default=6, metavar="N",
+                    help="moves of the minimal panel before each notebook and at the end (default 6)")
     ap.add_argument("--json", type=Path, help="also write every latency to this file")
     args = ap.parse_args(argv)
     if args.moves < 1:
@@ -334,28 +340,38 @@ def main(argv=None):
     interactive = {p.relative_to(ROOT).as_posix() for p in browserlab.interactive_notebooks(ROOT)}
     load_before = _load()
     t_start = time.monotonic()
-    rows, floor = [], None
+    rows: list[lr.Row] = []
+    floor: lr.Row | None = None
     with tempfile.TemporaryDirectory(prefix="gm-latency-") as tmp:
         server = browserlab.LabServer(Path(tmp), extra_notebooks={browserlab.SELFCHECK_PATH: browserlab.selfcheck_notebook()})
         with server, sync_playwright() as pw:
             context = browserlab.launch_chromium(pw, Path(tmp) / "profile", viewport=labview.STUDENT_WINDOW)
             lab = browserlab.LabBrowser(context, server)
             try:
-                todo = ([(browserlab.SELFCHECK_PATH, {0}, lr.FLOOR_NAME)] if not args.no_baseline else []) + \
-                       [(nb, args.panels, None) for nb in nbs]
+                base = (browserlab.SELFCHECK_PATH, {0}, lr.FLOOR_NAME)
+                todo = [(nb, args.panels, None) for nb in nbs]
+                if args.no_baseline:
+                    pass
+                elif args.floor_once:
+                    todo = [base] + todo
+                else:               # the floor before every notebook and at the end, pooled
+                    todo = [x for t in todo for x in (base, t)] + [base]
                 for relpath, wanted, name in todo:
                     if relpath.startswith("book/") and relpath not in interactive:
                         rows.append(lr.Row(relpath, note="no live panel (no %matplotlib widget)"))
                         continue
                     n0 = len(rows)
+                    moves = args.moves if name != lr.FLOOR_NAME or args.floor_once else args.floor_moves
                     try:
-                        measure_notebook(lab, relpath, rows, wanted, args.moves, args.timeout, name)
+                        measure_notebook(lab, relpath, rows, wanted, moves, args.timeout, name)
                     except Exception as e:  # one notebook's failure is a row, not the end of the run
                         first = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
                         rows.append(lr.Row(name or relpath, note=f"failed: {first[:160]}"))
                         print(f"  {relpath}: FAILED\n{e}", file=sys.stderr)
                     if name == lr.FLOOR_NAME:
-                        floor = next((r for r in rows[n0:] if r.stats["n"]), rows[n0] if len(rows) > n0 else None)
+                        new = next((r for r in rows[n0:] if r.stats["n"]), rows[n0] if len(rows) > n0 else None)
+                        del rows[n0:]
+                        floor = lr.pool(floor, new)
             finally:
                 lab.close()
                 context.close()

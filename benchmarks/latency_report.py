@@ -8,6 +8,7 @@ Nothing here touches a browser, so tests/test_browser_latency_report.py runs it 
 * :func:`live_panels`: of the panels the page found (an output with an ipympl canvas and an
   enabled slider, numbered in page order), the ones asked for; :func:`slider_order`: which of a
   panel's sliders to try, in order (enabled, with a range).
+* :func:`pool`: the minimal panel measured several times in one run, as one row;
 * :func:`summarise` and :func:`pct`: n, median, p95 (linear interpolation) and max of the
   latencies; :func:`verdict`: is a panel's median at or below the minimal panel's?
 * :func:`format_table`: the table printed at the end, a row per panel (and one per notebook
@@ -132,6 +133,18 @@ class Row:
     @property
     def stats(self) -> dict:
         return summarise(self.lat)
+
+
+def pool(floor: Row | None, new: Row | None) -> Row | None:
+    """The minimal panel's row with the moves of a new measurement of it added (either may be None)."""
+    if floor is None or new is None:
+        return floor if new is None else new
+    floor.lat.extend(new.lat)
+    floor.pictures.extend(new.pictures)
+    floor.misses += new.misses
+    if new.note and new.note not in floor.note:
+        floor.note = (floor.note + "; " if floor.note else "") + new.note
+    return floor
 
 
 def verdict(row: Row, floor: Row | None) -> str:

@@ -62,6 +62,17 @@ def test_verdict():
     assert lr.verdict(lr.Row("a", lat=[1]), lr.Row(lr.FLOOR_NAME)) == "-"
 
 
+def test_the_minimal_panel_measured_again_pools_its_moves():
+    first = lr.Row(lr.FLOOR_NAME, panel=0, lat=[80, 90], pictures=[1, 1])
+    again = lr.Row(lr.FLOOR_NAME, panel=0, lat=[200, 210, 220], misses=1, pictures=[1], note="1 move(s) not drawn")
+    pooled = lr.pool(first, again)
+    assert pooled is first and pooled.lat == [80, 90, 200, 210, 220] and pooled.stats["median"] == 200
+    assert pooled.misses == 1 and pooled.pictures == [1, 1, 1] and pooled.note == "1 move(s) not drawn"
+    assert lr.pool(None, again) is again and lr.pool(first, None) is first and lr.pool(None, None) is None
+    # a panel measured under the same later load is judged against the pooled floor
+    assert lr.verdict(lr.Row("a", lat=[150]), first) == "yes"
+
+
 def _rows():
     floor = lr.Row(lr.FLOOR_NAME, panel=0, cell=1, slider="theta", canvas="400x300",
                    lat=[85, 90, 87], pictures=[1, 1, 1])
