@@ -222,6 +222,32 @@ def test_a_rotation_of_the_sphere_is_a_rotation_of_the_stereographic_plane():
     assert np.allclose(again(q), np.stack([-q[:, 1], q[:, 0]], -1), atol=1e-12)
 
 
+@pytest.mark.parametrize("chart2", [STEREOGRAPHIC_NORTH, STEREOGRAPHIC_SOUTH], ids=lambda c: c.name)
+def test_an_integral_curve_on_the_sphere_maps_to_the_one_in_a_stereographic_chart(chart2):
+    """A field given in latitude/longitude, solved there and in a stereographic chart; both compared
+    as points of the sphere with the curve solved in R^3 for the field's embedded velocity."""
+    def X_latlon(q, t):
+        return np.stack([0.4 * np.cos(q[..., 0]) * np.cos(q[..., 1]), 1.0 + 0 * q[..., 1]], -1)
+
+    q0 = np.array([0.3, -1.0])
+    t = np.linspace(0.0, 1.5, 7)
+    _, c1 = integral_curve(VectorField(X_latlon, 2), q0, (0.0, 1.5), t_eval=t)
+    _, c2 = integral_curve(transition_field(X_latlon, LATITUDE_LONGITUDE, chart2),
+                           transition_point(q0, LATITUDE_LONGITUDE, chart2), (0.0, 1.5), t_eval=t)
+    assert np.allclose(chart2.to_manifold(c2), LATITUDE_LONGITUDE.to_manifold(c1), atol=1e-8)
+
+    def xyz_rhs(s, p):   # the same field as a velocity in R^3, through textbook lat/lon formulas
+        lat, lon = np.arcsin(p[2]), np.arctan2(p[1], p[0])
+        dlat, dlon = X_latlon(np.array([lat, lon]), s)
+        north = [-np.sin(lat) * np.cos(lon), -np.sin(lat) * np.sin(lon), np.cos(lat)]
+        east = [-np.sin(lon), np.cos(lon), 0.0]
+        return dlat * np.array(north) + np.cos(lat) * dlon * np.array(east)
+
+    p0 = [np.cos(0.3) * np.cos(-1.0), np.cos(0.3) * np.sin(-1.0), np.sin(0.3)]
+    sol = solve_ivp(xyz_rhs, (0.0, 1.5), p0, t_eval=t, rtol=1e-11, atol=1e-12)
+    assert np.allclose(chart2.to_manifold(c2), sol.y.T, atol=1e-8)
+
+
 def test_a_field_transitioned_there_and_back_is_the_field():
     X1 = VectorField(FIELDS["limit cycle (van der Pol)"], 2)
     back = transition_field(transition_field(X1, CARTESIAN, POLAR), POLAR, CARTESIAN)

@@ -31,6 +31,7 @@ from typing import ClassVar, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
+from typing_extensions import override
 
 from gm_core.fields.vector_fields import FieldFunction, VectorField
 from gm_core.manifolds.spaces import sphere_xyz
@@ -56,8 +57,8 @@ class Chart(abc.ABC):
     and name the argument in every error.
     """
 
-    #: Short name used in messages and plots.
-    name: ClassVar[str]
+    #: Short name used in messages and plots (a class attribute, or set per instance).
+    name: str
     #: The manifold the chart covers part of ("plane", "sphere").
     manifold: ClassVar[str]
     #: Dimension of the manifold (number of coordinates).
@@ -67,7 +68,7 @@ class Chart(abc.ABC):
     #: Names of the coordinates, in order.
     coords: ClassVar[tuple[str, ...]]
     #: The domain U and the coordinates' range, in words (for error messages).
-    domain: ClassVar[str]
+    domain: str
 
     # --------------------------------------------------------------------- what a chart defines
     @abc.abstractmethod
@@ -142,6 +143,7 @@ class Chart(abc.ABC):
         p = as_array(p, "p", (self.ambient_dim,), what=f" (a point of the {self.manifold})")
         return ~self._outside_domain(p) & ~self._off_manifold(p)
 
+    @override
     def __repr__(self) -> str:
         return f"<{self.name} chart of the {self.manifold}>"
 
@@ -156,21 +158,27 @@ class Cartesian(Chart):
     coords = ("x", "y")
     domain = "the whole plane"
 
+    @override
     def _to_manifold(self, q: FloatArray) -> FloatArray:
         return q.copy()
 
+    @override
     def _from_manifold(self, p: FloatArray) -> FloatArray:
         return p.copy()
 
+    @override
     def _jacobian_to_manifold(self, q: FloatArray) -> FloatArray:
         return np.broadcast_to(np.eye(2), q.shape[:-1] + (2, 2)).copy()
 
+    @override
     def _jacobian_from_manifold(self, p: FloatArray) -> FloatArray:
         return np.broadcast_to(np.eye(2), p.shape[:-1] + (2, 2)).copy()
 
+    @override
     def _outside_coordinates(self, q: FloatArray) -> BoolArray:
         return np.zeros(q.shape[:-1], bool)
 
+    @override
     def _outside_domain(self, p: FloatArray) -> BoolArray:
         return np.zeros(p.shape[:-1], bool)
 
@@ -184,19 +192,23 @@ class Polar(Chart):
     coords = ("r", "theta")
     domain = "the plane minus the ray y = 0, x <= 0 (r > 0, -pi < theta < pi)"
 
+    @override
     def _to_manifold(self, q: FloatArray) -> FloatArray:
         r, th = q[..., 0], q[..., 1]
         return np.stack([r * np.cos(th), r * np.sin(th)], -1)
 
+    @override
     def _from_manifold(self, p: FloatArray) -> FloatArray:
         x, y = p[..., 0], p[..., 1]
         return np.stack([np.hypot(x, y), np.arctan2(y, x)], -1)
 
+    @override
     def _jacobian_to_manifold(self, q: FloatArray) -> FloatArray:
         r, th = q[..., 0], q[..., 1]
         c, s = np.cos(th), np.sin(th)
         return np.stack([np.stack([c, -r * s], -1), np.stack([s, r * c], -1)], -2)
 
+    @override
     def _jacobian_from_manifold(self, p: FloatArray) -> FloatArray:
         x, y = p[..., 0], p[..., 1]
         r = np.hypot(x, y)
@@ -204,9 +216,11 @@ class Polar(Chart):
         ux, uy = x / r, y / r
         return np.stack([np.stack([ux, uy], -1), np.stack([-uy / r, ux / r], -1)], -2)
 
+    @override
     def _outside_coordinates(self, q: FloatArray) -> BoolArray:
         return ~((q[..., 0] > 0) & (np.abs(q[..., 1]) < np.pi))
 
+    @override
     def _outside_domain(self, p: FloatArray) -> BoolArray:
         return (p[..., 1] == 0) & (p[..., 0] <= 0)
 
@@ -216,6 +230,7 @@ class _SphereChart(Chart):
     manifold = "sphere"
     ambient_dim = 3
 
+    @override
     def _off_manifold(self, p: FloatArray) -> BoolArray:
         norm = np.hypot(np.hypot(p[..., 0], p[..., 1]), p[..., 2])
         return ~(np.abs(norm - 1.0) <= ON_SPHERE_TOL)
@@ -228,18 +243,22 @@ class LatitudeLongitude(_SphereChart):
     coords = ("lat", "lon")
     domain = "the sphere minus the half meridian y = 0, x <= 0 and the poles (|lat| < pi/2, |lon| < pi)"
 
+    @override
     def _to_manifold(self, q: FloatArray) -> FloatArray:
         return sphere_xyz(q[..., 0], q[..., 1])
 
+    @override
     def _from_manifold(self, p: FloatArray) -> FloatArray:
         x, y, z = p[..., 0], p[..., 1], p[..., 2]
         return np.stack([np.arctan2(z, np.hypot(x, y)), np.arctan2(y, x)], -1)
 
+    @override
     def _jacobian_to_manifold(self, q: FloatArray) -> FloatArray:
         # d/dlat is the north vector, d/dlon is cos(lat) times the east vector (fig. 1.12)
         east, north = sphere_tangent_basis(q[..., 0], q[..., 1])
         return np.stack([north, np.cos(q[..., 0])[..., None] * east], -1)
 
+    @override
     def _jacobian_from_manifold(self, p: FloatArray) -> FloatArray:
         x, y, z = p[..., 0], p[..., 1], p[..., 2]
         rho = np.hypot(x, y)
@@ -249,9 +268,11 @@ class LatitudeLongitude(_SphereChart):
         dlon = np.stack([-y / (rho * rho), x / (rho * rho), np.zeros_like(z)], -1)
         return np.stack([dlat, dlon], -2)
 
+    @override
     def _outside_coordinates(self, q: FloatArray) -> BoolArray:
         return ~((np.abs(q[..., 0]) < np.pi / 2) & (np.abs(q[..., 1]) < np.pi))
 
+    @override
     def _outside_domain(self, p: FloatArray) -> BoolArray:
         return (p[..., 1] == 0) & (p[..., 0] <= 0)
 
@@ -272,18 +293,21 @@ class Stereographic(_SphereChart):
             raise ValueError(f"pole must be 'north' or 'south'; got {pole!r:.40}")
         self.pole = pole
         self.s = 1.0 if pole == "north" else -1.0
-        self.name = f"stereographic ({pole})"    # type: ignore[misc]
-        self.domain = f"the sphere minus its {pole} pole"    # type: ignore[misc]
+        self.name = f"stereographic ({pole})"
+        self.domain = f"the sphere minus its {pole} pole"
 
+    @override
     def _to_manifold(self, q: FloatArray) -> FloatArray:
         u, v = q[..., 0], q[..., 1]
         d = 1.0 + u * u + v * v
         return np.stack([2 * u / d, 2 * v / d, self.s * (1.0 - 2.0 / d)], -1)
 
+    @override
     def _from_manifold(self, p: FloatArray) -> FloatArray:
         w = 1.0 - self.s * p[..., 2]
         return p[..., :2] / w[..., None]
 
+    @override
     def _jacobian_to_manifold(self, q: FloatArray) -> FloatArray:
         u, v = q[..., 0], q[..., 1]
         d = 1.0 + u * u + v * v
@@ -293,6 +317,7 @@ class Stereographic(_SphereChart):
                 np.stack([self.s * b * u, self.s * b * v], -1)]
         return np.stack(rows, -2)
 
+    @override
     def _jacobian_from_manifold(self, p: FloatArray) -> FloatArray:
         x, y, z = p[..., 0], p[..., 1], p[..., 2]
         w = 1.0 - self.s * z
@@ -300,15 +325,19 @@ class Stereographic(_SphereChart):
         return np.stack([np.stack([1.0 / w, zero, self.s * x / (w * w)], -1),
                          np.stack([zero, 1.0 / w, self.s * y / (w * w)], -1)], -2)
 
+    @override
     def _outside_coordinates(self, q: FloatArray) -> BoolArray:
         return np.zeros(q.shape[:-1], bool)
 
+    @override
     def _outside_domain(self, p: FloatArray) -> BoolArray:
         return self.s * p[..., 2] >= 1.0 - 1e-15
 
+    @override
     def __eq__(self, other: object) -> bool:
         return isinstance(other, Stereographic) and other.pole == self.pole
 
+    @override
     def __hash__(self) -> int:
         return hash(("stereographic", self.pole))
 
