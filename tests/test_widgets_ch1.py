@@ -1,5 +1,5 @@
 """Headless tests of the chapter-1 panels on the Agg backend (gm_core.widgets.spaces, axioms,
-groups, tangent, vector_fields, observers, geodesics).
+groups, tangent, vector_fields, observers, geodesics, charts).
 
 Each test sets slider values the way a student would (``panel.controls[name].value = ...``) and
 reads the artists back: polygons, quivers, lines and text must have moved by exactly what
@@ -30,9 +30,10 @@ from gm_core.drawing.toolkit import PathText
 from gm_core.drawing.vector_fields import LiftedSE2Scene, VectorFieldScene
 from gm_core.fields import FIELDS
 from gm_core.manifolds import torus_xyz
-from gm_core.widgets import axioms, geodesics, groups, observers, spaces, tangent, vector_fields  # noqa: E402
+from gm_core.widgets import axioms, charts, geodesics, groups, observers, spaces, tangent, vector_fields  # noqa: E402
 from gm_core.widgets.axioms import GroupAxiomsPanel
 from gm_core.widgets.base import PANELS  # noqa: E402
+from gm_core.widgets.charts import PlaneChartsPanel
 from gm_core.widgets.geodesics import (
     ExpFourWaysPanel,
     HelixPanel,
@@ -91,16 +92,16 @@ def quiver_uv(q):
 
 
 def test_every_ch1_panel_is_registered_and_builds():
-    modules = (spaces, axioms, groups, tangent, vector_fields, observers, geodesics)
+    modules = (spaces, charts, axioms, groups, tangent, vector_fields, observers, geodesics)
     names = [n for n, c in PANELS.items() if c.__module__ in {m.__name__ for m in modules}]
-    assert {n for m in modules for n in m.__all__} <= set(names) and len(names) == 23
+    assert {n for m in modules for n in m.__all__} <= set(names) and len(names) == 24
     rng = np.random.default_rng(0)
     for n in names:
         p = PANELS[n]()
         p.update(**p.sample_values(rng))
         p.naive_update(**p.sample_values(rng))  # the baseline must also run
         if p.fig is not None:
-            plt.close(p.fig)   # 23 panels: pyplot would keep every figure open
+            plt.close(p.fig)   # 24 panels: pyplot would keep every figure open
 
 
 # ---------------------------------------------------------------- 1.1 configuration spaces
@@ -150,6 +151,65 @@ def test_loops_sphere_contracts_torus_does_not():
     # the torus loop is a tube circle at angle a = 2 pi: its distance from the tube centre is r
     centre = np.array([2.0, 0.0, 0.0])
     assert np.allclose(np.linalg.norm(np.c_[x, y, z] - centre, axis=1), 0.7)
+
+
+def _polar(p):
+    """Independent route for the polar chart: (hypot, arctan2) of Cartesian points (..., 2)."""
+    p = np.asarray(p, float)
+    return np.stack([np.hypot(p[..., 0], p[..., 1]), np.arctan2(p[..., 1], p[..., 0])], -1)
+
+
+def _polar_push(p, v, h=1e-6):
+    """Central difference of the polar coordinates along v at p: the pushforward, no Jacobian formula."""
+    return (_polar(p + h * v) - _polar(p - h * v)) / (2 * h)
+
+
+def test_plane_charts_panel_shows_the_transition_of_point_vector_and_field():
+    p = slide(PlaneChartsPanel(), field="spiral sink", x=-1.2, y=0.8, v_angle=30.0, v_length=1.5)
+    sc = p.scene
+    q1 = np.array([-1.2, 0.8])
+    v1 = 1.5 * np.array([np.cos(np.pi / 6), np.sin(np.pi / 6)])
+    assert np.allclose(np.c_[sc.pt_c.get_data()], [q1])
+    assert np.allclose(np.c_[sc.pt_p.get_data()], [_polar(q1)])
+    assert np.allclose(sc.vec_c.get_offsets(), [q1]) and np.allclose(quiver_uv(sc.vec_c), [sc.V_SCALE * v1])
+    assert np.allclose(sc.vec_p.get_offsets(), [_polar(q1)])
+    assert np.allclose(quiver_uv(sc.vec_p), [sc.V_SCALE * _polar_push(q1, v1)], atol=1e-8)
+    # the field in the polar chart points where the Cartesian field pushed forward points
+    X1 = FIELDS["spiral sink"]
+    g2 = sc.field_p.get_offsets() + quiver_uv(sc.field_p) / 2          # arrows are centred on the grid
+    pts = np.stack([g2[:, 0] * np.cos(g2[:, 1]), g2[:, 0] * np.sin(g2[:, 1])], -1)
+    want = np.array([_polar_push(q, X1(q)) for q in pts])
+    got = quiver_uv(sc.field_p)
+    cos = np.sum(got * want, 1) / np.linalg.norm(got, axis=1) / np.linalg.norm(want, axis=1)
+    assert np.allclose(cos, 1.0, atol=1e-8)
+    # the integral curve: an independent RK4 on the left, its polar image on the right, cut at the ray
+    (left,) = sc.curves[0].get_segments()
+    rk4 = rk4_curve(X1, q1, sc.T, 3000)
+    assert np.allclose(left[-1], rk4[-1], atol=1e-4)
+    right = np.concatenate(sc.curves[1].get_segments())
+    assert np.allclose(right, _polar(left[np.abs(_polar(left)[:, 1]) < np.pi]), atol=1e-12)
+    # coordinate lines through the point: r = r0 is a circle on the left and a vertical line on the right
+    r0 = np.hypot(*q1)
+    assert np.allclose(np.linalg.norm(np.concatenate(sc.lines["r"][0].get_segments()), axis=1), r0)
+    assert np.allclose(np.concatenate(sc.lines["r"][1].get_segments())[:, 0], r0)
+    xline = np.concatenate(sc.lines["x"][1].get_segments())
+    assert np.allclose(xline[:, 0] * np.cos(xline[:, 1]), -1.2)              # x = x0 seen in the polar chart
+    assert not sc.flag.visible and "v₂ = J v₁" in sc.read_p.get_text()
+
+
+def test_plane_charts_panel_flags_the_ray_and_the_origin():
+    p = slide(PlaneChartsPanel(), x=-1.0, y=0.0)
+    sc = p.scene
+    assert sc.flag.visible and "π and −π" in sc.flag.text.get_text()
+    assert not sc.pt_p.get_visible() and not sc.vec_p.get_visible() and sc.q2 is None
+    assert sc.lines["r"][1].get_segments() == [] and sc.lines["θ"][0].get_segments() == []
+    for lc in [*sc.curves, *(lc for pair in sc.lines.values() for lc in pair)]:
+        assert all(np.all(np.isfinite(s)) for s in lc.get_segments())
+    slide(p, x=0.0)
+    assert sc.flag.visible and "origin" in sc.flag.text.get_text()
+    slide(p, y=0.5)
+    assert not sc.flag.visible and sc.pt_p.get_visible()
+    assert np.allclose(np.c_[sc.pt_p.get_data()], [[0.5, np.pi / 2]])
 
 
 # ---------------------------------------------------------------------- 1.2-1.3 groups
