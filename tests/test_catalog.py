@@ -54,7 +54,7 @@ def _relative(mine, theirs):
     return np.abs(mine - theirs).max() / np.abs(theirs).max()
 
 
-@pytest.mark.parametrize("name", [n for n in LOADABLE if not FILES[n].differs])
+@pytest.mark.parametrize("name", [n for n in LOADABLE if not FILES[n].differs and FILES[n].rtol == catalog.CLOSED_FORM_RTOL])
 def test_where_sysplotter_is_right_the_catalog_agrees_to_1e8(name):
     system = catalog.load(name)
     ref = catalog.reference(name)
@@ -64,7 +64,7 @@ def test_where_sysplotter_is_right_the_catalog_agrees_to_1e8(name):
         assert _relative(M, ref["metric"]) <= catalog.CLOSED_FORM_RTOL
 
 
-@pytest.mark.parametrize("name", [n for n in LOADABLE if FILES[n].differs])
+@pytest.mark.parametrize("name", [n for n in LOADABLE if FILES[n].differs == catalog.PI_OVER_8])
 def test_where_sysplotter_lacks_pi_over_8_the_catalog_differs_by_exactly_that(name):
     """The catalog differs from sysplotter (by more than rounding), and with sysplotter's
     rotational added mass put back it agrees to 1e-8."""
@@ -102,9 +102,9 @@ def test_the_parity_table_has_a_row_for_every_file_and_a_reason_for_every_differ
     for r in rows:
         by_status.setdefault(r.status, []).append(r.name)
         if r.status == "agrees":
-            assert max(r.A_difference, r.M_difference) <= catalog.CLOSED_FORM_RTOL
+            assert max(r.A_difference, r.M_difference) <= FILES[r.name].rtol, r.name
         elif r.status == "corrected":
-            assert r.as_sysplotter <= catalog.CLOSED_FORM_RTOL and r.reason
+            assert r.as_sysplotter <= FILES[r.name].rtol and r.reason, r.name
         else:
             assert r.reason, r.name
     assert by_status["sysplotter cannot run it"] == ["asymmetricTapeMeasure"]
@@ -267,3 +267,150 @@ def test_bad_rotors_are_refused_by_name():
         Rotors(((1, 0, 0),), (1.0,), -np.eye(3))
     with pytest.raises(ValueError, match="inertia must be a symmetric"):
         Rotors(((1, 0, 0),), (1.0,), [[1, 2, 0], [0, 1, 0], [0, 0, 1]])
+
+
+# ------------------------------------------------------------------ sysplotter's continuous bodies
+CONTINUOUS = [n for n in LOADABLE if FILES[n].rtol in (catalog.CONTINUOUS_RTOL, catalog.CONTINUOUS_JUMP_RTOL)]
+CENTRE = [n for n in CONTINUOUS if not FILES[n].differs]
+REFRAMED = [n for n in CONTINUOUS if FILES[n].differs]
+
+
+def _shapes(name, k=3):
+    """k shapes inside the file's window (seeded), away from the origin."""
+    half = np.array([hi for _, hi in FILES[name].grid_range])
+    u = np.random.default_rng(len(name)).uniform(0.2, 0.7, (k, half.size)) * np.where(np.arange(half.size) % 2, -1, 1)
+    return u * half
+
+
+def _refined(body, panels, order):
+    from gm_core.systems import SlenderBody
+    return SlenderBody(body.length, body.general or body.modes, integrals=body.integrals, breaks=body.breaks,
+                       frame=body.frame, panels=panels, order=order)
+
+
+def _backbone(body, r, s_eval):
+    """Poses (x, y, theta) of the points s_eval in the middle frame by an ODE solver (scipy, rtol 1e-12):
+    (x, y, theta)' = (cos theta, sin theta, kappa), from the middle to each end, restarted at every break."""
+    from scipy.integrate import solve_ivp
+
+    def rhs(s, y):
+        return [np.cos(y[2]), np.sin(y[2]), body.curvature(r, np.array([s]))[0]]
+    out = np.zeros((len(s_eval), 3))
+    for lo, hi in ((0.5, 1.0), (0.5, 0.0)):
+        stops = [lo] + sorted((b for b in body.breaks if min(lo, hi) < b < max(lo, hi)), reverse=hi < lo) + [hi]
+        y = np.zeros(3)
+        for a, b in zip(stops[:-1], stops[1:]):
+            inside = [i for i, s in enumerate(s_eval) if min(a, b) <= s <= max(a, b)]
+            sol = solve_ivp(rhs, (a, b), y, rtol=1e-12, atol=1e-13, dense_output=True)
+            for i in inside:
+                out[i] = sol.sol(s_eval[i])
+            y = sol.y[:, -1]
+    return out
+
+
+def test_the_nine_continuous_files_load_in_their_frames():
+    frames = {n: catalog.load(n).frame for n in CONTINUOUS}
+    assert len(CONTINUOUS) == 9
+    assert {n for n, f in frames.items() if f == "middle"} == set(CENTRE)
+    assert frames["constantcurv3_lowRe"] == "tail"
+    assert {n for n, f in frames.items() if f == "com-mean"} == {"serpenoid_lowRe", "serpenoid_lowRe_hf",
+                                                                  "serpenoid_lowRe_hf_AmpPhase"}
+    assert all(FILES[n].differs == catalog.FRAME_CHANGE for n in REFRAMED)
+
+
+@pytest.mark.parametrize("name", CENTRE)
+def test_centre_frame_continuous_files_agree_with_sysplotter_within_its_ode45_tolerance(name):
+    system = catalog.load(name)
+    ref = catalog.reference(name)
+    A, M = catalog.sysplotter_view(system, ref["shapes"])
+    assert _relative(A, ref["A"]) <= FILES[name].rtol
+    assert _relative(M, ref["metric"]) <= FILES[name].rtol
+
+
+@pytest.mark.parametrize("name", CONTINUOUS)
+def test_the_continuous_bodies_converge_as_their_quadrature_is_refined(name):
+    """Successive refinements of panels and order change A and M less and less, down to 1e-8, and
+    the catalog's own quadrature is as good as the finest."""
+    body = catalog.load(name)
+    r = _shapes(name)
+    values = [_refined(body, p, o) for p, o in ((4, 6), (8, 8), (16, 12), (32, 16))]
+    A = [b.connection(r) for b in values]
+    M = [b.shape_metric(r) for b in values]
+    steps = [max(np.abs(A[i + 1] - A[i]).max(), np.abs(M[i + 1] - M[i]).max()) for i in range(3)]
+    assert steps[2] <= 1e-8 and steps[2] < steps[0], steps
+    assert np.abs(body.connection(r) - A[-1]).max() <= 1e-8
+    assert np.abs(body.shape_metric(r) - M[-1]).max() <= 1e-8
+
+
+@pytest.mark.parametrize("name", REFRAMED)
+def test_reframed_continuous_files_are_right_where_sysplotter_is_not(name):
+    """In the 'tail' and 'com-mean' frames: the reduced metric is the centre frame's (it cannot depend
+    on the body frame); the connection is Ad_{beta^-1} A_center - B_beta with B_beta the body
+    Jacobian of the frame's pose by central differences; sysplotter differs by more than its
+    tolerance, and with its frame change put back the catalog reproduces sysplotter."""
+    from gm_core import SE2
+    from gm_core.systems.reframed import body_jacobian
+    body = catalog.load(name)
+    centre = body.with_frame("middle")
+    ref = catalog.reference(name)
+    r = ref["shapes"]
+    M = body.shape_metric(r)
+    np.testing.assert_allclose(M, centre.shape_metric(r), rtol=0, atol=1e-12 * np.abs(M).max())
+    beta = body.frame_pose(r)[0]
+    h = 1e-6
+    dbeta = np.stack([(body.frame_pose(r + h * e)[0] - body.frame_pose(r - h * e)[0]) / (2 * h)
+                      for e in np.eye(body.n_shape)], -1)
+    expect = SE2.Ad(SE2.inverse(beta)) @ centre.connection(r) - body_jacobian(beta, dbeta)
+    np.testing.assert_allclose(body.connection(r), expect, rtol=0, atol=1e-8)
+    A, M = catalog.sysplotter_view(body, r)
+    assert max(_relative(A, ref["A"]), _relative(M, ref["metric"])) > 10 * FILES[name].rtol
+    theirs = catalog.with_sysplotter_frame_change(body)
+    assert _relative(theirs.connection(r), ref["A"]) <= FILES[name].rtol
+    assert _relative(theirs.shape_metric(r), ref["metric"]) <= FILES[name].rtol
+
+
+def test_the_com_mean_frame_is_the_plain_mean_of_100_points_not_the_integral_mean():
+    body = catalog.load("serpenoid_lowRe")
+    r = np.array([7.0, -4.0])
+    s = np.linspace(0.0, 1.0, 100)
+    poses = _backbone(body, r, s)
+    beta = body.frame_pose(r)[0]
+    np.testing.assert_allclose(beta, poses.mean(0), rtol=0, atol=1e-10)
+    integral_mean = body.with_frame("com").frame_pose(r)[0]
+    assert np.abs(integral_mean - beta).max() > 1e-3
+    fine = _backbone(body, r, np.linspace(0.0, 1.0, 20001))          # the integral mean, by the trapezoid rule
+    trapezoid = (fine[1:] + fine[:-1]).sum(0) / 2 / 20000
+    np.testing.assert_allclose(integral_mean, trapezoid, rtol=0, atol=1e-8)
+
+
+@pytest.mark.parametrize("name", ["constantcurv3_lowRe", "serpenoid_lowRe"])
+def test_the_tail_frame_is_the_pose_of_the_end_of_the_body(name):
+    body = catalog.load(name).with_frame("tail")
+    r = _shapes(name, 2)
+    for shape in r:
+        np.testing.assert_allclose(body.frame_pose(shape)[0], _backbone(body, shape, [0.0])[0], rtol=0, atol=1e-10)
+    # the drawn pieces are seen from there: the first piece sits half a piece from the origin
+    first = body.link_poses(r[0])[0]
+    assert abs(np.hypot(first[0], first[1]) - 0.5 / body.segments) < 1e-3
+
+
+@pytest.mark.parametrize("curvature", [catalog.triangle_curvature(1), catalog.triangle_curvature(2),
+                                       catalog.amplitude_phase_curvature(2)], ids=lambda c: c.name)
+def test_general_curvatures_have_their_derivatives_right(curvature):
+    """d kappa / d r in closed form against central differences, away from the origin."""
+    s = np.linspace(0.0, 1.0, 57)
+    r = np.array([[3.0, -1.5], [-0.4, 2.2], [5.0, 0.01]])
+    h = 1e-6
+    fd = np.stack([(curvature.kappa(s, r + h * e) - curvature.kappa(s, r - h * e)) / (2 * h) for e in np.eye(2)], -1)
+    np.testing.assert_allclose(curvature.dkappa(s, r), fd, rtol=0, atol=1e-7 * np.abs(fd).max())
+
+
+def test_the_triangle_wave_is_sysplotters_pinched_sinusoid():
+    """The shipped formula: P sqrt(a1^2 + a2^2) sign(w) |w|^20 / (a1^2 + a2^2)^10, w = a1 cos(2 pi u) + a2 sin(2 pi u)."""
+    tri = catalog.triangle_curvature(1)
+    u = np.linspace(-0.5, 0.5, 41)
+    a1, a2 = 2.0, -3.0
+    w = a1 * np.cos(2 * np.pi * u) + a2 * np.sin(2 * np.pi * u)
+    expect = 3.581781447252943 * np.sqrt(a1 ** 2 + a2 ** 2) * np.sign(w) * np.abs(w) ** 20 / (a1 ** 2 + a2 ** 2) ** 10
+    np.testing.assert_allclose(tri.kappa(u + 0.5, np.array([a1, a2])), expect, rtol=1e-13, atol=1e-300)
+    assert np.isnan(tri.kappa(u, np.zeros(2))).all()

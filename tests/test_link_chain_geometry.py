@@ -179,6 +179,52 @@ def test_any_modes_as_functions():
         SlenderBody(1.0, (lambda s: np.nan * s,))
 
 
+def test_a_general_curvature_linear_in_r_is_the_modal_body():
+    """The nonlinear route (theta by nested panel rules of kappa(s, r), d kappa / d r given) on a
+    curvature that happens to be linear: the same body as its modes with exact integrals, in every frame."""
+    from gm_core.systems.slender_body import GeneralCurvature, wave_modes
+    modes, integrals = wave_modes((1, 2))
+    phi = lambda s: np.stack([f(s) for f in modes], -1)                      # noqa: E731
+    general = GeneralCurvature(lambda s, r: r @ phi(s).T, lambda s, r: np.broadcast_to(phi(s), r.shape[:-1] + phi(s).shape),
+                               ("r1", "r2", "r3", "r4"))
+    r = RNG.uniform(-6, 6, (4, 4))
+    for frame in ("middle", "com", "tail", "com-mean"):
+        a = SlenderBody(1.0, general, frame=frame, panels=16, order=12)
+        b = SlenderBody(1.0, modes, integrals=integrals, frame=frame, panels=16, order=12)
+        np.testing.assert_allclose(a.connection(r), b.connection(r), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(a.shape_metric(r), b.shape_metric(r), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(a.link_poses(r), b.link_poses(r), rtol=0, atol=1e-12)
+
+
+def test_piecewise_constant_curvature_converges_fast_with_breaks_and_slowly_without():
+    """Constant-curvature thirds: with panel edges at the jumps (exact theta or not) the body is right to
+    rounding already with 4 panels of 8 nodes; panels straddling the jumps are still off by 1e-4 at 16 x 12."""
+    from gm_core.systems.slender_body import segment_modes
+    modes, integrals, breaks = segment_modes([0, 1 / 3, 2 / 3, 1])
+    assert breaks == (1 / 3, 2 / 3)
+    r = np.array([[4.0, -3.0, 2.0], [-1.0, 5.0, 0.5]])
+    exact = SlenderBody(1.0, modes, integrals=integrals, breaks=breaks, panels=32, order=16).connection(r)
+    for p, o in ((4, 8), (8, 8)):
+        np.testing.assert_allclose(SlenderBody(1.0, modes, integrals=integrals, breaks=breaks, panels=p, order=o)
+                                   .connection(r), exact, rtol=0, atol=1e-14)
+        np.testing.assert_allclose(SlenderBody(1.0, modes, breaks=breaks, panels=p, order=o).connection(r), exact,
+                                   rtol=0, atol=1e-14)
+    straddled = [np.abs(SlenderBody(1.0, modes, panels=p, order=o).connection(r) - exact).max() for p, o in ((4, 8), (16, 12))]
+    assert min(straddled) > 1e-4
+    with pytest.raises(ValueError, match="breaks"):
+        SlenderBody(1.0, modes, breaks=[0.5, 1.0])
+    with pytest.raises(ValueError, match="bounds"):
+        segment_modes([0.2, 0.5, 1.0])
+    with pytest.raises(ValueError, match="frame"):
+        SlenderBody(frame="head")
+    with pytest.raises(ValueError, match="integrals must be the modes' integrals from the middle"):
+        SlenderBody(1.0, modes, integrals=[lambda s: s] * 3)
+    with pytest.raises(TypeError, match="integrals must be None or one function"):
+        SlenderBody(1.0, modes, integrals=integrals[:2])
+    with pytest.raises(ValueError, match="body must have modal curvature"):
+        chain_approximation(SlenderBody(frame="tail"), 5)
+
+
 # ------------------------------------------------------------------ optimisation in any dimension
 def test_gradient_of_a_four_joint_gait_against_differences():
     chain = LinkChain((1.0,) * 5, frame="com")
