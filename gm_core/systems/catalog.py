@@ -560,6 +560,7 @@ class ParityRow:
     M_difference: float
     as_sysplotter: float
     reason: str
+    rtol: float = CLOSED_FORM_RTOL
 
 
 def _relative(mine: FloatArray | None, theirs: FloatArray | None) -> float:
@@ -597,9 +598,9 @@ def parity(name: str | None = None) -> list[ParityRow]:
         if entry.differs:
             with_defect = with_sysplotter_frame_change if entry.differs == FRAME_CHANGE else with_sysplotter_added_mass
             back = _compare(with_defect(system), entry, ref)
-            rows.append(ParityRow(entry.name, entry.model, "corrected", dA, dM, max(back), entry.differs))
+            rows.append(ParityRow(entry.name, entry.model, "corrected", dA, dM, max(back), entry.differs, entry.rtol))
         else:
-            rows.append(ParityRow(entry.name, entry.model, "agrees", dA, dM, max(dA, dM), ""))
+            rows.append(ParityRow(entry.name, entry.model, "agrees", dA, dM, max(dA, dM), "", entry.rtol))
     if name is not None and not rows:
         raise ValueError(f"name {name!r} is not one of sysplotter's system files")
     return rows
