@@ -59,3 +59,12 @@ def test_a_singular_gait_is_flagged_not_drawn_as_numbers(lab):
     lab.controls["c1"].value, lab.controls["a"].value = 0.0, 0.8
     assert lab.scene.estimates is None and lab.scene.flag.text.get_visible()
     assert "singular" in lab.numbers.value
+
+
+def test_a_gait_leaving_the_window_is_flagged_but_still_computed(lab):
+    lab.controls["system"].value = "three_link_lowRe"
+    lab.controls["c1"].value, lab.controls["a"].value = 0.8, 0.9
+    assert lab.scene.estimates is not None and lab.scene.flag.text.get_visible()
+    assert "leaves" in lab.scene.flag.text.get_text()
+    lab.controls["c1"].value, lab.controls["a"].value = 0.0, 0.5
+    assert not lab.scene.flag.text.get_visible()

@@ -81,7 +81,7 @@ class LabScene(Scene):
 
     @override
     def make_figure(self) -> tuple[Figure, list[Axes]]:
-        fig, (self.ax, self.axb) = new_figure(1, 2, figsize=(9, 3.9), layout="compressed",
+        fig, (self.ax, self.axb) = new_figure(1, 2, figsize=(9, 3.4), layout="compressed",
                                               gridspec_kw=dict(width_ratios=[1.15, 1]))
         return fig, [self.ax, self.axb]
 
@@ -146,5 +146,11 @@ class LabScene(Scene):
             self.flag.show("gait leaves the map or is singular")
             self.estimates, self.table = None, estimates_table(None, str(e))
         else:
-            self.flag.hide()
+            (lo1, hi1), (lo2, hi2) = self.system.shape_limits
+            p = self.gait_artist.points
+            inside = bool(np.all((p[:, 0] >= lo1) & (p[:, 0] <= hi1) & (p[:, 1] >= lo2) & (p[:, 1] <= hi2)))
+            if inside:
+                self.flag.hide()
+            else:   # the numbers hold (the system is defined there), but the picture does not show all of it
+                self.flag.show("the gait leaves the map's window")
             self.estimates, self.table = est, estimates_table(est)
