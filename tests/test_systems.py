@@ -32,6 +32,7 @@ from gm_core.systems import (
     DifferentialDrive,
     FloatingSnake,
     HighReSwimmer,
+    InteractingChain,
     KinematicSnake,
     LinkChain,
     LowReSwimmer,
@@ -539,6 +540,7 @@ LAW_SYSTEMS = {
     "SlenderBody": SlenderBody(),
     "LinkChain(4, low_re, tail)": LinkChain((1.0, 0.8, 1.2, 1.0), "low_re", frame="tail"),
     "catalog: flapper_highRe": catalog.load("flapper_highRe"),
+    "InteractingChain(3, 16 panels)": InteractingChain((1.0, 0.8, 1.2), separation=0.1, body_density=1.0, panels=16),
 }
 LAW_SHAPES = [(), (1,), (3, 1, 2)]
 SYSTEM_LAWS = settings(max_examples=4, deadline=None)

@@ -20,6 +20,7 @@ from gm_core.systems.kinematic_snake import KinematicSnake
 from gm_core.systems.link_chain import LinkChain
 from gm_core.systems.low_re import LowReSwimmer
 from gm_core.systems.minimum_perturbation import MinimumPerturbationFrame
+from gm_core.systems.panel_method import InteractingChain
 from gm_core.systems.reframed import BodyFrame, CentreOfMassFrame, PoseFrame, Reframed
 from gm_core.systems.restricted import AffineRestriction, shape_slice
 from gm_core.systems.rotors import Rotors
@@ -29,7 +30,7 @@ from gm_core.systems.three_link import ThreeLinkSystem
 
 __all__ = ["LocomotionSystem", "SystemPart", "ThreeLinkSystem", "DifferentialDrive", "Ackerman",
            "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer",
-           "LinkChain", "BodyFrame", "PoseFrame", "CentreOfMassFrame", "Reframed", "MinimumPerturbationFrame",
+           "LinkChain", "InteractingChain", "BodyFrame", "PoseFrame", "CentreOfMassFrame", "Reframed", "MinimumPerturbationFrame",
            "AffineRestriction", "shape_slice", "SlenderBody", "chain_approximation", "serpenoid_modes",
            "TabulatedConnection", "Rotors", "ALL_SYSTEMS"]
 
