@@ -432,9 +432,11 @@ def _not_yet() -> dict[str, SysplotterFile]:
     files = [
         SysplotterFile("three_link_HighRe_panelMethod", "high-Re ellipses interacting through a panel method", _box(2.0, 2),
                        missing="needs interacting added mass between links (sysplotter's panel method)"),
-        SysplotterFile("asymmetricTapeMeasure", "an asymmetric looped chain", _box(1.0, 3),
-                       missing="needs closed bodies; sysplotter itself cannot evaluate this file (it calls two "
-                               "functions that exist nowhere in its repository)"),
+        SysplotterFile("asymmetricTapeMeasure", "an asymmetric looped chain (tape-measure swimmer, an angle per tape)",
+                       ((0.0, np.pi / 3), (0.0, np.pi / 3), (24 / 56, 45 / 56)),
+                       missing="sysplotter itself cannot evaluate this file (it calls two functions that exist nowhere "
+                               "in its repository), so nothing checks a model of it; the symmetric tape measure's model "
+                               "with an angle per tape is TapeMeasure(symmetric=False)"),
     ]
     return {f.name: f for f in files}
 
