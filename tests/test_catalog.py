@@ -498,7 +498,7 @@ def test_the_tape_measure_has_no_shape_where_the_loop_cannot_close_and_refuses_b
     assert np.isnan(A[:4]).all() and np.isfinite(A[4]).all()
     np.testing.assert_array_equal(system.is_singular(R), [True] * 4 + [False])
     assert np.isnan(system.shape_metric(R[:1])).all()
-    for bad, match in ((dict(tape_length=-1), "tape_length"), (dict(head_mass=0), "head_mass"),
+    for bad, match in ((dict(tape_length=-1), "tape_length"), (dict(tape_length=1e-9), "tape_length"), (dict(head_mass=0), "head_mass"),
                        (dict(added_mass_rate=-1), "added_mass_rate"), (dict(tape_pieces=1), "tape_pieces")):
         with pytest.raises(ValueError, match=match):
             TapeMeasure(**bad)

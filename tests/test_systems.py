@@ -37,6 +37,7 @@ from gm_core.systems import (
     LowReSwimmer,
     Reframed,
     SlenderBody,
+    TapeMeasure,
     catalog,
 )
 from gm_core.systems.base import LocomotionSystem, SystemPart, rectangle_outline
@@ -539,6 +540,8 @@ LAW_SYSTEMS = {
     "SlenderBody": SlenderBody(),
     "LinkChain(4, low_re, tail)": LinkChain((1.0, 0.8, 1.2, 1.0), "low_re", frame="tail"),
     "catalog: flapper_highRe": catalog.load("flapper_highRe"),
+    "catalog: symmetricTapeMeasure": catalog.load("symmetricTapeMeasure"),
+    "TapeMeasure(symmetric=False)": TapeMeasure(symmetric=False),
 }
 LAW_SHAPES = [(), (1,), (3, 1, 2)]
 SYSTEM_LAWS = settings(max_examples=4, deadline=None)

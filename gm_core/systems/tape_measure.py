@@ -86,6 +86,8 @@ class TapeMeasure(LocomotionSystem):
         if not isinstance(symmetric, (bool, np.bool_)):
             raise TypeError(f"symmetric must be True (shape (alpha, L)) or False (shape (alpha1, alpha2, L)); got {symmetric!r:.40}")
         self.tape_length = positive_number(tape_length, "tape_length", maximum=1e6, what=" (C, each tape's length)")
+        if self.tape_length < 1e-6:
+            raise ValueError(f"tape_length must be at least 1e-6 (its fourth power enters the inertia); got {self.tape_length:g}")
         self.symmetric = bool(symmetric)
         self.head_mass = positive_number(head_mass, "head_mass", maximum=1e12)
         self.head_inertia = positive_number(head_inertia, "head_inertia", maximum=1e12)
