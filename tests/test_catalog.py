@@ -417,7 +417,7 @@ def test_the_triangle_wave_is_sysplotters_pinched_sinusoid():
 
 
 # ------------------------------------------------------------------ the tape-measure swimmer (a looped chain)
-TAPE_SHAPES = np.array([[0.05, 0.45], [0.4, 0.6], [1.2, 0.3], [np.pi / 2, 0.78], [-0.7, 0.5]])
+TAPE_SHAPES = np.array([[0.05, 0.45], [0.4, 0.6], [1.2, 0.3], [np.pi / 2, 0.78], [-0.7, 0.5], [0.8, 0.0], [2.5, -0.6]])
 
 
 def _world_part_velocities(system, r, r_dot, h=1e-5):
@@ -493,10 +493,12 @@ def test_the_tape_measure_has_no_shape_where_the_loop_cannot_close_and_refuses_b
     from gm_core.systems.tape_measure import TapeMeasure
 
     system = TapeMeasure()
-    R = np.array([[0.3, 0.0], [0.3, 1.0], [0.3, 1.5], [0.3, -0.2], [0.3, 0.5]])
+    R = np.array([[0.3, -1.0], [0.3, 1.0], [0.3, 1.5], [0.3, -1.2], [0.3, 0.5], [0.3, 0.0], [2.0, -0.4]])
     A = system.connection(R)
-    assert np.isnan(A[:4]).all() and np.isfinite(A[4]).all()
-    np.testing.assert_array_equal(system.is_singular(R), [True] * 4 + [False])
+    assert np.isnan(A[:4]).all() and np.isfinite(A[4:]).all()
+    np.testing.assert_array_equal(system.is_singular(R), [True] * 4 + [False] * 3)
+    folded = system.link_poses([0.3, 0.0])                   # L = 0: each tape runs out and back to the head
+    np.testing.assert_allclose(folded[3:, :2], folded[1:3, :2], atol=1e-15)
     assert np.isnan(system.shape_metric(R[:1])).all()
     for bad, match in ((dict(tape_length=-1), "tape_length"), (dict(tape_length=1e-9), "tape_length"), (dict(head_mass=0), "head_mass"),
                        (dict(added_mass_rate=-1), "added_mass_rate"), (dict(tape_pieces=1), "tape_pieces")):

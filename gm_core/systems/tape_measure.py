@@ -8,7 +8,7 @@ segments: segment 1 leaves the head at the opening angle alpha_k to the head-to-
 from the buckle point to the tip. The body frame is the head's, x towards the tip, which sits at (L, 0).
 The loop closes (l1 + l2 = C and the law of cosines in the triangle head, buckle, tip) when
 
-    l1 = (C^2 - L^2) / (2 C - 2 L cos alpha),    l2 = C - l1,    0 < L < C,
+    l1 = (C^2 - L^2) / (2 C - 2 L cos alpha),    l2 = C - l1,    |L| < C,
 
 with the buckle at l1 (cos alpha, +-sin alpha) and segment 2 at the angle -+beta to the x axis,
 beta = atan2(l1 sin alpha, L - l1 cos alpha) the angle at the tip. The shape is (alpha, L) for the
@@ -29,8 +29,10 @@ the swimmer keeps zero momentum, its top three rows (the Pfaffian), so ``xi = -A
 
 sysplotter differentiates beta by central differences (step 1e-5); here every derivative is in closed
 form: ``dl1/dalpha = -l1 L sin alpha / D``, ``dl1/dL = -(L - l1 cos alpha) / D`` (D = C - L cos alpha) and
-``dbeta = (x dy - y dx) / l2^2`` with (x, y) = (L - l1 cos alpha, l1 sin alpha). Outside 0 < L < C the
-loop cannot close: every value there is NaN (:meth:`TapeMeasure.singularity` is 0).
+``dbeta = (x dy - y dx) / l2^2`` with (x, y) = (L - l1 cos alpha, l1 sin alpha). Both l1 and l2 are
+positive for |L| < C (l2 = |C - L e^(i alpha)|^2 / (2 D)): at L = 0 each tape folds back on itself to the
+head, for L < 0 the tip lies behind the head (the file's window is 0.43 <= L / C <= 0.80). At |L| >= C
+the loop cannot close: every value there is NaN (:meth:`TapeMeasure.singularity` is 0).
 """
 from __future__ import annotations
 
@@ -77,7 +79,7 @@ class TapeMeasure(LocomotionSystem):
     """
 
     may_be_singular = True
-    singular_description = "the loop cannot close unless 0 < L < C (the head-to-tip distance below the tape length)"
+    singular_description = "the loop cannot close unless |L| < C (the head-to-tip distance below the tape length)"
 
     def __init__(self, tape_length: float = 1.0, *, symmetric: bool = True, head_mass: float = 0.25,
                  head_inertia: float = 1.0, mass_rate: float = 0.001, rotational_inertia_rate: float = 0.01,
@@ -116,7 +118,7 @@ class TapeMeasure(LocomotionSystem):
         r = self._shape(r)
         C = self.tape_length
         q = r @ self._S.T                                          # (..., 3): alpha_upper, alpha_lower, L
-        closes = (q[..., 2] > 0) & (q[..., 2] < C)
+        closes = np.abs(q[..., 2]) < C
         L = np.where(closes, q[..., 2], C / 2)
         g = np.zeros(r.shape[:-1] + (5, 3))
         dq = np.zeros(r.shape[:-1] + (5, 3, 3))                    # d g_i / d (alpha_upper, alpha_lower, L)
@@ -187,7 +189,7 @@ class TapeMeasure(LocomotionSystem):
 
     @override
     def singularity(self, r: ArrayLike) -> FloatArray:
-        """Scaled det of the locked inertia (...,): positive where 0 < L < C, else 0 (the loop cannot close)."""
+        """Scaled det of the locked inertia (...,): positive where |L| < C, else 0 (the loop cannot close)."""
         return np.nan_to_num(super().singularity(r), nan=0.0)
 
     # -- drawing -------------------------------------------------------------------------------
