@@ -182,6 +182,15 @@ SYSTEM_CASES = [
         length, drag_ratio=drag_ratio, panels=panels, order=order).connection(np.array([1.0, -2.0])),
         {"length": 3.0, "drag_ratio": 2.0, "panels": 4, "order": 6}, ints={"panels", "order"}, out_tail=(3, 2)),
 ]
+SYSTEM_CASES.append(Case("TapeMeasure", lambda tape_length, head_mass, added_mass_rate, tape_pieces: SY.TapeMeasure(
+    tape_length, head_mass=head_mass, added_mass_rate=added_mass_rate, tape_pieces=tape_pieces).shape_metric(
+        np.array([0.4, 0.6 * tape_length])), {"tape_length": 1.0, "head_mass": 0.25, "added_mass_rate": 1.0, "tape_pieces": 12},
+    ints={"tape_pieces"}, out_tail=(2, 2)))
+TAPE = SY.TapeMeasure(symmetric=False)
+SYSTEM_CASES += [
+    Case("TapeMeasure.connection", TAPE.connection, {"r": np.array([0.3, 0.9, 0.6])}, out_tail=(3, 3), finite=False),
+    Case("TapeMeasure.part_poses", TAPE.part_poses, {"r": np.array([0.3, 0.9, 0.6])}, out_tail=(25, 3), finite=False),
+]
 CHAIN5 = SY.LinkChain((1.0,) * 5)
 SYSTEM_CASES += [
     Case("LinkChain.connection", CHAIN5.connection, {"r": np.array([0.3, -0.2, 0.5, 0.1])}, out_tail=(3, 4)),

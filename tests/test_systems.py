@@ -38,6 +38,7 @@ from gm_core.systems import (
     LowReSwimmer,
     Reframed,
     SlenderBody,
+    TapeMeasure,
     catalog,
 )
 from gm_core.systems.base import LocomotionSystem, SystemPart, rectangle_outline
@@ -541,6 +542,8 @@ LAW_SYSTEMS = {
     "LinkChain(4, low_re, tail)": LinkChain((1.0, 0.8, 1.2, 1.0), "low_re", frame="tail"),
     "catalog: flapper_highRe": catalog.load("flapper_highRe"),
     "InteractingChain(3, 16 panels)": InteractingChain((1.0, 0.8, 1.2), separation=0.1, body_density=1.0, panels=16),
+    "catalog: symmetricTapeMeasure": catalog.load("symmetricTapeMeasure"),
+    "TapeMeasure(symmetric=False)": TapeMeasure(symmetric=False),
 }
 LAW_SHAPES = [(), (1,), (3, 1, 2)]
 SYSTEM_LAWS = settings(max_examples=4, deadline=None)

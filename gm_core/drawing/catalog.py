@@ -9,9 +9,9 @@ of the gait; the numbers (exact g(T), Stokes estimate, body-velocity integral) c
 The systems offered (:func:`lab_names`) are the catalog's systems in the plane with a rigid body
 for every part: its chains, the granular swimmer, the car and the kinematic snake. A system with
 more than two shape variables is seen on the slice through its straight shape along its first two
-(:func:`gm_core.systems.shape_slice`). The continuous bodies are left out: one gait's three
-numbers cost them seconds (they integrate along the body at every quadrature node), too slow for a
-slider; notebook 12 analyses one in a code cell. Each system's curvature grid is computed once
+(:func:`gm_core.systems.shape_slice`). The continuous bodies, the panel-method chain and the tape
+measures are left out (:data:`SLOW`): one gait's three numbers cost them a second or more, too
+slow for a slider; notebook 12 analyses a continuous body in a code cell. Each system's curvature grid is computed once
 and cached (:func:`gm_core.geometry.estimates.curvature_grid`), so switching back is quick.
 """
 from __future__ import annotations
@@ -32,14 +32,22 @@ from gm_core.drawing.toolkit.style import PALETTE, Scene, new_figure
 from gm_core.geometry.estimates import Estimates, displacement_estimates, shaped_gait
 from gm_core.groups import SE2
 from gm_core.systems import AffineRestriction, LocomotionSystem, SlenderBody, catalog, shape_slice
+from gm_core.systems.panel_method import InteractingChain
+from gm_core.systems.tape_measure import TapeMeasure
 from gm_core.validation import SingularShapeError
 
 __all__ = ["lab_names", "lab_system", "LabScene"]
 
 
+#: Systems whose connection costs too much for a slider: a continuous body integrates along itself at
+#: every quadrature node, the panel method solves a flow, the tape measure's Stokes estimate refines
+#: around its singular edge; one gait's numbers take a second or more.
+SLOW = (SlenderBody, InteractingChain, TapeMeasure)
+
+
 def _offered(name: str) -> bool:
     system = catalog.load(name)
-    return system.position_group is SE2 and not isinstance(system, SlenderBody) and bool(system.parts())
+    return system.position_group is SE2 and not isinstance(system, SLOW) and bool(system.parts())
 
 
 @functools.lru_cache(maxsize=1)

@@ -26,13 +26,14 @@ from gm_core.systems.restricted import AffineRestriction, shape_slice
 from gm_core.systems.rotors import Rotors
 from gm_core.systems.slender_body import SlenderBody, chain_approximation, serpenoid_modes
 from gm_core.systems.tabulated import TabulatedConnection
+from gm_core.systems.tape_measure import TapeMeasure
 from gm_core.systems.three_link import ThreeLinkSystem
 
 __all__ = ["LocomotionSystem", "SystemPart", "ThreeLinkSystem", "DifferentialDrive", "Ackerman",
            "KinematicSnake", "FloatingSnake", "LowReSwimmer", "HighReSwimmer",
            "LinkChain", "InteractingChain", "BodyFrame", "PoseFrame", "CentreOfMassFrame", "Reframed", "MinimumPerturbationFrame",
            "AffineRestriction", "shape_slice", "SlenderBody", "chain_approximation", "serpenoid_modes",
-           "TabulatedConnection", "Rotors", "ALL_SYSTEMS"]
+           "TabulatedConnection", "Rotors", "TapeMeasure", "ALL_SYSTEMS"]
 
 
 #: One default instance of each system of chapter 3, keyed by class name (like ALL_GROUPS): the
