@@ -16,7 +16,12 @@ from numpy.typing import ArrayLike
 from typing_extensions import override
 
 from gm_core.groups import SE2, LieGroup
-from gm_core.systems.connection import SINGULAR_TOL, connection_from_pfaffian, pfaffian_determinant
+from gm_core.systems.connection import (
+    SINGULAR_TOL,
+    connection_from_pfaffian,
+    pfaffian_determinant,
+    shape_space_metric,
+)
 from gm_core.systems.motion import (
     CheckedSystem,
     body_velocity,
@@ -26,7 +31,7 @@ from gm_core.systems.motion import (
 )
 from gm_core.validation import BoolArray, FloatArray, as_array
 
-__all__ = ["LocomotionSystem", "SystemPart", "SystemMeta", "ellipse_outline", "rectangle_outline"]
+__all__ = ["LocomotionSystem", "BalancedSystem", "SystemPart", "SystemMeta", "ellipse_outline", "rectangle_outline"]
 
 
 @dataclass(frozen=True)
@@ -167,3 +172,34 @@ class LocomotionSystem(CheckedSystem, metaclass=SystemMeta):
     @override
     def __repr__(self) -> str:
         return f"{type(self).__name__}()"
+
+
+class BalancedSystem(LocomotionSystem):
+    """A system whose constraint is a balance: zero net drag wrench, or zero momentum from rest.
+
+    It gives its system matrix ``metric(r)`` (..., 3 + n, 3 + n) on (xi, r_dot), ``sum J^T M J`` over
+    its parts, (3.39), (3.47); everything else is written once here: the Pfaffian is its top three
+    rows (the net wrench or momentum), the connection follows from it (3.40), and the cost metric on
+    shape space is ``[-A; I]^T M [-A; I]`` (the power dissipated, or twice the kinetic energy).
+    A subclass may override :meth:`pfaffian` with a cheaper route to the same rows.
+    """
+
+    @abstractmethod
+    def metric(self, r: ArrayLike) -> FloatArray:
+        """System matrix (..., 3 + n, 3 + n) on (xi, r_dot): drag or mass matrix."""
+
+    @override
+    def pfaffian(self, r: ArrayLike) -> FloatArray:
+        """Pfaffian (..., 3, 3 + n): the top rows of :meth:`metric` (total wrench or momentum = 0)."""
+        return self.metric(r)[..., :3, :]
+
+    @override
+    def connection(self, r: ArrayLike) -> FloatArray:
+        """Local connection (..., 3, n): xi = -A r_dot (3.10) from the Pfaffian, (3.40)."""
+        return connection_from_pfaffian(self.pfaffian(r))
+
+    @override
+    def shape_metric(self, r: ArrayLike) -> FloatArray:
+        """Cost metric on shape space M(r) = [-A; I]^T D [-A; I] (..., n, n) (power or twice kinetic energy)."""
+        D = self.metric(r)
+        return shape_space_metric(D, connection_from_pfaffian(D[..., :3, :]))

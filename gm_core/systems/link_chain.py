@@ -50,8 +50,7 @@ from typing_extensions import override
 
 from gm_core.chains.kernels import chain_jacobians_T, chain_poses_T, flatten_batch, with_trig
 from gm_core.groups import SE2
-from gm_core.systems.base import LocomotionSystem, SystemPart, ellipse_outline, rectangle_outline
-from gm_core.systems.connection import connection_from_pfaffian, shape_space_metric
+from gm_core.systems.base import BalancedSystem, LocomotionSystem, SystemPart, ellipse_outline, rectangle_outline
 from gm_core.systems.fluids import ellipse_added_mass, slender_link_drag
 from gm_core.validation import FloatArray, as_array, check_int, check_option, check_positive, positive_number
 
@@ -87,7 +86,7 @@ def _per_link(value, name, N, what):
     return tuple(float(x) for x in v)
 
 
-class LinkChain(LocomotionSystem):
+class LinkChain(BalancedSystem):
     """An N-link chain with low-Re, high-Re or floating physics; see the module docstring.
 
     ``LinkChain((1, 1, 1), "low_re")`` is the three-link swimmer of section 3.4.4
@@ -312,6 +311,7 @@ class LinkChain(LocomotionSystem):
         X = np.einsum("rkim,rjim->mkj", J[:, :rows] * self._diag.T[:, None, :, None], J)
         return X.reshape(batch + X.shape[1:])
 
+    @override
     def metric(self, r: ArrayLike) -> FloatArray:
         """System matrix (..., 3 + n, 3 + n): ``sum J_i^T M_i J_i`` over the links (drag or mass matrix)."""
         r, batch, Q, J = self._kinematics_T(r)
@@ -322,11 +322,6 @@ class LinkChain(LocomotionSystem):
         """Pfaffian (..., 3, 3 + n): the top rows of :meth:`metric` (total wrench or momentum = 0)."""
         r, batch, Q, J = self._kinematics_T(r)
         return self._masked(r, self._weighted(J, 3, batch))
-
-    @override
-    def connection(self, r: ArrayLike) -> FloatArray:
-        """Local connection (..., 3, n): xi = -A r_dot (3.10) from the Pfaffian, (3.40)."""
-        return connection_from_pfaffian(self.pfaffian(r))
 
     @override
     def constraint_curvature(self, r: ArrayLike) -> FloatArray:
@@ -343,12 +338,6 @@ class LinkChain(LocomotionSystem):
         Ad = SE2.Ad_inv(SE2.compose(SE2.inverse(pose("middle")), pose(self.frame)))
         F = (Ad @ F[..., None])[..., 0] if self.n_shape == 2 else np.einsum("...ij,...jkl->...ikl", Ad, F)
         return self._masked(r, F)
-
-    @override
-    def shape_metric(self, r: ArrayLike) -> FloatArray:
-        """Cost metric on shape space M(r) = [-A; I]^T D [-A; I] (..., n, n) (power or twice kinetic energy)."""
-        D = self.metric(r)
-        return shape_space_metric(D, connection_from_pfaffian(D[..., :3, :]))
 
     def _masked(self, r, X):
         """X (..., *tail) with NaN at the shapes outside the minimum-perturbation frame's box."""

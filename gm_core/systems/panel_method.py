@@ -31,8 +31,7 @@ from numpy.typing import ArrayLike
 from typing_extensions import override
 
 from gm_core.groups import SE2
-from gm_core.systems.base import LocomotionSystem, SystemPart, ellipse_outline
-from gm_core.systems.connection import connection_from_pfaffian, shape_space_metric
+from gm_core.systems.base import BalancedSystem, SystemPart, ellipse_outline
 from gm_core.systems.link_chain import MAX_LINKS, LinkChain
 from gm_core.validation import FloatArray, as_array, check_int, check_option, positive_number
 
@@ -160,7 +159,7 @@ def _sysplotter_lumped(P: FloatArray, S: FloatArray, rho: float, panels: int) ->
     return out
 
 
-class InteractingChain(LocomotionSystem):
+class InteractingChain(BalancedSystem):
     """N ellipse links with gaps, in an ideal fluid whose flow couples them; zero total momentum.
 
     ``lengths``: the ellipses' major axes l_i (semi-axes l_i / 2 and l_i / (2 ``aspect_ratio``));
@@ -216,6 +215,7 @@ class InteractingChain(LocomotionSystem):
                     out[k, i, :, i, :] = lumped[i]
         return out.reshape(r.shape[:-1] + (N, 3, N, 3))
 
+    @override
     def metric(self, r: ArrayLike) -> FloatArray:
         """Mass matrix (..., 3 + n, 3 + n) of bodies plus fluid: ``sum_ij J_i^T (M_ij + delta_ij M_body,i) J_j``."""
         r = self._shape(r)
@@ -231,22 +231,6 @@ class InteractingChain(LocomotionSystem):
     def mass_matrix(self, r: ArrayLike) -> FloatArray:
         """The same as :meth:`metric` (the book's name for it, (3.39))."""
         return self.metric(r)
-
-    @override
-    def pfaffian(self, r: ArrayLike) -> FloatArray:
-        """Pfaffian (..., 3, 3 + n): the top rows of :meth:`metric` (total momentum = 0)."""
-        return self.metric(r)[..., :3, :]
-
-    @override
-    def connection(self, r: ArrayLike) -> FloatArray:
-        """Local connection (..., 3, n), xi = -A r_dot (3.10), from the Pfaffian (3.40)."""
-        return connection_from_pfaffian(self.pfaffian(r))
-
-    @override
-    def shape_metric(self, r: ArrayLike) -> FloatArray:
-        """Twice the kinetic energy on shape space, ``[-A; I]^T M [-A; I]`` (..., n, n)."""
-        D = self.metric(r)
-        return shape_space_metric(D, connection_from_pfaffian(D[..., :3, :]))
 
     @override
     def parts(self) -> list[SystemPart]:

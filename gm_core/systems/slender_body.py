@@ -39,8 +39,7 @@ from numpy.typing import ArrayLike
 from typing_extensions import override
 
 from gm_core.groups import SE2
-from gm_core.systems.base import LocomotionSystem, SystemPart, rectangle_outline
-from gm_core.systems.connection import connection_from_pfaffian, shape_space_metric
+from gm_core.systems.base import BalancedSystem, LocomotionSystem, SystemPart, rectangle_outline
 from gm_core.systems.reframed import body_jacobian
 from gm_core.systems.restricted import AffineRestriction
 from gm_core.validation import FloatArray, as_array, check_int, check_option, positive_number
@@ -126,7 +125,7 @@ class GeneralCurvature:
         return len(self.shape_names)
 
 
-class SlenderBody(LocomotionSystem):
+class SlenderBody(BalancedSystem):
     """Continuous slender swimmer (resistive force theory); shape r of its curvature. See the module docstring."""
 
     may_be_singular = False
@@ -355,6 +354,7 @@ class SlenderBody(LocomotionSystem):
         return r @ self._mode_values(s).T
 
     # -- physics ---------------------------------------------------------------------------------
+    @override
     def metric(self, r: ArrayLike) -> FloatArray:
         """Drag matrix (..., 3 + n, 3 + n): ``int W^T (t t^T + k n n^T) W ds`` by the body quadrature.
 
@@ -383,20 +383,6 @@ class SlenderBody(LocomotionSystem):
         T[..., :3, 3:] = -Ad @ body_jacobian(beta, dbeta)
         T[..., 3:, 3:] = np.eye(n)
         return np.swapaxes(T, -1, -2) @ D @ T
-
-    @override
-    def pfaffian(self, r: ArrayLike) -> FloatArray:
-        """Pfaffian (..., 3, 3 + n): the net drag wrench, the top rows of :meth:`metric`."""
-        return self.metric(r)[..., :3, :]
-
-    @override
-    def connection(self, r: ArrayLike) -> FloatArray:
-        return connection_from_pfaffian(self.pfaffian(r))
-
-    @override
-    def shape_metric(self, r: ArrayLike) -> FloatArray:
-        D = self.metric(r)
-        return shape_space_metric(D, connection_from_pfaffian(D[..., :3, :]))
 
     @override
     def body_frames(self, bounds: Any = None, *, n: int | None = None, centre_of_mass: bool = True,

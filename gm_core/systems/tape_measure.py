@@ -43,8 +43,7 @@ from numpy.typing import ArrayLike
 from typing_extensions import override
 
 from gm_core.groups import SE2
-from gm_core.systems.base import LocomotionSystem, SystemPart, ellipse_outline, rectangle_outline
-from gm_core.systems.connection import connection_from_pfaffian, shape_space_metric
+from gm_core.systems.base import BalancedSystem, SystemPart, ellipse_outline, rectangle_outline
 from gm_core.systems.reframed import body_jacobian
 from gm_core.validation import BoolArray, FloatArray, check_int, positive_number
 
@@ -69,7 +68,7 @@ def _side(a: FloatArray, L: FloatArray, C: float) -> tuple[FloatArray, ...]:
     return l1, l2, beta, l1_a, l1_L, beta_a, beta_L
 
 
-class TapeMeasure(LocomotionSystem):
+class TapeMeasure(BalancedSystem):
     """The tape-measure swimmer (sysplotter's symmetric and asymmetric tape measures); see the module docstring.
 
     ``TapeMeasure()`` is ``sysf_symmetricTapeMeasure.m``, shape (alpha, L); ``TapeMeasure(symmetric=False)``
@@ -171,21 +170,11 @@ class TapeMeasure(LocomotionSystem):
         d[..., 1:, 2] = self.rotational_inertia_rate * h ** 3 + self.added_rotational_inertia_rate * h ** 4
         return self._masked(closes, d[..., None] * np.eye(3))
 
+    @override
     def metric(self, r: ArrayLike) -> FloatArray:
         """Mass matrix (..., 3 + n, 3 + n) on (xi, r_dot): ``sum J_i^T M_i J_i`` over head and segments, (3.39), (3.47)."""
         J = self.link_jacobians(r)
         return np.einsum("...kai,...kab,...kbj->...ij", J, self.link_matrices(r), J)
-
-    @override
-    def pfaffian(self, r: ArrayLike) -> FloatArray:
-        """Pfaffian (..., 3, 3 + n): the top rows of :meth:`metric`, the body momentum (zero from rest)."""
-        return self.metric(r)[..., :3, :]
-
-    @override
-    def shape_metric(self, r: ArrayLike) -> FloatArray:
-        """Cost metric on shape space ``[-A; I]^T M [-A; I]`` (..., n, n): twice the kinetic energy (sysplotter's metric)."""
-        M = self.metric(r)
-        return shape_space_metric(M, connection_from_pfaffian(M[..., :3, :]))
 
     @override
     def singularity(self, r: ArrayLike) -> FloatArray:
