@@ -60,7 +60,7 @@ if TYPE_CHECKING:   # matplotlib is imported by the drawing layer, only when a p
     from gm_core.drawing.toolkit.style import Scene
 
 __all__ = [
-    "Panel", "ScenePanel", "PANELS", "register", "all_panels", "slider", "int_slider",
+    "Panel", "ScenePanel", "TablePanel", "PANELS", "register", "all_panels", "slider", "int_slider",
     "se2_sliders", "xi_sliders", "show",
 ]
 
@@ -396,6 +396,32 @@ class ScenePanel(Panel):
         if scene is None:
             raise AttributeError(f"{type(self).__name__!s} has no attribute {name!r}")
         return getattr(scene, name)
+
+
+class TablePanel(ScenePanel):
+    """A panel whose scene also computes numbers, shown as an HTML table under the figure.
+
+    The scene sets ``table`` (HTML) in ``set``; the panel's ``numbers`` widget (text the browser
+    renders, never redrawn by matplotlib) shows it after every update.
+    """
+
+    scene: Any
+
+    def __init__(self, **options: Any) -> None:
+        self.numbers = W.HTML()
+        super().__init__(**options)
+
+    @override
+    def after_update(self, values: dict[str, Any]) -> None:
+        self.numbers.value = self.scene.table
+
+    @property
+    @override
+    def widget(self) -> W.Widget:
+        """The panel's box with the table of numbers under it."""
+        if getattr(self, "_with_numbers", None) is None:
+            self._with_numbers = W.VBox([super().widget, self.numbers])
+        return self._with_numbers
 
 
 def _same(control, a, b, exact=False):

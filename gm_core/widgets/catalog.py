@@ -3,20 +3,18 @@
 """
 from __future__ import annotations
 
-from typing import Any
-
 import ipywidgets as W
 from typing_extensions import override
 
 from gm_core.drawing.catalog import LabScene, lab_names
 from gm_core.drawing.curvature import ROWS
-from gm_core.widgets.base import ScenePanel, register, slider
+from gm_core.widgets.base import TablePanel, register, slider
 
 __all__ = ["LabPanel"]
 
 
 @register
-class LabPanel(ScenePanel):
+class LabPanel(TablePanel):
     """Pick a system by sysplotter's name, shape a gait on its curvature map, read exact g(T), Stokes and ∫ξ dt."""
 
     title = "Locomotion lab: any chain of sysplotter's library"
@@ -27,7 +25,6 @@ class LabPanel(ScenePanel):
 
     @override
     def controls_spec(self) -> dict[str, W.ValueWidget]:
-        self.numbers = W.HTML()
         return {"system": W.Dropdown(options=list(lab_names()), value="three_link_lowRe", description="system"),
                 "row": W.ToggleButtons(options=[(r, i) for i, r in enumerate(ROWS)], value=0, description="map row",
                                        style={"button_width": "3.5em"}),
@@ -38,14 +35,3 @@ class LabPanel(ScenePanel):
                 "tilt": slider(0.78, -1.6, 1.6, description="tilt"),
                 "phase": slider(0.0, 0.0, 1.0, description="body at t/T")}
 
-    @override
-    def after_update(self, values: dict[str, Any]) -> None:
-        self.numbers.value = self.scene.table
-
-    @property
-    @override
-    def widget(self) -> W.Widget:
-        """The panel's box with the table of numbers under it."""
-        if getattr(self, "_with_numbers", None) is None:
-            self._with_numbers = W.VBox([super().widget, self.numbers])
-        return self._with_numbers

@@ -15,7 +15,7 @@ from gm_core.drawing import curvature as D
 from gm_core.geometry import OptimalGait, optimize_gait
 from gm_core.geometry.estimates import FRAMES
 from gm_core.systems import LocomotionSystem
-from gm_core.widgets.base import ScenePanel, register, slider
+from gm_core.widgets.base import ScenePanel, TablePanel, register, slider
 
 __all__ = ["GaitStokesPanel", "FrameFieldsPanel", "optimize_with_progress"]
 
@@ -29,7 +29,7 @@ def _frame_buttons() -> W.ToggleButtons:
 
 
 @register
-class GaitStokesPanel(ScenePanel):
+class GaitStokesPanel(TablePanel):
     """Move, resize and reshape a gait on a curvature map; compare exact g(T), Stokes and ∫ξ dt.
 
     The numbers are in an HTML table under the figure (``self.numbers``: text rendered by the
@@ -42,7 +42,6 @@ class GaitStokesPanel(ScenePanel):
 
     @override
     def controls_spec(self) -> dict[str, W.ValueWidget]:
-        self.numbers = W.HTML()
         return {"c1": slider(0.0, -1.5, 1.5, description="centre α₁"),
                 "c2": slider(0.0, -1.5, 1.5, description="centre α₂"),
                 "a": slider(1.0, 0.1, 1.5, description="size a"),
@@ -52,18 +51,6 @@ class GaitStokesPanel(ScenePanel):
                 "row": W.ToggleButtons(options=[(r, i) for i, r in enumerate(D.ROWS)], value=0,
                                        description="map row", style={"button_width": "3.5em"}),
                 "frame": _frame_buttons()}
-
-    @override
-    def after_update(self, values: dict[str, Any]) -> None:
-        self.numbers.value = self.scene.table
-
-    @property
-    @override
-    def widget(self) -> W.Widget:
-        """The panel's box with the table of numbers under it."""
-        if getattr(self, "_with_numbers", None) is None:
-            self._with_numbers = W.VBox([super().widget, self.numbers])
-        return self._with_numbers
 
 
 @register
