@@ -99,7 +99,11 @@ def test_exp_is_expm_and_log_is_logm(G, shape, data):
     g = G.exp(data.draw(algebra(G, shape, principal=True)))   # off the branch cut of log
     # log is the principal logarithm: it agrees with scipy's logm.
     for L, M in zip(batched(G.hat(G.log(g)), shape, m), batched(G.matrix(g), shape, m)):
-        np.testing.assert_allclose(L, np.real(scipy.linalg.logm(M)), atol=1e-8)
+        # scipy's norm estimator inside logm divides by exact zeros of some exact rotations
+        # (numpy warns); its result is what is checked here
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            logm = scipy.linalg.logm(M)
+        np.testing.assert_allclose(L, np.real(logm), atol=1e-8)
 
 
 @law
