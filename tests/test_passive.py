@@ -4,8 +4,12 @@ The shape dynamics M r_ddot + C = tau are checked by energy (the driven joint's 
 damper's loss is the change of kinetic plus spring energy, with the energy read from the metric
 alone), the Coriolis terms against Lagrange's equations worked by sympy on a closed-form metric
 and against sysplotter's own formula, g(T) against an ode of the world pose, and the stiff-spring
-limit against the quasi-static joint angle computed from the metric.
+limit against the quasi-static joint angle computed from the metric; and the whole simulation against
+sysplotter's own simulate2DPassiveSwimmer.m run in Octave (tools/sysplotter_reference.py --passive).
 """
+import json
+from importlib import resources
+
 import numpy as np
 import pytest
 import sympy as sp
@@ -245,3 +249,53 @@ def test_a_system_must_be_a_system():
 def test_bad_simulation_arguments_are_refused_by_name(args, kwargs, error, match):
     with pytest.raises(error, match=match):
         catalog.passive_model("three_link_passive").simulate(*args, **kwargs)
+
+
+# -- sysplotter's own simulation, run in Octave ----------------------------------------------------------------
+#: How closely sysplotter's simulate2DPassiveSwimmer computes: ode45 at its default tolerances (RelTol 1e-3),
+#: its last period read back by a spline through ode45's steps (tools/sysplotter_reference.py's deval).
+SYSPLOTTER_RTOL = 5e-3
+
+
+def test_the_model_is_sysplotters_simulate2DPassiveSwimmer_run_in_octave():
+    """With sysplotter's added mass (the pi/8 defect) put back, the course reproduces sysplotter's g(T), cost
+    (the driven joint's work) and passive joint to the accuracy of its ode45; with the course's own metric
+    the answer differs by far more: the defect is the whole difference."""
+    ref = json.loads(resources.files("gm_core.systems").joinpath("sysplotter_passive.json").read_text())
+    drive = ref["drive"]
+    assert drive["file"] == "three_link_passive" and (ref["k"], ref["b"]) == (0.074, 0.01)
+    gait = fourier_gait([[0.0]], [[drive["amplitude"]]], period=drive["period"])
+    theirs_g, theirs_r1 = np.array(ref["g"]), np.array(ref["passive"])
+    as_sysplotter = PassiveJoints(catalog.with_sysplotter_added_mass(catalog.load(drive["file"])), (0,), ref["k"], ref["b"])
+    mine = as_sysplotter.simulate(gait, cycles=5, samples=len(ref["times"]))
+    assert mine.times == pytest.approx(ref["times"], abs=1e-12)
+    assert mine.shape[:, 1] == pytest.approx(ref["driven"], abs=1e-12)
+    scale = np.linalg.norm(theirs_g[:2])
+    assert np.abs(mine.displacement - theirs_g).max() <= SYSPLOTTER_RTOL * scale
+    assert np.hypot(*mine.displacement[:2]) == pytest.approx(ref["displ"], rel=SYSPLOTTER_RTOL)
+    assert mine.work == pytest.approx(ref["cost"], rel=SYSPLOTTER_RTOL)
+    amplitude = np.abs(theirs_r1).max()
+    assert np.abs(mine.shape[:, 0] - theirs_r1).max() <= SYSPLOTTER_RTOL * amplitude
+    corrected = catalog.passive_model(drive["file"]).simulate(gait, cycles=5, samples=11)
+    assert np.abs(corrected.displacement - theirs_g).max() > 20 * SYSPLOTTER_RTOL * scale
+
+
+def test_stiffness_and_damping_follow_the_order_of_the_passive_joints():
+    chain = catalog.load("three_link_HighRe")
+    three = PassiveJoints(catalog.load("four_link_HighRe"), passive=(2, 0), stiffness=(0.3, 0.1), damping=(0.02, 0.01))
+    assert three.passive == (2, 0) and three.driven == (1,)
+    assert three.stiffness.tolist() == [0.3, 0.1] and three.damping.tolist() == [0.02, 0.01]
+    assert PassiveJoints(chain, passive=1).passive == (1,)
+
+
+def test_two_passive_joints_keep_the_energy_balance():
+    """A four-link chain (three joints), joints 1 and 3 on springs, joint 2 driven: work - loss = change of energy."""
+    chain = catalog.load("four_link_HighRe")
+    k, b = np.array([0.3, 0.1]), np.array([0.02, 0.01])
+    res = PassiveJoints(chain, passive=(2, 0), stiffness=k, damping=b).simulate(SINE, cycles=0, samples=1001)
+    r, v = res.shape, res.shape_velocity
+    M = chain.shape_metric(r)
+    E = 0.5 * np.einsum("ni,nij,nj->n", v, M, v) + 0.5 * (k * r[:, [2, 0]] ** 2).sum(-1)
+    assert np.abs(r[:, [0, 2]]).max() > 0.05                          # both springs move
+    assert res.work - res.dissipated == pytest.approx(E[-1] - E[0], rel=1e-7, abs=1e-12)
+    assert simpson((b * v[:, [2, 0]] ** 2).sum(-1), x=res.times) == pytest.approx(res.dissipated, rel=1e-6)

@@ -97,8 +97,9 @@ class PassiveJoints:
 
     ``system``: any system with an inertial ``shape_metric(r)`` (a high-Re chain, a floating snake;
     :func:`gm_core.systems.catalog.passive_model` for sysplotter's file), or give ``metric``, a callable
-    r (..., n) -> M (..., n, n), to use another. ``stiffness`` k and ``damping`` b: one number or one per
-    passive joint, non-negative.
+    r (..., n) -> M (..., n, n), to use another. ``passive``: joint indices from 0; ``stiffness`` k and
+    ``damping`` b: one number or one per passive joint in that order, non-negative (the defaults are
+    sysplotter's ``three_link_passive``: joint 1, k = 0.074, b = 0.01). The other joints are ``driven``.
     """
 
     def __init__(self, system: Any, passive: Sequence[int] = (0,), stiffness: ArrayLike = 0.074,
@@ -121,7 +122,7 @@ class PassiveJoints:
         if len(set(idx)) != len(idx) or len(idx) == n:
             raise ValueError(f"passive must name distinct joints and leave at least one driven; got {tuple(passive)}")
         self.system, self.metric, self.n_shape = system, metric, n
-        self.passive = tuple(sorted(idx))
+        self.passive = tuple(idx)
         self.driven = tuple(i for i in range(n) if i not in self.passive)
         self.stiffness = self._per_joint(stiffness, "stiffness")
         self.damping = self._per_joint(damping, "damping")
