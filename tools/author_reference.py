@@ -20,11 +20,13 @@ from __future__ import annotations
 
 import argparse
 import functools
+import importlib
 import json
 import os
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any, cast
 
 import numpy as np
 
@@ -68,10 +70,9 @@ def main(argv: list[str] | None = None) -> int:
     if args.deps:
         sys.path.insert(0, str(args.deps))
     sys.path.insert(0, str(args.repo))
-    from geomotion import continuumbody as cb  # type: ignore[import-not-found]
-    from geomotion import diffmanifold as dm  # type: ignore[import-not-found]
-    from geomotion import kinematicchain as kc  # type: ignore[import-not-found]
-    from geomotion import rigidbody as rb  # type: ignore[import-not-found]
+    # his package is found on the path given, not installed (so no course dependency names it)
+    cb, dm, kc, rb = (cast(Any, importlib.import_module(f"geomotion.{m}"))
+                      for m in ("continuumbody", "diffmanifold", "kinematicchain", "rigidbody"))
 
     commit = args.commit or subprocess.run(["git", "-C", str(args.repo), "rev-parse", "HEAD"], check=True,
                                            capture_output=True, text=True).stdout.strip()
