@@ -7,11 +7,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-from gm_core.drawing.catalog import RotorDials, lab_gait, lab_names, lab_system
-from gm_core.geometry.curvature import constraint_curvature
-from gm_core.geometry.estimates import curvature_grid, displacement_estimates, shaped_gait
+from gm_core.drawing.catalog import LabScene, RotorDials, lab_gait, lab_names, lab_system
+from gm_core.drawing.toolkit.primitives import jshtml
+from gm_core.geometry import constraint_curvature, minimum_perturbation_coordinates
+from gm_core.geometry.estimates import curvature_grid, displacement_estimates, shaped_gait, square_grid
 from gm_core.groups import SO3
 from gm_core.systems import catalog
+from gm_core.systems.gaits import Gait
 from gm_core.systems.motion import curvature_form, fd_connection_derivative, net_displacement
 from gm_core.systems.tabulated import TabulatedConnection
 from gm_core.widgets.catalog import LabPanel
@@ -178,3 +180,232 @@ def test_a_gait_leaving_the_window_is_flagged_but_still_computed(lab):
     assert "leaves" in lab.scene.flag.text.get_text()
     lab.controls["c1"].value, lab.controls["a"].value = 0.0, 0.5
     assert not lab.scene.flag.text.get_visible()
+
+
+# -- the body frame ------------------------------------------------------------------------------
+
+def test_the_frame_control_shows_maps_field_and_numbers_in_the_minimum_perturbation_frame(lab):
+    """Untouched, the lab is in the file's frame; "minimum perturbation" shows the map, the field and
+    the numbers of minimum_perturbation_coordinates over the file's window (fitted again here)."""
+    lab.set(system="three_link_lowRe", frame="file's frame", row=0, c1=0.2, c2=0.0, a=0.5, b=0.3, tilt=0.78)
+    system = lab_system("three_link_lowRe")
+    half = system.shape_limits[0][1]
+    gait = shaped_gait(0.2 * half, 0.0, 0.5 * half, 0.3 * half, 0.78)
+    given = displacement_estimates(system, gait, interactive=True).as_array()
+    assert lab.scene.view is system
+    np.testing.assert_allclose(lab.scene.estimates.as_array(), given, atol=1e-14)
+    lab.controls["frame"].value = "minimum perturbation"
+    mp = minimum_perturbation_coordinates(system, system.shape_limits)
+    want = displacement_estimates(mp, gait, interactive=True).as_array()
+    np.testing.assert_allclose(lab.scene.estimates.as_array(), want, atol=1e-12)
+    assert abs(want[0, 0] - given[0, 0]) > 1e-3 and abs(want[0, 2] - given[0, 2]) < 1e-12   # x moves, θ does not
+    assert f"{want[0, 0]:+.4f}" in lab.numbers.value
+    shown = lab.scene.map.image.get_array()
+    F = constraint_curvature(mp, square_grid(system.shape_limits, lab.scene.MAP_N))[..., 0]
+    np.testing.assert_allclose(np.ma.getdata(shown)[~np.ma.getmaskarray(shown)], F[np.isfinite(F)], atol=1e-12)
+    q = lab.scene.field.quiver                        # the arrows point along -A of that frame
+    arrows, minus_A = np.column_stack([q.U, q.V]), -mp.connection(q.get_offsets())[:, 0, :]
+    cross = arrows[:, 0] * minus_A[:, 1] - arrows[:, 1] * minus_A[:, 0]
+    assert np.all(np.abs(cross) <= 1e-9 * np.abs(minus_A).max() * np.abs(arrows).max())
+    assert np.all(np.einsum("ij,ij->i", arrows, minus_A) >= 0) and np.abs(arrows).max() > 0
+    for part, pose in zip(lab.scene.body.bodies, mp.part_poses(gait(0.0))):     # the body in that frame
+        np.testing.assert_allclose(part.g, pose, atol=1e-12)
+    lab.controls["frame"].value = "file's frame"
+    np.testing.assert_allclose(lab.scene.estimates.as_array(), given, atol=1e-14)
+
+
+def test_a_frame_that_cannot_be_solved_is_said_and_a_wrong_frame_is_refused(lab):
+    lab.set(system="three_link_kinematic", frame="minimum perturbation", c1=0.0, c2=0.0, a=0.3, b=0.3)
+    assert lab.scene.view is lab_system("three_link_kinematic")         # singular shapes in its window
+    assert lab.scene.flag.text.get_visible() and "minimum-perturbation" in lab.scene.flag.text.get_text()
+    assert "no minimum-perturbation frame" in lab.numbers.value
+    with pytest.raises(ValueError, match="frame must be one of"):
+        lab.scene.set(system="three_link_lowRe", frame="centre of mass")
+    lab.set(system="three_link_lowRe", frame="file's frame")
+
+
+# -- a drawn gait ---------------------------------------------------------------------------------
+
+def _click(panel, x, y, ax=None):
+    """What a mouse click at data point (x, y) of ``ax`` (default the map) sends to the figure."""
+    from matplotlib.backend_bases import MouseEvent
+
+    ax = ax or panel.scene.ax
+    px, py = ax.transData.transform((x, y))
+    event = MouseEvent("button_press_event", panel.fig.canvas, px, py, button=1)
+    panel.fig.canvas.callbacks.process("button_press_event", event)
+
+
+def test_clicks_on_the_map_draw_a_spline_gait_whose_numbers_are_that_splines(lab):
+    lab.set(system="three_link_HighRe", frame="file's frame", row=0, c1=0.0, c2=0.0, a=0.5, b=0.3, tilt=0.78)
+    lab.clear_gait()
+    before = lab.scene.estimates.as_array()
+    _click(lab, 0.5, 0.5)                           # "draw gait" is up: a click does nothing
+    assert lab.scene.points == [] and lab.scene.custom is None
+    lab.draw.value = True
+    pts = [(-1.0, -0.8), (1.1, -0.9), (0.9, 1.2), (-1.2, 0.7)]
+    for p in pts[:2]:
+        _click(lab, *p)
+    assert "3 or more" in lab.status.value and lab.scene.custom is None        # two points: no gait yet
+    np.testing.assert_allclose(lab.scene.estimates.as_array(), before)
+    _click(lab, 0.0, 0.0, ax=lab.scene.axb)          # a click on the body's axes is no point of the gait
+    for p in pts[2:]:
+        _click(lab, *p)
+    np.testing.assert_allclose(lab.scene.points, pts, atol=1e-9)
+    spline = Gait.from_samples(np.array(lab.scene.points), 1.0)
+    want = displacement_estimates(lab_system("three_link_HighRe"), spline, interactive=True)
+    np.testing.assert_allclose(lab.scene.estimates.as_array(), want.as_array(), atol=1e-13)
+    np.testing.assert_allclose(lab.scene.gait_artist.points, spline(np.linspace(0, 1, 201)), atol=1e-12)
+    np.testing.assert_allclose(np.transpose(lab.scene.clicks.get_data()), pts, atol=1e-9)
+    assert "4 points" in lab.status.value and f"{want.exact[0]:+.4f}" in lab.numbers.value
+    lab.controls["row"].value = 2                    # another row keeps the drawn gait
+    np.testing.assert_allclose(lab.scene.estimates.as_array(), want.as_array(), atol=1e-13)
+    lab.clear.click()                                # "clear": the sliders' gait again
+    lab.draw.value = False
+    assert lab.scene.points == [] and lab.status.value == ""
+    np.testing.assert_allclose(lab.scene.estimates.as_array(), before)
+
+
+def test_moving_a_gait_slider_lets_a_drawn_gait_go(lab):
+    lab.set(system="three_link_lowRe", c1=0.0, a=0.5)
+    lab.clear_gait()
+    before = lab.scene.estimates.as_array()
+    for p in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0)]:
+        lab.add_point(*p)
+    assert lab.scene.custom is not None
+    lab.controls["c1"].value = 0.1
+    assert lab.scene.custom is None and lab.scene.points == []
+    lab.controls["c1"].value = 0.0
+    np.testing.assert_allclose(lab.scene.estimates.as_array(), before, atol=1e-14)
+
+
+# -- a loaded gait --------------------------------------------------------------------------------
+
+def test_a_gait_loaded_from_a_code_cell_is_shown_with_its_numbers(lab):
+    lab.set(system="three_link_lowRe", frame="file's frame", c1=0.0, a=0.5)
+    system = lab_system("three_link_lowRe")
+    t = np.linspace(0.0, 1.0, 12, endpoint=False)
+    pts = np.stack([1.2 * np.cos(2 * np.pi * t), 0.8 * np.sin(2 * np.pi * t) + 0.3 * np.cos(4 * np.pi * t)], -1)
+    lab.load_gait(pts)
+    want = displacement_estimates(system, Gait.from_samples(pts, 1.0), interactive=True)
+    np.testing.assert_allclose(lab.scene.estimates.as_array(), want.as_array(), atol=1e-13)
+    assert "loaded" in lab.status.value
+
+    def loop(s):
+        return np.stack([np.cos(s), np.sin(s)], -1)
+
+    lab.load_gait(loop, period=2 * np.pi)
+    want = displacement_estimates(system, Gait(loop, 2 * np.pi), interactive=True)
+    np.testing.assert_allclose(lab.scene.estimates.as_array(), want.as_array(), atol=1e-13)
+    np.testing.assert_allclose(lab.scene.gait_artist.points[0], [1.0, 0.0], atol=1e-15)
+
+
+@pytest.mark.parametrize("bad, match", [
+    (np.zeros((5, 3)), "gait must be shapes"),
+    ([[0.0, 0.0], [1.0, 0.0]], "at least 3|K >= 3"),
+    ("circle", "gait must be"),
+    (lambda s: np.stack([s, np.zeros_like(s)], -1), "not closed"),
+    (lambda s: np.stack([np.cos(s), np.sin(s), 0 * s], -1), "2 shape variables"),
+])
+def test_a_wrong_gait_is_refused_naming_it_and_the_shown_gait_stays(lab, bad, match):
+    lab.set(system="three_link_lowRe", c1=0.0, a=0.5)
+    lab.clear_gait()
+    before = lab.scene.estimates.as_array()
+    with pytest.raises(ValueError, match=match):
+        lab.load_gait(bad, period=2 * np.pi)
+    assert lab.scene.custom is None
+    np.testing.assert_allclose(lab.scene.estimates.as_array(), before)
+
+
+# -- optimise -------------------------------------------------------------------------------------
+
+def test_optimise_shows_the_optimum_and_says_done_only_after_drawing_it():
+    panel = LabPanel()
+    try:
+        panel.set(system="three_link_HighRe", frame="minimum perturbation")
+        events = []
+        panel.fig.canvas.mpl_connect("draw_event", lambda e: events.append(("draw", panel.status.value)))
+        panel.status.observe(lambda ch: events.append(("status", ch["new"])), names="value")
+        start = panel.scene.estimates.as_array()
+        res = panel.run("speed")
+        done = next(i for i, e in enumerate(events) if e[0] == "status" and e[1].startswith("done"))
+        drawn = [i for i, e in enumerate(events) if e[0] == "draw"]
+        assert drawn and drawn[-1] < done and events[drawn[-1]][1] == "drawing the best gait …"
+        assert panel.scene.gait is res.gait and res.nit <= LabScene.OPT_MAXITER
+        np.testing.assert_allclose(panel.scene.gait_artist.points, res.gait(np.linspace(0, res.gait.period, 201)))
+        view = minimum_perturbation_coordinates(lab_system("three_link_HighRe"), lab_system("three_link_HighRe").shape_limits)
+        est = displacement_estimates(view, res.gait, interactive=True).as_array()
+        np.testing.assert_allclose(panel.scene.estimates.as_array(), est, atol=1e-12)
+        assert np.hypot(*est[0, :2]) > 1.2 * np.hypot(*start[0, :2])        # it goes further than the start
+        assert f"{res.displacement:.4f}" in panel.status.value
+        page = panel.animation(n_frames=4, cycles=1).data                   # the course's player
+        assert 'class="gm-anim-play"' in page and 'data-frames="4"' in page
+        anim, fig, traj = panel.scene.animation(n_frames=5, cycles=1)
+        assert "<img" in jshtml(anim).data                                 # rendered (and closed)
+        np.testing.assert_allclose(traj.r, res.gait(traj.t), atol=1e-12)    # the body runs the optimum
+    finally:
+        plt.close(panel.fig)
+
+
+def test_optimise_says_why_it_cannot_run(lab):
+    lab.set(system="diffdrive", frame="file's frame")
+    assert lab.run("efficiency") is None
+    assert "cannot optimise" in lab.status.value and "metric" in lab.status.value
+    assert lab.run("fastest") is None and "objective must be one of" in lab.status.value
+    assert not lab.button.disabled and lab.scene.custom is None
+    lab.set(system="three_link_lowRe")
+
+
+# -- size and speed -------------------------------------------------------------------------------
+
+def test_the_lab_fits_a_laptop_screen_with_all_its_controls(lab):
+    """At 1366 x 768 with the file browser open (issue 19): the figure at most 900 x 340 px, its
+    nine controls in three rows of three above it (each 268 px of the 920 px output area), and one
+    row of buttons and status under the table: under 650 px in all."""
+    import ipywidgets as W
+
+    w, h = lab.fig.get_size_inches() * lab.fig.dpi
+    assert w <= 900 and h <= 340
+    per_row = (lab.OUTPUT_WIDTH + 16) // (lab.CONTROL_WIDTH + 8 + 16)
+    rows = -(-len(lab.controls) // per_row)
+    assert w + lab.CONTROL_WIDTH + 24 > lab.OUTPUT_WIDTH and rows <= 3       # rows above the figure
+    tree, todo = [], [lab.widget]
+    while todo:
+        widget = todo.pop()
+        tree.append(widget)
+        todo += list(getattr(widget, "children", ()))
+    assert {id(x) for x in (lab.draw, lab.clear, lab.objective, lab.button, lab.status)} <= {id(x) for x in tree}
+    assert sum(isinstance(x, W.Output) for x in tree) <= 1                  # no player inside the panel
+    assert rows * 52 + h + 4 * 20 + 34 + 24 <= 650     # controls, figure, table, buttons, title
+
+
+def test_switching_system_frame_or_gait_updates_within_200_ms_in_process(lab):
+    import time
+
+    values = dict(lab.values())
+    steps = [dict(system=n) for n in ("three_link_lowRe", "three_link_HighRe", "five_link_lowRe")] * 2
+    steps += [dict(c1=c) for c in np.linspace(-0.3, 0.3, 6)] + [dict(frame=f) for f in ("minimum perturbation", "file's frame")] * 2
+    for s in steps:                                    # grids and frames cached per system
+        values.update(s)
+        lab.scene.set(**values)
+    times = []
+    for s in steps:
+        values.update(s)
+        t = time.process_time()
+        lab.scene.set(**values)
+        times.append(time.process_time() - t)
+    assert np.percentile(times, 95) <= 0.2, times
+
+
+def test_the_minimum_perturbation_frame_is_refused_in_so3_and_drawn_off_a_singular_straight_shape():
+    panel = LabPanel()
+    try:
+        panel.controls["system"].value = "twin_rotor"
+        panel.controls["frame"].value = "minimum perturbation"
+        scene = panel.scene
+        assert scene.view is scene.system and "SO(3)" in scene.frame_error and scene.estimates is not None
+        panel.controls["system"].value = "triangle_lowRe"              # its body is undefined at the straight shape
+        assert scene.view is not scene.system and scene.frame_error == ""
+        assert len(scene.body.bodies) == len(scene.system.parts()) and scene.estimates is not None
+    finally:
+        plt.close(panel.fig)

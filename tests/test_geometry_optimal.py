@@ -238,3 +238,44 @@ def test_a_duck_typed_system_is_still_checked_at_every_entry():
               lambda s: optimize_gait(s)):
         with pytest.raises(TypeError, match="system must be a locomotion system"):
             f(NoConnection())
+
+
+# -- Fourier fits and trial gaits at the edge of the frame's window ------------------------------
+def test_fourier_fit_returns_a_fourier_gait_and_least_squares_coefficients():
+    """A Fourier gait of order <= the fit's comes back to round-off; a drawn spline gets the
+    coefficients of the least-squares fit on the Fourier basis (an independent route: lstsq)."""
+    from gm_core.geometry import fourier_fit
+
+    g = fourier_gait([[0.7, -0.2, 0.05], [0.1, 0.3, 0.0]], [[0.0, 0.4, -0.1], [0.9, 0.0, 0.02]], (0.3, -0.5), period=2.5)
+    for order in (3, 5):
+        fit = fourier_fit(g, order)
+        assert isinstance(fit, FourierGait) and fit.period == g.period and fit.order == order
+        t = np.linspace(0.0, g.period, 97)
+        np.testing.assert_allclose(fit(t), g(t), atol=1e-14)
+        np.testing.assert_allclose(fit.a[:, :3], g.a, atol=1e-15)
+        np.testing.assert_allclose(fit.a[:, 3:], 0.0, atol=1e-15)
+    spline = Gait.from_samples([[-1.0, -0.8], [1.1, -0.9], [0.9, 1.2], [-1.2, 0.7]], 1.0)
+    fit = fourier_fit(spline, 2, samples=512)
+    t = np.arange(512) / 512
+    basis = np.column_stack([np.ones_like(t)] + [f(2 * np.pi * k * t) for k in (1, 2) for f in (np.cos, np.sin)])
+    coef = np.linalg.lstsq(basis, spline(t), rcond=None)[0]          # rows: 1, cos t, sin t, cos 2t, sin 2t
+    np.testing.assert_allclose(fit.center, coef[0], atol=1e-13)
+    np.testing.assert_allclose(fit.a.T, coef[[1, 3]], atol=1e-13)
+    np.testing.assert_allclose(fit.b.T, coef[[2, 4]], atol=1e-13)
+    with pytest.raises(ValueError, match="order"):
+        fourier_fit(spline, 0)
+    with pytest.raises(ValueError, match="samples"):
+        fourier_fit(spline, 3, samples=6)
+
+
+def test_the_optimiser_rejects_trial_gaits_that_graze_the_minimum_perturbation_window():
+    """A trial gait whose g(T) is finite but that touches the edge of the frame's window (its
+    connection derivative undefined there) is rejected like one leaving it, not a crash, and the
+    optimum keeps EDGE_MARGIN of the window's width from the edge."""
+    car = DifferentialDrive()
+    mp = minimum_perturbation_coordinates(car, ((-2.5, 2.5), (-2.5, 2.5)))
+    start = fourier_gait([[1.25, 0.0], [0.0, 0.0]], [[0.0, 0.0], [1.25, 0.0]])
+    res = optimize_gait(mp, "displacement", order=2, start=start, maxiter=8)
+    r = res.gait(np.linspace(0.0, res.gait.period, 2001))
+    assert np.abs(r).max() <= 2.5 - 5.0 * 1e-3 + 1e-9 and res.displacement >= res.history[0] > 0
+    np.testing.assert_allclose(res.net_displacement, net_displacement(mp, res.gait), atol=1e-6)

@@ -11,6 +11,14 @@ catalog with them, so neither the tests nor a student need Octave, only this scr
     git clone https://github.com/OSU-LRAM/GeometricSystemPlotter /tmp/sysplotter
     .venv/bin/python tools/sysplotter_reference.py /tmp/sysplotter                 # every file
     .venv/bin/python tools/sysplotter_reference.py /tmp/sysplotter three_link_lowRe # some files
+    .venv/bin/python tools/sysplotter_reference.py /tmp/sysplotter --passive        # the passive swimmer
+
+``--passive`` runs instead sysplotter's passive-joint simulation (``simulate2DPassiveSwimmer.m``) on
+``three_link_passive`` with joint 2 driven by a sine (:data:`PASSIVE_DRIVE`) and writes
+``gm_core/systems/sysplotter_passive.json``, which ``tests/test_passive.py`` compares with
+:mod:`gm_core.systems.passive`. sysplotter feeds that function tables of its metric and their gradients;
+here it gets the file's own ``s.A`` and ``s.metric`` and central differences (step 1e-5) of ``s.metric``,
+so that the only approximation left is its ode45 at default tolerances. It takes about four minutes.
 
 Shapes: for each file, ``SHAPES_PER_FILE`` points drawn from a generator seeded by the file's name,
 uniform in the middle 70 % of the file's own ``s.grid_range`` and at least 20 % of the half-range
@@ -32,6 +40,9 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "gm_core" / "systems" / "sysplotter_reference.json"
+PASSIVE_OUT = ROOT / "gm_core" / "systems" / "sysplotter_passive.json"
+#: The drive of the passive reference: joint 2 = amplitude sin(2 pi t / period).
+PASSIVE_DRIVE = {"file": "three_link_passive", "amplitude": 0.8, "period": 1.0, "samples": 101}
 SHAPES_PER_FILE = 4
 TIMEOUT = 900           # seconds per file (the continuous bodies integrate with ode45)
 
@@ -118,7 +129,43 @@ end
   out = expr;
 end
 """,
+    # wrapToPi is in MATLAB's Mapping toolbox (Octave's mapping package, not installed here).
+    "wrapToPi.m": """function a = wrapToPi(a)
+  a = mod(a + pi, 2 * pi) - pi;
+end
+""",
 }
+
+# The passive swimmer: sysplotter's own simulate2DPassiveSwimmer on the file's own functions.
+_PASSIVE_DRIVER = r"""
+sp = fullfile('{root}', 'ProgramFiles');
+pathnames.sysplotterpath = [sp filesep];
+pathnames.syspath = fullfile('{root}', 'UserFiles', 'GenericUser', 'Systems');
+addpath(pathnames.syspath);
+addpath(genpath(fullfile(sp, 'Utilities')));
+warning('off', 'all');
+name = 'sysf_{name}';
+d = feval(name, 'dependency', pathnames);
+for k = 1:numel(d.dependency), addpath(genpath(d.dependency{{k}})); end
+addpath(fullfile(sp, 'GaitOptimization', 'optimalgaitgenerator_fcns'));
+addpath('{shims}');
+s = feval(name, 'initialize', pathnames);
+h = 1e-5;
+funs.A_fun = s.A;
+funs.metric_fun = s.metric;
+funs.dmdr1_fun = @(a1, a2) (s.metric(a1 + h, a2) - s.metric(a1 - h, a2)) / (2 * h);
+funs.dmdr2_fun = @(a1, a2) (s.metric(a1, a2 + h) - s.metric(a1, a2 - h)) / (2 * h);
+T = {period}; amp = {amplitude}; w = 2 * pi / T;
+p.rc = @(t) amp * sin(w * t);
+p.drc = @(t) amp * w * cos(w * t);
+p.ddrc = @(t) -amp * w^2 * sin(w * t);
+[displ, cost, angles, final_loop] = simulate2DPassiveSwimmer(p, T, funs, s.physics.k, s.physics.b);
+out = struct('k', s.physics.k, 'b', s.physics.b, 'g', final_loop(1:3, end)', 'displ', displ, 'cost', cost, ...
+             'times', linspace(0, T, size(angles, 2)), 'passive', angles(1, :), 'driven', angles(2, :));
+fid = fopen('{result}', 'w');
+fprintf(fid, '%s', jsonencode(out));
+fclose(fid);
+"""
 
 
 # One-line changes to copies of sysplotter's files (file name -> (text, replacement)), each for an
@@ -203,6 +250,26 @@ def run_file(root: Path, name: str) -> dict:
     return out
 
 
+def write_passive_reference(root: Path, commit: str, version: str) -> None:
+    """sysplotter's passive-swimmer simulation (see the module docstring) as JSON, for tests/test_passive.py."""
+    drive = PASSIVE_DRIVE
+    with tempfile.TemporaryDirectory() as tmp:
+        result, script = Path(tmp) / "out.json", Path(tmp) / "driver.m"
+        write_shims(root, Path(tmp) / "shims")
+        script.write_text(_PASSIVE_DRIVER.format(root=root, name=drive["file"], shims=Path(tmp) / "shims", result=result,
+                                                 period=drive["period"], amplitude=drive["amplitude"]))
+        proc = subprocess.run(["octave", "--no-gui", "--no-window-system", "--quiet", str(script)],
+                              capture_output=True, text=True, timeout=TIMEOUT, cwd=tmp)
+        if not result.exists():
+            raise SystemExit(f"octave exited with {proc.returncode}: {proc.stderr[-500:]}")
+        out = json.loads(result.read_text())
+    record = {"source": "OSU-LRAM/GeometricSystemPlotter (MIT licence), ProgramFiles/GaitOptimization/"
+                        "optimalgaitgenerator_fcns/simulate2DPassiveSwimmer.m", "sysplotter_commit": commit,
+              "octave": version, "drive": drive, **out}
+    PASSIVE_OUT.write_text(json.dumps(record) + "\n")
+    print(f"wrote {PASSIVE_OUT.relative_to(ROOT)}")
+
+
 GRANULAR = ROOT / "gm_core" / "systems" / "sysplotter_granular.json"
 
 
@@ -226,6 +293,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("sysplotter", type=Path, help="a checkout of OSU-LRAM/GeometricSystemPlotter")
     p.add_argument("names", nargs="*", help="file names without sysf_ and .m (default: every file)")
     p.add_argument("--commit", help="sysplotter's commit, for a copy that is not a git checkout")
+    p.add_argument("--passive", action="store_true", help="only the passive swimmer's simulation (sysplotter_passive.json)")
     args = p.parse_args(argv)
     root = args.sysplotter.resolve()
     systems = root / "UserFiles" / "GenericUser" / "Systems"
@@ -236,6 +304,9 @@ def main(argv: list[str] | None = None) -> int:
     commit = args.commit or subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
     version = subprocess.run(["octave", "--version"], capture_output=True, text=True).stdout.splitlines()[0]
     data.update({"sysplotter_commit": commit or data.get("sysplotter_commit", "unknown"), "octave": version})
+    if args.passive:
+        write_passive_reference(root, data["sysplotter_commit"], version)
+        return 0
     if "three_link_granular" in names:
         write_granular_table(root, data["sysplotter_commit"])
     for name in names:

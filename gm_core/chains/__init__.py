@@ -1,7 +1,8 @@
 """Kinematic chains (book chapter 2), numpy only.
 
-* :mod:`.chain`: joints, links, :class:`Chain` and :class:`MobileChain`, forward kinematics and
-  Jacobians of any serial chain (section 2.5);
+* :mod:`.chain`: joints (revolute, prismatic, arc, bend), straight and curved links, :class:`Chain`
+  and :class:`MobileChain`, forward kinematics and Jacobians of any serial chain (section 2.5);
+* :mod:`.continuum`: extensible continuum bodies, curvature and stretch modes (beyond the draft);
 * :mod:`.kernels`: batch-last kernels of revolute chains of any length (link poses, body Jacobians);
 * :mod:`.jacobians`: world and body Jacobians, finite differences, relative poses;
 * :mod:`.arms`: the two-link arms of sections 2.2-2.5 (RR, RP);
@@ -25,6 +26,7 @@ from gm_core.chains.chain import (
     MobileChain,
     transported_columns,
 )
+from gm_core.chains.continuum import ContinuumBody
 from gm_core.chains.holonomic import (
     accessible_circle,
     circle_constraints,
@@ -72,4 +74,5 @@ __all__ = [
     "pin_constraints", "pinned_pair", "circle_constraints", "sphere_plane_constraints",
     "sample_accessible_manifold", "accessible_circle", "chain_arguments", "flatten_batch",
     "chain_poses_T", "joint_turns", "chain_jacobians_T", "with_trig", "middle_frame_kernel",
+    "ContinuumBody",
 ]

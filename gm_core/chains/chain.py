@@ -4,6 +4,15 @@ numpy only. A chain is a product of SE(2) elements (section 2.2): fixed elements
 a rigid link, and one-parameter joint elements ``exp(q X)`` with ``X = (0, 0, 1)`` for a
 revolute joint (the constraint (2.2)-(2.3)) and ``X = (1, 0, 0)`` for a prismatic one ((2.8)-(2.9)).
 
+Arcs (beyond the draft's chapter 2, after the author's ``kinematicchain.arc_joint``/``arc_link`` and
+his example E702): every link is the arc ``exp(t v)``, t in [0, 1], of its twist ``v = (l, a, kappa l)``
+(length l, lateral offset a, curvature kappa; a straight link has kappa = 0 and ends at (l, a, 0)), its
+medial frame at t = 1/2. An arc joint ``exp(q (1, 0, kappa))`` slides its link a distance q along a
+circle of curvature kappa (the author's arc joint, radius 1/kappa). A bend joint makes its own link a
+circular arc whose curvature q is the joint variable: ``h = f exp(l (1, 0, q))``; its body velocity
+per unit dq is the twist of :meth:`Joint.twist` (closed form, no cancellation at q = 0), and as
+q -> 0 the link is a straight one.
+
 Frame names follow the book's note on notation: on link ``i`` the proximal frame is ``f_i``, the
 medial (centre) frame ``g_i`` and the distal frame ``h_i``. For a fixed-base arm the book calls the
 proximal frame of a rotary link ``g``; here it is always ``f`` (see the "Frame naming" box of
@@ -31,6 +40,7 @@ The book's worked examples built on these are in :mod:`gm_core.chains.arms` (fix
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Sized
 from dataclasses import dataclass
 from typing import Any, cast
@@ -41,7 +51,7 @@ from typing_extensions import override
 
 from gm_core.chains.jacobians import body_to_world_jacobian, relative_pose, world_to_body_jacobian
 from gm_core.groups import SE2, matvec
-from gm_core.validation import FloatArray, as_array, check_lengths
+from gm_core.validation import FloatArray, as_array, check_int, check_lengths, positive_number
 
 __all__ = [
     "transported_columns",
@@ -51,71 +61,158 @@ __all__ = [
 METHODS = ("direct", "world", "body")
 
 _KINDS = {"revolute": "revolute", "r": "revolute", "rotary": "revolute", "pin": "revolute",
-          "prismatic": "prismatic", "p": "prismatic", "slider": "prismatic"}
-_AXIS = {"revolute": np.array([0.0, 0.0, 1.0]), "prismatic": np.array([1.0, 0.0, 0.0])}
+          "prismatic": "prismatic", "p": "prismatic", "slider": "prismatic",
+          "arc": "arc", "a": "arc", "bend": "bend", "b": "bend"}
+_LETTERS = {"revolute": "R", "prismatic": "P", "arc": "A", "bend": "B"}
+
+
+def _bend_coefficients(theta: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """(theta - sin theta) / theta^2 and (1 - cos theta) / theta^2, free of cancellation at every theta.
+
+    The second is (sin h / h)^2 / 2 with h = theta/2; the first is its Taylor series for |theta| < 1
+    (ten terms, error below 1e-17 relative) and the plain quotient beyond.
+    """
+    h = 0.5 * theta
+    sinc = np.divide(np.sin(h), h, out=np.ones_like(h), where=h != 0)
+    b = 0.5 * sinc * sinc
+    t2 = theta * theta
+    series = np.zeros_like(theta)
+    for k in range(10, 0, -1):  # sum_k (-1)^(k+1) theta^(2k-1) / (2k+1)!, by Horner in theta^2
+        series = t2 * series + (-1.0) ** (k + 1) / math.factorial(2 * k + 1)
+    series = series * theta
+    big = np.abs(theta) >= 1.0
+    safe = np.where(big, theta, 1.0)
+    a = np.where(big, (safe - np.sin(safe)) / (safe * safe), series)
+    return a, b
 
 
 # --------------------------------------------------------------------------------------- parts
 class Joint:
-    """A one-degree-of-freedom joint: ``Joint("revolute")`` (alias "R") or ``Joint("prismatic")`` ("P").
+    """A one-degree-of-freedom joint: "revolute" ("R"), "prismatic" ("P"), "arc" ("A") or "bend" ("B").
 
-    The joint's relative transform is the one-parameter subgroup ``exp(q X)``: a rotation by q for a
-    revolute joint, book (2.3), and a slide by q along the proximal link's x axis for a prismatic
-    joint, book (2.9). Its body (and spatial) velocity is ``X q_dot``, the v_i of (2.34).
+    The first three are one-parameter subgroups ``exp(q X)``: a rotation by q, ``X = (0, 0, 1)``,
+    book (2.3); a slide by q along the proximal link's x axis, ``X = (1, 0, 0)``, book (2.9); a
+    slide by arc length q along a circle of curvature kappa, ``X = (1, 0, kappa)``
+    (``Joint("arc", curvature=kappa)``, default 1: the author's E702 arc joint of radius 1). Their
+    body (and spatial) velocity is ``X q_dot``, the v_i of (2.34). A bend joint is a link of length
+    l bent to the curvature q, ``exp(l (1, 0, q))``; it is no subgroup, and its body velocity per unit
+    dq, :meth:`twist`, depends on q.
     """
 
     kind: str
-    axis: FloatArray
+    curvature: float
 
-    def __init__(self, kind: Any = "revolute") -> None:
+    def __init__(self, kind: Any = "revolute", curvature: float | None = None) -> None:
         if isinstance(kind, Joint):
+            curvature = kind.curvature if curvature is None else curvature
             kind = kind.kind
         if not isinstance(kind, str) or kind.strip().lower() not in _KINDS:
-            raise ValueError(f"joints: unknown joint type {kind!r}; use 'revolute' ('R') or 'prismatic' ('P')")
+            raise ValueError(f"joints: unknown joint type {kind!r}; use 'revolute' ('R'), 'prismatic' ('P'), "
+                             "'arc' ('A') or 'bend' ('B')")
         self.kind = _KINDS[kind.strip().lower()]
-        self.axis = _AXIS[self.kind].copy()
+        if curvature is not None and self.kind != "arc":
+            raise ValueError(f"curvature: only an arc joint has a fixed curvature; got {curvature!r} for a {self.kind} joint")
+        kappa = 1.0 if curvature is None else curvature
+        if isinstance(kappa, bool) or not isinstance(kappa, (int, float, np.integer, np.floating)) or not np.isfinite(kappa):
+            raise ValueError(f"curvature must be a finite number (1 / radius of the arc joint); got {curvature!r}")
+        self.curvature = float(kappa) if self.kind == "arc" else 0.0
 
-    def element(self, q: ArrayLike, sign: float = 1.0) -> FloatArray:
-        """The relative SE(2) element exp(sign q X), shape ``(..., 3)``; book (2.3), (2.9)."""
+    @property
+    def subgroup(self) -> bool:
+        """True when the joint's elements form the one-parameter subgroup exp(q X) (all kinds but "bend")."""
+        return self.kind != "bend"
+
+    @property
+    def axis(self) -> FloatArray:
+        """The generator X of the subgroup exp(q X), ``(3,)``; a bend joint has none (ValueError)."""
+        if self.kind == "revolute":
+            return np.array([0.0, 0.0, 1.0])
+        if self.kind == "prismatic":
+            return np.array([1.0, 0.0, 0.0])
+        if self.kind == "arc":
+            return np.array([1.0, 0.0, self.curvature])
+        raise ValueError("joint: a bend joint is not a one-parameter subgroup and has no axis; use twist(q, length=l)")
+
+    def _length(self, length):
+        if self.kind != "bend":
+            return None
+        return positive_number(length, "length", what=" (the arc length of the bent link)")
+
+    def element(self, q: ArrayLike, sign: float = 1.0, length: float | None = None) -> FloatArray:
+        """The relative SE(2) element ``(..., 3)``: exp(sign q X), book (2.3), (2.9); for a bend joint
+        exp(l (1, 0, q)) of link length ``length`` = l, inverted when sign < 0."""
         q = np.asarray(q, dtype=float)
-        return (sign * q)[..., None] * self.axis
+        ell = self._length(length)
+        if ell is None:  # exactly (0, 0, sign q) and (sign q, 0, 0) for the revolute and prismatic joints
+            return SE2.exp((sign * q)[..., None] * self.axis)
+        E = SE2.exp(ell * np.stack([np.ones_like(q), np.zeros_like(q), q], axis=-1))
+        return E if sign > 0 else SE2.inverse(E)
+
+    def twist(self, q: ArrayLike, sign: float = 1.0, length: float | None = None) -> FloatArray:
+        """Body velocity ``E^-1 dE/dq`` ``(..., 3)`` of the element E = :meth:`element` per unit dq.
+
+        sign X for a subgroup joint, (2.34). For a bend joint, with theta = l q:
+        ``l (l (theta - sin theta) / theta^2, l (1 - cos theta) / theta^2, 1)``, which is
+        ``(0, l^2 / 2, l)`` at q = 0 (bending a straight link swings its tip sideways), and
+        ``-Ad_E`` of that when the joint is traversed backwards (sign < 0).
+        """
+        q = np.asarray(q, dtype=float)
+        ell = self._length(length)
+        if ell is None:
+            return np.broadcast_to(sign * self.axis, q.shape + (3,)).copy()
+        a, b = _bend_coefficients(ell * q)
+        X = ell * np.stack([ell * a, ell * b, np.ones_like(q)], axis=-1)
+        if sign > 0:
+            return X
+        return -matvec(SE2.Ad(self.element(q, 1.0, ell)), X)
 
     @property
     def letter(self) -> str:
-        return "R" if self.kind == "revolute" else "P"
+        return _LETTERS[self.kind]
 
     @override
     def __repr__(self) -> str:
+        if self.kind == "arc":
+            return f"Joint('arc', curvature={self.curvature!r})"
         return f"Joint({self.kind!r})"
 
     @override
     def __eq__(self, other: object) -> bool:
-        return isinstance(other, Joint) and other.kind == self.kind
+        return isinstance(other, Joint) and (other.kind, other.curvature) == (self.kind, self.curvature)
 
     @override
     def __hash__(self) -> int:
-        return hash(self.kind)
+        return hash((self.kind, self.curvature))
 
 
 @dataclass(frozen=True)
 class Link:
-    """A rigid link of positive ``length``; its distal frame sits at (length, offset, 0) from the proximal one."""
+    """A rigid link of positive ``length``: the arc exp(t v), t in [0, 1], of ``v = (length, offset, curvature length)``.
+
+    A straight link (curvature 0) has its distal frame at (length, offset, 0) from the proximal one.
+    """
 
     length: float
     offset: float = 0.0
+    curvature: float = 0.0
+
+    @property
+    def twist(self) -> FloatArray:
+        """The twist v with distal frame f exp(v) and medial frame f exp(v / 2), ``(3,)``."""
+        return np.array([self.length, self.offset, self.curvature * self.length])
 
 
 def _joints(joints, name="joints"):
     if isinstance(joints, str):
         letters = joints.strip()
-        if all(ch.upper() in "RP" for ch in letters) and letters:
+        if all(ch.upper() in "RPAB" for ch in letters) and letters:
             joints = list(letters)
         else:
             joints = [joints]
     try:
         joints = list(joints)
     except TypeError:
-        raise ValueError(f"{name} must be a sequence of joint types such as ['R', 'P'] or 'RP'; got {joints!r}") from None
+        raise ValueError(f"{name} must be a sequence of joint types such as ['R', 'P'] or 'RPAB'; got {joints!r}") from None
     return [Joint(j) for j in joints]
 
 
@@ -125,8 +222,10 @@ def _config(alpha, n, name="alpha"):
 
 # ------------------------------------------------------------------------- the frame graph
 # A chain is stored as a list of nodes; node k is ("fixed", parent, element) or
-# ("joint", parent, (j, sign, axis)) and its pose is compose(pose[parent], factor). Node 0 is the
-# root: the fixed base for an arm, the base link's medial frame for a mobile system.
+# ("joint", parent, (j, sign, joint, length)) and its pose is compose(pose[parent], factor), the
+# factor of a joint node being joint.element(alpha_j, sign, length) with body velocity
+# joint.twist(alpha_j, sign, length) per unit alpha_j_dot. Node 0 is the root: the fixed base for
+# an arm, the base link's medial frame for a mobile system.
 
 class _FrameGraph:
     def __init__(self, n_joints, mobile):
@@ -138,8 +237,8 @@ class _FrameGraph:
         self.nodes.append(("fixed", parent, np.asarray(element, dtype=float)))
         return len(self.nodes) - 1
 
-    def add_joint(self, parent, j, joint, sign=1.0):
-        self.nodes.append(("joint", parent, (j, float(sign), joint.axis)))
+    def add_joint(self, parent, j, joint, sign=1.0, length=None):
+        self.nodes.append(("joint", parent, (j, float(sign), joint, length)))
         return len(self.nodes) - 1
 
     @property
@@ -150,8 +249,12 @@ class _FrameGraph:
         kind, _, data = node
         if kind == "fixed":
             return np.broadcast_to(data, alpha.shape[:-1] + (3,))
-        j, sign, axis = data
-        return (sign * alpha[..., j])[..., None] * axis
+        j, sign, joint, length = data
+        return joint.element(alpha[..., j], sign, length)
+
+    def _twist(self, node, alpha):
+        j, sign, joint, length = node[2]
+        return joint.twist(alpha[..., j], sign, length)
 
     def poses(self, alpha, root):
         out = [np.broadcast_to(root, alpha.shape[:-1] + (3,)).astype(float)]
@@ -175,8 +278,8 @@ class _FrameGraph:
             Gp, dGp = G[parent], dG[parent]
             d = dGp @ F[..., None, :, :]
             if kind == "joint":
-                j, sign, axis = data
-                dF = F @ SE2.hat(sign * axis)  # d/dq exp(s q X) = exp(s q X) s X^
+                j = data[0]
+                dF = F @ SE2.hat(self._twist(node, alpha))  # dF/dq = F X^, X the body twist; exp(s q X): s X
                 d[..., off + j, :, :] += Gp @ dF
             G.append(Gp @ F)
             dG.append(d)
@@ -205,10 +308,10 @@ class _FrameGraph:
             M = SE2.right_lifted_action(Pk, SE2.identity()) @ SE2.right_lifted_action(SE2.inverse(Pp), Pp)
             Jk = M @ jac[parent]
             if kind == "joint":
-                j, sign, axis = data
+                j = data[0]
                 F = self._factor(node, alpha)
                 # relative motion at the joint, moved into the world by T_F L_{g_p}: (2.22), (2.26)
-                F_dot = matvec(SE2.left_lifted_action(F, SE2.identity()), sign * axis)
+                F_dot = matvec(SE2.left_lifted_action(F, SE2.identity()), self._twist(node, alpha))
                 Jk[..., :, off + j] += matvec(SE2.left_lifted_action(Pp, F), F_dot)
             jac.append(Jk)
         return jac
@@ -224,11 +327,10 @@ class _FrameGraph:
         for node in self.nodes[1:]:
             kind, parent, data = node
             F = self._factor(node, alpha)
-            Jk = jac[parent].copy()
-            if kind == "joint":  # xi_{g'} = xi_{h_{i-1}} + v_i, (2.34)
-                j, sign, axis = data
-                Jk[..., :, off + j] += sign * axis
-            jac.append(SE2.Ad_inv(F) @ Jk)  # xi_child = Ad^-1_{child,parent} xi, (2.37)
+            Jk = SE2.Ad_inv(F) @ jac[parent]  # xi_child = Ad^-1_{child,parent} xi, (2.37)
+            if kind == "joint":  # plus the joint's own body twist, v_i of (2.34) (Ad^-1_F X = X on exp(q X))
+                Jk[..., :, off + data[0]] += self._twist(node, alpha)
+            jac.append(Jk)
         return jac  # body-velocity Jacobians
 
 
@@ -244,9 +346,10 @@ class _ChainBase:
 
     @property
     def links(self):
-        """The links as :class:`Link` (length, lateral offset of the distal frame)."""
+        """The links as :class:`Link` (length, lateral offset of the distal frame, fixed curvature)."""
         offsets = getattr(self, "offsets", np.zeros(self.n_links))
-        return [Link(float(L), float(a)) for L, a in zip(self.lengths, offsets)]
+        curvatures = getattr(self, "curvatures", np.zeros(self.n_links))
+        return [Link(float(L), float(a), float(k)) for L, a, k in zip(self.lengths, offsets, curvatures)]
 
     def _stack(self, values, jac):
         axis = -3 if jac else -2
@@ -290,14 +393,18 @@ class _ChainBase:
 class Chain(_ChainBase):
     """A fixed-base serial chain: joint i joins the distal frame of link i-1 (the base for i = 1) to link i.
 
-    ``Chain(joints, lengths, offsets=None, base=None)``: ``joints`` a sequence of "R"/"P" (or the
-    string "RRP"), ``lengths`` positive link lengths, ``offsets`` optional lateral offsets of each
-    link's distal frame (fig. 2.10), ``base`` the pose ``(3,)`` of the fixed pivot (default e).
-    Link i: ``f_i = h_{i-1} exp(alpha_i X_i)``, ``g_i = f_i (l_i/2, a_i/2, 0)``, ``h_i = f_i (l_i, a_i, 0)``.
+    ``Chain(joints, lengths, offsets=None, base=None, curvatures=None)``: ``joints`` a sequence of
+    "R"/"P"/"A"/"B" or :class:`Joint` (or the string "RRP"), ``lengths`` positive link lengths,
+    ``offsets`` optional lateral offsets of each link's distal frame (fig. 2.10), ``curvatures``
+    optional fixed curvatures of the links (arcs), ``base`` the pose ``(3,)`` of the fixed pivot
+    (default e). Link i with twist ``v_i = (l_i, a_i, kappa_i l_i)``: ``f_i = h_{i-1} exp(alpha_i X_i)``,
+    ``g_i = f_i exp(v_i / 2)``, ``h_i = f_i exp(v_i)`` (for a straight link ``(l_i/2, a_i/2, 0)`` and
+    ``(l_i, a_i, 0)``). A bend joint's link is its own arc: ``f_i = h_{i-1}``,
+    ``g_i = f_i exp(l_i/2 (1, 0, alpha_i))``, ``h_i = f_i exp(l_i (1, 0, alpha_i))`` (no offset or fixed curvature).
     """
 
     def __init__(self, joints: Any, lengths: ArrayLike, offsets: ArrayLike | None = None,
-                 base: ArrayLike | None = None) -> None:
+                 base: ArrayLike | None = None, curvatures: ArrayLike | None = None) -> None:
         self.joints = _joints(joints)
         n = len(self.joints)
         if n == 0:
@@ -307,16 +414,49 @@ class Chain(_ChainBase):
         if offsets is None:
             offsets = np.zeros(n)
         self.offsets = as_array(offsets, "offsets", (n,), what=" (one lateral offset per link)")
+        if curvatures is None:
+            curvatures = np.zeros(n)
+        self.curvatures = as_array(curvatures, "curvatures", (n,), what=" (one fixed curvature per link)")
         self.base = SE2.identity() if base is None else as_array(base, "base", (3,)).copy()
         gr = _FrameGraph(n, mobile=False)
         self._index = {}
         parent = 0
-        for i, (jt, L, a) in enumerate(zip(self.joints, self.lengths, self.offsets)):
+        for i, (jt, link) in enumerate(zip(self.joints, self.links)):
+            if jt.kind == "bend":
+                if link.offset or link.curvature:
+                    raise ValueError(f"offsets, curvatures: link {i} bends at its joint, so its offset and fixed "
+                                     f"curvature must be 0; got {link.offset!r}, {link.curvature!r}")
+                f = gr.add_fixed(parent, SE2.identity())
+                self._index[("f", i)] = f
+                self._index[("g", i)] = gr.add_joint(f, i, jt, length=link.length / 2)
+                self._index[("h", i)] = parent = gr.add_joint(f, i, jt, length=link.length)
+                continue
+            v = link.twist
             f = gr.add_joint(parent, i, jt)
             self._index[("f", i)] = f
-            self._index[("g", i)] = gr.add_fixed(f, [L / 2, a / 2, 0.0])
-            self._index[("h", i)] = parent = gr.add_fixed(f, [L, a, 0.0])
+            self._index[("g", i)] = gr.add_fixed(f, SE2.exp(v / 2))
+            self._index[("h", i)] = parent = gr.add_fixed(f, SE2.exp(v))
         self._graph = gr
+
+    def backbone(self, alpha: ArrayLike, n: int = 16) -> FloatArray:
+        """Poses ``(..., n_links, n, 3)`` at n evenly spaced points t in [0, 1] along every link, from f_i to h_i.
+
+        A link is the arc ``f_i exp(t v_i)`` (``f_i exp(t l_i (1, 0, alpha_i))`` for a bend joint): the
+        author's ``fractional_position``; t = 1/2 gives g_i and t = 1 gives h_i.
+        """
+        n = check_int(n, "n", minimum=2, what=" (points per link)")
+        alpha = _config(alpha, self.n_joints)
+        f = self.frames(alpha)["f"]
+        t = np.linspace(0.0, 1.0, n)
+        out = []
+        for i, (jt, link) in enumerate(zip(self.joints, self.links)):
+            if jt.kind == "bend":
+                v = link.length * np.stack(np.broadcast_arrays(1.0, 0.0, alpha[..., i]), axis=-1)
+            else:
+                v = np.broadcast_to(link.twist, alpha.shape[:-1] + (3,))
+            pieces = SE2.exp(t[:, None] * v[..., None, :])
+            out.append(SE2.compose(f[..., i, None, :], pieces))
+        return np.stack(out, axis=-3)
 
     @override
     def _root(self, g):
@@ -356,6 +496,9 @@ class MobileChain(_ChainBase):
         self.n_joints = n_links - 1
         if len(self.joints) != self.n_joints:
             raise ValueError(f"joints must have {self.n_joints} entries for {n_links} links; got {len(self.joints)}")
+        if any(not jt.subgroup for jt in self.joints):
+            raise ValueError("joints: a mobile chain joins its links by 'R', 'P' or 'A' joints; a bend joint is a "
+                             "link of its own (use Chain)")
         if base_link is None:
             base_link = (n_links - 1) // 2
         if not isinstance(base_link, (int, np.integer)) or not 0 <= base_link < n_links:
@@ -414,6 +557,8 @@ def transported_columns(chain: Chain, alpha: ArrayLike) -> tuple[FloatArray, Flo
     frames = np.stack([fr[k][..., i, :] for i in range(n) for k in ("f", "h")], axis=-2)
     batch = frames.shape[:-2]
     columns = np.zeros(batch + (n, 2 * n, 3))
+    if any(not jt.subgroup for jt in chain.joints):
+        raise ValueError("chain: transported_columns needs subgroup joints ('R', 'P', 'A'); a bend joint moves h_j, not f_j")
     for j, joint in enumerate(chain.joints):
         outward = frames[..., 2 * j:, :]
         rel = relative_pose(outward, frames[..., 2 * j, None, :])

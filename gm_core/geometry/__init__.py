@@ -7,7 +7,7 @@ book's (``xi = -A(r) r_dot``, (3.10)).
 * :mod:`.curvature`: ``constraint_curvature``, ``stokes_estimate``, ``body_velocity_integral``;
 * :mod:`.coordinates`: ``reframe``, ``centre_of_mass``, ``drift_and_turn``, ``centre_of_mass_coordinates``, ``minimum_perturbation_coordinates``;
 * :mod:`.metrics`: ``dissipation_metric``, ``path_length``, ``efficiency``;
-* :mod:`.optimal`: ``fourier_gait``, ``optimize_gait``; :mod:`.strokes`: ``sysplotter_stroke``;
+* :mod:`.optimal`: ``fourier_gait``, ``fourier_fit``, ``optimize_gait``; :mod:`.strokes`: ``sysplotter_stroke``;
   :mod:`.chain_strokes`: optimal strokes of 3-, 4- and 5-link chains (``chain_stroke``), the local
   maxima they were chosen from (``chain_optima``, ``chain_starts``) and ``links_cross``;
 * :mod:`.estimates`: ``shaped_gait``, ``displacement_estimates``, ``row_scaled``, ``field_rms`` (notebook 10's panels).
@@ -44,6 +44,7 @@ from gm_core.geometry.metrics import dissipation_metric, efficiency, path_length
 from gm_core.geometry.optimal import (
     FourierGait,
     OptimalGait,
+    fourier_fit,
     fourier_gait,
     gait_objective,
     optimize_gait,
@@ -54,7 +55,7 @@ from gm_core.geometry.strokes import SYSPLOTTER_STROKES, sysplotter_stroke, sysp
 __all__ = ["constraint_curvature", "connection_derivative", "connection_curl", "stokes_estimate", "body_velocity_integral",
            "reframe", "centre_of_mass", "drift_and_turn", "centre_of_mass_coordinates", "minimum_perturbation_coordinates",
            "dissipation_metric", "path_length", "efficiency",
-           "FourierGait", "OptimalGait", "fourier_gait", "travelling_wave", "gait_objective", "optimize_gait",
+           "FourierGait", "OptimalGait", "fourier_fit", "fourier_gait", "travelling_wave", "gait_objective", "optimize_gait",
            "SYSPLOTTER_STROKES", "sysplotter_stroke", "sysplotter_swimmer",
            "CHAIN_STROKES", "chain_stroke", "chain_swimmer", "wave_start", "optimize_chain_gait",
            "CHAIN_OPTIMA", "OTHER_CHAIN_OPTIMA", "chain_optima", "chain_starts", "links_cross", "random_start",

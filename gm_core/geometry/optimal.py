@@ -26,7 +26,7 @@ from gm_core.geometry.curvature import connection_derivative
 from gm_core.geometry.metrics import metric_function, path_length
 from gm_core.groups import SE2, matvec
 from gm_core.systems.base import LocomotionSystem
-from gm_core.systems.gaits import Gait, GaitLike
+from gm_core.systems.gaits import Gait, GaitLike, as_gait
 from gm_core.systems.minimum_perturbation import MAX_DIMENSION, MinimumPerturbationFrame, too_many_dimensions
 from gm_core.systems.motion import check_gait, check_system, net_displacement, trajectory
 from gm_core.systems.reframed import Reframed
@@ -40,7 +40,10 @@ from gm_core.validation import (
     real_number,
 )
 
-__all__ = ["FourierGait", "fourier_gait", "travelling_wave", "optimize_gait", "OptimalGait", "gait_objective"]
+__all__ = ["FourierGait", "fourier_gait", "fourier_fit", "travelling_wave", "optimize_gait", "OptimalGait", "gait_objective"]
+
+#: Trial gaits must keep this fraction of the minimum-perturbation rectangle's width from its edges.
+EDGE_MARGIN = 1e-3
 
 #: Cost returned for trial gaits that reach a singular shape (a finite wall the line search backs off from).
 _REJECT = 1e3
@@ -108,6 +111,23 @@ def fourier_gait(a: ArrayLike, b: ArrayLike | None = None, center: ArrayLike | N
         raise ValueError(f"center must have shape ({a.shape[0]},); got shape {center.shape}")
     T = positive_number(period, "period")
     return FourierGait(a.copy(), b.copy(), center.copy(), T, name)
+
+
+def fourier_fit(gait: GaitLike, order: int, *, samples: int = 256) -> FourierGait:
+    """The truncated Fourier series of ``gait`` (``order`` harmonics, same period and centre) as a :class:`FourierGait`.
+
+    The coefficients are the discrete Fourier transform of ``samples`` shapes at equal time steps
+    (``a_k = 2 Re X_k / N``, ``b_k = -2 Im X_k / N``, centre ``X_0 / N``), so a Fourier gait of at
+    most ``order`` harmonics is returned to round-off; a spline drawn through clicked points gets
+    the smooth loop nearest to it, a start for :func:`optimize_gait`.
+    """
+    gait = as_gait(gait)
+    order = check_int(order, "order", 1, 64)
+    samples = check_int(samples, "samples", 2 * order + 1, 65536, what=" (more than twice the order)")
+    T = gait.period
+    X = np.fft.rfft(gait(np.arange(samples) * (T / samples)), axis=0) / samples   # (samples // 2 + 1, n)
+    return fourier_gait(2 * X[1:order + 1].real.T, -2 * X[1:order + 1].imag.T, X[0].real, period=T,
+                        name=f"{gait.name} (Fourier order {order})")
 
 
 def travelling_wave(n_joints: int, amplitude: float = 0.8, lag: float = np.pi / 2, *,
@@ -181,6 +201,8 @@ def gait_objective(system: LocomotionSystem, gait: GaitLike, objective: str = "d
         return value, None, dict(g=gT, length=L)
     n = system.n_shape
     A, dA = connection_derivative(system, tr.r)
+    if not (np.all(np.isfinite(A)) and np.all(np.isfinite(dA))):   # g(T) is, but the gait grazes an edge
+        raise SingularShapeError(f"the gait reaches the edge of the shapes where {system.name} is defined")
     rd = gait.velocity(t)
     Ad = SE2.Ad(SE2.compose(SE2.inverse(gT), tr.g))  # (N+1, 3, 3)
     w = np.full(N + 1, 2.0)
@@ -278,8 +300,9 @@ def optimize_gait(system: LocomotionSystem, objective: str = "displacement", ord
     confines the gait to that rectangle; ``coordinates="given"`` measures it in the system's
     own frame instead. The start gait must stay clear of singular shapes (else
     SingularShapeError); trial gaits that come within ``singular_margin`` of one (in the scaled
-    determinant of :meth:`singularity`) or leave the rectangle are rejected (a cost wall the
-    line search backs off from), and the result is checked again.
+    determinant of :meth:`singularity`) or come within :data:`EDGE_MARGIN` of the rectangle's
+    width of its edge are rejected (a cost wall the line search backs off from), and the result
+    is checked again.
     """
     from scipy.optimize import minimize
 
@@ -308,17 +331,28 @@ def optimize_gait(system: LocomotionSystem, objective: str = "displacement", ord
     check_gait(system, g0)
     n, K, T = system.n_shape, g0.order, g0.period
     singular_ok = not getattr(system, "may_be_singular", False)
+    frame = getattr(system, "frame", None)
+    box = np.array(frame.bounds) if isinstance(frame, MinimumPerturbationFrame) else None
+    if box is not None:   # the rectangle less a margin far wider than a curve bulges between samples
+        box = box + EDGE_MARGIN * (box[:, 1:] - box[:, :1]) * np.array([1.0, -1.0])
 
     def make(p):
         return FourierGait.from_parameters(p, n, K, T)
 
     def fun(p):
         gait = make(p)
+        if box is not None:
+            r = gait(np.linspace(0, T, 4 * intervals + 1))
+            if np.any(r < box[:, 0]) or np.any(r > box[:, 1]):
+                return _REJECT, np.zeros_like(p)
         if not singular_ok:
             dd = system.singularity(gait(np.linspace(0, T, 4 * intervals + 1)))
             if np.any(np.abs(dd) < singular_margin) or np.any(np.sign(dd) != np.sign(dd[0])):
                 return _REJECT, np.zeros_like(p)
-        val, grad, _ = gait_objective(system, gait, objective, intervals=intervals, metric=metric)
+        try:
+            val, grad, _ = gait_objective(system, gait, objective, intervals=intervals, metric=metric)
+        except SingularShapeError:    # a trial gait outside the rectangle, or through a singular shape
+            return _REJECT, np.zeros_like(p)
         return -val, -grad
 
     history = []

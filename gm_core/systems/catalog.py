@@ -13,6 +13,8 @@ metric ``s.metric``. This module builds the same system from the course's own ph
   own scaling, the identity where the file sets ``eye(n)``, ``None`` where it has no metric;
 * :func:`sysplotter_files`: every one of sysplotter's files with how the catalog stands to it
   (the parity table: agrees, differs and why, or not in the catalog yet and why);
+* :func:`passive_model`: for a file with spring/damper joints (``three_link_passive``), its
+  :class:`~gm_core.systems.passive.PassiveJoints` with the file's joints, k and b;
 * :func:`window_slice`: a file's system with two shape variables over the file's window (a slice
   through its straight shape if it has more), and :func:`tabulated`: the same connection as a stored
   table, interpolated (:data:`TABLE_RTOL`), for the systems too slow to compute live under a slider
@@ -69,6 +71,7 @@ from gm_core.systems.diff_drive import DifferentialDrive
 from gm_core.systems.kinematic_snake import KinematicSnake
 from gm_core.systems.link_chain import LinkChain
 from gm_core.systems.panel_method import InteractingChain
+from gm_core.systems.passive import PassiveJoints
 from gm_core.systems.reframed import body_jacobian
 from gm_core.systems.restricted import AffineRestriction, shape_slice
 from gm_core.systems.rotors import Rotors
@@ -77,7 +80,7 @@ from gm_core.systems.tabulated import TabulatedConnection
 from gm_core.systems.tape_measure import TapeMeasure
 from gm_core.validation import FloatArray, check_int
 
-__all__ = ["SysplotterFile", "ParityRow", "names", "load", "sysplotter_view", "sysplotter_files", "reference", "parity",
+__all__ = ["SysplotterFile", "ParityRow", "names", "load", "sysplotter_view", "sysplotter_files", "reference", "parity", "passive_model",
            "with_sysplotter_added_mass", "with_sysplotter_frame_change", "with_sysplotter_panel_method", "CLOSED_FORM_RTOL", "CONTINUOUS_RTOL",
            "CONTINUOUS_JUMP_RTOL", "triangle_curvature", "amplitude_phase_curvature", "window_slice", "tabulated",
            "tabulated_names", "TABLE_RTOL", "TABLE_EXCLUDED", "TABLES"]
@@ -112,7 +115,9 @@ class SysplotterFile:
     ``differs`` says why the catalog's value is not sysplotter's ("" where they agree);
     ``missing`` why the catalog cannot load the file yet ("" where it can); ``rtol`` how closely
     sysplotter's own values are computed (:data:`CLOSED_FORM_RTOL`, :data:`CONTINUOUS_RTOL` or
-    :data:`CONTINUOUS_JUMP_RTOL`).
+    :data:`CONTINUOUS_JUMP_RTOL`). ``passive`` (joint indices from 0), ``stiffness`` and ``damping``: the
+    file's spring/damper joints (``s.physics.k``, ``s.physics.b``), whose model is
+    :mod:`gm_core.systems.passive` (:func:`passive_model`); ``()`` where it has none.
     """
 
     name: str
@@ -124,6 +129,9 @@ class SysplotterFile:
     differs: str = ""
     missing: str = ""
     rtol: float = CLOSED_FORM_RTOL
+    passive: tuple[int, ...] = ()
+    stiffness: float = 0.0
+    damping: float = 0.0
 
     @property
     def loadable(self) -> bool:
@@ -399,8 +407,9 @@ def _files() -> dict[str, SysplotterFile]:
         _chain_file("four_mode_serpenoid", "high-Re ellipses, 20 links, serpenoid modes of 1 and 2 waves", 0.5, 4,
                     lambda: _modal(_high_re(20), serpenoid_joint_modes(20, (1, 2)), _box(0.5, 4), "four_mode_serpenoid"),
                     differs=PI_OVER_8),
-        _chain_file("three_link_passive", "high-Re ellipses (ar 0.1), 3 equal; passive-joint gait model not in s.A", np.pi, 2,
-                    lambda: _high_re(3), differs=PI_OVER_8),
+        _chain_file("three_link_passive", "high-Re ellipses (ar 0.1), 3 equal; s.A as three_link_HighRe's, joint 1 "
+                    "a spring/damper (k 0.074, b 0.01): gm_core.systems.passive", np.pi, 2,
+                    lambda: _high_re(3), differs=PI_OVER_8, passive=(0,), stiffness=0.074, damping=0.01),
         _chain_file("three_link_HighRe_30multiEllipses", "high-Re: 3 rigid links each of 10 ellipses (30, ar 0.1)", third, 2,
                     lambda: _modal(_high_re(30), _single_joint_modes(29, (9, 19)), _box(third, 2),
                                    "three_link_HighRe_30multiEllipses"), metric_scale=10.0, differs=PI_OVER_8),
@@ -550,6 +559,21 @@ def sysplotter_view(system: LocomotionSystem, shape: ArrayLike) -> tuple[FloatAr
     if entry.metric == "identity":
         return A, np.broadcast_to(np.eye(system.n_shape), A.shape[:-2] + (system.n_shape,) * 2).copy()
     return A, entry.metric_scale * system.shape_metric(shape)
+
+
+def passive_model(name: str) -> PassiveJoints:
+    """The passive-joint model of sysplotter's file ``name``: its system with the file's spring/damper joints.
+
+    ``PassiveJoints(load(name), passive, stiffness, damping)`` with the file's joints, ``s.physics.k`` and
+    ``s.physics.b`` (:mod:`gm_core.systems.passive`; sysplotter's ``simulate2DPassiveSwimmer.m``).
+    ValueError for a file without passive joints.
+    """
+    system = load(name)
+    entry = _LOADED[system]
+    if not entry.passive:
+        with_joints = [n for n, f in sysplotter_files().items() if f.passive]
+        raise ValueError(f"name {name!r} has no passive joints; the files with them are {', '.join(with_joints)}")
+    return PassiveJoints(system, entry.passive, entry.stiffness, entry.damping)
 
 
 def with_sysplotter_added_mass(system: LocomotionSystem) -> LocomotionSystem:

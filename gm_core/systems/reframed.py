@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from typing_extensions import override
 
-from gm_core.groups import SE2, matvec
+from gm_core.groups import SE2
 from gm_core.systems.base import LocomotionSystem, SystemPart
 from gm_core.systems.motion import trusted_dimension
 from gm_core.validation import BoolArray, FloatArray
@@ -172,7 +172,8 @@ class Reframed(LocomotionSystem):
         r = self._shape(r)
         F = self.base_system.constraint_curvature(r)
         b = self.frame.pose(r)
-        F = matvec(SE2.Ad_inv(b), F) if self.n_shape == 2 else np.einsum("...ij,...jkl->...ikl", SE2.Ad_inv(b), F)
+        # einsum, not matvec: a base curvature that is NaN (outside a measured table) stays NaN here
+        F = np.einsum("...ij,...j->...i" if self.n_shape == 2 else "...ij,...jkl->...ikl", SE2.Ad_inv(b), F)
         return self._mask(r, F, 1 if self.n_shape == 2 else 3)
 
     def _mask(self, r, X, tail):
@@ -202,7 +203,10 @@ class Reframed(LocomotionSystem):
     @override
     def singularity(self, r: ArrayLike) -> FloatArray:
         r = self._shape(r)
-        return np.where(self.frame.contains(r), self.base_system.singularity(r), 0.0)
+        inside = self.frame.contains(r)
+        if not self.base_system.may_be_singular:   # only the frame's edge: skip the base's costly Pfaffian
+            return inside.astype(float)
+        return np.where(inside, self.base_system.singularity(r), 0.0)
 
     @override
     def is_singular(self, r: ArrayLike) -> BoolArray:
