@@ -16,7 +16,7 @@ from gm_core import SO3
 from gm_core.systems import AffineRestriction, InteractingChain, LinkChain, Rotors, catalog, panel_method
 from gm_core.systems.fluids import added_mass_bem, ellipse_added_mass
 from gm_core.systems.gaits import circle_gait
-from gm_core.systems.motion import net_displacement, trajectory
+from gm_core.systems.motion import fd_connection_derivative, net_displacement, trajectory
 from gm_core.systems.panel_method import interacting_added_mass
 from gm_core.systems.tabulated import TabulatedConnection
 
@@ -224,6 +224,49 @@ def test_bad_tables_are_refused_by_name():
         TabulatedConnection((g, g + 0.1), T, symmetry="three link")
     with pytest.raises(TypeError, match="body must be"):
         TabulatedConnection((g, g), T, body="snake")
+
+
+def test_a_cubic_table_converges_at_fourth_order_and_its_curvature_is_the_chains():
+    chain, _, _ = _chain_table()
+    r = np.array([[0.4, -1.1], [-0.93, 0.27]])
+    errors = [np.abs(TabulatedConnection((h, h), U, method="cubic").connection(r) - chain.connection(r)).max()
+              for _, h, U in (_chain_table(n) for n in (11, 21, 41))]
+    assert errors[0] / errors[1] > 8 and errors[1] / errors[2] > 8          # about 16 per halving of the step
+    _, g, T = _chain_table(41)
+    tab = TabulatedConnection((g, g), T, method="cubic")
+    np.testing.assert_allclose(tab.constraint_curvature(r), chain.constraint_curvature(r), atol=2e-4)
+    # the spline's own derivative is that of its values (central differences of the table itself)
+    A, dA = tab.connection_derivative(r)
+    np.testing.assert_allclose(A, tab.connection(r), atol=1e-15)
+    np.testing.assert_allclose(dA, fd_connection_derivative(tab, r)[1], atol=1e-7)
+    # a table of a cubic polynomial in each variable is reproduced exactly, derivative included
+    poly = np.einsum("ij,a,b->ijab", np.arange(6.0).reshape(3, 2), g ** 3, 1 - g ** 2)
+    cubic = TabulatedConnection((g, g), poly, method="cubic")
+    A, dA = cubic.connection_derivative(r)
+    x, y = r[:, 0], r[:, 1]
+    c = np.arange(6.0).reshape(3, 2)
+    np.testing.assert_allclose(A, c * (x ** 3 * (1 - y ** 2))[:, None, None], atol=1e-12)
+    np.testing.assert_allclose(dA[..., 0], c * (3 * x ** 2 * (1 - y ** 2))[:, None, None], atol=1e-11)
+    np.testing.assert_allclose(dA[..., 1], c * (-2 * y * x ** 3)[:, None, None], atol=1e-11)
+
+
+def test_a_cubic_table_averaged_over_the_symmetries_differentiates_through_them():
+    chain, g, T = _chain_table(21)
+    noise = np.random.default_rng(5).normal(0, 1e-3, T.shape)
+    tab = TabulatedConnection((g, g), T + noise, symmetry="three link", method="cubic")
+    r = np.array([[0.4, -1.1], [0.2, 0.3]])
+    A, dA = tab.connection_derivative(r)
+    np.testing.assert_allclose(A, tab.connection(r), atol=1e-15)
+    np.testing.assert_allclose(dA, fd_connection_derivative(tab, r)[1], atol=1e-6)
+    assert np.isnan(tab.connection([1.6, 0.0])).all() and tab.is_singular([1.6, 0.0])
+
+
+def test_a_cubic_table_needs_four_nodes_and_a_known_method():
+    _, g, T = _chain_table()
+    with pytest.raises(ValueError, match="method must be one of"):
+        TabulatedConnection((g, g), T, method="spline")
+    with pytest.raises(ValueError, match="at least 4 nodes"):
+        TabulatedConnection((g[:3], g), T[:, :, :3], method="cubic")
 
 
 # ------------------------------------------------------------------ rotors on SO(3)

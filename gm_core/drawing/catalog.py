@@ -1,4 +1,4 @@
-"""The locomotion lab (notebook 12): any chain of sysplotter's library, its curvature, a gait and the body.
+"""The locomotion lab (notebook 12): every system of sysplotter's library, its curvature, a gait and the body.
 
 sysplotter's workflow on one figure: pick a system by its file name
 (:mod:`gm_core.systems.catalog`), see one row of its constraint curvature D(-A) as a map with the
@@ -10,13 +10,17 @@ optimise the gait for speed or efficiency (:func:`gm_core.geometry.optimize_gait
 body-velocity integral) come from :func:`gm_core.geometry.estimates.displacement_estimates` at its
 interactive resolution, in the chosen frame.
 
-The systems offered (:func:`lab_names`) are the catalog's systems in the plane with a rigid body
-for every part: its chains, the granular swimmer, the car and the kinematic snake. A system with
-more than two shape variables is seen on the slice through its straight shape along its first two
-(:func:`gm_core.systems.shape_slice`). The continuous bodies, the panel-method chain and the tape
-measures are left out (:data:`SLOW`): one gait's three numbers cost them a second or more, too
-slow for a slider; notebook 12 analyses a continuous body in a code cell. Each system's curvature grid is computed once
-and cached (:func:`gm_core.geometry.estimates.curvature_grid`), so switching back is quick.
+The lab offers all of the catalog's systems (:func:`lab_names`), each over its file's window. A system
+with more than two shape variables is seen on the slice through its straight shape along its first two
+(:func:`gm_core.systems.catalog.window_slice`). Where the live numbers cost more than a slider allows (the
+continuous bodies, the panel-method chain, the tape measures and the chains of 19 links or more), the lab
+reads the connection from the stored table sysplotter's way, bicubically interpolated
+(:func:`gm_core.systems.catalog.tabulated`, within :data:`~gm_core.systems.catalog.TABLE_RTOL` of the live
+system; outside the window a table has no values, so a gait leaving it is flagged), and draws the live body.
+twin_rotor turns in space: its rows are the rotation rates of SO(3) (the numbers use SO(3)'s bracket), and
+having no rigid parts in the plane it is drawn as its body frame with one dial per rotor angle. Each system's
+curvature grid is computed once and cached (:func:`gm_core.geometry.estimates.curvature_grid`), so switching
+back is quick.
 """
 from __future__ import annotations
 
@@ -35,20 +39,18 @@ from gm_core.drawing.connection import ConnectionFieldArtist, style_shape_axes
 from gm_core.drawing.curvature import ROWS, CurvatureMapArtist, GaitArtist, estimates_table
 from gm_core.drawing.gaits import animate_gait
 from gm_core.drawing.motion import SystemArtist, system_extent
-from gm_core.drawing.toolkit.primitives import SingularFlag
+from gm_core.drawing.toolkit.primitives import FrameArtist, SingularFlag
 from gm_core.drawing.toolkit.style import PALETTE, Scene, new_figure
 from gm_core.geometry.coordinates import minimum_perturbation_coordinates
 from gm_core.geometry.estimates import Estimates, displacement_estimates, shaped_gait
-from gm_core.geometry.optimal import FourierGait, OptimalGait, fourier_fit, optimize_gait
+from gm_core.geometry.optimal import FourierGait, OptimalGait, fourier_fit, fourier_gait, optimize_gait
 from gm_core.groups import SE2
-from gm_core.systems import AffineRestriction, LocomotionSystem, SlenderBody, catalog, shape_slice
+from gm_core.systems import LocomotionSystem, catalog
 from gm_core.systems.gaits import Gait, GaitLike, as_gait
-from gm_core.systems.motion import Trajectory
-from gm_core.systems.panel_method import InteractingChain
-from gm_core.systems.tape_measure import TapeMeasure
-from gm_core.validation import SingularShapeError, check_option
+from gm_core.systems.motion import Trajectory, position_group
+from gm_core.validation import FloatArray, SingularShapeError, check_option
 
-__all__ = ["lab_names", "lab_system", "LAB_FRAMES", "OBJECTIVES", "lab_view", "drawn_gait", "LabScene"]
+__all__ = ["lab_names", "lab_system", "lab_gait", "LAB_FRAMES", "OBJECTIVES", "lab_view", "drawn_gait", "LabScene"]
 
 #: The lab's body frames, in the order of its dropdown.
 LAB_FRAMES = ("file's frame", "minimum perturbation")
@@ -58,34 +60,86 @@ LAB_FRAMES = ("file's frame", "minimum perturbation")
 OBJECTIVES = {"speed": "displacement", "efficiency": "efficiency"}
 
 
-#: Systems whose connection costs too much for a slider: a continuous body integrates along itself at
-#: every quadrature node, the panel method solves a flow, the tape measure's Stokes estimate refines
-#: around its singular edge; one gait's numbers take a second or more.
-SLOW = (SlenderBody, InteractingChain, TapeMeasure)
-
-
-def _offered(name: str) -> bool:
-    system = catalog.load(name)
-    return system.position_group is SE2 and not isinstance(system, SLOW) and bool(system.parts())
-
-
 @functools.lru_cache(maxsize=1)
 def lab_names() -> tuple[str, ...]:
-    """The catalog's systems the lab offers (see the module docstring), in the catalog's order."""
-    return tuple(n for n in catalog.names() if _offered(n))
+    """The catalog's systems the lab offers: all of them, in the catalog's order."""
+    return catalog.names()
 
 
 @functools.lru_cache(maxsize=64)
 def lab_system(name: str) -> LocomotionSystem:
-    """The catalog's system ``name`` with two shape variables over its file's window (a slice if it has more)."""
+    """The catalog's system ``name`` with two shape variables over its file's window (a slice if it has more),
+    as its stored table where the catalog has one (:func:`gm_core.systems.catalog.tabulated`)."""
     if name not in lab_names():
         raise ValueError(f"name must be one of the lab's systems ({', '.join(lab_names())}); got {name!r}")
-    system = catalog.load(name)
-    window = catalog.sysplotter_files()[name].grid_range
-    if system.n_shape > 2:
-        return shape_slice(system, np.zeros(system.n_shape), (0, 1), limits=window[:2])
-    return AffineRestriction(system, np.eye(2), shape_names=system.shape_names, shape_limits=window[:2],
-                             name=system.name)
+    if name in catalog.tabulated_names():
+        return catalog.tabulated(name)
+    return catalog.window_slice(name)
+
+
+def lab_gait(system: LocomotionSystem, c1: float, c2: float, a: float, b: float, tilt: float) -> FourierGait:
+    """The lab's gait: :func:`~gm_core.geometry.estimates.shaped_gait` with centre and sizes as fractions of
+    the half-widths of ``system``'s window, about the window's middle (scaled along each axis if they differ)."""
+    (lo1, hi1), (lo2, hi2) = system.shape_limits
+    m, h = np.array([lo1 + hi1, lo2 + hi2]) / 2, np.array([hi1 - lo1, hi2 - lo2]) / 2
+    if m[0] == m[1] == 0.0 and h[0] == h[1]:       # a centred square window: the gait in shape units
+        return shaped_gait(c1 * h[0], c2 * h[0], a * h[0], b * h[0], tilt)
+    unit = shaped_gait(c1, c2, a, b, tilt)
+    return fourier_gait(h[:, None] * unit.a, h[:, None] * unit.b, m + h * unit.center, period=unit.period, name="shaped gait")
+
+
+def _row_names(system: LocomotionSystem) -> tuple[str, ...]:
+    return ROWS if position_group(system) is SE2 else ("ωx", "ωy", "ωz")
+
+
+class RotorDials:
+    """A body with no rigid parts in the plane (twin_rotor): its body frame's x and y axes and one dial per shape
+    variable (a rotor's angle about the body's z axis), with a note saying so."""
+
+    def __init__(self, ax: Axes, system: LocomotionSystem) -> None:
+        self.bodies: list[Any] = []
+        self.frame = FrameArtist(ax, length=0.5)
+        colours = [PALETTE["orange"], PALETTE["purple"]]
+        self.dials = [ax.plot([], [], "-o", color=colours[k % 2], lw=2, ms=4, markevery=[1])[0] for k in range(system.n_shape)]
+        self.radii = np.linspace(0.9, 0.6, system.n_shape)
+        self.note = ax.text(0.5, 0.02, f"{system.name}: no rigid parts in the plane;\nbody x, y axes and the rotor angles",
+                            transform=ax.transAxes, ha="center", va="bottom", fontsize=8)
+
+    def set(self, g: Any, r: Any) -> None:
+        for line, radius, angle in zip(self.dials, self.radii, np.asarray(r, float)):
+            line.set_data([0.0, radius * np.cos(angle)], [0.0, radius * np.sin(angle)])
+
+    def set_visible(self, visible: bool) -> None:
+        for artist in [self.frame.quiver, *self.dials, self.note]:
+            artist.set_visible(visible)
+
+
+def _first_shape(system: LocomotionSystem) -> FloatArray:
+    """The window's middle ((0, 0) is outside the tape measures' windows), or a shape just beside it where the
+    body is undefined there (the triangle waves' straight shape)."""
+    limits = np.array(system.shape_limits)
+    middle = limits.mean(axis=1)
+    try:
+        if np.all(np.isfinite(system.part_poses(middle))):
+            return middle
+    except ValueError:          # a reframed body refuses NaN poses
+        pass
+    return middle + 0.01 * (limits[:, 1] - limits[:, 0])
+
+
+def _body_artist(ax: Axes, system: LocomotionSystem) -> SystemArtist | RotorDials:
+    return SystemArtist(ax, system, r=_first_shape(system), update_limits=False) if system.parts() else RotorDials(ax, system)
+
+
+@functools.lru_cache(maxsize=64)
+def _body_size(name: str) -> float:
+    """Half-width of a square that holds ``name``'s body at its window's corners and middle (1 with no parts)."""
+    system = lab_system(name)
+    if not system.parts():
+        return 1.0
+    limits = system.shape_limits
+    shapes = np.vstack([np.array(np.meshgrid(*limits)).reshape(2, -1).T, [_first_shape(system)]])
+    return 1.1 * max(system_extent(system, r) for r in shapes)
 
 
 @functools.lru_cache(maxsize=64)
@@ -94,10 +148,13 @@ def lab_view(name: str, frame: str = "file's frame") -> LocomotionSystem:
 
     "file's frame" is :func:`lab_system` itself; "minimum perturbation" is Hatton's frame over the
     file's window (:func:`~gm_core.geometry.coordinates.minimum_perturbation_coordinates`, about a
-    tenth of a second). Raises SingularShapeError if the window holds singular shapes.
+    tenth of a second). Raises SingularShapeError if the window holds singular shapes, or if the system
+    turns in SO(3) (twin_rotor; the frame is solved in SE(2)).
     """
     frame = check_option(frame, "frame", LAB_FRAMES)
     system = lab_system(name)
+    if frame != LAB_FRAMES[0] and position_group(system) is not SE2:
+        raise SingularShapeError(f"{name} turns in {position_group(system).name}; the minimum-perturbation frame is solved in SE(2)")
     return system if frame == LAB_FRAMES[0] else minimum_perturbation_coordinates(system, system.shape_limits)
 
 
@@ -157,7 +214,8 @@ class LabScene(Scene):
         (self.clicks,) = self.ax.plot([], [], "+", color=PALETTE["vermillion"], ms=9, mew=2, zorder=7)
         (self.dot,) = self.ax.plot([], [], "o", color=PALETTE["vermillion"], ms=7, zorder=6)
         self.flag = SingularFlag(self.ax)
-        self.body = SystemArtist(self.axb, self.system)
+        self.body = _body_artist(self.axb, self.system)
+        self._bodies = {(self.name, LAB_FRAMES[0]): self.body}   # one body per system and frame seen, hidden when not shown
         self._key: tuple[str, str, int] = ("", "", -1)
         self._sliders: tuple[Any, ...] = ()
         self.points: list[tuple[float, float]] = []
@@ -178,8 +236,7 @@ class LabScene(Scene):
             (lo1, hi1), (lo2, hi2) = limits
             self.map.image.set_extent((lo1, hi1, lo2, hi2))
             style_shape_axes(self.ax, self.system, limits=limits, pad=0.0)
-            corners = np.array(np.meshgrid(*limits)).reshape(2, -1).T
-            size = 1.1 * max(system_extent(self.system, r) for r in np.vstack([corners, [[0.0, 0.0]]]))
+            size = _body_size(name)
             self.axb.set_xlim(-size, size)
             self.axb.set_ylim(-size, size)
         if (name, frame) != self._key[:2]:
@@ -187,15 +244,16 @@ class LabScene(Scene):
                 self.view, self.frame_error = lab_view(name, frame), ""
             except SingularShapeError as e:   # the kinematic snake's window holds singular shapes
                 self.view, self.frame_error = self.system, f"no minimum-perturbation frame: {e}"
-            for artist in self.body.bodies:
-                artist.patch.remove()
-            self.body.frame.quiver.remove()
-            self.body = SystemArtist(self.axb, self.view)   # its parts placed in the frame shown
             shown = LAB_FRAMES[0] if self.view is self.system else frame
+            self.body.set_visible(False)
+            if (name, shown) not in self._bodies:     # its parts placed in the frame shown
+                self._bodies[name, shown] = _body_artist(self.axb, self.view)
+            self.body = self._bodies[name, shown]
+            self.body.set_visible(True)
             self.axb.set_title(f"{name} ({shown})", fontsize=9)
         self.map.set(self.view, row)
         self.field.set(self.view, row)
-        self.ax.set_title(f"D(-A) and -A, row {ROWS[row]}", fontsize=9)
+        self.ax.set_title(f"D(-A) and -A, row {_row_names(self.system)[row]}", fontsize=9)
         self._key, self.row = (name, frame, row), row
 
     @override
@@ -207,8 +265,7 @@ class LabScene(Scene):
         sliders = (system, c1, c2, a, b, tilt)
         if sliders != self._sliders:   # the sliders' gait again: a drawn, loaded or optimised one is let go
             self._sliders, self.custom, self.points = sliders, None, []
-        half = self.system.shape_limits[0][1]
-        self.gait = self.custom if self.custom is not None else shaped_gait(c1 * half, c2 * half, a * half, b * half, tilt)
+        self.gait = self.custom if self.custom is not None else lab_gait(self.system, c1, c2, a, b, tilt)
         self.clicks.set_data([p[0] for p in self.points], [p[1] for p in self.points])
         self._show(float(phase))
 
@@ -218,13 +275,16 @@ class LabScene(Scene):
         self.gait_artist.set(gait)
         r = gait(phase * gait.period)
         self.dot.set_data([r[0]], [r[1]])
-        self.body.set((0.0, 0.0, 0.0), r)
+        try:
+            self.body.set((0.0, 0.0, 0.0), r)
+        except ValueError:      # the body's model is undefined there (a tape measure at alpha < 0): keep the last one
+            pass
         said = ["no minimum-perturbation frame: the file's"] if self.frame_error else []
         try:
             est = displacement_estimates(self.view, gait, interactive=True)
         except SingularShapeError as e:
             where = "the minimum-perturbation window" if self.view is not self.system else "the map"
-            self.estimates, self.table = None, estimates_table(None, str(e))
+            self.estimates, self.table = None, estimates_table(None, str(e), _row_names(self.system))
             said.append(f"gait leaves {where} or is singular")
         else:
             (lo1, hi1), (lo2, hi2) = self.system.shape_limits
@@ -232,7 +292,7 @@ class LabScene(Scene):
             if not np.all((p[:, 0] >= lo1) & (p[:, 0] <= hi1) & (p[:, 1] >= lo2) & (p[:, 1] <= hi2)):
                 # the numbers hold (the system is defined there), but the picture does not show all of it
                 said.append("the gait leaves the map's window")
-            self.estimates, self.table = est, estimates_table(est)
+            self.estimates, self.table = est, estimates_table(est, rows=_row_names(self.system))
         if said:
             self.flag.show("; ".join(said))
         else:

@@ -175,12 +175,12 @@ def animate_swimmer(system: LocomotionSystem, gait: Gait, traj: Trajectory, n_fr
     return fig, animate(fig, update, len(idx), interval=interval)
 
 
-def estimates_table(est: Estimates | None, error: str | None = None) -> str:
-    """HTML table of the three estimates (rows x, y, θ of g(T)), 4 decimals; or the error in red."""
+def estimates_table(est: Estimates | None, error: str | None = None, rows: tuple[str, ...] = ROWS) -> str:
+    """HTML table of the three estimates (columns ``rows``, by default x, y, θ of g(T)), 4 decimals; or the error in red."""
     if est is None:
         return f"<p style='color:darkred'>{html.escape(error or '')}</p>"
     cell = "padding:1px 8px;line-height:1.25"   # compact rows: the panel stays on one screen
-    head = "".join(f"<th style='{cell}'>{r}</th>" for r in ROWS)
+    head = "".join(f"<th style='{cell}'>{html.escape(r)}</th>" for r in rows)
     rows = "".join(f"<tr><td style='{cell}'>{name}</td>" + "".join(f"<td style='{cell}'>{(0.0 if abs(v) < 5e-5 else v):+.4f}</td>" for v in vals)
                    + "</tr>" for name, vals in zip(Estimates.NAMES, est.as_array()))
     return f"<table style='font-family:monospace;font-size:13px;margin:2px 0'><tr><th style='{cell}'></th>{head}</tr>{rows}</table>"

@@ -42,11 +42,12 @@ class SystemArtist:
 
     def __init__(self, ax: Axes, system: LocomotionSystem, g: ArrayLike = (0.0, 0.0, 0.0), r: ArrayLike = (0.0, 0.0),
                  frame_length: float | None = None, styles: Mapping[str, dict[str, Any]] | None = None,
-                 zorder: float = 3) -> None:
+                 zorder: float = 3, update_limits: bool = True) -> None:
         self.system = system
         self.parts = system.parts()
         styles = dict(PART_STYLES, **(styles or {}))
-        self.bodies = [BodyArtist(ax, p.outline, **dict(styles.get(p.kind, {}), zorder=zorder)) for p in self.parts]
+        self.bodies = [BodyArtist(ax, p.outline, update_limits=update_limits, **dict(styles.get(p.kind, {}), zorder=zorder))
+                       for p in self.parts]
         size = max(np.ptp(np.vstack([p.outline for p in self.parts]), axis=0))
         self.frame = FrameArtist(ax, length=frame_length or 0.3 * size)
         self.set(g, r)

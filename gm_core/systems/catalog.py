@@ -14,7 +14,12 @@ metric ``s.metric``. This module builds the same system from the course's own ph
 * :func:`sysplotter_files`: every one of sysplotter's files with how the catalog stands to it
   (the parity table: agrees, differs and why, or not in the catalog yet and why);
 * :func:`passive_model`: for a file with spring/damper joints (``three_link_passive``), its
-  :class:`~gm_core.systems.passive.PassiveJoints` with the file's joints, k and b.
+  :class:`~gm_core.systems.passive.PassiveJoints` with the file's joints, k and b;
+* :func:`window_slice`: a file's system with two shape variables over the file's window (a slice
+  through its straight shape if it has more), and :func:`tabulated`: the same connection as a stored
+  table, interpolated (:data:`TABLE_RTOL`), for the systems too slow to compute live under a slider
+  (:func:`tabulated_names`; the tables are made by ``tools/lab_tables.py``), as sysplotter itself
+  tabulates A once on a grid and interpolates.
 
 Where sysplotter is wrong the catalog gives the right value, never the defect. Two defects touch
 the files loaded here. sysplotter's added mass of an ellipse (``Inertia_link.m``) lacks the factor
@@ -68,7 +73,7 @@ from gm_core.systems.link_chain import LinkChain
 from gm_core.systems.panel_method import InteractingChain
 from gm_core.systems.passive import PassiveJoints
 from gm_core.systems.reframed import body_jacobian
-from gm_core.systems.restricted import AffineRestriction
+from gm_core.systems.restricted import AffineRestriction, shape_slice
 from gm_core.systems.rotors import Rotors
 from gm_core.systems.slender_body import GeneralCurvature, SlenderBody, segment_modes, wave_modes
 from gm_core.systems.tabulated import TabulatedConnection
@@ -77,7 +82,8 @@ from gm_core.validation import FloatArray, check_int
 
 __all__ = ["SysplotterFile", "ParityRow", "names", "load", "sysplotter_view", "sysplotter_files", "reference", "parity", "passive_model",
            "with_sysplotter_added_mass", "with_sysplotter_frame_change", "with_sysplotter_panel_method", "CLOSED_FORM_RTOL", "CONTINUOUS_RTOL",
-           "CONTINUOUS_JUMP_RTOL", "triangle_curvature", "amplitude_phase_curvature"]
+           "CONTINUOUS_JUMP_RTOL", "triangle_curvature", "amplitude_phase_curvature", "window_slice", "tabulated",
+           "tabulated_names", "TABLE_RTOL", "TABLE_EXCLUDED", "TABLES"]
 
 #: Relative agreement asked of the catalog where sysplotter computes in closed form (max |difference|
 #: over max |sysplotter's value|, per file over its stored shapes).
@@ -684,3 +690,64 @@ def parity(name: str | None = None) -> list[ParityRow]:
     if name is not None and not rows:
         raise ValueError(f"name {name!r} is not one of sysplotter's system files")
     return rows
+
+
+# -- stored tables: sysplotter's grid of A, interpolated -------------------------------------------
+#: Agreement of a stored table (:func:`tabulated`) with the live system: max |table - live| over
+#: max |live| of the connection, over the file's window (tests/test_catalog_lab.py checks it at a few shapes).
+TABLE_RTOL = 2e-3
+
+#: Radius of a disc around the straight shape, per file, left out of :data:`TABLE_RTOL`: the triangle
+#: waves' connection has no limit there (it depends on the direction of approach; the live system is
+#: NaN at the straight shape), which no interpolation follows; their tables differ by up to 8 % inside it.
+TABLE_EXCLUDED = {"triangle_lowRe": 1.5, "triangle_lowRe_two_waves": 1.5}
+
+#: The package file of the stored tables (written by tools/lab_tables.py).
+TABLES = "lab_tables.npz"
+
+_TABLES: dict[str, FloatArray] | None = None
+
+
+def window_slice(name: str) -> LocomotionSystem:
+    """File ``name``'s system with two shape variables over the file's window (its ``grid_range``).
+
+    A system with more shape variables is seen on the slice along its first two through its straight
+    shape (zeros; a variable whose window excludes 0 is held at the window's nearest edge, as the
+    asymmetric tape measure's length); a system of two is itself, with the window as its limits.
+    """
+    system = load(name)
+    window = sysplotter_files()[name].grid_range
+    if system.n_shape > 2:
+        through = np.clip(np.zeros(system.n_shape), [w[0] for w in window], [w[1] for w in window])
+        return shape_slice(system, through, (0, 1), limits=window[:2])
+    return AffineRestriction(system, np.eye(2), shape_names=system.shape_names, shape_limits=window[:2], name=system.name)
+
+
+def _stored_tables() -> dict[str, FloatArray]:
+    global _TABLES
+    if _TABLES is None:
+        with resources.files("gm_core.systems").joinpath(TABLES).open("rb") as f, np.load(f) as data:
+            _TABLES = {k: np.asarray(data[k], dtype=float) for k in data.files}
+    return _TABLES
+
+
+def tabulated_names() -> tuple[str, ...]:
+    """The files with a stored table of A (:func:`tabulated`), in the catalog's order."""
+    return tuple(n for n in names() if n in _stored_tables())
+
+
+def tabulated(name: str) -> TabulatedConnection:
+    """File ``name``'s connection on :func:`window_slice` as its stored table, bicubically interpolated.
+
+    The table holds A (3, 2, n1, n2) at the nodes of a grid spanning the file's window (stored as
+    ``name``, ``name/alpha1`` and ``name/alpha2``); it agrees with the live system to :data:`TABLE_RTOL`
+    (but near the triangle waves' straight shape, :data:`TABLE_EXCLUDED`), and outside the window it
+    is undefined (NaN, singular). ``body`` is the live :func:`window_slice`, for drawing the body at a shape.
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"name must be a sysplotter system name (a str); got {type(name).__name__}")
+    tables = _stored_tables()
+    if name not in tables:
+        raise ValueError(f"name {name!r} has no stored table; tabulated_names() lists them ({', '.join(tabulated_names())})")
+    axes = (tables[f"{name}/alpha1"], tables[f"{name}/alpha2"])
+    return TabulatedConnection(axes, tables[name], method="cubic", body=window_slice(name), name=name)

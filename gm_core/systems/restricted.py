@@ -44,6 +44,7 @@ class AffineRestriction(LocomotionSystem):
         self.shape_names = tuple(shape_names) if shape_names is not None else tuple(f"q{k + 1}" for k in range(self.n_shape))
         self.shape_limits = tuple(shape_limits) if shape_limits is not None else ((-np.pi, np.pi),) * self.n_shape
         self.may_be_singular = base.may_be_singular
+        setattr(self, "position_group", base.position_group)  # noqa: B010 (a ClassVar elsewhere): a rotor body still turns in SO(3)
         self.singular_description = base.singular_description
         self.name = name or f"{base.name} (restricted)"
 

@@ -3,7 +3,10 @@
 Beyond the draft: when a locomotor's connection comes from experiments or simulations (a robot
 in sand, a discrete-element model), it is known at the nodes of a grid of two shape variables.
 :class:`TabulatedConnection` interpolates the table linearly (scipy's ``RegularGridInterpolator``,
-as MATLAB's ``interpn``), with xi = -A(r) r_dot (3.10) as everywhere in the course, and Pfaffian
+as MATLAB's ``interpn``) or, with ``method="cubic"``, by interpolating bicubic splines (scipy's
+``RectBivariateSpline``, as sysplotter's ``interp2(..., 'spline')``), whose derivatives give a
+continuous constraint curvature in closed form (a linear table's curvature jumps from cell to cell).
+Either way xi = -A(r) r_dot (3.10) as everywhere in the course, and Pfaffian
 ``[I, A]`` (so that ``omega_xi^-1 omega_r = A``). Outside the table there is no connection: NaN,
 and :meth:`~TabulatedConnection.is_singular` is True there, as for the singular shapes of chapter 3.
 
@@ -21,15 +24,17 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.interpolate import RegularGridInterpolator
+from scipy.interpolate import RectBivariateSpline, RegularGridInterpolator
 from typing_extensions import override
 
 from gm_core.systems.base import LocomotionSystem, SystemPart
 from gm_core.validation import BoolArray, FloatArray, as_array, check_option
 
-__all__ = ["TabulatedConnection", "SYMMETRIES"]
+__all__ = ["TabulatedConnection", "SYMMETRIES", "METHODS"]
 
 SYMMETRIES = ("none", "three link")
+#: Interpolations between the nodes: piecewise linear, or interpolating bicubic splines.
+METHODS = ("linear", "cubic")
 
 # (point map P, column order, row signs (3, 2)) per lookup of the 'three link' average:
 # identity, joint swap, joint swap and negation, negation of both joints.
@@ -53,7 +58,7 @@ class TabulatedConnection(LocomotionSystem):
     singular_description = "outside the table"
 
     def __init__(self, axes: Any, table: ArrayLike, *, symmetry: str = "none", body: LocomotionSystem | None = None,
-                 name: str = "tabulated connection") -> None:
+                 name: str = "tabulated connection", method: str = "linear") -> None:
         if not isinstance(axes, (tuple, list)) or len(axes) != 2:
             raise TypeError("axes must be a pair (grid of r1, grid of r2) of increasing sequences")
         grids = []
@@ -66,6 +71,9 @@ class TabulatedConnection(LocomotionSystem):
         if T.shape != (3, 2, grids[0].size, grids[1].size):
             raise ValueError(f"table must have shape (3, 2, {grids[0].size}, {grids[1].size}); got {T.shape}")
         self.symmetry = check_option(symmetry, "symmetry", SYMMETRIES)
+        self.method = check_option(method, "method", METHODS)
+        if self.method == "cubic" and min(g.size for g in grids) < 4:
+            raise ValueError(f"method='cubic' needs at least 4 nodes per axis; got {grids[0].size} x {grids[1].size}")
         same = grids[0].size == grids[1].size and np.allclose(grids[0], grids[1])
         if self.symmetry == "three link" and not (same and np.allclose(grids[0], -grids[0][::-1])):
             raise ValueError("symmetry='three link' needs the same grid for both joints, symmetric about 0")
@@ -77,8 +85,24 @@ class TabulatedConnection(LocomotionSystem):
         self.shape_limits = tuple((float(g[0]), float(g[-1])) for g in grids)
         self._interp = RegularGridInterpolator(self.axes, np.moveaxis(T.reshape(6, *T.shape[2:]), 0, -1),
                                                method="linear", bounds_error=False, fill_value=np.nan)
+        flat = T.reshape(6, *T.shape[2:])
+        self._splines = [RectBivariateSpline(*self.axes, f, kx=3, ky=3, s=0) for f in flat] if self.method == "cubic" else []
+
+    def _outside(self, p):
+        out = np.zeros(p.shape[:-1], dtype=bool)
+        for k, g in enumerate(self.axes):
+            out |= ~((p[..., k] >= g[0]) & (p[..., k] <= g[-1]))
+        return out
+
+    def _spline(self, p, d1=0, d2=0):
+        flat = p.reshape(-1, 2)
+        values = np.stack([s.ev(flat[:, 0], flat[:, 1], dx=d1, dy=d2) for s in self._splines], -1)
+        values[self._outside(flat)] = np.nan
+        return values.reshape(p.shape[:-1] + (3, 2))
 
     def _lookup(self, r):
+        if self.method == "cubic":
+            return self._spline(r)
         return self._interp(r).reshape(r.shape[:-1] + (3, 2))
 
     @override
@@ -91,6 +115,24 @@ class TabulatedConnection(LocomotionSystem):
         for P, cols, signs in _THREE_LINK:
             total += signs * self._lookup(r @ P.T)[..., list(cols)]
         return total / len(_THREE_LINK)
+
+    @override
+    def connection_derivative(self, r: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """``(A, dA)`` (..., 3, 2), (..., 3, 2, 2): a cubic table's own spline derivatives (chain rule through
+        the symmetries' point maps), a linear table's central differences (it has no derivative on cell edges)."""
+        if self.method == "linear":
+            return super().connection_derivative(r)
+        r = self._shape(r)
+        lookups = [(np.eye(2), (0, 1), np.ones((3, 2)))] if self.symmetry == "none" else _THREE_LINK
+        A = np.zeros(r.shape[:-1] + (3, 2))
+        dA = np.zeros(r.shape[:-1] + (3, 2, 2))
+        for P, cols, signs in lookups:
+            p = r @ P.T
+            c = list(cols)
+            A += signs * self._spline(p)[..., c]
+            grads = np.stack([self._spline(p, 1, 0)[..., c], self._spline(p, 0, 1)[..., c]], -1)  # d/dp_l
+            dA += signs[..., None] * (grads @ P)                                                      # d/dr_k
+        return A / len(lookups), dA / len(lookups)
 
     @override
     def pfaffian(self, r: ArrayLike) -> FloatArray:
@@ -127,4 +169,4 @@ class TabulatedConnection(LocomotionSystem):
     @override
     def __repr__(self) -> str:
         n1, n2 = (g.size for g in self.axes)
-        return f"TabulatedConnection({n1} x {n2} table, symmetry={self.symmetry!r}, name={self.name!r})"
+        return f"TabulatedConnection({n1} x {n2} table, symmetry={self.symmetry!r}, method={self.method!r}, name={self.name!r})"
