@@ -303,14 +303,22 @@ class ShapeCursorArtist:
 
 
 def _tick_label(v: float) -> str:
-    if np.isclose(abs(v), np.pi):
-        return "−π" if v < 0 else "π"
-    return f"{v:g}".replace("-", "−")
+    for k, text in ((1.0, "π"), (0.5, "π/2")):
+        if np.isclose(abs(v), k * np.pi):
+            return "−" + text if v < 0 else text
+    return f"{v:.3g}".replace("-", "−")
+
+
+def _ticks(lo: float, hi: float) -> list[float]:
+    """Three ticks: the ends of [lo, hi] and 0 (the straight shape), or the middle if 0 is outside."""
+    return [lo, 0.0 if lo < 0.0 < hi else (lo + hi) / 2, hi]
 
 
 def style_shape_axes(ax: Axes, system: LocomotionSystem, title: str | None = None, limits: Limits | None = None,
                      pad: float = SHAPE_PAD) -> None:
-    """Shape-space axes: equal aspect, three ticks per axis (few labels keep redraws cheap).
+    """Shape-space axes: equal aspect (unless one side is over twice the other), three ticks per axis.
+
+    Few labels keep redraws cheap: the window's ends and 0 (its middle if 0 is outside it).
 
     The window is ``limits`` (default: the system's ``shape_limits``) widened by ``pad`` of its
     size on each side (``pad=0`` for an image that fills the window)."""
@@ -319,9 +327,11 @@ def style_shape_axes(ax: Axes, system: LocomotionSystem, title: str | None = Non
     (x0, x1), (y0, y1) = _padded(limits, pad)
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
-    ax.set_aspect("equal")
-    ax.set_xticks([lo1, 0.0, hi1], [_tick_label(v) for v in (lo1, 0.0, hi1)])
-    ax.set_yticks([lo2, 0.0, hi2], [_tick_label(v) for v in (lo2, 0.0, hi2)])
+    ratio = (hi1 - lo1) / (hi2 - lo2)
+    ax.set_aspect("equal" if 0.5 <= ratio <= 2.0 else "auto")   # a long thin window fills the axes
+    for set_ticks, (lo, hi) in ((ax.set_xticks, (lo1, hi1)), (ax.set_yticks, (lo2, hi2))):
+        ticks = _ticks(lo, hi)
+        set_ticks(ticks, [_tick_label(v) for v in ticks])
     ax.tick_params(labelsize=8, pad=2)
     ax.set_xlabel(r"$\alpha_1$", labelpad=1, fontsize=MATH_PT)
     ax.set_ylabel(r"$\alpha_2$", labelpad=1, fontsize=MATH_PT)

@@ -35,7 +35,7 @@ class LabPanel(TablePanel):
     a cell of its own below the panel (panel and player together would not fit a laptop's screen).
     """
 
-    title = "Locomotion lab: any chain of sysplotter's library"
+    title = "Locomotion lab: any system of sysplotter's library"
     scene_class = LabScene
     scene: LabScene
     # switching systems makes and removes the body's artists: whole redraws, never blitted
@@ -96,7 +96,7 @@ class LabPanel(TablePanel):
         ValueError or TypeError naming ``gait`` for anything else."""
         loaded = self.scene.load_gait(gait, period)
         self.refresh()
-        self.status.value = f"loaded gait ({loaded.name})"
+        self.status.value = "gait loaded" if loaded.name == "loaded gait" else f"gait loaded: {loaded.name}"
         return loaded
 
     def run(self, objective: str | None = None) -> OptimalGait | None:
