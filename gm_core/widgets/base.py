@@ -243,7 +243,12 @@ class Panel(ABC):
         figure is refreshed by a blit (live canvases) or a full draw.
         """
         values = {**self.values(), **values}
-        if self.blitter is None:
+        if self.blitter is None and self.fig is not None:
+            from gm_core.drawing.toolkit.blit import drawn_at_once
+
+            with drawn_at_once(self.fig):   # a live canvas draws at once, not via the browser
+                self.update(**values)
+        elif self.blitter is None:
             self.update(**values)
         else:
             with self.blitter.frame():
