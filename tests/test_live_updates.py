@@ -11,6 +11,9 @@
   crosses into singular gaits.
 * On a real ipympl canvas no picture leaves before the browser's view has said 'initialized',
   whatever the order in which the kernel handles the view's messages.
+* Pictures leave at once (issue 36 item 8): a full draw, the blitter's or a non-blitted panel's,
+  is drawn and sent right after the update, with no draw request to the browser; PNGs are
+  encoded at zlib level 1 and decode to webagg's own pixels.
 """
 import json
 
