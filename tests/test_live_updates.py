@@ -11,6 +11,9 @@
   crosses into singular gaits.
 * On a real ipympl canvas no picture leaves before the browser's view has said 'initialized',
   whatever the order in which the kernel handles the view's messages.
+* Pictures leave at once (issue 36 item 8): a full draw, the blitter's or a non-blitted panel's,
+  is drawn and sent right after the update, with no draw request to the browser; PNGs are
+  encoded at zlib level 1 and decode to webagg's own pixels.
 """
 import json
 
@@ -309,9 +312,8 @@ def test_no_picture_leaves_before_the_browser_view_is_initialised(ipympl):
     assert canvas._current_image_mode == "full" and _proper(canvas._data_url)
     shown = np.asarray(Image.open(io.BytesIO(sent[0])).convert("RGBA"))
     assert (shown == np.asarray(canvas.buffer_rgba())).all(), "the picture sent is not the panel as it is"
-    panel.set(t=3.0)
-    _browser_says(canvas, "draw")                  # from now on, pictures flow as before
-    assert len(sent) == 2 and canvas._current_image_mode == "diff"
+    panel.set(t=3.0)                               # from now on, pictures flow as before,
+    assert len(sent) == 2 and canvas._current_image_mode == "diff"   # sent at once (no draw request)
 
     # a static figure of the course (shown with widgets.base.show or as fig.canvas) likewise
     fig, ax = new_figure()
@@ -344,3 +346,121 @@ def test_course_figures_have_no_toolbar_floating_over_them(ipympl):
     plain = plt.figure()
     assert plain.canvas.toolbar_visible == "fade-in-fade-out"
     plt.close("all")
+
+
+# -- pictures leave at once (no round trip through the browser), quickly encoded ---------------
+
+def _draw_requests(sock):
+    return [w for k, w in sock.sent if k == "json" and w.get("type") == "draw"]
+
+
+def test_an_update_outside_a_blitter_is_drawn_and_sent_at_once():
+    """webagg's draw_idle asks the browser to ask for a picture (a round trip before the draw);
+    a panel update that is not blitted is drawn once, at once, however often it asked."""
+    from gm_core.drawing.toolkit.blit import drawn_at_once
+
+    fig, line, sock = _webagg_figure()
+    fig.canvas.draw()
+    n = len(sock.sent)
+    with drawn_at_once(fig):
+        line.set_ydata([0, 0.9])
+        fig.canvas.draw_idle()
+        fig.canvas.draw_idle()
+    after = sock.sent[n:]
+    assert [k for k, _ in after if k == "binary"] == ["binary"] and not _draw_requests(sock)
+    with drawn_at_once(fig):
+        pass                                    # no request, no picture
+    assert len(sock.sent) == len(sock.sent[:n]) + len(after)
+    # an Agg canvas draws on draw_idle itself: nothing is intercepted
+    agg = plt.figure()
+    calls = []
+    agg.canvas.draw_idle = lambda *a, **k: calls.append(1)
+    with drawn_at_once(agg):
+        agg.canvas.draw_idle()
+    assert calls == [1]
+    plt.close(agg)
+
+
+def test_a_blitter_draws_new_moving_artists_at_once():
+    """The blitter's full draws (the first frame, new moving artists) are sent at once too."""
+    from gm_core.drawing.toolkit.blit import Blitter
+
+    fig, line, sock = _webagg_figure()
+    blitter = Blitter(fig)
+    for y in (0.6, 0.7, 0.8):     # the first frame and the line's first move are full draws, then a blit
+        with blitter.frame():
+            line.set_ydata([0, y])
+            fig.canvas.draw_idle()
+    with blitter.frame():
+        (fig.axes[0].plot([0, 1], [1, 0])[0]).set_color("r")   # a new artist: a full draw
+    assert blitter.full_draws == 3 and blitter.blits == 1
+    assert len([k for k, _ in sock.sent if k == "binary"]) == 4 and not _draw_requests(sock)
+    blitter.disconnect()
+
+
+def test_quick_pictures_send_webaggs_pixels():
+    """quick_pictures changes the PNG's compression only: decoded, every picture (whole, then
+    differences with transparent zeros where nothing changed) is what webagg computes."""
+    import io
+
+    from PIL import Image
+
+    from gm_core.drawing.toolkit.blit import quick_pictures
+
+    fig, line, sock = _webagg_figure()
+    assert quick_pictures(fig) and not quick_pictures(plt.figure())
+    plt.close("all")
+    before = None
+    for y in (0.5, 0.8, 0.2):
+        line.set_ydata([0, y])
+        fig.canvas.draw()
+        now = np.asarray(fig.canvas.buffer_rgba()).view(np.uint32)[..., 0].copy()
+        png = sock.sent[-1][1]
+        shown = np.asarray(Image.open(io.BytesIO(png)).convert("RGBA")).view(np.uint32)[..., 0]
+        want = now if before is None else np.where(now != before, now, 0)
+        assert (shown == want).all()
+        before = now
+    assert sock.modes() == ["full", "diff", "diff"]
+    # the same picture at zlib level 6 (webagg's own encoder) is smaller and decodes the same
+    fig2, line2, sock2 = _webagg_figure()
+    line2.set_ydata([0, 0.2])
+    fig2.canvas.draw()
+    slow = np.asarray(Image.open(io.BytesIO(sock2.sent[-1][1])).convert("RGBA"))
+    fig3, line3, sock3 = _webagg_figure()
+    quick_pictures(fig3)
+    line3.set_ydata([0, 0.2])
+    fig3.canvas.draw()
+    quick = np.asarray(Image.open(io.BytesIO(sock3.sent[-1][1])).convert("RGBA"))
+    assert (slow == quick).all() and len(sock3.sent[-1][1]) >= len(sock2.sent[-1][1])
+
+
+@pytest.mark.filterwarnings("ignore:Passing unrecognized arguments to super\\(Toolbar\\)")
+def test_a_live_panel_without_blitting_sends_one_picture_per_move_and_asks_for_none(ipympl):
+    """On a real ipympl canvas, once its view is ready: a 3-D panel that is not blitted sends one
+    (quickly encoded, see quick_pictures) picture per slider move, and no draw request."""
+    from gm_core.widgets.geodesics import SurfaceGeodesicsPanel
+
+    panel = SurfaceGeodesicsPanel()
+    canvas = panel.fig.canvas
+    sent, asked = [], []
+    send = canvas.send
+
+    def record(content, buffers=None):
+        if buffers:
+            sent.append(bytes(memoryview(buffers[0])))
+        elif json.loads(content.get("data", "{}")).get("type") == "draw":
+            asked.append(1)
+        return send(content, buffers)
+
+    canvas.send = record
+    panel._repr_mimebundle_()
+    _browser_says(canvas, "initialized")
+    _browser_says(canvas, "draw")
+    assert panel.blitter is None and len(sent) >= 1
+    n, asked[:] = len(sent), []
+    for h in (20.0, 30.0, 40.0):
+        panel.controls["heading_deg"].value = h
+    assert len(sent) == n + 3 and asked == [], "each move: one picture, sent at once"
+    assert canvas._current_image_mode == "diff"
+    panel.keyframes.disconnect()
+    plt.close(panel.fig)

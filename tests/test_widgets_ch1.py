@@ -379,7 +379,34 @@ def test_scale_shift_panel_moves_the_grid_and_the_flows_by_matrix_products():
         want = [(H @ M)[0] if k == 0 else (M @ H)[0] for M in E]
         assert np.allclose(np.c_[flow.get_data()], want, atol=1e-12)
         assert np.allclose(p.scene.h_marks[k].get_data(), [[0.7], [-0.4]])
-    assert "0.70" in p.scene.formulas[0].get_text() and "-0.40" in p.scene.formulas[1].get_text()
+    # (the numbers stand between the formulas' $...$ spans, the sign inside: drop the $ to read them)
+    shown = [f.get_text().replace("$", "") for f in p.scene.formulas]
+    assert "0.70" in shown[0] and "b -0.40" in shown[1]
+
+
+def test_scale_shift_formulas_are_laid_out_as_one_mathtext_formula_without_parsing_it_per_move():
+    """The readouts keep their numbers outside the $...$ spans, so a move parses no mathtext; the
+    line is as wide as matplotlib's mathtext lays out the whole formula as one span."""
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.mathtext import MathTextParser
+
+    from gm_core.drawing.toolkit import style
+
+    p = ScaleShiftActionPanel()
+    prop = FontProperties(family=style._FAMILIES["sans"], size=style.MATH_PT)
+    parser = MathTextParser("path")
+    for alpha, beta in ((0.7, -0.4), (1.85, 0.25), (1.5, 0.0)):
+        p.set(alpha=alpha, beta=beta)
+        whole = (rf"$h\circ g = ({alpha:.2f}\,a,\ {alpha:.2f}\,b {beta:+.2f})$",
+                 rf"$g\circ h = ({alpha:.2f}\,a,\ b {beta:+.2f}\,a)$")
+        for f, formula in zip(p.scene.formulas, whole):
+            want = parser.parse(formula, dpi=7200, prop=prop).width / 7200.0 * 72.0
+            assert abs(style._glyphs(f.get_text(), f.size, "normal")[1] * 72.0 - want) < 0.05, formula
+    math_spans = {k for k in style._PATH_CACHE if k[-1] == "math"}
+    for alpha in np.linspace(0.6, 1.9, 7):
+        p.set(alpha=float(alpha), beta=-0.3)
+    assert {k for k in style._PATH_CACHE if k[-1] == "math"} == math_spans, "a move laid out a new math span"
+    plt.close(p.fig)
 
 
 def test_path_text_renders_and_updates():

@@ -572,5 +572,8 @@ class ScaleShiftActionScene(Scene):
             self.subgroup_lines[k].set_data(self.subgroup[:, 0], self.subgroup[:, 1])
             self.flows[k].set_data(flow[:, 0], flow[:, 1])
             self.h_marks[k].set_data([alpha], [beta])
-        self.formulas[0].set_text(rf"$h\circ g = ({alpha:.2f}\,a,\ {alpha:.2f}\,b {beta:+.2f})$")
-        self.formulas[1].set_text(rf"$g\circ h = ({alpha:.2f}\,a,\ b {beta:+.2f}\,a)$")
+        # the numbers stand outside the $...$ spans (the sign stays in, spaced as an operator):
+        # each span is laid out once (PathText's cache), not parsed by mathtext on every move
+        a_, sign, b_ = f"{alpha:.2f}", "-" if beta < 0 else "+", f"{abs(beta):.2f}"
+        self.formulas[0].set_text(r"$h\circ g = ($" + a_ + r"$\,a,\ $" + a_ + rf"$\,b {sign}$" + b_ + ")")
+        self.formulas[1].set_text(r"$g\circ h = ($" + a_ + rf"$\,a,\ b {sign}$" + b_ + r"$\,a$" + ")")

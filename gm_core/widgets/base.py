@@ -37,7 +37,8 @@ In a live notebook (ipympl canvas) each change is rendered by blitting
 (:class:`gm_core.drawing.toolkit.blit.Blitter`): only the artists the update changed are redrawn over a
 cached background; after the last change of a burst a key frame
 (:class:`gm_core.drawing.toolkit.blit.KeyFrames`) sends the whole picture, so the browser always ends on
-the truth. A panel that must not be blitted sets ``blit = False``. :attr:`Panel.widget` lays the
+the truth. A panel that must not be blitted sets ``blit = False``; it is drawn in full, once per
+change, and sent at once (:func:`gm_core.drawing.toolkit.blit.drawn_at_once`). :attr:`Panel.widget` lays the
 controls out for a 1366 x 768 laptop: labels above their controls, beside the figure when both
 fit, else in rows above it.
 """
@@ -243,7 +244,12 @@ class Panel(ABC):
         figure is refreshed by a blit (live canvases) or a full draw.
         """
         values = {**self.values(), **values}
-        if self.blitter is None:
+        if self.blitter is None and self.fig is not None:
+            from gm_core.drawing.toolkit.blit import drawn_at_once
+
+            with drawn_at_once(self.fig):   # a live canvas draws at once, not via the browser
+                self.update(**values)
+        elif self.blitter is None:
             self.update(**values)
         else:
             with self.blitter.frame():
