@@ -12,8 +12,7 @@
 * On a real ipympl canvas no picture leaves before the browser's view has said 'initialized',
   whatever the order in which the kernel handles the view's messages.
 * Pictures leave at once (issue 36 item 8): a full draw, the blitter's or a non-blitted panel's,
-  is drawn and sent right after the update, with no draw request to the browser; PNGs are
-  encoded at zlib level 1 and decode to webagg's own pixels.
+  is drawn and sent right after the update, with no draw request to the browser.
 """
 import json
 
@@ -398,46 +397,10 @@ def test_a_blitter_draws_new_moving_artists_at_once():
     blitter.disconnect()
 
 
-def test_quick_pictures_send_webaggs_pixels():
-    """quick_pictures changes the PNG's compression only: decoded, every picture (whole, then
-    differences with transparent zeros where nothing changed) is what webagg computes."""
-    import io
-
-    from PIL import Image
-
-    from gm_core.drawing.toolkit.blit import quick_pictures
-
-    fig, line, sock = _webagg_figure()
-    assert quick_pictures(fig) and not quick_pictures(plt.figure())
-    plt.close("all")
-    before = None
-    for y in (0.5, 0.8, 0.2):
-        line.set_ydata([0, y])
-        fig.canvas.draw()
-        now = np.asarray(fig.canvas.buffer_rgba()).view(np.uint32)[..., 0].copy()
-        png = sock.sent[-1][1]
-        shown = np.asarray(Image.open(io.BytesIO(png)).convert("RGBA")).view(np.uint32)[..., 0]
-        want = now if before is None else np.where(now != before, now, 0)
-        assert (shown == want).all()
-        before = now
-    assert sock.modes() == ["full", "diff", "diff"]
-    # the same picture at zlib level 6 (webagg's own encoder) is smaller and decodes the same
-    fig2, line2, sock2 = _webagg_figure()
-    line2.set_ydata([0, 0.2])
-    fig2.canvas.draw()
-    slow = np.asarray(Image.open(io.BytesIO(sock2.sent[-1][1])).convert("RGBA"))
-    fig3, line3, sock3 = _webagg_figure()
-    quick_pictures(fig3)
-    line3.set_ydata([0, 0.2])
-    fig3.canvas.draw()
-    quick = np.asarray(Image.open(io.BytesIO(sock3.sent[-1][1])).convert("RGBA"))
-    assert (slow == quick).all() and len(sock3.sent[-1][1]) >= len(sock2.sent[-1][1])
-
-
 @pytest.mark.filterwarnings("ignore:Passing unrecognized arguments to super\\(Toolbar\\)")
 def test_a_live_panel_without_blitting_sends_one_picture_per_move_and_asks_for_none(ipympl):
     """On a real ipympl canvas, once its view is ready: a 3-D panel that is not blitted sends one
-    (quickly encoded, see quick_pictures) picture per slider move, and no draw request."""
+    picture per slider move, and no draw request."""
     from gm_core.widgets.geodesics import SurfaceGeodesicsPanel
 
     panel = SurfaceGeodesicsPanel()

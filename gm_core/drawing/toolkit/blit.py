@@ -17,8 +17,7 @@ full draw, which the view check keeps current.
 Every picture of a live (webagg/ipympl) canvas leaves at once: a blit is sent by ``canvas.blit``,
 and a full draw, the blitter's or a non-blitted panel's (:func:`drawn_at_once`), is drawn and sent
 right after the update instead of through webagg's ``draw_idle``, which asks the browser to ask
-for the picture (a round trip before the draw). :func:`quick_pictures` encodes the pictures'
-PNGs at zlib level 1 (the same pixels, encoded in about a third less time).
+for the picture (a round trip before the draw).
 
 :class:`KeyFrames` makes a live (webagg/ipympl) canvas always end on the truth. webagg sends
 each picture as a *difference* from the one sent before, and the browser drops a picture that
@@ -56,8 +55,7 @@ if TYPE_CHECKING:
     from matplotlib.backends.backend_webagg_core import FigureCanvasWebAggCore
     from mpl_toolkits.mplot3d.axes3d import Axes3D
 
-__all__ = ["Blitter", "KeyFrames", "can_blit", "drawn_at_once", "hold_pictures_until_view", "quick_pictures",
-           "sends_differences"]
+__all__ = ["Blitter", "KeyFrames", "can_blit", "drawn_at_once", "hold_pictures_until_view", "sends_differences"]
 
 
 def can_blit(fig: Figure) -> bool:
@@ -124,57 +122,6 @@ def hold_pictures_until_view(fig: Figure) -> bool:
 
     manager.refresh_all = refresh_all
     canvas.on_msg(on_msg)
-    return True
-
-
-#: zlib level of the PNG pictures a live canvas sends (see :func:`quick_pictures`)
-PNG_LEVEL = 1
-
-
-def quick_pictures(fig: Figure) -> bool:
-    """Under webagg (ipympl), encode ``fig``'s pictures with zlib level :data:`PNG_LEVEL`, not 6.
-
-    webagg sends every picture as a PNG as large as the canvas, a difference image after a blit
-    too (the browser paints it at the canvas's corner): at 900 x 440 px Pillow's default level
-    takes 15-20 ms per picture, more than the blit itself, and level 1 about a third less, for
-    a PNG a third larger (tens of kB, which the page's local socket carries in well under a
-    millisecond). The pixels are the same: the picture is computed as webagg computes it
-    (``get_diff_image``: the whole buffer, or the pixels changed since the last picture and
-    transparent zeros elsewhere) and only the compression differs. Other canvases are left as
-    they are. Returns True if ``fig``'s canvas encodes quickly now.
-    """
-    import numpy as np
-    from matplotlib.backends.backend_webagg_core import FigureCanvasWebAggCore
-
-    canvas = fig.canvas
-    if not isinstance(canvas, FigureCanvasWebAggCore):
-        return False
-    web = cast("Any", canvas)   # webagg's picture state (_png_is_old, _last_buff, _force_full)
-
-    def get_diff_image() -> bytes | None:
-        if not web._png_is_old:
-            return None
-        from io import BytesIO
-
-        from PIL import Image
-
-        pixels = np.asarray(canvas.get_renderer().buffer_rgba())
-        buff = pixels.view(np.uint32).squeeze(2)
-        if web._force_full or buff.shape != web._last_buff.shape or (pixels[:, :, 3] != 255).any():
-            web.set_image_mode("full")
-            output = buff
-        else:
-            web.set_image_mode("diff")
-            output = np.where(buff != web._last_buff, buff, 0)
-        web._last_buff = buff.copy()
-        web._force_full = False
-        web._png_is_old = False
-        data = output.view(dtype=np.uint8).reshape((*output.shape, 4))
-        with BytesIO() as png:
-            Image.fromarray(data).save(png, format="png", compress_level=PNG_LEVEL)
-            return png.getvalue()
-
-    web.get_diff_image = get_diff_image
     return True
 
 

@@ -46,7 +46,7 @@ from matplotlib.typing import ColorType, RcKeyType
 from numpy.typing import ArrayLike, NDArray
 from typing_extensions import override
 
-from gm_core.drawing.toolkit.blit import hold_pictures_until_view, quick_pictures
+from gm_core.drawing.toolkit.blit import hold_pictures_until_view
 from gm_core.printing import shown
 from gm_core.validation import FloatArray
 
@@ -174,8 +174,8 @@ def new_figure(nrows: int = 1, ncols: int = 1, *, figsize: Sequence[float] = (6,
     The width is capped at :data:`MAX_WIDTH_IN` (the height shrinks with it), the resolution is
     :data:`DPI`, and the layout is constrained unless ``layout=None`` (then give explicit margins
     with :func:`margins`). Under ipympl (``%matplotlib widget``) the toolbar header is hidden and
-    no picture is sent before the browser's view is ready (:func:`.blit.hold_pictures_until_view`),
-    pictures are encoded quickly (:func:`.blit.quick_pictures`); its hover toolbar, which would float over the tick labels, is switched off.
+    no picture is sent before the browser's view is ready (:func:`.blit.hold_pictures_until_view`);
+    its hover toolbar, which would float over the tick labels, is switched off.
 
     ``axes`` is what :func:`matplotlib.pyplot.subplots` returns, and is typed as it types it: one
     ``Axes`` for a 1 x 1 grid, an array of them with ``squeeze=False``, otherwise either (``Any``:
@@ -197,7 +197,6 @@ def new_figure(nrows: int = 1, ncols: int = 1, *, figsize: Sequence[float] = (6,
         # switched off as ipympl documents: canvas.toolbar_visible = False
         canvas.toolbar_visible = False
     hold_pictures_until_view(fig)   # ipympl: no picture before the browser's view is ready
-    quick_pictures(fig)             # ipympl: pictures encoded at zlib level 1 (the same pixels)
     return fig, ax
 
 
