@@ -10,7 +10,8 @@ optimise the gait for speed or efficiency (:func:`gm_core.geometry.optimize_gait
 body-velocity integral) come from :func:`gm_core.geometry.estimates.displacement_estimates` at its
 interactive resolution, in the chosen frame.
 
-The lab offers all of the catalog's systems (:func:`lab_names`), each over its file's window. A system
+The lab offers all of the catalog's systems (:func:`lab_names`), each over its file's window, and any system
+of two shape variables a user adds (:func:`add_lab_system`), over its own ``shape_limits``. A system
 with more than two shape variables is seen on the slice through its straight shape along its first two
 (:func:`gm_core.systems.catalog.window_slice`). Where the live numbers cost more than a slider allows (the
 continuous bodies, the panel-method chain, the tape measures and the chains of 19 links or more), the lab
@@ -50,7 +51,7 @@ from gm_core.systems.gaits import Gait, GaitLike, as_gait
 from gm_core.systems.motion import Trajectory, position_group
 from gm_core.validation import FloatArray, SingularShapeError, check_option
 
-__all__ = ["lab_names", "lab_system", "lab_gait", "LAB_FRAMES", "OBJECTIVES", "lab_view", "drawn_gait", "LabScene"]
+__all__ = ["lab_names", "lab_system", "add_lab_system", "lab_gait", "LAB_FRAMES", "OBJECTIVES", "lab_view", "drawn_gait", "LabScene"]
 
 #: The lab's body frames, in the order of its dropdown.
 LAB_FRAMES = ("file's frame", "minimum perturbation")
@@ -60,18 +61,48 @@ LAB_FRAMES = ("file's frame", "minimum perturbation")
 OBJECTIVES = {"speed": "displacement", "efficiency": "efficiency"}
 
 
-@functools.lru_cache(maxsize=1)
+#: Systems a user added to the lab (:func:`add_lab_system`), by name, in the order added.
+_OWN: dict[str, LocomotionSystem] = {}
+
+
 def lab_names() -> tuple[str, ...]:
-    """The catalog's systems the lab offers: all of them, in the catalog's order."""
-    return catalog.names()
+    """The systems the lab offers: all of the catalog's, in its order, then those added with :func:`add_lab_system`."""
+    return catalog.names() + tuple(_OWN)
+
+
+def add_lab_system(system: LocomotionSystem, name: str | None = None) -> str:
+    """Offer ``system`` (a locomotion system of two shape variables: for more, a slice,
+    :func:`gm_core.systems.shape_slice`) in the lab under ``name`` (default: its own name),
+    over its ``shape_limits``; returns the name. A name is given once: one of the catalog's,
+    or one already given to another system, raises ValueError."""
+    if not isinstance(system, LocomotionSystem):
+        raise TypeError(f"system must be a locomotion system (gm_core.systems); got {type(system).__name__}")
+    if system.n_shape != 2:
+        raise ValueError(f"system must have two shape variables (the lab's map is a plane); {system.name} has "
+                         f"{system.n_shape}: add a slice of it, gm_core.systems.shape_slice(system, ...)")
+    name = system.name if name is None else name
+    if not isinstance(name, str) or not name.strip():
+        raise TypeError(f"name must be a non-empty string; got {name!r}")
+    if name in catalog.names() or _OWN.get(name, system) is not system:
+        raise ValueError(f"name {name!r} is taken (by {'the catalog' if name in catalog.names() else 'another system'}): "
+                         "give this system another name")
+    _OWN[name] = system
+    return name
+
+
+def lab_system(name: str) -> LocomotionSystem:
+    """The lab's system ``name``: one added with :func:`add_lab_system` as it is, else the catalog's with two
+    shape variables over its file's window (a slice if it has more), as its stored table where the catalog
+    has one (:func:`gm_core.systems.catalog.tabulated`)."""
+    if name in _OWN:
+        return _OWN[name]
+    if name not in catalog.names():
+        raise ValueError(f"name must be one of the lab's systems ({', '.join(lab_names())}); got {name!r}")
+    return _catalog_system(name)
 
 
 @functools.lru_cache(maxsize=64)
-def lab_system(name: str) -> LocomotionSystem:
-    """The catalog's system ``name`` with two shape variables over its file's window (a slice if it has more),
-    as its stored table where the catalog has one (:func:`gm_core.systems.catalog.tabulated`)."""
-    if name not in lab_names():
-        raise ValueError(f"name must be one of the lab's systems ({', '.join(lab_names())}); got {name!r}")
+def _catalog_system(name: str) -> LocomotionSystem:
     if name in catalog.tabulated_names():
         return catalog.tabulated(name)
     return catalog.window_slice(name)

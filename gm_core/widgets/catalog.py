@@ -8,10 +8,11 @@ from typing import TYPE_CHECKING, Any
 import ipywidgets as W
 from typing_extensions import override
 
-from gm_core.drawing.catalog import LAB_FRAMES, OBJECTIVES, LabScene, lab_names
+from gm_core.drawing.catalog import LAB_FRAMES, OBJECTIVES, LabScene, add_lab_system, lab_names
 from gm_core.drawing.curvature import ROWS
 from gm_core.drawing.toolkit.primitives import jshtml
 from gm_core.geometry import OptimalGait
+from gm_core.systems import LocomotionSystem
 from gm_core.systems.gaits import Gait, GaitLike
 from gm_core.validation import SingularShapeError
 from gm_core.widgets.base import TablePanel, register, slider
@@ -31,8 +32,9 @@ class LabPanel(TablePanel):
     Under the table: "draw gait" (while it is down, clicks on the map add points; from 3 on, the
     gait is the periodic spline through them), "clear", the objective and "optimise", and a status
     line. ``panel.load_gait(points)`` uses a gait from a code cell, ``panel.run(objective)`` does
-    what the optimise button does and ``panel.animation()`` is the gait in the course's player, for
-    a cell of its own below the panel (panel and player together would not fit a laptop's screen).
+    what the optimise button does, ``panel.add_system(system)`` offers a system of your own and
+    ``panel.animation()`` is the gait in the course's player, for a cell of its own below the panel
+    (panel and player together would not fit a laptop's screen).
     """
 
     title = "Locomotion lab: any system of sysplotter's library"
@@ -89,6 +91,16 @@ class LabPanel(TablePanel):
         self.scene.clear_points()
         self.refresh()
         self.status.value = ""
+
+    def add_system(self, system: LocomotionSystem, name: str | None = None) -> str:
+        """Add your own ``system`` (two shape variables) to the dropdown and show it; returns its name
+        (:func:`~gm_core.drawing.catalog.add_lab_system`, whose errors it raises)."""
+        name = add_lab_system(system, name)
+        menu = self.controls["system"]
+        if name not in menu.options:
+            menu.options = list(lab_names())
+        menu.value = name
+        return name
 
     def load_gait(self, gait: GaitLike, period: float = 1.0) -> Gait:
         """Show ``gait`` (closed-path shapes (K, 2), a callable t -> r of period ``period``, or a Gait)
