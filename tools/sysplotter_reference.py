@@ -46,16 +46,19 @@ PASSIVE_DRIVE = {"file": "three_link_passive", "amplitude": 0.8, "period": 1.0, 
 SHAPES_PER_FILE = 4
 TIMEOUT = 900           # seconds per file (the continuous bodies integrate with ode45)
 
-# One Octave process per file, so that no file's path or globals reach another. The unit
-# offsets ``u`` (one row per shape) are scaled by the file's grid_range in Octave.
-_DRIVER = r"""
-sp = fullfile('{root}', 'ProgramFiles');
+# Both drivers start here: sysplotter's paths (as its GUI sets them) and the file's name.
+_PATHS = r"""sp = fullfile('{root}', 'ProgramFiles');
 pathnames.sysplotterpath = [sp filesep];
 pathnames.syspath = fullfile('{root}', 'UserFiles', 'GenericUser', 'Systems');
 addpath(pathnames.syspath);
 addpath(genpath(fullfile(sp, 'Utilities')));
 warning('off', 'all');
 name = 'sysf_{name}';
+"""
+
+# One Octave process per file, so that no file's path or globals reach another. The unit
+# offsets ``u`` (one row per shape) are scaled by the file's grid_range in Octave.
+_DRIVER = _PATHS + r"""
 out = struct('name', '{name}', 'error', '', 'display_name', '', 'shapes', [], 'A', [], 'metric', []);
 try
   d = feval(name, 'dependency', pathnames);
@@ -137,14 +140,7 @@ end
 }
 
 # The passive swimmer: sysplotter's own simulate2DPassiveSwimmer on the file's own functions.
-_PASSIVE_DRIVER = r"""
-sp = fullfile('{root}', 'ProgramFiles');
-pathnames.sysplotterpath = [sp filesep];
-pathnames.syspath = fullfile('{root}', 'UserFiles', 'GenericUser', 'Systems');
-addpath(pathnames.syspath);
-addpath(genpath(fullfile(sp, 'Utilities')));
-warning('off', 'all');
-name = 'sysf_{name}';
+_PASSIVE_DRIVER = _PATHS + r"""
 d = feval(name, 'dependency', pathnames);
 for k = 1:numel(d.dependency), addpath(genpath(d.dependency{{k}})); end
 addpath(fullfile(sp, 'GaitOptimization', 'optimalgaitgenerator_fcns'));
