@@ -490,7 +490,7 @@ class ScaleShiftActionScene(Scene):
     XLIM: ClassVar[tuple[float, float]] = (-0.6, 5.4)
     YLIM: ClassVar[tuple[float, float]] = (-3.1, 3.1)
 
-    FIGSIZE = (7.0, 4.0)
+    FIGSIZE = (6.6, 3.8)
     NCOLS = 2
     MARGINS = dict(left=0.02, right=0.98, bottom=0.17, top=0.92, wspace=0.06)
 
