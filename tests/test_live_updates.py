@@ -13,6 +13,8 @@
   whatever the order in which the kernel handles the view's messages.
 * Pictures leave at once (issue 36 item 8): a full draw, the blitter's or a non-blitted panel's,
   is drawn and sent right after the update, with no draw request to the browser.
+* A 3-D camera that turns with the point turns at the key frame (03's tangent spaces): the burst's
+  blits equal full draws at the still camera, and the key frame equals one change to the last value.
 """
 import json
 
@@ -425,5 +427,79 @@ def test_a_live_panel_without_blitting_sends_one_picture_per_move_and_asks_for_n
         panel.controls["heading_deg"].value = h
     assert len(sent) == n + 3 and asked == [], "each move: one picture, sent at once"
     assert canvas._current_image_mode == "diff"
+    panel.keyframes.disconnect()
+    plt.close(panel.fig)
+
+
+# -- a 3-D camera that turns at the end of a burst ----------------------------------------------
+
+def _agg_picture_of(cls, values, camera=None):
+    """A fresh, unblitted Agg panel of ``cls`` at ``values`` (its camera set by ``set``, or put
+    at ``camera = (elev, azim)``), drawn in full: the independent picture to compare with."""
+    ref = cls()
+    ref.set(**values)
+    if camera is not None:
+        ref.fig.axes[1].view_init(elev=camera[0], azim=camera[1])
+    ref.fig.canvas.draw()
+    out = np.asarray(ref.fig.canvas.buffer_rgba()).copy()
+    plt.close(ref.fig)
+    return out
+
+
+def test_a_3d_blit_over_a_still_camera_equals_a_full_draw(blitting):
+    """03's tangent-space panel, as on a live canvas (its camera left for the key frame): every
+    move is a blit, and each blitted picture equals a full draw of a fresh panel at the same values
+    and camera, pixel for pixel, including the moving 3-D plane and arrow (collections that only
+    the axes' own draw projects). After ``settle`` the camera faces the point again."""
+    from gm_core.widgets.tangent import TangentSpacePanel
+
+    panel = TangentSpacePanel()
+    panel.scene.settle_later = True
+    panel.fig.canvas.draw()
+    ax3 = panel.fig.axes[1]
+    still = (ax3.elev, ax3.azim)
+    for s, speed in ((1.2, 1.0), (1.9, -1.4), (3.4, 0.6)):
+        panel.controls["speed"].value = speed
+        panel.controls["s"].value = s
+        assert (ax3.elev, ax3.azim) == still, "the camera turned during the burst"
+        blitted = np.asarray(panel.fig.canvas.buffer_rgba()).copy()
+        assert (blitted == _agg_picture_of(TangentSpacePanel, dict(s=s, speed=speed), still)).all()
+    assert panel.blitter.full_draws == 1 and panel.blitter.blits == 4   # (speed = 1.0 is no change)
+    panel.settle()
+    lat = panel.scene.AMP * np.sin(2 * 3.4)                           # the point's latitude, book fig. 1.12
+    assert np.isclose(ax3.elev, np.rad2deg(lat) * 0.6 + 12) and np.isclose(ax3.azim, np.rad2deg(3.4) - 20)
+    plt.close(panel.fig)
+
+
+@pytest.mark.filterwarnings("ignore:Passing unrecognized arguments to super\\(Toolbar\\)")
+def test_a_live_3d_panel_blits_the_burst_and_its_key_frame_turns_the_camera(ipympl):
+    """On a real ipympl canvas: 03's tangent-space panel sends one blitted picture per move with
+    its camera still, and the key frame turns the camera and sends the whole picture, the same
+    as an unblitted Agg panel set to the last values in one go (the slow drag's picture)."""
+    import io
+
+    from PIL import Image
+
+    from gm_core.widgets.tangent import TangentSpacePanel
+
+    panel = TangentSpacePanel()
+    canvas = panel.fig.canvas
+    sent = _pictures(canvas)
+    panel._repr_mimebundle_()
+    _browser_says(canvas, "initialized")
+    _browser_says(canvas, "draw")
+    ax3 = panel.fig.axes[1]
+    still = (ax3.elev, ax3.azim)
+    n = len(sent)
+    for s in (1.0, 1.3, 1.6, 1.9):
+        panel.controls["s"].value = s
+    assert len(sent) == n + 4 and (ax3.elev, ax3.azim) == still
+    assert panel.blitter.blits >= 2, "the burst's moves after the first new artists are blits"
+    assert panel.keyframes is not None
+    panel.keyframes.send()
+    assert canvas._current_image_mode == "full" and len(sent) == n + 5
+    shown = np.asarray(Image.open(io.BytesIO(sent[-1])).convert("RGBA"))
+    assert (shown == _agg_picture_of(TangentSpacePanel, dict(s=1.9))).all(), \
+        "the key frame is not the picture of one change to the last value"
     panel.keyframes.disconnect()
     plt.close(panel.fig)

@@ -369,7 +369,7 @@ def test_scale_shift_panel_moves_the_grid_and_the_flows_by_matrix_products():
     p = slide(ScaleShiftActionPanel(), alpha=0.7, beta=-0.4, u=-0.8, v=1.3)
     H = np.array([[0.7, -0.4], [0.0, 1.0]])
     grid = [np.array([[a, b], [0.0, 1.0]]) for a in (0.5, 1.0, 1.5, 2.0) for b in (-1.0, -0.5, 0.0, 0.5, 1.0)]
-    left, right = (np.asarray(d.get_offsets()) for d in p.scene.moved_dots)
+    left, right = (np.asarray(d.get_xydata()) for d in p.scene.moved_dots)
     assert np.allclose(left, [(H @ M)[0] for M in grid], atol=1e-14)
     assert np.allclose(right, [(M @ H)[0] for M in grid], atol=1e-14)
     t = np.linspace(-1.5, 1.5, 61)

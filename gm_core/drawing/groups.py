@@ -9,7 +9,7 @@ from __future__ import annotations
 from typing import Any, ClassVar, TypedDict
 
 import numpy as np
-from matplotlib.collections import LineCollection, PathCollection, PolyCollection
+from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.lines import Line2D
 from numpy.typing import ArrayLike
 from typing_extensions import override
@@ -490,7 +490,7 @@ class ScaleShiftActionScene(Scene):
     XLIM: ClassVar[tuple[float, float]] = (-0.6, 5.4)
     YLIM: ClassVar[tuple[float, float]] = (-3.1, 3.1)
 
-    FIGSIZE = (9, 4.4)
+    FIGSIZE = (6.6, 3.8)
     NCOLS = 2
     MARGINS = dict(left=0.02, right=0.98, bottom=0.17, top=0.92, wspace=0.06)
 
@@ -521,7 +521,7 @@ class ScaleShiftActionScene(Scene):
         a, b = np.meshgrid(self.A_GRID, self.B_GRID, indexing="ij")
         self.grid = np.stack([a, b], -1)                       # (n_a, n_b, 2) elements g
         self.moved: list[LineCollection] = []
-        self.moved_dots: list[PathCollection] = []
+        self.moved_dots: list[Line2D] = []
         self.subgroup_lines: list[Line2D] = []
         self.flows: list[Line2D] = []
         self.h_marks: list[Line2D] = []
@@ -532,8 +532,9 @@ class ScaleShiftActionScene(Scene):
             mesh = LineCollection([], colors=color, linewidths=1.0, zorder=4)
             ax.add_collection(mesh)
             self.moved.append(mesh)
-            self.moved_dots.append(ax.scatter(self.grid[..., 0].ravel(), self.grid[..., 1].ravel(), s=14,
-                                              color=color, zorder=5))
+            # one Line2D of markers (Agg stamps one marker), not a scatter (a path per dot): cheaper per move
+            self.moved_dots.append(ax.plot(self.grid[..., 0].ravel(), self.grid[..., 1].ravel(), "o", ls="none",
+                                           ms=np.sqrt(14), mew=1.0, color=color, zorder=5)[0])
             # a dot every half unit of t: the flows are straight rays, run at an exponential pace
             self.subgroup_lines.append(ax.plot([], [], color="k", ls="--", lw=1.2, marker="o", ms=3,
                                                markevery=self.MARK_EVERY, zorder=5)[0])
@@ -568,7 +569,7 @@ class ScaleShiftActionScene(Scene):
         for k, (images, flow) in enumerate(((self.left_images, self.left_flow),
                                             (self.right_images, self.right_flow))):
             self.moved[k].set_segments(self._mesh(images))
-            self.moved_dots[k].set_offsets(images.reshape(-1, 2))
+            self.moved_dots[k].set_data(images[..., 0].ravel(), images[..., 1].ravel())
             self.subgroup_lines[k].set_data(self.subgroup[:, 0], self.subgroup[:, 1])
             self.flows[k].set_data(flow[:, 0], flow[:, 1])
             self.h_marks[k].set_data([alpha], [beta])

@@ -65,7 +65,7 @@ class ObserverScene(Scene):
 
     @override
     def make_figure(self) -> tuple[Figure, list[Axes]]:
-        fig, axes = new_figure(1, 2, figsize=(9, 4.6), gridspec_kw=dict(width_ratios=[1, 0.95]))
+        fig, axes = new_figure(1, 2, figsize=(8.4, 3.8), gridspec_kw=dict(width_ratios=[1, 0.95]))
         margins(fig, left=0.01, right=0.99, bottom=0.01, top=0.93, wspace=0.04)
         return fig, list(axes)
 

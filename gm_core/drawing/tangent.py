@@ -54,7 +54,10 @@ class TangentSpaceScene(Scene):
 
     Values ``s`` (where along the curves, radians) and ``speed`` (the rate along them). The
     sphere curve is the wavy path lat = :attr:`AMP` sin(2 lon), lon = s; the 3D view turns with
-    the point so its tangent plane always faces the reader.
+    the point so its tangent plane always faces the reader (``camera``; on a live canvas it turns
+    at the end of a slider burst, :meth:`settle`, so during the burst the moving artists are
+    blitted over a still view: the sphere is drawn without depth sorting, so the picture is the
+    same either way).
     """
 
     AMP: ClassVar[float] = 0.45
@@ -65,7 +68,7 @@ class TangentSpaceScene(Scene):
 
     @override
     def make_figure(self) -> tuple[Figure, list[Axes]]:
-        return axes_row((9, 4.3), (None, "3d"), left=0.01, right=0.99, bottom=0.01, top=0.92, wspace=0.02)
+        return axes_row((7.4, 3.5), (None, "3d"), left=0.01, right=0.99, bottom=0.01, top=0.92, wspace=0.02)
 
     @override
     def decorate(self) -> None:
@@ -144,5 +147,14 @@ class TangentSpaceScene(Scene):
         self.point3.set_data_3d([P[0]], [P[1]], [P[2]])
         lab = P + 1.05 * h * (east + north)
         self.label_plane.set_position_3d(lab)
-        ax3.view_init(elev=np.rad2deg(lat) * 0.6 + 12, azim=np.rad2deg(lon) - 20)
+        self.camera = (float(np.rad2deg(lat) * 0.6 + 12), float(np.rad2deg(lon) - 20))    # (elev, azim)
+        if not self.settle_later:
+            self.settle()
         self.readout3.set_text(f"p = {vec_text(P)}\nv = {vec_text(V)}\np·v = {_num(float(P @ V))}: v lies in the tangent plane")
+
+    @override
+    def settle(self) -> None:
+        """Turn the 3D view to :attr:`camera`, so the tangent plane at the point faces the reader."""
+        ax3: Axes3D = self.axes[1]
+        elev, azim = self.camera
+        ax3.view_init(elev=elev, azim=azim)

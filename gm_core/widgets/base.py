@@ -37,7 +37,10 @@ In a live notebook (ipympl canvas) each change is rendered by blitting
 (:class:`gm_core.drawing.toolkit.blit.Blitter`): only the artists the update changed are redrawn over a
 cached background; after the last change of a burst a key frame
 (:class:`gm_core.drawing.toolkit.blit.KeyFrames`) sends the whole picture, so the browser always ends on
-the truth. A panel that must not be blitted sets ``blit = False``; it is drawn in full, once per
+the truth; just before it the panel's :meth:`Panel.settle` finishes what the scene left for the
+end of the burst (:attr:`gm_core.drawing.toolkit.style.Scene.settle_later`: a 3-D camera that turns
+with the point turns then, so the burst's frames are blits over a still view). A panel that must
+not be blitted sets ``blit = False``; it is drawn in full, once per
 change, and sent at once (:func:`gm_core.drawing.toolkit.blit.drawn_at_once`). :attr:`Panel.widget` lays the
 controls out for a 1366 x 768 laptop: labels above their controls, beside the figure when both
 fit, else in rows above it.
@@ -131,7 +134,7 @@ class Panel(ABC):
                 self.blitter = Blitter(self.fig)
             if self.key_frames and live and sends_differences(self.fig):
                 # the browser gets differences during a drag, and one whole picture after it
-                self.keyframes = KeyFrames(self.fig)
+                self.keyframes = KeyFrames(self.fig, before=self.settle)
 
     # -- to implement -------------------------------------------------------------
     @abstractmethod
@@ -180,6 +183,11 @@ class Panel(ABC):
                 self._exact[k] = v
                 c.value = v
         self.refresh()
+        self.settle()   # a value set from code is not a burst: nothing waits for its end
+
+    def settle(self) -> None:  # noqa: B027 (an optional hook)
+        """Finish what an update left for the end of a slider burst; the key frame calls it just
+        before its draw (live canvases). Nothing by default; a ScenePanel settles its scene."""
 
     def draw_now(self) -> None:
         """Draw the figure in full now and send it to a live canvas at once (webagg's ``draw``),
@@ -371,6 +379,16 @@ class ScenePanel(Panel):
     def scene_options(self) -> dict[str, Any]:
         """Keyword arguments for ``scene_class`` (default: the panel's options)."""
         return dict(self.options)
+
+    def __init__(self, **options: Any) -> None:
+        super().__init__(**options)
+        if self.keyframes is not None:
+            # live: the scene may leave to the key frame what need not follow every step (Scene.settle)
+            self.scene.settle_later = True
+
+    @override
+    def settle(self) -> None:
+        self.scene.settle()
 
     @override
     def build(self) -> None:

@@ -20,8 +20,6 @@ class TangentSpacePanel(ScenePanel):
 
     title = "Velocities live in tangent spaces (figs 1.11-1.12)"
     scene_class = TangentSpaceScene
-    # the 3D view turns with the point: only a full draw sorts the sphere's curve by depth
-    blit = False
 
     @override
     def controls_spec(self) -> dict[str, W.ValueWidget]:

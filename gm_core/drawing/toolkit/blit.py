@@ -12,7 +12,8 @@ ones. New moving artists, a changed view (axis limits; for 3D axes also the view
 a student changes by dragging) or a missing background trigger one full draw (the ``draw_event``
 callback then captures the background without the animated artists and paints them on top);
 every later frame is a blit. In 3D the moving artists are projected with the view of the last
-full draw, which the view check keeps current.
+full draw, which the view check keeps current (3-D collections through their public
+``do_3d_projection``, which only the axes' own draw would call).
 
 Every picture of a live (webagg/ipympl) canvas leaves at once: a blit is sent by ``canvas.blit``,
 and a full draw, the blitter's or a non-blitted panel's (:func:`drawn_at_once`), is drawn and sent
@@ -36,7 +37,7 @@ and two threads draw into one Agg buffer at once (half-drawn pictures, lost fram
 """
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any, cast
 
@@ -262,6 +263,10 @@ class Blitter:
     def _paint(self) -> None:
         for a in self._sorted():
             if a.axes is not None:
+                project = getattr(a, "do_3d_projection", None)
+                if project is not None and getattr(a.axes, "name", "") == "3d":
+                    # a 3-D collection is projected by its axes' draw, not its own: project it here
+                    project()
                 a.axes.draw_artist(a)
             else:
                 self.fig.draw_artist(a)
@@ -322,10 +327,13 @@ class KeyFrames:
     ``delay`` seconds on the canvas's own event loop; when it fires the figure is drawn in full
     and sent as a complete image. The key frame's own draw does not restart the timer, and it
     asks the browser for nothing, so the key frame is the last picture the browser receives.
+    ``before`` (optional) runs just before the key frame is drawn: what a panel leaves for the
+    end of a burst (a 3-D camera that turns with the point, :meth:`~gm_core.drawing.toolkit.style.Scene.settle`).
     """
 
-    def __init__(self, fig: Figure, delay: float = 0.25) -> None:
+    def __init__(self, fig: Figure, delay: float = 0.25, before: Callable[[], object] | None = None) -> None:
         self.fig = fig
+        self.before = before
         # a key frame is webagg's "refresh" (ipympl's canvas is a webagg one; see sends_differences)
         self.canvas = cast("FigureCanvasWebAggCore", fig.canvas)
         self.delay = float(delay)
@@ -352,6 +360,8 @@ class KeyFrames:
             return   # no browser shows the figure yet: it asks for its first (whole) picture itself
         self._sending = True
         try:
+            if self.before is not None:
+                self.before()
             # webagg's "refresh" marks the next picture as a full one; it also asks the browser
             # to request a draw, which would send one more (difference) picture after the key
             # frame: that request is left out, the figure is drawn here instead.

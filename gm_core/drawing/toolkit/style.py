@@ -590,6 +590,10 @@ class Scene(ABC):
     NCOLS: ClassVar[int] = 1
     MARGINS: ClassVar[dict[str, float] | None] = None
     ax: Axes
+    #: Set by a live panel (ipympl canvas, with key frames): ``set`` may leave to :meth:`settle`
+    #: what need not follow every step of a slider burst, such as a 3-D camera turning with the
+    #: point; the key frame after the burst settles it. False (the default): ``set`` does it all.
+    settle_later: bool = False
 
     def __init__(self, **options: Any) -> None:
         self.options: dict[str, Any] = options
@@ -616,6 +620,9 @@ class Scene(ABC):
     @abstractmethod
     def create(self) -> None:
         raise NotImplementedError
+
+    def settle(self) -> None:  # noqa: B027 (an optional hook: most scenes leave nothing for later)
+        """Do what ``set`` left for the end of a burst (see :attr:`settle_later`); nothing by default."""
 
     @abstractmethod
     def set(self, *args: Any, **values: Any) -> None:
