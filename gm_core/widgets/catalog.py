@@ -40,8 +40,8 @@ class LabPanel(TablePanel):
     title = "Locomotion lab: any system of sysplotter's library"
     scene_class = LabScene
     scene: LabScene
-    # switching systems makes and removes the body's artists: whole redraws, never blitted
-    blit = False
+    # blitted: a gait or phase moves only the gait, the dot and the body; switching systems or
+    # frames makes or hides artists and changes the map, which the blitter sees and draws whole
 
     @override
     def controls_spec(self) -> dict[str, W.ValueWidget]:
