@@ -41,9 +41,10 @@ submission, as on Gradescope).
 Exit status: 0 when every notebook was graded (whatever it scored); 2 for a usage error (an
 argument, the assignment, an output or submission folder inside what every sandbox reads); 3
 when no sandbox can run here (a sandbox made as for a notebook is tried first; nothing is
-graded); 4 when the grader itself failed during the batch -- a sandbox that did not start, a
-notebook it could not judge, a report file it could not write: every other grade is written,
-the notebooks it failed on get rows saying the fault is the grader's, and stderr says why. In nbgrader / otter-grader test cells use
+graded); 4 when the grader itself failed during the batch -- a sandbox that did not start in
+``STARTUP_ATTEMPTS`` tries, a notebook it could not judge, a report file it could not write:
+every other grade is written, the notebooks it failed on get rows saying the fault is the
+grader's, and stderr says why. In nbgrader / otter-grader test cells use
 ``ex1_4.a.check(answer, strict=True)`` instead (None on success, AssertionError on failure).
 """
 from __future__ import annotations
@@ -78,6 +79,9 @@ from gm_grader.staging import MAX_NOTEBOOK_BYTES, Upload, leftover_reason, stage
 
 _EXACT = re.compile(r"ex(\d+)_(\d+)\.ipynb")
 _ANY = re.compile(r"ex(\d+)_(\d+)", re.IGNORECASE)
+
+#: Runs of one notebook when its sandbox or kernel does not start (nothing of the student's ran).
+STARTUP_ATTEMPTS = 3
 
 Row: TypeAlias = dict[str, Any]            # one row of grades.csv (report.FIELDS, visibility)
 Notebook: TypeAlias = dict[str, Any]       # a notebook's JSON
@@ -346,9 +350,7 @@ def _run_one(item: ToRun, settings: GradeSettings, own_user: bool = False) -> Ra
     answers it carried, on probe inputs of a salt drawn now (:mod:`gm_grader.probe`)."""
     ex, limits = REGISTRY[item.exercise], settings.limits
     caps = check_caps(ex, limits.time_limit)
-    first = run_submission(item.path, limits=limits, sandbox=settings.sandbox, caps=caps,
-                           own_user=own_user)
-    fault = startup_fault(first)
+    first, fault = _started(item.path, limits, settings.sandbox, caps, own_user)
     if fault:
         return Fault(fault)
     answers = collect(first, ex).answers()
@@ -359,14 +361,30 @@ def _run_one(item: ToRun, settings: GradeSettings, own_user: bool = False) -> Ra
     try:
         path = folder / "calls.ipynb"
         path.write_text(json.dumps(nb), encoding="utf-8")
-        calls = run_submission(path, limits=limits, sandbox=settings.sandbox, caps=caps,
-                               salt=secrets.randbits(62), own_user=own_user)
+        calls, fault = _started(path, limits, settings.sandbox, caps, own_user,
+                                salt=secrets.randbits(62))
     finally:
         shutil.rmtree(folder, ignore_errors=True)
-    fault = startup_fault(calls)
     if fault:
         return Fault(f"the grader's own calls of the answers did not run: {fault}")
     return Ran(first, calls, _sources(nb))
+
+
+def _started(path: Path, limits: Limits, sandbox: bool, caps: Mapping[str, float],
+             own_user: bool, salt: int | None = None) -> tuple[RunResult, str | None]:
+    """Run ``path``; a run that ended before the notebook's first cell (nothing of the student's
+    ran: :func:`~gm_grader.isolate.startup_fault`) is run again, ``STARTUP_ATTEMPTS`` times in
+    all, as a busy machine can fail to start a sandbox or a kernel in time. (The run, and the
+    fault of the last attempt or None.)"""
+    for attempt in range(1, STARTUP_ATTEMPTS + 1):
+        result = run_submission(path, limits=limits, sandbox=sandbox, caps=caps, salt=salt,
+                                own_user=own_user)
+        fault = startup_fault(result)
+        if fault is None:
+            return result, None
+        print(f"gm-grade: warning: attempt {attempt} of {STARTUP_ATTEMPTS} did not start: "
+              f"{fault}", file=sys.stderr)
+    return result, f"{fault}; tried {STARTUP_ATTEMPTS} times"
 
 
 # ------------------------------------------------------------------------------ judge

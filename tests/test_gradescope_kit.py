@@ -151,6 +151,45 @@ def test_a_root_grader_runs_notebooks_as_their_own_user_out_of_reach_of_the_keys
     assert full["score"] == sum(t["max_score"] for t in full["tests"]) > 0   # honest: full
 
 
+def _kit_run(tmp_path, grader_code, exit_code):
+    """kit_run.py from the zip, with a stand-in ``gm_grader`` that writes ``grader_code``'s
+    report (or none) and exits ``exit_code``: what Gradescope is left with."""
+    root = tmp_path / "autograder"
+    (root / "source").mkdir(parents=True)
+    with zipfile.ZipFile(gradescope_kit.build_kit(tmp_path / "kit.zip", exercises=[EXERCISE])) as zf:
+        for name in ("kit_run.py", "kit.json", "assignment.json"):
+            (root / "source" / name).write_bytes(zf.read(name))
+    fake = tmp_path / "fake" / "gm_grader"
+    fake.mkdir(parents=True)
+    (fake / "__init__.py").write_text("")
+    (fake / "__main__.py").write_text(
+        "import json, sys\nfrom pathlib import Path\n"
+        "out = Path(sys.argv[sys.argv.index('--out') + 1])\n"
+        f"{grader_code}\nsys.exit({exit_code})\n")
+    (root / "results").mkdir()
+    (root / "results" / "results.json").write_text('{"score": 99, "tests": []}')   # a stale one
+    env = {**_env(root), "PYTHONPATH": str(fake.parent)}
+    res = subprocess.run([sys.executable, str(root / "source" / "kit_run.py")], cwd=root, env=env,
+                         capture_output=True, text=True, timeout=120)
+    assert res.returncode == 0, res.stderr
+    return json.loads((root / "results" / "results.json").read_text())
+
+
+def test_a_grader_fault_on_one_notebook_keeps_every_other_grade(tmp_path):
+    rows = [{"name": "ex1_1.ipynb: exercise 1.1 part a", "score": 2, "max_score": 2},
+            {"name": "ex1_2.ipynb: exercise 1.2 part a", "score": 0, "max_score": 2,
+             "output": "Not graded, because of a fault in the grader, not in your notebook"}]
+    report = {"score": 2, "tests": rows, "output": "GRADER FAULT: ex1_2.ipynb: ..."}
+    got = _kit_run(tmp_path, f"(out / 'results.json').write_text(json.dumps({report!r}))", 4)
+    assert got == report
+
+
+@pytest.mark.parametrize("code", ["pass", "raise SystemExit('crashed')"])
+def test_a_grader_that_writes_no_report_leaves_a_message_not_a_stale_grade(tmp_path, code):
+    got = _kit_run(tmp_path, code, 4 if code == "pass" else 1)
+    assert got["score"] == 0 and got["tests"] == [] and "tell your instructor" in got["output"]
+
+
 def test_bad_options_are_refused_clearly(tmp_path):
     with pytest.raises(ValueError, match="exercises"):
         gradescope_kit.build_kit(tmp_path / "k.zip", exercises=["9.9"])

@@ -106,6 +106,7 @@ def gradescope(tmp_path_factory):
                              capture_output=True, text=True, timeout=3600)
         assert run.returncode == 0, run.stderr[-3000:]
         results[name] = json.loads((out / "results.json").read_text())
+        results[name]["kit_log"] = run.stdout[-6000:]    # the grader's own output, for failures
     return results
 
 
@@ -114,9 +115,12 @@ def gradescope(tmp_path_factory):
 def test_gradescope_grades_solution_full_and_starter_zero(ex, gradescope):
     def score(name):
         tests = [t for t in gradescope[name]["tests"] if f": exercise {ex} part " in t["name"]]
-        assert len(tests) == len(REGISTRY[ex].parts), [t["name"] for t in gradescope[name]["tests"]][:5]
-        return sum(t["score"] for t in tests), sum(t["max_score"] for t in tests)
+        why = "\n".join([*(f"{t['name']}: {t.get('output', '')[:300]}" for t in tests),
+                         gradescope[name].get("output", "")[:2000], gradescope[name]["kit_log"]])
+        assert len(tests) == len(REGISTRY[ex].parts), why
+        return sum(t["score"] for t in tests), sum(t["max_score"] for t in tests), why
 
-    got, most = score("solution")
-    assert got == most == _total(ex)
-    assert score("starter")[0] == 0
+    got, most, why = score("solution")
+    assert got == most == _total(ex), why
+    got, _, why = score("starter")
+    assert got == 0, why
