@@ -149,6 +149,19 @@ def _euler_states(group, xi, n, side):
     return out
 
 
+def _euler_finals(group, xi, ns, side):
+    """The last Euler state g_n of :func:`_euler_states` for every n in ``ns`` (ascending), shape
+    (len(ns), dim): all of them stepped together, max(ns) batched steps. A step of time 1/n along
+    xi is a step of time 1 along xi/n (the step is linear in dt xi); a state whose n steps are
+    done stays as it is."""
+    steps = xi[None, :] / ns[:, None]
+    g = np.repeat(group.identity()[None, :], len(ns), axis=0)
+    for j in range(int(ns[-1])):
+        live = j < ns
+        g[live] = group.euler_step(g[live], steps[live], 1.0, side)
+    return g
+
+
 def _state_matrices(group, G):
     """Matrices of Euler states, which may lie outside the group (see :func:`_euler_states`)."""
     return group.coordinate_matrix(G)
@@ -240,7 +253,7 @@ def exp_history(group: LieGroup, xi: ArrayLike, n: ArrayLike = DEFAULT_N, method
             eye = np.eye(A.shape[-1])
             mats = np.stack([np.linalg.matrix_power(eye + A / m, int(m)) for m in ns])
         else:
-            mats = _state_matrices(group, np.stack([_euler_states(group, xi, int(m), side)[-1] for m in ns]))
+            mats = _state_matrices(group, _euler_finals(group, xi, ns, side))
         error = _frobenius(mats - exact_matrix)
     if not (np.all(np.isfinite(mats)) and np.all(np.isfinite(error))):
         raise ValueError(f"xi is too large for method {method!r} with n up to {int(ns[-1])}: the "

@@ -48,15 +48,19 @@ ROWS = ("x", "y", "θ")
 #: The shape window of notebook 10's panels (the minimum-perturbation frame is solved over it).
 LIMITS = ((-2.5, 2.5), (-2.5, 2.5))
 _CMAP = "RdBu_r"
+#: Colour bands of the curvature maps: they read as filled contours, and a banded picture is a
+#: third of the PNG bytes of a smooth one (what a live panel sends the browser on every change).
+#: Odd, so that zero lies inside the middle band, the map's own white, not on a band's edge.
+CMAP_BANDS = 25
 
 
 class CurvatureMapArtist:
     """One row of the constraint curvature D(-A) as an image over a rectangle of shape space.
 
-    Red is positive, blue negative, colour limits symmetric about zero (a high percentile of
-    |F|, so a singular line does not wash out the picture, and never below 1e-6 of the largest
-    row, so a row that vanishes up to rounding shows white); singular shapes are grey. The
-    values are :func:`gm_core.geometry.estimates.curvature_grid` (cached in the math layer).
+    Red is positive, blue negative, in :data:`CMAP_BANDS` bands, colour limits symmetric about
+    zero (a high percentile of |F|, so a singular line does not wash out the picture, and never
+    below 1e-6 of the largest row, so a row that vanishes up to rounding shows white); singular
+    shapes are grey. The values are :func:`gm_core.geometry.estimates.curvature_grid` (cached in the math layer).
     """
 
     def __init__(self, ax: Axes, system: LocomotionSystem, row: int = 0, limits: Limits | None = None,
@@ -64,7 +68,7 @@ class CurvatureMapArtist:
         self.ax, self.n = ax, int(n)
         self.limits = tuple((float(lo), float(hi)) for lo, hi in (limits or system.shape_limits))
         (lo1, hi1), (lo2, hi2) = self.limits
-        cmap = matplotlib.colormaps[_CMAP].with_extremes(bad="0.75")
+        cmap = matplotlib.colormaps[_CMAP].resampled(CMAP_BANDS).with_extremes(bad="0.75")
         self.image = ax.imshow(np.zeros((self.n, self.n)), origin="lower", extent=(lo1, hi1, lo2, hi2),
                                cmap=cmap, interpolation="bilinear", aspect="equal", zorder=1)
         self.set(system, row)

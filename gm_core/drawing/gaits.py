@@ -30,6 +30,7 @@ from gm_core.drawing.connection import (
 )
 from gm_core.drawing.motion import MovingView, SystemArtist, draw_system_naive, style_world_axes, system_extent
 from gm_core.drawing.toolkit.primitives import SingularFlag, TrailArtist, animate
+from gm_core.drawing.toolkit.recent import Recent
 from gm_core.drawing.toolkit.style import PALETTE, PathText, freeze_layout, new_figure, readout, signed
 from gm_core.systems import LocomotionSystem
 from gm_core.systems.gaits import GAIT_FAMILIES, Gait, GaitLike, GaitWarning, as_gait, family_gait
@@ -89,7 +90,7 @@ class GaitScene(FieldGridScene):
         self.frames = dict(frames or {})
         self.system, self.n = system, n
         self.lim = lim or 1.3 * system_extent(system)
-        self._cache: dict[tuple[object, ...], Motion] = {}
+        self._cache: Recent[tuple[object, ...], Motion] = Recent(self.cache_size)
         self.n_points = int(n_points)
         self.points: FloatArray | None = None    # control points of the drawn loop (K, 2), seeded on first use
         self._grab: int | None = None
@@ -174,16 +175,13 @@ class GaitScene(FieldGridScene):
         SingularShapeError) when the gait meets a singular shape. Cached by gait parameters."""
         gait = self.gait(v)
         key = self._key(v)
-        hit = self._cache.get(key)
-        if hit is None:
+        def make() -> Motion:
             try:
-                hit = (gait, trajectory(self.system, gait, 61, substeps=self.substeps), None)
+                return (gait, trajectory(self.system, gait, 61, substeps=self.substeps), None)
             except SingularShapeError as e:
-                hit = (gait, None, e)
-            if len(self._cache) >= self.cache_size:
-                self._cache.pop(next(iter(self._cache)))
-            self._cache[key] = hit
-        return hit
+                return (gait, None, e)
+
+        return self._cache.get(key, make)
 
     def _use_frame(self, frame: str | None) -> None:
         if frame is None or not self.frames:

@@ -34,6 +34,7 @@ from gm_core.drawing.connection import ROW_LABELS, ConnectionFieldArtist, Limits
 from gm_core.drawing.curvature import CurvatureMapArtist
 from gm_core.drawing.motion import SystemArtist, style_world_axes
 from gm_core.drawing.toolkit.primitives import SingularFlag, TrailArtist, animate
+from gm_core.drawing.toolkit.recent import Recent
 from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, Scene, freeze_layout, new_figure, readout, signed, title
 from gm_core.geometry import efficiency, optimize_chain_gait, travelling_wave, wave_start
 from gm_core.geometry.optimal import OptimalGait
@@ -116,23 +117,31 @@ class ChainSliceScene(Scene):
 
     FIGSIZE = (9.0, 3.3)
     NCOLS = 3
+    #: designs (chains and slices) kept for a slider moved back and forth
+    DESIGNS_KEPT: ClassVar[int] = 16
 
     def __init__(self, total_length: float = 3.0, taper: float = 0.0, limits: Limits = ((-2.0, 2.0), (-2.0, 2.0)),
                  n_map: int = 21, **options: Any) -> None:
         self.total_length, self.taper, self.limits, self.n_map = total_length, taper, limits, n_map
+        self._designs: Recent[tuple[int, str, int, int], tuple[LinkChain, AffineRestriction | None]] = \
+            Recent(self.DESIGNS_KEPT)
         super().__init__(**options)
 
     def _build(self, links: int, physics: str, axis1: int, axis2: int) -> None:
-        self.system = design_chain(links, physics, self.total_length, self.taper)
-        n = self.system.n_shape
         # a joint beyond the chain's end is its last joint (the panel's sliders reach it)
+        n = links - 1
         i = min(check_int(axis1, "axis1", minimum=1, maximum=6, what=" (a joint, 1-based)"), n) - 1
         j = min(check_int(axis2, "axis2", minimum=1, maximum=6, what=" (a joint, 1-based)"), n) - 1
         self.pair = (i, j)
         #: True when both slice joints are one joint: no slice (shape_slice refuses it)
         self.same = i == j
-        self.slice: AffineRestriction | None = None if self.same else shape_slice(
-            self.system, None, (i, j), limits=self.limits)
+        # a design seen before is the same system and slice objects again, so the math layer's
+        # caches (curvature_grid) serve a slider moved back and forth
+        def make() -> tuple[LinkChain, AffineRestriction | None]:
+            system = design_chain(links, physics, self.total_length, self.taper)
+            return system, None if self.same else shape_slice(system, None, (i, j), limits=self.limits)
+
+        self.system, self.slice = self._designs.get((links, physics, i, j), make)
 
     @override
     def decorate(self) -> None:
@@ -249,6 +258,8 @@ class WaveGaitScene(Scene):
 
     def __init__(self, total_length: float = 3.0, taper: float = 0.0, **options: Any) -> None:
         self.total_length, self.taper = total_length, taper
+        self._waves: Recent[tuple[int, str, float, float], tuple[LinkChain, Gait, Trajectory, float]] = \
+            Recent(32)
         super().__init__(**options)
 
     @override
@@ -267,14 +278,19 @@ class WaveGaitScene(Scene):
         self.text = readout(ax1, 0.02, 0.02)
 
     def compute(self, links: int, physics: str, amplitude: float, lag: float) -> None:
-        self.system = design_chain(links, physics, self.total_length, self.taper)
-        self.gait = travelling_wave(self.system.n_shape, amplitude, lag)
-        self.traj = trajectory(self.system, self.gait, n_frames=61, substeps=8)
+        def make() -> tuple[LinkChain, Gait, Trajectory, float]:
+            system = design_chain(links, physics, self.total_length, self.taper)
+            gait = travelling_wave(system.n_shape, amplitude, lag)
+            traj = trajectory(system, gait, n_frames=61, substeps=8)
+            # g(T) of the trajectory drawn (within ~1e-9 of net_displacement's); 1024 samples of
+            # the wave's path length agree with 4096 to ~1e-7 (the readout shows 4 decimals).
+            # Every physics of design_chain has a cost metric (drag or kinetic energy).
+            eff = efficiency(system, gait, check=False, samples=1024, displacement=traj.g[-1])
+            return system, gait, traj, eff
+
+        self.system, self.gait, self.traj, self.efficiency = self._waves.get(
+            (links, physics, amplitude, lag), make)
         self.g = self.traj.g[-1]
-        # g(T) of the trajectory drawn (within ~1e-9 of net_displacement's); 1024 samples of the
-        # wave's path length agree with 4096 to ~1e-7 (the readout shows 4 decimals). Every
-        # physics of design_chain has a cost metric (drag or kinetic energy).
-        self.efficiency = efficiency(self.system, self.gait, check=False, samples=1024, displacement=self.g)
 
     @override
     def set(self, links: int = 4, physics: str = "low_re", amplitude: float = 0.8, lag: float = 1.2) -> None:

@@ -18,6 +18,7 @@ from matplotlib.patches import ConnectionPatch
 from typing_extensions import override
 
 from gm_core.drawing.toolkit.primitives import FrameArtist
+from gm_core.drawing.toolkit.recent import Recent
 from gm_core.drawing.toolkit.style import MATH_PT, PALETTE, Scene, new_figure, readout
 from gm_core.systems.directional import RATE_MAPS, rate_map, replay
 from gm_core.systems.gaits import Gait, circle_gait
@@ -55,7 +56,7 @@ class PacingSquareScene(Scene):
         self.system = system or LowReSwimmer()
         self.loop = gait or circle_gait(1.0)
         self.base = trajectory(self.system, self.loop, 241)
-        self._cache: dict[float, tuple[Callable[[Any], Any], Gait, Trajectory]] = {}
+        self._cache: Recent[float, tuple[Callable[[Any], Any], Gait, Trajectory]] = Recent(64)
         super().__init__(**options)
 
     @override
@@ -110,15 +111,12 @@ class PacingSquareScene(Scene):
         self.text_bot = readout(self.axes[3], 0.03, 0.03)
 
     def _repaced(self, a: float) -> tuple[Callable[[Any], Any], Gait, Trajectory]:
-        hit = self._cache.get(a)
-        if hit is None:
+        def make() -> tuple[Callable[[Any], Any], Gait, Trajectory]:
             tau, tau_dot = sine_pacing(a, self.loop.period)
             rep = self.loop.reparameterized(tau, tau_dot)
-            hit = (tau, rep, trajectory(self.system, rep, N_DOTS + 1))
-            if len(self._cache) > 64:
-                self._cache.pop(next(iter(self._cache)))
-            self._cache[a] = hit
-        return hit
+            return (tau, rep, trajectory(self.system, rep, N_DOTS + 1))
+
+        return self._cache.get(a, make)
 
     @override
     def set(self, unevenness: float = 0.7, t: float = 0.4) -> None:
