@@ -68,6 +68,19 @@ def test_the_panel_before_has_its_widgets_closed(panel):
     _LAST["panel"] = (name, p)
 
 
+def test_every_frame_leaves_the_figure_clean(panel):
+    """After each update (blitted or drawn in full) nothing is left stale: in a notebook, pyplot
+    redraws a stale figure when the kernel goes idle (draw_all after every comm message), a
+    round trip through the browser and one more picture per slider move. (An axis label that
+    changed is not blitted: it makes the frame a full draw.)"""
+    name, p = panel
+    p.fig.canvas.draw()
+    rng = np.random.default_rng(11)
+    for _ in range(4):
+        p.refresh(**p.sample_values(rng))
+        assert not p.fig.stale, f"{name}: the figure is stale after an update"
+
+
 def test_blitted_frames_match_full_redraws(panel):
     name, p = panel
     try:

@@ -137,10 +137,15 @@ def test_twin_rotor_is_drawn_as_its_frame_and_rotor_dials():
     scene, dials = lab.scene, lab.scene.body
     assert isinstance(dials, RotorDials) and scene.estimates is not None
     assert "ωz" in lab.numbers.value and "ωx" in scene.ax.get_title()
+    lab.controls["row"].value = 2
+    assert [label for label, _ in lab.controls["row"].options] == ["ωx", "ωy", "ωz"]
+    assert "ωz" in scene.ax.get_title() and lab.controls["row"].value == 2
     r = scene.dot.get_data()
     x, y = dials.dials[0].get_data()
     np.testing.assert_allclose(np.arctan2(y[1], x[1]), np.arctan2(np.sin(r[0][0]), np.cos(r[0][0])), atol=1e-12)
     lab.controls["system"].value = "three_link_lowRe"
+    assert [label for label, _ in lab.controls["row"].options] == ["x", "y", "θ"]
+    assert lab.controls["row"].value == 2 and "θ" in scene.ax.get_title()
     assert not isinstance(scene.body, RotorDials) and not dials.note.get_visible() and not dials.dials[0].get_visible()
     assert all(p.patch.get_visible() for p in scene.body.bodies)
     plt.close(lab.fig)

@@ -137,6 +137,20 @@ def test_callable_gait_velocity_by_differences():
     np.testing.assert_allclose(g2(t), g(t))
 
 
+@pytest.mark.parametrize("n_times", [1, 2, 3, 11])
+def test_a_callable_returning_shape_by_time_is_read_the_right_way_round(n_times):
+    """np.array([cos t, sin t]) gives (n, N), which with N = n = 2 looks like (N, n): the gait
+    tells them apart, never silently transposing the shapes."""
+    rows = Gait(lambda t: np.array([np.cos(t), 2 * np.sin(t)]))
+    by_time = Gait(lambda t: np.stack([np.cos(t), 2 * np.sin(t)], -1))
+    scalar = Gait(lambda t: [float(np.cos(t)), float(2 * np.sin(t))])
+    t = np.linspace(0.0, 1.0, n_times)
+    exact = np.stack([np.cos(t), 2 * np.sin(t)], -1)
+    for g in (rows, by_time, scalar):
+        np.testing.assert_allclose(g(t), exact, atol=1e-15)
+        np.testing.assert_allclose(g.velocity(t), np.stack([-np.sin(t), 2 * np.cos(t)], -1), atol=1e-9)
+
+
 def test_sampled_gait_is_closed_and_close_to_the_circle():
     tk = np.linspace(0, 1, 65)
     pts = np.stack([0.3 + np.cos(2 * np.pi * tk), np.sin(2 * np.pi * tk)], -1)

@@ -284,7 +284,9 @@ class LabScene(Scene):
             self.axb.set_title(f"{name} ({shown})", fontsize=9)
         self.map.set(self.view, row)
         self.field.set(self.view, row)
-        self.ax.set_title(f"D(-A) and -A, row {_row_names(self.system)[row]}", fontsize=9)
+        #: the names of the rows of the system shown (x, y, θ in SE(2); ωx, ωy, ωz in SO(3))
+        self.row_names = _row_names(self.system)
+        self.ax.set_title(f"D(-A) and -A, row {self.row_names[row]}", fontsize=9)
         self._key, self.row = (name, frame, row), row
 
     @override

@@ -167,6 +167,7 @@ class ChainSliceScene(Scene):
         # PathText: cheap to redraw when the row changes; MATH_PT for the row's superscript
         self.titles = (title(ax1, size=MATH_PT), title(ax2, size=MATH_PT))
         self._key: tuple[int, str, int, int] | None = None
+        self._labelled: tuple[int, int] | None = None     # the joints the axis labels name
 
     @override
     def set(self, links: int = 4, physics: str = "low_re", row: int = 2, axis1: int = 1, axis2: int = 2) -> None:
@@ -181,9 +182,11 @@ class ChainSliceScene(Scene):
             self.body.set(self.system, np.zeros(3), self._drawn_shape())
             q = self._joint_positions()
             self.joint_dots.set_data(q[list(self.pair), 0], q[list(self.pair), 1])
-            for ax in self.axes[1:]:
-                ax.set_xlabel(_joint_math(self.pair[0]), fontsize=MATH_PT, labelpad=0)
-                ax.set_ylabel(_joint_math(self.pair[1]), fontsize=MATH_PT, labelpad=0)
+            if self.pair != self._labelled:     # a new label is a full draw (blit.py)
+                self._labelled = self.pair
+                for ax in self.axes[1:]:
+                    ax.set_xlabel(_joint_math(self.pair[0]), fontsize=MATH_PT, labelpad=0)
+                    ax.set_ylabel(_joint_math(self.pair[1]), fontsize=MATH_PT, labelpad=0)
         for art in (self.field.quiver, self.map.image, self.field.zero_note, self.field.scale_note):
             if self.same or art in (self.field.quiver, self.map.image):
                 art.set_visible(not self.same)        # the notes are the field's own (set below)

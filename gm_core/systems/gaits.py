@@ -68,8 +68,8 @@ class Gait:
     Build one from a callable (``Gait(lambda t: ..., period=T)``), optionally with an exact
     ``velocity`` callable (otherwise an eighth-order central difference is used), or from a
     sampled closed path with :meth:`from_samples` (periodic cubic spline through the samples at
-    equal time steps). Callables should accept an array of times ``(N,)`` and return ``(N, n)``;
-    scalar-only callables also work, more slowly.
+    equal time steps). Callables should accept an array of times ``(N,)`` and return ``(N, n)``
+    (or ``(n, N)``); scalar-only callables also work, more slowly.
 
     A gait proper is closed, r(T) = r(0) (see :attr:`closure_gap`); an open shape path (say a
     constant-rate drive) is also a valid ``Gait`` for :func:`gm_core.systems.motion.trajectory` over
@@ -100,14 +100,32 @@ class Gait:
         self.closure_gap = ends[1] - ends[0]
 
     @staticmethod
+    def _layout(f, flat, out):
+        """``out`` = f(flat) as (N, n), one shape per time: a callable may return (n, N) (say
+        ``np.array([cos(t), sin(t)])``), which is turned; when n = N the two read alike, so f is
+        called once more with one time added, whose shape tells them apart. None: neither."""
+        N = flat.size
+        if out.ndim != 2 or N not in out.shape:
+            return None
+        if out.shape[0] != N:
+            return out.T
+        if out.shape[1] != N or N == 1:
+            return out
+        try:
+            wider = np.asarray(f(np.append(flat, flat[0])), dtype=float).shape
+        except Exception:  # noqa: BLE001 - undecided: read point by point by the caller
+            return None
+        return out if wider == (N + 1, N) else out.T if wider == (N, N + 1) else None
+
+    @staticmethod
     def _eval(f, t):
         t = np.asarray(t, dtype=float)
         flat = t.reshape(-1)
         try:
-            out = np.asarray(f(flat), dtype=float)
+            out = Gait._layout(f, flat, np.asarray(f(flat), dtype=float))
         except Exception:  # noqa: BLE001 - scalar-only callables; retried point by point below
             out = None
-        if out is None or out.ndim != 2 or out.shape[0] != flat.size:
+        if out is None:
             try:
                 out = np.array([np.atleast_1d(np.asarray(f(float(s)), dtype=float)) for s in flat])
             except (TypeError, ValueError) as e:

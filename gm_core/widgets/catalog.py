@@ -71,6 +71,18 @@ class LabPanel(TablePanel):
         self.draw.observe(self._on_draw, names="value")
         self.fig.canvas.mpl_connect("button_press_event", self._on_click)
 
+    @override
+    def after_update(self, values: dict[str, Any]) -> None:
+        """The table, and row buttons that name the rows of the system shown (ωx, ωy, ωz for
+        twin_rotor)."""
+        super().after_update(values)
+        buttons = self.controls["row"]
+        names = list(self.scene.row_names)
+        if [label for label, _ in buttons.options] != names:
+            with self.hold():
+                buttons.options = [(r, i) for i, r in enumerate(names)]
+                buttons.value = self.scene.row
+
     def _on_draw(self, change: dict[str, Any]) -> None:
         if change["new"]:
             self.status.value = "click 3 or more points on the map: the gait is the closed spline through them"

@@ -206,6 +206,13 @@ class Blitter:
         self._limits = self._view_limits()
         self._paint()
 
+    def _axis_changed(self) -> bool:
+        """True if an axis of the figure (its label or ticks: not leaf artists, so never blitted)
+        changed since the last full draw: only a full draw shows it, and leaves the figure clean
+        (a stale figure is redrawn once more when the kernel goes idle, pyplot's draw_all)."""
+        return any(axis is not None and axis.stale for ax in self.fig.axes
+                   for axis in (ax.xaxis, ax.yaxis, getattr(ax, "zaxis", None)))
+
     def _make_dynamic(self, a: Artist) -> None:
         a.set_animated(True)
         self.dynamic.append(a)
@@ -291,7 +298,7 @@ class Blitter:
             # no browser view yet: only the browser's own draw request may send a picture.)
             self._full_draw()
             return
-        if new or self._view_limits() != self._limits:
+        if new or self._view_limits() != self._limits or self._axis_changed():
             for a in new:
                 self._make_dynamic(a)
             if new:
