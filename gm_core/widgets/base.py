@@ -51,7 +51,7 @@ import importlib
 import pkgutil
 import time
 from abc import ABC, abstractmethod
-from contextlib import AbstractContextManager
+from contextlib import AbstractContextManager, ExitStack
 from typing import TYPE_CHECKING, Any, TypeVar
 
 import ipywidgets as W
@@ -252,18 +252,30 @@ class Panel(ABC):
         figure is refreshed by a blit (live canvases) or a full draw.
         """
         values = {**self.values(), **values}
-        if self.blitter is None and self.fig is not None:
-            from gm_core.drawing.toolkit.blit import drawn_at_once
+        with ExitStack() as after_the_picture:
+            # what the update says in widgets (a table of numbers, a status line, a control it
+            # moves) reaches the page after the picture: the browser paints the canvas first
+            for w in self._page_widgets():
+                after_the_picture.enter_context(w.hold_sync())
+            if self.blitter is None and self.fig is not None:
+                from gm_core.drawing.toolkit.blit import drawn_at_once
 
-            with drawn_at_once(self.fig):   # a live canvas draws at once, not via the browser
+                with drawn_at_once(self.fig):   # a live canvas draws at once, not via the browser
+                    self.update(**values)
+            elif self.blitter is None:
                 self.update(**values)
-        elif self.blitter is None:
-            self.update(**values)
-        else:
-            with self.blitter.frame():
-                self.update(**values)
+            else:
+                with self.blitter.frame():
+                    self.update(**values)
         if self.keyframes is not None:
             self.keyframes.touch()
+
+    def _page_widgets(self) -> list[W.Widget]:
+        """The panel's widgets but its canvas: its controls and those it keeps (numbers, status)."""
+        canvas = self.fig.canvas if self.fig is not None else None
+        own = [w for w in vars(self).values() if isinstance(w, W.Widget)]
+        return [w for w in {id(w): w for w in [*self.controls.values(), *own]}.values()
+                if w is not canvas]
 
     def sample_values(self, rng: np.random.Generator) -> dict[str, Any]:
         out = {}

@@ -9,7 +9,7 @@ webagg's diff images: ``canvas.blit`` marks the picture old and sends only chang
 :class:`Blitter` needs no list of moving artists from the panel. During a frame it intercepts
 ``canvas.draw_idle``; afterwards the leaf artists that the update made *stale* are the moving
 ones. New moving artists, a changed view (axis limits; for 3D axes also the viewing angles, which
-a student changes by dragging) or a missing background trigger one full draw (the ``draw_event``
+a student changes by dragging), a new axis label or a missing background trigger one full draw (the ``draw_event``
 callback then captures the background without the animated artists and paints them on top);
 every later frame is a blit. In 3D the moving artists are projected with the view of the last
 full draw, which the view check keeps current (3-D collections through their public
@@ -187,6 +187,7 @@ class Blitter:
         self._ids: set[int] = set()
         self._background: object | None = None   # Agg's saved region (copy_from_bbox), opaque
         self._limits = self._view_limits()
+        self._labels = self._axis_labels()
         self._real_draw_idle = self.canvas.draw_idle
         self._cid = self.canvas.mpl_connect("draw_event", self._on_draw)
         self.full_draws = 0
@@ -204,14 +205,16 @@ class Blitter:
             return
         self._background = self.canvas.copy_from_bbox(self.fig.bbox)
         self._limits = self._view_limits()
+        self._labels = self._axis_labels()
         self._paint()
 
-    def _axis_changed(self) -> bool:
-        """True if an axis of the figure (its label or ticks: not leaf artists, so never blitted)
-        changed since the last full draw: only a full draw shows it, and leaves the figure clean
-        (a stale figure is redrawn once more when the kernel goes idle, pyplot's draw_all)."""
-        return any(axis is not None and axis.stale for ax in self.fig.axes
-                   for axis in (ax.xaxis, ax.yaxis, getattr(ax, "zaxis", None)))
+    def _axis_labels(self) -> list[str]:
+        """The axis labels' texts: parts of their axes, not leaf artists, so never blitted; a new
+        one makes the frame a full draw (else it would show only with the key frame, and leave
+        the figure stale, which pyplot's draw_all redraws once more when the kernel goes idle:
+        a round trip through the browser)."""
+        return [axis.label.get_text() for ax in self.fig.axes
+                for axis in (ax.xaxis, ax.yaxis, getattr(ax, "zaxis", None)) if axis is not None]
 
     def _make_dynamic(self, a: Artist) -> None:
         a.set_animated(True)
@@ -298,7 +301,7 @@ class Blitter:
             # no browser view yet: only the browser's own draw request may send a picture.)
             self._full_draw()
             return
-        if new or self._view_limits() != self._limits or self._axis_changed():
+        if new or self._view_limits() != self._limits or self._axis_labels() != self._labels:
             for a in new:
                 self._make_dynamic(a)
             if new:
