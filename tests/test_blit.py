@@ -175,3 +175,21 @@ def test_saving_a_blitted_figure_draws_each_artist_once(blitting, tmp_path):
     plt.close(live.fig)
     plt.close(plain.fig)
 
+
+
+def test_a_moving_image_keeps_its_axes_frame(blitting):
+    """The lab's map (an image filling its axes) moves when the system changes; blitted after
+    that, it must not be painted over its axes' frame (a line drawn above it in a full draw)."""
+    from gm_core.widgets.catalog import LabPanel
+
+    p = LabPanel()
+    p.fig.canvas.draw()
+    p.controls["system"].value = "three_link_HighRe"       # the map changes: it moves from now on
+    for v in (0.1, 0.3, 0.2):
+        p.controls["c1"].value = v                          # gait moves: blits over the new map
+    blitted = _picture(p.fig)
+    assert p.blitter.blits >= 2
+    p.blitter.disconnect()
+    p.fig.canvas.draw()
+    assert (blitted != _picture(p.fig)).any(-1).sum() == 0
+    plt.close(p.fig)

@@ -46,6 +46,7 @@ from matplotlib.axes import Axes
 from matplotlib.axis import Axis
 from matplotlib.backend_bases import DrawEvent, FigureCanvasBase
 from matplotlib.figure import Figure
+from matplotlib.image import AxesImage
 from matplotlib.legend import Legend
 from matplotlib.spines import Spine
 from matplotlib.text import Text
@@ -223,9 +224,11 @@ class Blitter:
 
     def _covering(self) -> list[Artist]:
         """Static artists drawn *above* a moving one and overlapping it (a ✓ on a badge whose
-        colour changes): pasted under the moving artist they would vanish, so they move too.
-        Found once, when the set of moving artists grows (never per frame)."""
-        leaves = list(_leaf_artists(self.fig))
+        colour changes; the axes frame around a moving image): pasted under the
+        moving artist they would vanish, so they move too. Found once, when the set of moving
+        artists grows (never per frame)."""
+        spines = [sp for ax in self.fig.axes for sp in ax.spines.values()]
+        leaves = list(_leaf_artists(self.fig)) + spines
         order = {id(a): (a.get_zorder(), i) for i, a in enumerate(leaves)}
         renderer = self.canvas.get_renderer() if hasattr(self.canvas, "get_renderer") else None
 
@@ -234,6 +237,8 @@ class Blitter:
                 box = a.get_window_extent(renderer)
             except Exception:  # an artist without a usable extent: assume it covers everything
                 return None
+            if isinstance(a, Spine):   # the extent leaves out the line's width, which straddles it
+                box = box.padded(a.get_linewidth() * self.fig.dpi / 72.0)
             clip = a.get_clip_box() if a.get_clip_on() else None
             if clip is not None:
                 # what a clipped artist paints lies inside its clip box (a body reaching past
@@ -255,6 +260,8 @@ class Blitter:
                 for d in moving:
                     if d.axes is not s.axes or order.get(id(s), (0, 0)) <= order.get(id(d), (0, 0)):
                         continue
+                    if isinstance(s, Spine) and not isinstance(d, AxesImage):
+                        continue   # a frame covers what fills its axes: an image
                     bs, bd = extent(s), boxes.get(id(d))
                     if bs is None or bd is None or _overlap(bs, bd):
                         out.append(s)
