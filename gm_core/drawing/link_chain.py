@@ -258,11 +258,13 @@ class WaveGaitScene(Scene):
 
     FIGSIZE = (8.0, 3.6)
     NCOLS = 2
+    #: waves (chain, gait, motion, efficiency) kept for a slider moved back and forth
+    WAVES_KEPT: ClassVar[int] = 32
 
     def __init__(self, total_length: float = 3.0, taper: float = 0.0, **options: Any) -> None:
         self.total_length, self.taper = total_length, taper
         self._waves: Recent[tuple[int, str, float, float], tuple[LinkChain, Gait, Trajectory, float]] = \
-            Recent(32)
+            Recent(self.WAVES_KEPT)
         super().__init__(**options)
 
     @override

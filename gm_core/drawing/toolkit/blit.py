@@ -9,9 +9,9 @@ webagg's diff images: ``canvas.blit`` marks the picture old and sends only chang
 :class:`Blitter` needs no list of moving artists from the panel. During a frame it intercepts
 ``canvas.draw_idle``; afterwards the leaf artists that the update made *stale* are the moving
 ones. New moving artists, a changed view (axis limits; for 3D axes also the viewing angles, which
-a student changes by dragging), a new axis label or a missing background trigger one full draw (the ``draw_event``
-callback then captures the background without the animated artists and paints them on top);
-every later frame is a blit. In 3D the moving artists are projected with the view of the last
+a student changes by dragging), a new axis label or a missing background trigger one full draw
+(the ``draw_event`` callback then captures the background without the animated artists and
+paints them on top); every later frame is a blit. In 3D the moving artists are projected with the view of the last
 full draw, which the view check keeps current (3-D collections through their public
 ``do_3d_projection``, which only the axes' own draw would call).
 
