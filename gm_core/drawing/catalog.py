@@ -312,13 +312,14 @@ class LabScene(Scene):
             self.body.set((0.0, 0.0, 0.0), r)
         except ValueError:      # the body's model is undefined there (a tape measure at alpha < 0): keep the last one
             pass
-        said = ["no minimum-perturbation frame: the file's"] if self.frame_error else []
+        # the flag sits on the map (264 px wide): each message in lines that fit it
+        said = ["no minimum-perturbation\nframe: the file's"] if self.frame_error else []
         try:
             est = displacement_estimates(self.view, gait, interactive=True)
         except SingularShapeError as e:
             where = "the minimum-perturbation window" if self.view is not self.system else "the map"
             self.estimates, self.table = None, estimates_table(None, str(e), _row_names(self.system))
-            said.append(f"gait leaves {where} or is singular")
+            said.append(f"gait is singular or leaves\n{where}")
         else:
             (lo1, hi1), (lo2, hi2) = self.system.shape_limits
             p = self.gait_artist.points
@@ -327,7 +328,7 @@ class LabScene(Scene):
                 said.append("the gait leaves the map's window")
             self.estimates, self.table = est, estimates_table(est, rows=_row_names(self.system))
         if said:
-            self.flag.show("; ".join(said))
+            self.flag.show("\n".join(said))
         else:
             self.flag.hide()
         if self.frame_error:
